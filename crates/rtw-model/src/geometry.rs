@@ -1,0 +1,167 @@
+//! Rods, tips and connection points in the slope frame (MODEL.md §2–§3).
+//!
+//! `x` runs down the slope, `y` along its normal; the ground is `y = 0`.
+//! A rod has centre `c`, angle `θ` and unit vector `e = (cos θ, sin θ)`; its
+//! tips (feet) are `c ± (L/2) e` and its connection points `c ± r e`.
+
+use std::f64::consts::PI;
+
+/// A plain 2-vector (the hot path wants no more than this).
+pub type V2 = [f64; 2];
+
+#[inline]
+pub fn add(a: V2, b: V2) -> V2 {
+    [a[0] + b[0], a[1] + b[1]]
+}
+#[inline]
+pub fn sub(a: V2, b: V2) -> V2 {
+    [a[0] - b[0], a[1] - b[1]]
+}
+#[inline]
+pub fn scale(s: f64, a: V2) -> V2 {
+    [s * a[0], s * a[1]]
+}
+#[inline]
+pub fn dot(a: V2, b: V2) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+/// z-component of the planar cross product `a × b`.
+#[inline]
+pub fn cross(a: V2, b: V2) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+/// `a` turned by +90°: the velocity of a point at `a` on a body spinning at unit rate.
+#[inline]
+pub fn perp(a: V2) -> V2 {
+    [-a[1], a[0]]
+}
+
+/// One end of a rod: `+` at `c + (L/2) e`, `−` at `c − (L/2) e`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Tip {
+    Plus,
+    Minus,
+}
+
+impl Tip {
+    /// ±1.
+    #[inline]
+    pub fn sign(self) -> f64 {
+        match self {
+            Tip::Plus => 1.0,
+            Tip::Minus => -1.0,
+        }
+    }
+
+    #[inline]
+    pub fn other(self) -> Tip {
+        match self {
+            Tip::Plus => Tip::Minus,
+            Tip::Minus => Tip::Plus,
+        }
+    }
+}
+
+/// Position and velocity of one rod in full coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RodState {
+    /// Centre.
+    pub c: V2,
+    pub theta: f64,
+    /// Centre velocity.
+    pub v: V2,
+    pub omega: f64,
+}
+
+/// A rod's kinematic quantities that every force evaluation needs once.
+#[derive(Clone, Copy, Debug)]
+pub struct RodFrame {
+    pub c: V2,
+    pub v: V2,
+    pub omega: f64,
+    /// Unit vector along the rod.
+    pub e: V2,
+}
+
+impl RodFrame {
+    #[inline]
+    pub fn new(s: &RodState) -> Self {
+        let (sin, cos) = s.theta.sin_cos();
+        Self {
+            c: s.c,
+            v: s.v,
+            omega: s.omega,
+            e: [cos, sin],
+        }
+    }
+
+    /// The point at signed distance `a` from the centre along the rod, and its velocity.
+    #[inline]
+    pub fn point(&self, a: f64) -> (V2, V2) {
+        let arm = scale(a, self.e);
+        (add(self.c, arm), add(self.v, scale(self.omega, perp(arm))))
+    }
+}
+
+/// The rest shape (MODEL.md §3): a regular six-spoked star, all centres at
+/// `hub`, with rod angles `θ_a`, `θ_a + π/3`, `θ_a + 2π/3`, so that the spokes
+/// a+, b+, c+, a−, b−, c− go round in that angular order.
+pub fn rest_star(hub: V2, theta_a: f64) -> [RodState; 3] {
+    std::array::from_fn(|i| RodState {
+        c: hub,
+        theta: theta_a + i as f64 * PI / 3.0,
+        v: [0.0, 0.0],
+        omega: 0.0,
+    })
+}
+
+/// The spokes in angular order: (rod index, tip) of a+, b+, c+, a−, b−, c−.
+pub const SPOKES: [(usize, Tip); 6] = [
+    (0, Tip::Plus),
+    (1, Tip::Plus),
+    (2, Tip::Plus),
+    (0, Tip::Minus),
+    (1, Tip::Minus),
+    (2, Tip::Minus),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rest_star_spokes_go_round_at_sixty_degrees() {
+        let rods = rest_star([0.0, 0.0], 0.3);
+        for (j, &(i, tip)) in SPOKES.iter().enumerate() {
+            let f = RodFrame::new(&rods[i]);
+            let (p, _) = f.point(tip.sign());
+            let ang = p[1].atan2(p[0]);
+            let want = 0.3 + j as f64 * PI / 3.0;
+            let d = (ang - want).rem_euclid(2.0 * PI);
+            assert!(d < 1e-12 || 2.0 * PI - d < 1e-12, "spoke {j}: {ang} vs {want}");
+        }
+    }
+
+    #[test]
+    fn point_velocity_is_rigid_body() {
+        let s = RodState {
+            c: [1.0, 2.0],
+            theta: 0.7,
+            v: [0.3, -0.2],
+            omega: 1.9,
+        };
+        let f = RodFrame::new(&s);
+        // Finite difference of the point position along the motion.
+        let h = 1e-6;
+        let s2 = RodState {
+            c: add(s.c, scale(h, s.v)),
+            theta: s.theta + h * s.omega,
+            ..s
+        };
+        let (p0, v0) = f.point(0.25);
+        let (p1, _) = RodFrame::new(&s2).point(0.25);
+        for k in 0..2 {
+            assert!(((p1[k] - p0[k]) / h - v0[k]).abs() < 1e-5);
+        }
+    }
+}

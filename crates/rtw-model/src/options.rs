@@ -1,0 +1,232 @@
+//! Every choice MODEL.md leaves to configuration, with its stated default.
+//!
+//! The field names are the keys of a scan config's `[simulation]` table
+//! (`initial.omega`, `strings.slack`, `contact.mu`, …); unknown keys are refused.
+
+use crate::params::{Normalization, ParamError, check};
+use serde::{Deserialize, Serialize};
+
+/// Integration method as chosen in a config.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MethodChoice {
+    /// Dormand–Prince 5(4), adaptive.
+    #[default]
+    Dp54,
+    /// Dormand–Prince 8(5,3), adaptive.
+    Dop853,
+    /// Classic RK4 with fixed step `rk4_step`.
+    Rk4,
+}
+
+/// The initial shape of the star (MODEL.md §6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialShape {
+    /// The rest shape, a regular six-spoked star, on two feet.
+    #[default]
+    RigidStar,
+    /// The static equilibrium standing on the same two feet.
+    Static,
+}
+
+/// How the string damper acts (MODEL.md §9, `strings.damping`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Damping {
+    /// Kelvin–Voigt along the string: tension `c ℓ̇` (S6).
+    #[default]
+    Along,
+    /// Isotropic: force `−c (Ṗ − Q̇)` on end P.
+    Relative,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct InitialOptions {
+    pub shape: InitialShape,
+    /// Rigid angular velocity about the front foot [rad/s]; negative rolls downhill.
+    pub omega: f64,
+}
+
+impl Default for InitialOptions {
+    fn default() -> Self {
+        Self {
+            shape: InitialShape::RigidStar,
+            omega: -2.0,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StringOptions {
+    /// Natural length as a fraction `s` of the rest hexagon's side r: ℓ₀ = s r.
+    pub rest_length_ratio: f64,
+    /// A slack string cannot push: tension max(0, T).
+    pub slack: bool,
+    pub damping: Damping,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ContactOptions {
+    /// Coulomb friction coefficient; `inf` = no slip (frictionless slide fallback).
+    pub mu: f64,
+}
+
+impl Default for ContactOptions {
+    fn default() -> Self {
+        Self { mu: f64::INFINITY }
+    }
+}
+
+/// All simulation options (MODEL.md §4–§6, §9). Defaults are MODEL.md's.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Options {
+    /// Simulated time [s].
+    pub t_max: f64,
+    pub method: MethodChoice,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Fixed step of RK4 [s].
+    pub rk4_step: f64,
+    /// Largest adaptive step [s].
+    pub h_max: f64,
+    /// Work budget (accepted + rejected steps) before `diverged`.
+    pub max_steps: u64,
+    /// Gravity [m/s²].
+    pub g: f64,
+    pub normalization: Normalization,
+    /// The analysis window is the last `analysis_window` fraction of the run.
+    pub analysis_window: f64,
+    /// Contact-state fraction above which flight (or triple support) counts.
+    pub eps: f64,
+    /// Collapse when the centre of mass falls below this × h₀.
+    pub collapse_height_ratio: f64,
+    /// Stall when no touchdown happens for this long [s].
+    pub stall_time: f64,
+    /// Touchdown is declared at tip height −touchdown_offset·L (guard against
+    /// re-triggering a touchdown at a tip released at y = 0).
+    pub touchdown_offset: f64,
+    /// Sample the trajectory every `trace_dt` seconds when recording (0: every step).
+    pub trace_dt: f64,
+    pub initial: InitialOptions,
+    pub strings: StringOptions,
+    pub contact: ContactOptions,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            t_max: 20.0,
+            method: MethodChoice::Dp54,
+            rtol: 1e-8,
+            atol: 1e-10,
+            rk4_step: 1e-4,
+            h_max: 0.01,
+            max_steps: 5_000_000,
+            g: 9.81,
+            normalization: Normalization::Supplementary,
+            analysis_window: 0.5,
+            eps: 0.01,
+            collapse_height_ratio: 0.5,
+            stall_time: 3.0,
+            touchdown_offset: 1e-10,
+            trace_dt: 0.0,
+            initial: InitialOptions::default(),
+            strings: StringOptions::default(),
+            contact: ContactOptions::default(),
+        }
+    }
+}
+
+/// Largest finite friction coefficient accepted: above 4/3 a uniform rod can
+/// meet the Painlevé paradox (MODEL.md §4).
+pub const MU_MAX_FINITE: f64 = 4.0 / 3.0;
+
+impl Options {
+    /// Checks every option, naming the offending key and its valid range.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check("t_max", self.t_max, "finite and > 0 (s)", |v| v > 0.0)?;
+        check("rtol", self.rtol, "in (0, 1)", |v| v > 0.0 && v < 1.0)?;
+        check("atol", self.atol, "finite and > 0", |v| v > 0.0)?;
+        check("rk4_step", self.rk4_step, "finite and > 0 (s)", |v| v > 0.0)?;
+        check("h_max", self.h_max, "finite and > 0 (s)", |v| v > 0.0)?;
+        check("max_steps", self.max_steps as f64, ">= 1", |v| v >= 1.0)?;
+        check("g", self.g, "finite and >= 0 (m/s^2)", |v| v >= 0.0)?;
+        check("analysis_window", self.analysis_window, "in (0, 1]", |v| {
+            v > 0.0 && v <= 1.0
+        })?;
+        check("eps", self.eps, "in [0, 1)", |v| (0.0..1.0).contains(&v))?;
+        check(
+            "collapse_height_ratio",
+            self.collapse_height_ratio,
+            "in [0, 1)",
+            |v| (0.0..1.0).contains(&v),
+        )?;
+        check("stall_time", self.stall_time, "finite and > 0 (s)", |v| {
+            v > 0.0
+        })?;
+        check(
+            "touchdown_offset",
+            self.touchdown_offset,
+            "in [0, 1e-6]",
+            |v| (0.0..=1e-6).contains(&v),
+        )?;
+        check("trace_dt", self.trace_dt, "finite and >= 0 (s)", |v| {
+            v >= 0.0
+        })?;
+        check("initial.omega", self.initial.omega, "finite (rad/s)", |_| {
+            true
+        })?;
+        check(
+            "strings.rest_length_ratio",
+            self.strings.rest_length_ratio,
+            "in [0, 1)",
+            |v| (0.0..1.0).contains(&v),
+        )?;
+        let mu = self.contact.mu;
+        if !(mu == f64::INFINITY || (mu.is_finite() && (0.0..=MU_MAX_FINITE).contains(&mu))) {
+            return Err(ParamError::new(
+                "contact.mu",
+                mu,
+                "inf (no slip) or in [0, 4/3] (Painlevé-free Coulomb friction)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_model_md() {
+        let o = Options::default();
+        o.validate().unwrap();
+        assert_eq!(o.t_max, 20.0);
+        assert_eq!(o.initial.omega, -2.0);
+        assert_eq!(o.collapse_height_ratio, 0.5);
+        assert_eq!(o.stall_time, 3.0);
+        assert_eq!(o.eps, 0.01);
+        assert!(o.contact.mu.is_infinite());
+        assert_eq!(o.strings.rest_length_ratio, 0.0);
+        assert!(!o.strings.slack);
+    }
+
+    #[test]
+    fn bad_options_name_the_key() {
+        let mut o = Options::default();
+        o.contact.mu = 2.0;
+        assert_eq!(o.validate().unwrap_err().field, "contact.mu");
+        let mut o = Options::default();
+        o.strings.rest_length_ratio = 1.0;
+        assert_eq!(o.validate().unwrap_err().field, "strings.rest_length_ratio");
+        let mut o = Options::default();
+        o.rtol = f64::NAN;
+        assert_eq!(o.validate().unwrap_err().field, "rtol");
+    }
+}

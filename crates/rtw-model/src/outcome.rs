@@ -1,0 +1,192 @@
+//! What one run produces: the gait label and every metric of MODEL.md §5.
+
+use serde::{Deserialize, Serialize};
+
+/// The outcome label of a run (MODEL.md §5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Label {
+    /// Stable gait with flight (NLSP + SLSP).
+    Skip,
+    /// Stable gait with single and double support only (SLSP + DLSP).
+    Walk,
+    /// Stable gait with triple support (SLSP + DLSP + TLSP).
+    Crawl,
+    /// Stiffness collapse: a rod lies down or the centre of mass sinks.
+    Collapse,
+    /// Energy barrier: the star stops rolling.
+    Stall,
+    /// Numerical failure; a defect, never a physical outcome.
+    Diverged,
+}
+
+impl Label {
+    pub const ALL: [Label; 6] = [
+        Label::Skip,
+        Label::Walk,
+        Label::Crawl,
+        Label::Collapse,
+        Label::Stall,
+        Label::Diverged,
+    ];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Label::Skip => "skip",
+            Label::Walk => "walk",
+            Label::Crawl => "crawl",
+            Label::Collapse => "collapse",
+            Label::Stall => "stall",
+            Label::Diverged => "diverged",
+        }
+    }
+
+    /// A stable gait (skip, walk or crawl).
+    pub fn is_stable(self) -> bool {
+        matches!(self, Label::Skip | Label::Walk | Label::Crawl)
+    }
+
+    /// A physical failure (collapse or stall); `diverged` is neither.
+    pub fn is_failure(self) -> bool {
+        matches!(self, Label::Collapse | Label::Stall)
+    }
+}
+
+impl std::fmt::Display for Label {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for Label {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Label::ALL
+            .into_iter()
+            .find(|l| l.as_str() == s)
+            .ok_or_else(|| format!("unknown outcome label {s:?}"))
+    }
+}
+
+/// Why a failed run failed, in more detail than its label.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureDetail {
+    /// A rod would have both tips on the ground.
+    RodDown,
+    /// The centre of mass fell below `collapse_height_ratio × h₀`.
+    CentreOfMassLow,
+    /// `initial.shape = "static"` found no standing equilibrium.
+    NoStandingEquilibrium,
+    /// No touchdown for `stall_time`.
+    NoTouchdown,
+    /// The centre of mass moved less than L/2 downhill over the window.
+    NoProgress,
+    /// A state became NaN or infinite.
+    NonFinite,
+    /// The step size underflowed.
+    StepUnderflow,
+    /// The work budget (`max_steps`) ran out.
+    WorkBudget,
+    /// Many transitions in a microsecond (Zeno).
+    Zeno,
+}
+
+impl FailureDetail {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            FailureDetail::RodDown => "rod_down",
+            FailureDetail::CentreOfMassLow => "com_low",
+            FailureDetail::NoStandingEquilibrium => "no_standing_equilibrium",
+            FailureDetail::NoTouchdown => "no_touchdown",
+            FailureDetail::NoProgress => "no_progress",
+            FailureDetail::NonFinite => "non_finite",
+            FailureDetail::StepUnderflow => "step_underflow",
+            FailureDetail::WorkBudget => "work_budget",
+            FailureDetail::Zeno => "zeno",
+        }
+    }
+}
+
+/// Time fractions of the contact states over the analysis window.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactFractions {
+    /// No foot on the ground (flight).
+    pub nlsp: f64,
+    /// One rod on the ground.
+    pub slsp: f64,
+    /// Two rods.
+    pub dlsp: f64,
+    /// Three rods.
+    pub tlsp: f64,
+}
+
+/// Energy bookkeeping of a run (J). `balance_error` =
+/// E_end + impact_loss + damping_loss − E_start, where E includes gravity's
+/// potential: zero up to integration error.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Energy {
+    pub initial: f64,
+    pub last: f64,
+    /// Potential energy of gravity released (E_grav,start − E_grav,end).
+    pub gravity_released: f64,
+    pub impact_loss: f64,
+    pub damping_loss: f64,
+    pub balance_error: f64,
+}
+
+/// Integrator work over a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct IntegratorWork {
+    pub steps: u64,
+    pub rejected: u64,
+    pub rhs_evals: u64,
+    /// Events located (touchdowns, lift-offs, mode switches).
+    pub events: u64,
+}
+
+/// Everything one run measures (MODEL.md §5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    pub label: Label,
+    pub failure: Option<FailureDetail>,
+    /// Time at which the run ended (t_max unless it failed).
+    pub t_end: f64,
+    /// Contact-state fractions over the analysis window.
+    pub fractions: ContactFractions,
+    /// All touchdowns of the run.
+    pub touchdowns: u64,
+    /// Touchdowns per second in the window.
+    pub f_w: f64,
+    /// Touchdowns of a tip other than the one that rod last landed on, per second.
+    pub f_w_newfoot: f64,
+    /// Mean downhill speed of the centre of mass over the window [m/s].
+    pub speed: f64,
+    /// Largest |λ_x|/λ_y while sticking with λ_y > 0.05 m g.
+    pub mu_required: f64,
+    /// Rod-seconds spent sliding over the whole run.
+    pub slide_time: f64,
+    pub energy: Energy,
+    /// Period of the gait on the touchdown return map (0: none found).
+    pub period: u32,
+    pub work: IntegratorWork,
+}
+
+/// One sample of a recorded trajectory, in full coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TraceSample {
+    pub t: f64,
+    /// Per rod a, b, c: centre x, y, angle θ.
+    pub pose: [[f64; 3]; 3],
+    /// Per rod: centre velocity x, y, angular velocity.
+    pub vel: [[f64; 3]; 3],
+    /// Per rod: 0 free, +1 / −1 stick on tip ±, +2 / −2 slide on tip ±.
+    pub contact: [i8; 3],
+    /// Number of rods on the ground (0 NLSP … 3 TLSP).
+    pub contact_state: u8,
+    pub kinetic: f64,
+    pub gravity_potential: f64,
+    pub string_potential: f64,
+    pub damping_loss: f64,
+    pub impact_loss: f64,
+}

@@ -1,0 +1,233 @@
+//! Normalized inputs (L, ρ, α, f_n, ζ, φ) and the physical parameters they
+//! give (MODEL.md §1, supplementary S19–S22).
+
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// A rejected input: names the field, the value and the valid range.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{field} = {value} is invalid: must be {range}")]
+pub struct ParamError {
+    pub field: &'static str,
+    pub value: f64,
+    pub range: &'static str,
+}
+
+impl ParamError {
+    pub fn new(field: &'static str, value: f64, range: &'static str) -> Self {
+        Self {
+            field,
+            value,
+            range,
+        }
+    }
+}
+
+/// Checks `ok(value)` and `value` finite, or names the field and its range.
+pub(crate) fn check(
+    field: &'static str,
+    value: f64,
+    range: &'static str,
+    ok: impl Fn(f64) -> bool,
+) -> Result<(), ParamError> {
+    if value.is_finite() && ok(value) {
+        Ok(())
+    } else {
+        Err(ParamError::new(field, value, range))
+    }
+}
+
+/// The six normalized inputs of one sample (MODEL.md §1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Params {
+    /// Rod length `L` [m].
+    pub length: f64,
+    /// Mass per length `ρ` [kg/m].
+    pub rho: f64,
+    /// Connection ratio `α = l_c / L` [-].
+    pub alpha: f64,
+    /// Design eigen-frequency `f_n` of the approximate model (S18) [Hz].
+    pub f_n: f64,
+    /// Damping ratio `ζ` [-].
+    pub zeta: f64,
+    /// Slope `φ` [rad].
+    pub phi: f64,
+}
+
+impl Params {
+    /// Validated constructor.
+    pub fn new(
+        length: f64,
+        rho: f64,
+        alpha: f64,
+        f_n: f64,
+        zeta: f64,
+        phi: f64,
+    ) -> Result<Self, ParamError> {
+        let p = Self {
+            length,
+            rho,
+            alpha,
+            f_n,
+            zeta,
+            phi,
+        };
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The walking example of the article's Fig. 7(a): m = 2 kg, l_c = 0.1 m,
+    /// k = 500 N/m, c = 1 N·s/m on φ = 0.15 rad.
+    pub fn fig7a() -> Self {
+        Self {
+            length: 0.8,
+            rho: 2.5,
+            alpha: 0.125,
+            f_n: 3.269,
+            zeta: 0.0514,
+            phi: 0.15,
+        }
+    }
+
+    /// MODEL.md §1: L > 0, ρ > 0, 0 ≤ α < 0.5, f_n > 0, ζ ≥ 0, |φ| < π/2, all finite.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check("length", self.length, "finite and > 0 (m)", |v| v > 0.0)?;
+        check("rho", self.rho, "finite and > 0 (kg/m)", |v| v > 0.0)?;
+        check("alpha", self.alpha, "in [0, 0.5)", |v| {
+            (0.0..0.5).contains(&v)
+        })?;
+        check("fn", self.f_n, "finite and > 0 (Hz)", |v| v > 0.0)?;
+        check("zeta", self.zeta, "finite and >= 0", |v| v >= 0.0)?;
+        check("phi", self.phi, "in (-pi/2, pi/2) rad", |v| {
+            v.abs() < PI / 2.0
+        })?;
+        Ok(())
+    }
+}
+
+/// How (f_n, ζ) map to (k, c) (MODEL.md §9, `normalization`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Normalization {
+    /// S21–S22 as printed: the approximate model's true frequency is then √3·f_n.
+    #[default]
+    Supplementary,
+    /// k and c chosen so that the correctly linearized approximate model
+    /// oscillates at f_n with damping ratio ζ: k/3, and c = 4 I ζ (2π f_n) / (9 r²).
+    Eigen,
+}
+
+/// Physical parameters of one RTW (SI units), derived from [`Params`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Physical {
+    /// Rod length L.
+    pub length: f64,
+    /// Rod mass m = ρ L.
+    pub m: f64,
+    /// Connection offset from each tip, l_c = α L.
+    pub l_c: f64,
+    /// Rod inertia about its centre, I = m L² / 12.
+    pub inertia: f64,
+    /// Connection radius r = L/2 − l_c.
+    pub r: f64,
+    /// String stiffness k.
+    pub k: f64,
+    /// String damping c.
+    pub c: f64,
+    /// Slope φ.
+    pub phi: f64,
+    /// Gravity g.
+    pub g: f64,
+}
+
+impl Physical {
+    pub fn new(p: &Params, normalization: Normalization, g: f64) -> Self {
+        let l = p.length;
+        let m = p.rho * l;
+        let l_c = p.alpha * l;
+        let inertia = m * l * l / 12.0;
+        let r = l / 2.0 - l_c;
+        let w = (1.0 - 2.0 * p.alpha).powi(2);
+        // S21, S22.
+        let k_supp = 4.0 * PI * PI / 3.0 * p.rho * p.f_n * p.f_n * l / w;
+        let c_supp = 8.0 * PI / 15.0 * p.zeta * p.rho * p.f_n * l / w;
+        let (k, c) = match normalization {
+            Normalization::Supplementary => (k_supp, c_supp),
+            // The rotor mode has stiffness 3 k r² and decay rate 9 c r² / (4 I)
+            // (MODEL.md §7): match ω = 2π f_n and σ/ω = ζ.
+            Normalization::Eigen => (
+                k_supp / 3.0,
+                4.0 * inertia * p.zeta * 2.0 * PI * p.f_n / (9.0 * r * r),
+            ),
+        };
+        Self {
+            length: l,
+            m,
+            l_c,
+            inertia,
+            r,
+            k,
+            c,
+            phi: p.phi,
+            g,
+        }
+    }
+
+    /// Inertia of a rod about one of its tips, I + m L²/4 = m L²/3.
+    #[inline]
+    pub fn inertia_tip(&self) -> f64 {
+        self.inertia + self.m * self.length * self.length / 4.0
+    }
+
+    /// Height of the hub of the rigid star standing on two feet: h₀ = (L/2) cos(π/6).
+    #[inline]
+    pub fn standing_height(&self) -> f64 {
+        0.5 * self.length * (PI / 6.0).cos()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fig7a_test_vector() {
+        // MODEL.md §1: the article's round numbers.
+        let ph = Physical::new(&Params::fig7a(), Normalization::Supplementary, 9.81);
+        assert!((ph.m - 2.0).abs() < 1e-12);
+        assert!((ph.l_c - 0.1).abs() < 1e-12);
+        assert!((ph.inertia - 0.106_666_666_666_666_67).abs() < 1e-12);
+        assert!((ph.r - 0.3).abs() < 1e-12);
+        assert!((ph.k - 500.0067).abs() < 5e-5, "k = {}", ph.k);
+        assert!((ph.c - 1.00100).abs() < 5e-6, "c = {}", ph.c);
+    }
+
+    #[test]
+    fn s21_s22_agree_with_their_unreduced_forms() {
+        // k = f_n² (4π)² I / (L − 2 l_c)², c = ζ (4/5) sqrt(I k / ((L − 2 l_c)²/4)).
+        let p = Params::new(0.7, 3.1, 0.31, 4.2, 0.07, 0.2).unwrap();
+        let ph = Physical::new(&p, Normalization::Supplementary, 9.81);
+        let d = p.length - 2.0 * ph.l_c;
+        let k = p.f_n.powi(2) * (4.0 * PI).powi(2) * ph.inertia / (d * d);
+        let c = p.zeta * 0.8 * (ph.inertia * k / (d * d / 4.0)).sqrt();
+        assert!((ph.k - k).abs() < 1e-9 * k);
+        assert!((ph.c - c).abs() < 1e-9 * c);
+        let e = Physical::new(&p, Normalization::Eigen, 9.81);
+        assert!((e.k - k / 3.0).abs() < 1e-9 * k);
+        // Eigen damping is the supplementary one scaled by 5/9.
+        assert!((e.c - c * 5.0 / 9.0).abs() < 1e-9 * c);
+    }
+
+    #[test]
+    fn invalid_inputs_name_field_and_range() {
+        let e = Params::new(0.8, 2.5, 0.5, 3.0, 0.05, 0.1).unwrap_err();
+        assert_eq!(e.field, "alpha");
+        assert!(e.to_string().contains("[0, 0.5)"), "{e}");
+        assert_eq!(Params::new(0.0, 2.5, 0.1, 3.0, 0.05, 0.1).unwrap_err().field, "length");
+        assert_eq!(Params::new(0.8, -1.0, 0.1, 3.0, 0.05, 0.1).unwrap_err().field, "rho");
+        assert_eq!(Params::new(0.8, 1.0, 0.1, f64::NAN, 0.05, 0.1).unwrap_err().field, "fn");
+        assert_eq!(Params::new(0.8, 1.0, 0.1, 3.0, -0.1, 0.1).unwrap_err().field, "zeta");
+        assert_eq!(Params::new(0.8, 1.0, 0.1, 3.0, 0.1, 1.6).unwrap_err().field, "phi");
+        assert_eq!(Params::new(0.8, 1.0, -0.01, 3.0, 0.1, 0.1).unwrap_err().field, "alpha");
+    }
+}

@@ -1,0 +1,3 @@
+fn main() {
+    println!("rtw-scan: in progress");
+}
