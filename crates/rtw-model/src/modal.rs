@@ -1,1 +1,490 @@
-//! (in progress)
+//! Linear modal analysis: the supplementary's approximate 3-rotor model
+//! (S1–S18), linearized correctly, and the full free 9-DOF star.
+//!
+//! Both analyses linearize [`StringSet::loads`] numerically (central finite
+//! differences, step `1e-6` rad on angles and `1e-6 r` on positions) at the
+//! rest shape, without gravity or ground, and compare with closed forms that
+//! are also exported here, so that the tests check one against the other.
+//!
+//! # The approximate model, and how it differs from S18
+//!
+//! Three rods of inertia `I` pinned at one common centre, `q = (θa, θb, θc)`
+//! at rest at `(θa, θa + π/3, θa + 2π/3)`, `M = I·Id`. With
+//! `K = −∂τ/∂q`, `C = −∂τ/∂q̇` the state matrix is
+//! `A = [[0, Id], [−M⁻¹K, −M⁻¹C]]` ([`approximate_modes`]).
+//!
+//! The supplementary's linearization (S7–S16) is wrong in three ways
+//! (MODEL.md §7):
+//!
+//! * S7–S10 write `−3/π` for the rest angle `θa − θb`; it is `−π/3`.
+//! * S1 with S5–S6 has the sign of `F` reversed: `F` is the gradient of the
+//!   string potential, so the motion is `M q̈ = −F`, not `M q̈ = F`.
+//! * It expands every `sin/cos(θi − θj)` about `−π/3`, although `θa − θc`
+//!   rests at `−2π/3`.
+//!
+//! Linearized correctly (zero rest length, as S5–S6), with `r = L/2 − l_c`
+//! and `Λ = [[2,−1,−1],[−1,2,−1],[−1,−1,2]]`:
+//!
+//! * stiffness `K = k r² Λ` (eigenvalues 0 — the common rotation, the one
+//!   zero mode — and `3 k r²` twice);
+//! * damping `C = (3/2) c r² Λ` for the `along` damper (S6), and
+//!   `C = c r² [[4,−1,−1],[−1,4,−1],[−1,−1,4]]` for the `relative` one
+//!   (which also damps the common rotation: a real eigenvalue `−2 c r²/I`);
+//! * so the oscillating modes are one double pair
+//!   `λ = −σ ± i √(ω² − σ²)` with `ω = √(3 k r²/I) = √3 · 2π f_n`, where
+//!   `f_n = (L − 2 l_c)/(4π) √(k/I)` is S18's value ([`s18_frequency`]): the
+//!   true frequency is `√3 · f_n`, not `f_n`;
+//! * the decay rate is `σ = 9 c r²/(4 I)` (`along`; `5 c r²/(2 I)` for
+//!   `relative`), so the true damping ratio is `σ/ω = 9 c r/(4 √(3 k I))`,
+//!   which with S22's `c` is `9/(5√3) · ζ ≈ 1.039 ζ`;
+//! * critical damping (the pair turns real when `σ = ω`) is
+//!   `c_crit = 4 √(3 k I)/(9 r)` (`along`), against S17's `(4/5) √(k I)/r`
+//!   (`relative`: `2 √(3 k I)/(5 r)`); [`approximate_modes`] also finds it by
+//!   bisection on `c`.
+//!
+//! S14's two different pairs (with `5c` and `9c`) and their positive real
+//! parts are artefacts of the wrong sign and of the wrong expansion point. The
+//! design parameter stays `f_n` as S18 defines it: the normalization
+//! S21–S22 ([`Normalization::Supplementary`](crate::Normalization)) is kept as
+//! printed, and [`Normalization::Eigen`](crate::Normalization) is the
+//! alternative that makes the true frequency `f_n` and the true damping
+//! ratio `ζ` (`k/3`, `c = 4 I ζ (2π f_n)/(9 r²)`).
+//!
+//! With a natural length `ℓ₀ = s r` the tension is `k (ℓ − ℓ₀)` and the same
+//! computation gives `K = k r² (1 + s/2) Λ` (the damping is unchanged).
+//!
+//! # The free 9-DOF star
+//!
+//! [`free_star_modes`]: the star with `(x, y, θ)` per rod, `M = diag(m, m, I)`
+//! per rod, linearized at [`rest_star`] (an equilibrium for every `s < 1`,
+//! by symmetry), solving `K v = ω² M v` through `M^{-1/2} K M^{-1/2}`.
+//! Because every string has length `r` at rest, its Hessian is
+//! `k ∇ℓ ∇ℓᵀ + k (1 − s) r ∇²ℓ`, i.e. `K(s) = (1 − s) K(0) + s K₁` with
+//! `K₁ = k Σ ∇ℓ ∇ℓᵀ`. Central symmetry decouples the translations of the
+//! centres from the rotations at first order, and 3-fold symmetry fixes the
+//! mode shapes, which gives the closed form ([`free_star_closed_form`],
+//! checked by the tests to 1e-6):
+//!
+//! * 3 rigid modes (two translations, one rotation);
+//! * the rotor pair of the approximate model (centres at rest):
+//!   `√3 f_n · √(1 + s/2)` — it *stiffens* with prestress;
+//! * four relative translations with `ω² = 6 k/m · {1, 1 − s/2, 1 − s/2, 1 − s}`:
+//!   at `s = 0` a quadruple frequency `√(6 k/m)/2π = √2 f_n/(1 − 2α)`; for
+//!   `s > 0` one stays, a pair softens as `√(1 − s/2)`, and one — the
+//!   tensegrity's infinitesimal mechanism, each rod sliding along its own
+//!   axis with `δc = (+e_a, −e_b, +e_c)`, which changes no string length at
+//!   first order and is held only by prestress — softens as `√(1 − s)`.
+//!
+//! At the Fig. 7(a) point (`k = 500`, `r = 0.3`, `m = 2`, `I = 0.10667`,
+//! `f_n = 3.269`), in Hz:
+//!
+//! | s | rigid | mechanism | pair | translation | rotor pair |
+//! |---|---|---|---|---|---|
+//! | 0 | 0 ×3 | 6.164 | 6.164 ×2 | 6.164 | 5.662 ×2 |
+//! | 0.85 | 0 ×3 | 2.387 | 4.674 ×2 | 6.164 | 6.759 ×2 |
+//!
+//! This confirms MODEL.md §9 (5.66 Hz ×2 = `√3 f_n` and 6.16 Hz ×4 at
+//! `s = 0`, one 6.16 Hz mode softening as `√(1 − s)`), and completes it: two
+//! more 6.16 Hz modes soften as `√(1 − s/2)` and the 5.66 Hz pair stiffens
+//! as `√(1 + s/2)`.
+//!
+//! The module does no I/O.
+
+use crate::geometry::{RodFrame, RodState, rest_star};
+use crate::options::Damping;
+use crate::params::Physical;
+use crate::strings::StringSet;
+use nalgebra::{Complex, Matrix3, Matrix6, SMatrix, SymmetricEigen};
+use std::f64::consts::{FRAC_PI_3, PI};
+
+/// Relative finite-difference step (angles in rad; lengths in units of r).
+const FD_STEP: f64 = 1e-6;
+
+/// An eigenvalue `ω²` counts as zero (a rigid mode) below this fraction of the largest.
+const ZERO_TOL: f64 = 1e-8;
+
+/// A state-matrix eigenvalue oscillates when `|Im λ| > OSC_TOL · |λ|`.
+const OSC_TOL: f64 = 1e-6;
+
+/// 9 × 9 real matrix (the full star's stiffness, mass, shapes).
+pub type Matrix9 = SMatrix<f64, 9, 9>;
+
+/// The rest angles of the approximate model: θa = 0, θb = π/3, θc = 2π/3.
+pub const REST_ANGLES: [f64; 3] = [0.0, FRAC_PI_3, 2.0 * FRAC_PI_3];
+
+/// Modes of the approximate 3-rotor model (S1–S6), correctly linearized.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ApproxModes {
+    /// Stiffness `K = −∂τ/∂q` at the rest angles (finite differences).
+    pub stiffness: Matrix3<f64>,
+    /// Damping `C = −∂τ/∂q̇` at the rest angles (finite differences).
+    pub damping: Matrix3<f64>,
+    /// The six eigenvalues of `A = [[0, Id], [−M⁻¹K, −M⁻¹C]]` [1/s],
+    /// sorted by modulus, then by imaginary part.
+    pub eigenvalues: Vec<Complex<f64>>,
+    /// Undamped frequencies of the oscillating modes, `√(eig(M⁻¹K))/2π` [Hz],
+    /// sorted (zero modes left out). Correctly linearized: `[√3 f_n; 2]`.
+    pub freq_hz: Vec<f64>,
+    /// Damped frequencies `|Im λ|/2π` of the complex pairs of `A` [Hz], one per
+    /// pair, sorted by `|λ|` (the natural frequency).
+    pub damped_freq_hz: Vec<f64>,
+    /// Damping ratios `−Re λ/|λ|` of the same pairs, in the same order.
+    pub damping_ratio: Vec<f64>,
+    /// Number of zero eigenvalues of `M⁻¹K` (rigid modes): 1, the common rotation.
+    pub zero_modes: usize,
+    /// The string damping `c` above which no mode of `A` oscillates, found by
+    /// bisection on `c` (everything else fixed) [N·s/m]; `NaN` if nothing
+    /// oscillates at `c = 0`, `∞` if damping never stops the oscillation.
+    pub critical_damping: f64,
+}
+
+/// Modes of the free 9-DOF star (no gravity, no ground), linearized at the rest shape.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StarModes {
+    /// The nine frequencies `√ω²/2π` [Hz], sorted; rigid modes come first (≈ 0).
+    pub freq_hz: [f64; 9],
+    /// The eigenvalues `ω²` of `K v = ω² M v` [rad²/s²], same order (rigid
+    /// ones may be round-off negative).
+    pub omega_sq: [f64; 9],
+    /// Number of modes with `|ω²|` below `1e-8 · max ω²`: 3 (two translations, one rotation).
+    pub rigid_modes: usize,
+    /// Mode shapes, mass-normalized (`vᵀ M v = 1`), in the coordinates
+    /// `(x_a, y_a, θ_a, x_b, y_b, θ_b, x_c, y_c, θ_c)`: `shapes[j]` belongs to
+    /// `freq_hz[j]`. Within a repeated frequency the basis is arbitrary.
+    pub shapes: [[f64; 9]; 9],
+    /// The symmetrized stiffness `K = −∂(F, τ)/∂(x, y, θ)` [N/m, N, N·m].
+    pub stiffness: Matrix9,
+}
+
+/// S18 as printed: `f_n = (L − 2 l_c)/(4π) · √(k/I)` [Hz].
+pub fn s18_frequency(phys: &Physical) -> f64 {
+    (phys.length - 2.0 * phys.l_c) / (4.0 * PI) * (phys.k / phys.inertia).sqrt()
+}
+
+/// Rest-length ratio `s = ℓ₀ / r` of a string set.
+fn rest_ratio(strings: &StringSet) -> f64 {
+    strings.rest_length / strings.r
+}
+
+/// Closed form of the approximate model's stiffness: `K = κ [[2,−1,−1],[−1,2,−1],[−1,−1,2]]`
+/// with `κ = k r² (1 + s/2)` (`s = ℓ₀/r`; `κ = k r²` for S5's zero rest length).
+pub fn approx_stiffness_closed_form(strings: &StringSet) -> Matrix3<f64> {
+    let kappa = strings.k * strings.r * strings.r * (1.0 + 0.5 * rest_ratio(strings));
+    laplacian() * kappa
+}
+
+/// Closed form of the approximate model's damping matrix: `along`:
+/// `(3/2) c r² [[2,−1,−1],[−1,2,−1],[−1,−1,2]]`; `relative`:
+/// `c r² [[4,−1,−1],[−1,4,−1],[−1,−1,4]]`.
+pub fn approx_damping_closed_form(strings: &StringSet) -> Matrix3<f64> {
+    let cr2 = strings.c * strings.r * strings.r;
+    match strings.damping {
+        Damping::Along => laplacian() * (1.5 * cr2),
+        Damping::Relative => (Matrix3::identity() * 3.0 + laplacian()) * cr2,
+    }
+}
+
+/// `[[2,−1,−1],[−1,2,−1],[−1,−1,2]]`: eigenvalues 0 (common rotation) and 3, 3.
+fn laplacian() -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| if i == j { 2.0 } else { -1.0 })
+}
+
+/// Closed form of the approximate model's oscillating (double) pair: undamped
+/// frequency `√(3 κ / I)/2π` [Hz], `κ` as in [`approx_stiffness_closed_form`];
+/// `= √3 · f_n` (S18) for zero rest length.
+pub fn approx_frequency_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
+    let kappa = strings.k * strings.r * strings.r * (1.0 + 0.5 * rest_ratio(strings));
+    (3.0 * kappa / phys.inertia).sqrt() / (2.0 * PI)
+}
+
+/// Closed form of the decay rate `σ = −Re λ` of the oscillating pair [1/s]:
+/// `9 c r² / (4 I)` (`along`), `5 c r² / (2 I)` (`relative`).
+pub fn approx_decay_rate_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
+    let cr2 = strings.c * strings.r * strings.r;
+    match strings.damping {
+        Damping::Along => 9.0 * cr2 / (4.0 * phys.inertia),
+        Damping::Relative => 5.0 * cr2 / (2.0 * phys.inertia),
+    }
+}
+
+/// Closed form of the critical damping `c_crit` (decay rate = natural frequency):
+/// `along`: `4 √(3 κ I) / (9 r²)`, i.e. `4 √(3 k I) / (9 r)` at zero rest length
+/// (S17 prints `(4/5) √(k I) / r`); `relative`: `2 √(3 κ I) / (5 r²)`.
+pub fn critical_damping_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
+    let r2 = strings.r * strings.r;
+    let kappa = strings.k * r2 * (1.0 + 0.5 * rest_ratio(strings));
+    let root = (3.0 * kappa * phys.inertia).sqrt();
+    match strings.damping {
+        Damping::Along => 4.0 * root / (9.0 * r2),
+        Damping::Relative => 2.0 * root / (5.0 * r2),
+    }
+}
+
+/// String torques on three rods pinned at a common centre (the approximate model).
+fn rotor_torques(strings: &StringSet, theta: [f64; 3], omega: [f64; 3]) -> [f64; 3] {
+    let frames: [RodFrame; 3] = std::array::from_fn(|i| {
+        RodFrame::new(&RodState {
+            c: [0.0, 0.0],
+            theta: theta[i],
+            v: [0.0, 0.0],
+            omega: omega[i],
+        })
+    });
+    strings.loads(&frames).torque
+}
+
+/// `K = −∂τ/∂q` and `C = −∂τ/∂q̇` of the approximate model at [`REST_ANGLES`],
+/// by central finite differences of [`StringSet::loads`].
+pub fn approx_matrices(strings: &StringSet) -> (Matrix3<f64>, Matrix3<f64>) {
+    let h = FD_STEP;
+    let mut k = Matrix3::zeros();
+    let mut c = Matrix3::zeros();
+    for j in 0..3 {
+        let (mut tp, mut tm) = (REST_ANGLES, REST_ANGLES);
+        tp[j] += h;
+        tm[j] -= h;
+        let (fp, fm) = (
+            rotor_torques(strings, tp, [0.0; 3]),
+            rotor_torques(strings, tm, [0.0; 3]),
+        );
+        let (mut wp, mut wm) = ([0.0; 3], [0.0; 3]);
+        wp[j] = h;
+        wm[j] = -h;
+        let (gp, gm) = (
+            rotor_torques(strings, REST_ANGLES, wp),
+            rotor_torques(strings, REST_ANGLES, wm),
+        );
+        for i in 0..3 {
+            k[(i, j)] = -(fp[i] - fm[i]) / (2.0 * h);
+            c[(i, j)] = -(gp[i] - gm[i]) / (2.0 * h);
+        }
+    }
+    (k, c)
+}
+
+/// The state matrix `[[0, Id], [−K/I, −C/I]]`.
+fn state_matrix(k: &Matrix3<f64>, c: &Matrix3<f64>, inertia: f64) -> Matrix6<f64> {
+    let mut a = Matrix6::zeros();
+    for i in 0..3 {
+        a[(i, i + 3)] = 1.0;
+        for j in 0..3 {
+            a[(i + 3, j)] = -k[(i, j)] / inertia;
+            a[(i + 3, j + 3)] = -c[(i, j)] / inertia;
+        }
+    }
+    a
+}
+
+/// The eigenvalues of `A` that oscillate (`Im λ > 0` member of each pair,
+/// `|λ|` above `zero`), sorted by `|λ|`.
+fn oscillating_pairs(eig: &[Complex<f64>], zero: f64) -> Vec<Complex<f64>> {
+    let mut out: Vec<Complex<f64>> = eig
+        .iter()
+        .copied()
+        .filter(|l| l.norm() > zero && l.im > OSC_TOL * l.norm())
+        .collect();
+    out.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
+    out
+}
+
+/// Modes of the approximate model (S1–S6): rods of inertia `I = phys.inertia`
+/// pinned at one common centre, no gravity, strings `strings`, linearized at
+/// the rest angles by finite differences (see the module documentation).
+pub fn approximate_modes(phys: &Physical, strings: &StringSet) -> ApproxModes {
+    let inertia = phys.inertia;
+    let (k, c) = approx_matrices(strings);
+
+    // Undamped: eigenvalues of M⁻¹K = K/I (symmetrized).
+    let ks = (k + k.transpose()) * 0.5;
+    let w2 = SymmetricEigen::new(ks / inertia).eigenvalues;
+    let w2_max = w2.iter().fold(0.0_f64, |m, &v| m.max(v.abs()));
+    let is_zero = |v: f64| w2_max <= 0.0 || v.abs() <= ZERO_TOL * w2_max;
+    let zero_modes = w2.iter().filter(|&&v| is_zero(v)).count();
+    let mut freq_hz: Vec<f64> = w2
+        .iter()
+        .filter(|&&v| !is_zero(v))
+        .map(|&v| v.max(0.0).sqrt() / (2.0 * PI))
+        .collect();
+    freq_hz.sort_by(f64::total_cmp);
+
+    // Damped: eigenvalues of the state matrix.
+    let zero = 1e-6 * w2_max.sqrt();
+    let mut eigenvalues: Vec<Complex<f64>> = state_matrix(&k, &c, inertia)
+        .complex_eigenvalues()
+        .iter()
+        .copied()
+        .collect();
+    eigenvalues.sort_by(|a, b| {
+        a.norm()
+            .total_cmp(&b.norm())
+            .then(a.im.total_cmp(&b.im))
+    });
+    let pairs = oscillating_pairs(&eigenvalues, zero);
+    let damped_freq_hz = pairs.iter().map(|l| l.im / (2.0 * PI)).collect();
+    let damping_ratio = pairs.iter().map(|l| -l.re / l.norm()).collect();
+
+    let critical_damping = critical_damping_bisection(strings, &k, inertia, zero);
+    ApproxModes {
+        stiffness: k,
+        damping: c,
+        eigenvalues,
+        freq_hz,
+        damped_freq_hz,
+        damping_ratio,
+        zero_modes,
+        critical_damping,
+    }
+}
+
+/// The smallest string damping `c` at which no eigenvalue of `A` oscillates,
+/// by bisection (the damping matrix is linear in `c`: `C = c C₁`).
+fn critical_damping_bisection(
+    strings: &StringSet,
+    k: &Matrix3<f64>,
+    inertia: f64,
+    zero: f64,
+) -> f64 {
+    let unit = StringSet { c: 1.0, ..*strings };
+    let (_, c1) = approx_matrices(&unit);
+    let oscillates = |c: f64| {
+        let eig = state_matrix(k, &(c1 * c), inertia).complex_eigenvalues();
+        !oscillating_pairs(eig.as_slice(), zero).is_empty()
+    };
+    if !oscillates(0.0) {
+        return f64::NAN;
+    }
+    // A first guess of the scale: the c whose decay rate is the largest ω.
+    let c1_max = SymmetricEigen::new((c1 + c1.transpose()) * 0.5)
+        .eigenvalues
+        .iter()
+        .fold(0.0_f64, |m, &v| m.max(v.abs()));
+    let w_max = SymmetricEigen::new((k + k.transpose()) * (0.5 / inertia))
+        .eigenvalues
+        .iter()
+        .fold(0.0_f64, |m, &v| m.max(v.abs()))
+        .sqrt();
+    if c1_max <= 0.0 {
+        return f64::INFINITY;
+    }
+    let (mut lo, mut hi) = (0.0, inertia * w_max / c1_max);
+    let mut doublings = 0;
+    while oscillates(hi) {
+        lo = hi;
+        hi *= 2.0;
+        doublings += 1;
+        if doublings > 200 {
+            return f64::INFINITY;
+        }
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if hi - lo <= 1e-14 * hi {
+            break;
+        }
+        if oscillates(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The full star's generalized string forces `(F_x, F_y, τ)` per rod at the
+/// rest shape displaced by `dz` (coordinates `(x, y, θ)` per rod).
+fn star_forces(strings: &StringSet, dz: &[f64; 9]) -> [f64; 9] {
+    let rest = rest_star([0.0, 0.0], 0.0);
+    let frames: [RodFrame; 3] = std::array::from_fn(|i| {
+        RodFrame::new(&RodState {
+            c: [rest[i].c[0] + dz[3 * i], rest[i].c[1] + dz[3 * i + 1]],
+            theta: rest[i].theta + dz[3 * i + 2],
+            v: [0.0, 0.0],
+            omega: 0.0,
+        })
+    });
+    let l = strings.loads(&frames);
+    std::array::from_fn(|n| {
+        let (i, dof) = (n / 3, n % 3);
+        if dof < 2 { l.force[i][dof] } else { l.torque[i] }
+    })
+}
+
+/// The free star's stiffness `K = −∂(F, τ)/∂(x, y, θ)` at the rest shape
+/// (`rest_star([0, 0], 0)`), central finite differences (step `1e-6 r` on
+/// positions, `1e-6` rad on angles), symmetrized.
+pub fn star_stiffness(strings: &StringSet) -> Matrix9 {
+    let mut k = Matrix9::zeros();
+    for j in 0..9 {
+        let h = if j % 3 < 2 { FD_STEP * strings.r } else { FD_STEP };
+        let (mut zp, mut zm) = ([0.0; 9], [0.0; 9]);
+        zp[j] = h;
+        zm[j] = -h;
+        let (fp, fm) = (star_forces(strings, &zp), star_forces(strings, &zm));
+        for i in 0..9 {
+            k[(i, j)] = -(fp[i] - fm[i]) / (2.0 * h);
+        }
+    }
+    (k + k.transpose()) * 0.5
+}
+
+/// The free star's generalized string forces at the rest shape (zero: the
+/// regular star is an equilibrium for every `s < 1`, by symmetry).
+pub fn star_rest_forces(strings: &StringSet) -> [f64; 9] {
+    star_forces(strings, &[0.0; 9])
+}
+
+/// Modes of the free 9-DOF star (no gravity, no ground): `K v = ω² M v` with
+/// `M = diag(m, m, I)` per rod, solved as the symmetric eigenproblem of
+/// `M^{-1/2} K M^{-1/2}`.
+pub fn free_star_modes(phys: &Physical, strings: &StringSet) -> StarModes {
+    let k = star_stiffness(strings);
+    let mass: [f64; 9] =
+        std::array::from_fn(|n| if n % 3 < 2 { phys.m } else { phys.inertia });
+    let inv_sqrt: [f64; 9] = std::array::from_fn(|n| 1.0 / mass[n].sqrt());
+    let scaled = Matrix9::from_fn(|i, j| k[(i, j)] * inv_sqrt[i] * inv_sqrt[j]);
+    let eig = SymmetricEigen::new(scaled);
+    let mut order: [usize; 9] = std::array::from_fn(|n| n);
+    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+    let omega_sq: [f64; 9] = std::array::from_fn(|n| eig.eigenvalues[order[n]]);
+    let w2_max = omega_sq.iter().fold(0.0_f64, |m, &v| m.max(v.abs()));
+    let rigid_modes = omega_sq
+        .iter()
+        .filter(|&&v| w2_max <= 0.0 || v.abs() <= ZERO_TOL * w2_max)
+        .count();
+    let freq_hz = omega_sq.map(|v| v.max(0.0).sqrt() / (2.0 * PI));
+    let shapes = std::array::from_fn(|n| {
+        let col = eig.eigenvectors.column(order[n]);
+        std::array::from_fn(|i| col[i] * inv_sqrt[i])
+    });
+    StarModes {
+        freq_hz,
+        omega_sq,
+        rigid_modes,
+        shapes,
+        stiffness: k,
+    }
+}
+
+/// Closed form of the free star's nine frequencies [Hz], sorted (see the
+/// module documentation): three rigid modes (0), the rotor pair
+/// `√(3 k r² (1 + s/2) / I)/2π` (×2) and four relative translations
+/// `√(6 k/m · {1 − s, 1 − s/2, 1 − s/2, 1})/2π`, with `s = ℓ₀/r`.
+pub fn free_star_closed_form(phys: &Physical, strings: &StringSet) -> [f64; 9] {
+    let s = rest_ratio(strings);
+    let rotor = approx_frequency_closed_form(phys, strings);
+    let w2_t = 6.0 * strings.k / phys.m;
+    let trans = |f: f64| (w2_t * f).sqrt() / (2.0 * PI);
+    let mut out = [
+        0.0,
+        0.0,
+        0.0,
+        rotor,
+        rotor,
+        trans(1.0 - s),
+        trans(1.0 - 0.5 * s),
+        trans(1.0 - 0.5 * s),
+        trans(1.0),
+    ];
+    out.sort_by(f64::total_cmp);
+    out
+}

@@ -1,1 +1,329 @@
-//! (in progress)
+//! The RTW as a hybrid system (MODEL.md §2–§5): continuous dynamics of the
+//! three rods in their contact modes, the guards that end a mode, and the
+//! resets (touchdown, lift-off, re-stick, slip, failure).
+//!
+//! State: three rods × six slots (meaning per mode: see [`crate::contact`])
+//! and, in slot [`DISSIPATED`], the energy the string dampers have dissipated,
+//! integrated alongside the motion for the energy balance.
+
+use crate::contact::{Load, RodBody, RodMode};
+use crate::geometry::{RodFrame, RodState, Tip, V2, add, scale};
+use crate::hybrid::{Crossing, Guards};
+use crate::options::Options;
+use crate::outcome::FailureDetail;
+use crate::params::Physical;
+use crate::strings::StringSet;
+use std::cell::Cell;
+
+/// State dimension: 3 rods × 6 slots + dissipated energy.
+pub const N: usize = 19;
+/// Slot of the energy dissipated by the string dampers.
+pub const DISSIPATED: usize = 18;
+
+/// What a guard watches.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GuardKind {
+    /// A free rod's tip reaches the ground moving down.
+    Touchdown { rod: usize, tip: Tip },
+    /// A grounded rod's normal force falls to zero.
+    LiftOff { rod: usize },
+    /// A grounded rod's other tip reaches the ground: the rod lies down.
+    RodDown { rod: usize },
+    /// A sliding tip's tangential velocity reverses.
+    Restick { rod: usize },
+    /// A sticking tip's force leaves the friction cone (finite μ).
+    Slip { rod: usize },
+    /// The centre of mass sinks below the collapse height.
+    ComLow,
+}
+
+/// What a reset did, for the run's statistics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Transition {
+    /// A touchdown of `tip` of `rod`, with the kinetic energy it took and the
+    /// rod's angular velocity just after.
+    Touchdown {
+        rod: usize,
+        tip: Tip,
+        loss: f64,
+        omega_after: f64,
+    },
+    /// Any other change of a rod's mode.
+    ModeChange { rod: usize },
+    /// A failure that ends the run.
+    Failure(FailureDetail),
+}
+
+/// The RTW: its constants and its current contact modes.
+#[derive(Clone, Debug)]
+pub struct Rtw {
+    pub body: RodBody,
+    pub strings: StringSet,
+    /// Gravity in the slope frame, g (sin φ, −cos φ).
+    pub gravity: V2,
+    /// Friction coefficient (infinite: no slip, frictionless slide).
+    pub mu: f64,
+    pub modes: [RodMode; 3],
+    /// Touchdown is declared at this tip height (slightly below 0).
+    pub touchdown_height: f64,
+    /// A re-stick needs the sliding tip's velocity to reverse by more than this.
+    pub restick_speed: f64,
+    /// Collapse when the centre of mass height falls below this.
+    pub collapse_height: f64,
+    /// Largest |λ_x|/λ_y seen while sticking with λ_y > 0.05 m g (updated as guards are evaluated).
+    pub mu_required: Cell<f64>,
+}
+
+impl Rtw {
+    pub fn new(phys: &Physical, opts: &Options) -> Self {
+        let (sin, cos) = phys.phi.sin_cos();
+        Self {
+            body: RodBody {
+                m: phys.m,
+                inertia: phys.inertia,
+                half_length: phys.length / 2.0,
+            },
+            strings: StringSet {
+                k: phys.k,
+                c: phys.c,
+                r: phys.r,
+                rest_length: opts.strings.rest_length_ratio * phys.r,
+                slack: opts.strings.slack,
+                damping: opts.strings.damping,
+            },
+            gravity: [phys.g * sin, -phys.g * cos],
+            mu: opts.contact.mu,
+            modes: [RodMode::Free; 3],
+            touchdown_height: -opts.touchdown_offset * phys.length,
+            restick_speed: 1e-9 * phys.length,
+            collapse_height: opts.collapse_height_ratio * phys.standing_height(),
+            mu_required: Cell::new(0.0),
+        }
+    }
+
+    /// Per-rod frames (full coordinates plus unit vectors) of state `y`.
+    #[inline]
+    pub fn frames(&self, y: &[f64; N]) -> [RodFrame; 3] {
+        std::array::from_fn(|i| self.body.frame(self.modes[i], &y[6 * i..6 * i + 6]))
+    }
+
+    /// Full coordinates of the rods.
+    pub fn rods(&self, y: &[f64; N]) -> [RodState; 3] {
+        std::array::from_fn(|i| self.body.rod_state(self.modes[i], &y[6 * i..6 * i + 6]))
+    }
+
+    /// Writes the rods back into `y` in the current modes.
+    pub fn store(&self, rods: &[RodState; 3], y: &mut [f64; N]) {
+        for (i, r) in rods.iter().enumerate() {
+            self.body.slots(self.modes[i], r, &mut y[6 * i..6 * i + 6]);
+        }
+    }
+
+    /// External loads (strings + gravity) on each rod, and the damper power.
+    #[inline]
+    pub fn loads(&self, frames: &[RodFrame; 3]) -> ([Load; 3], f64) {
+        let s = self.strings.loads(frames);
+        let weight = scale(self.body.m, self.gravity);
+        let loads = std::array::from_fn(|i| Load {
+            force: add(s.force[i], weight),
+            torque: s.torque[i],
+        });
+        (loads, s.dissipation)
+    }
+
+    /// Continuous dynamics: `ẏ = f(y)` in the current modes.
+    #[inline]
+    pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) {
+        let frames = self.frames(y);
+        let (loads, dissipation) = self.loads(&frames);
+        for i in 0..3 {
+            let a = self.body.accel(self.modes[i], &frames[i], &loads[i], self.mu);
+            dy[6 * i..6 * i + 6].copy_from_slice(&a.deriv);
+        }
+        dy[DISSIPATED] = dissipation;
+    }
+
+    /// The guards of the current modes, in a fixed order that depends only
+    /// on the modes (the engine compares the same index across a step).
+    pub fn guard_kinds(&self, mut visit: impl FnMut(GuardKind)) {
+        for (rod, mode) in self.modes.iter().enumerate() {
+            match *mode {
+                RodMode::Free => {
+                    visit(GuardKind::Touchdown { rod, tip: Tip::Plus });
+                    visit(GuardKind::Touchdown { rod, tip: Tip::Minus });
+                }
+                RodMode::Stick { .. } => {
+                    visit(GuardKind::LiftOff { rod });
+                    visit(GuardKind::RodDown { rod });
+                    if self.mu.is_finite() {
+                        visit(GuardKind::Slip { rod });
+                    }
+                }
+                RodMode::Slide { .. } => {
+                    visit(GuardKind::LiftOff { rod });
+                    visit(GuardKind::RodDown { rod });
+                    visit(GuardKind::Restick { rod });
+                }
+            }
+        }
+        visit(GuardKind::ComLow);
+    }
+
+    /// Guard values at `y`. All fire on a falling crossing of zero.
+    pub fn guards(&self, y: &[f64; N], out: &mut Guards) {
+        out.clear();
+        let frames = self.frames(y);
+        let (loads, _) = self.loads(&frames);
+        let mut lambda = [[0.0; 2]; 3];
+        for i in 0..3 {
+            if self.modes[i] != RodMode::Free {
+                lambda[i] = self.body.accel(self.modes[i], &frames[i], &loads[i], self.mu).lambda;
+                if matches!(self.modes[i], RodMode::Stick { .. })
+                    && lambda[i][1] > 0.05 * self.body.m * self.gravity[1].abs()
+                {
+                    let ratio = lambda[i][0].abs() / lambda[i][1];
+                    if ratio > self.mu_required.get() {
+                        self.mu_required.set(ratio);
+                    }
+                }
+            }
+        }
+        let tip_height = |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).0[1];
+        self.guard_kinds(|kind| {
+            let value = match kind {
+                GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
+                GuardKind::LiftOff { rod } => lambda[rod][1],
+                GuardKind::RodDown { rod } => {
+                    let tip = self.modes[rod].tip().expect("grounded rod");
+                    tip_height(rod, tip.other())
+                }
+                GuardKind::Restick { rod } => {
+                    let RodMode::Slide { dir, .. } = self.modes[rod] else {
+                        unreachable!("restick guard on a sliding rod")
+                    };
+                    y[6 * rod + 3] * dir + self.restick_speed
+                }
+                GuardKind::Slip { rod } => self.mu * lambda[rod][1] - lambda[rod][0].abs(),
+                GuardKind::ComLow => {
+                    (frames[0].c[1] + frames[1].c[1] + frames[2].c[1]) / 3.0 - self.collapse_height
+                }
+            };
+            out.push(value, Crossing::Falling);
+        });
+    }
+
+    /// The guard of index `index` in the current modes.
+    pub fn guard_kind(&self, index: usize) -> GuardKind {
+        let mut k = 0;
+        let mut found = None;
+        self.guard_kinds(|kind| {
+            if k == index {
+                found = Some(kind);
+            }
+            k += 1;
+        });
+        found.expect("guard index in range")
+    }
+
+    /// Applies the reset of guard `index` at state `y`.
+    pub fn reset(&mut self, y: &mut [f64; N], index: usize) -> Transition {
+        match self.guard_kind(index) {
+            GuardKind::Touchdown { rod, tip } => self.touchdown(y, rod, tip),
+            GuardKind::LiftOff { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                let at_rest = matches!(self.modes[rod], RodMode::Stick { .. });
+                self.rechoose(y, rod, tip, at_rest);
+                Transition::ModeChange { rod }
+            }
+            GuardKind::Restick { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                // The tip's velocity has just reversed: it is at rest up to
+                // `restick_speed`, which the reset drops.
+                y[6 * rod + 3] = 0.0;
+                self.rechoose(y, rod, tip, true);
+                Transition::ModeChange { rod }
+            }
+            GuardKind::Slip { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                self.rechoose(y, rod, tip, true);
+                Transition::ModeChange { rod }
+            }
+            GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
+            GuardKind::ComLow => Transition::Failure(FailureDetail::CentreOfMassLow),
+        }
+    }
+
+    /// Re-applies the mode-choice rule to a grounded rod.
+    fn rechoose(&mut self, y: &mut [f64; N], rod: usize, tip: Tip, at_rest: bool) {
+        let rods = self.rods(y);
+        let (loads, _) = self.loads(&self.frames(y));
+        self.modes[rod] = self.body.choose_mode(&rods[rod], tip, at_rest, &loads[rod], self.mu);
+        self.body.slots(self.modes[rod], &rods[rod], &mut y[6 * rod..6 * rod + 6]);
+    }
+
+    /// Touchdown of a free rod's tip: the impact, then the mode choice.
+    pub fn touchdown(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
+        let rods = self.rods(y);
+        let before = rods[rod];
+        let impact = self.body.touchdown(&before, tip, self.mu);
+        let mut after = impact.after;
+        // Put the tip exactly on the ground (it was declared a hair below).
+        let (p, _) = self.body.tip_point(&after, tip);
+        after.c[1] -= p[1];
+        let mut rods = rods;
+        rods[rod] = after;
+        // Mode choice needs the loads with the rod in its new place.
+        let frames: [RodFrame; 3] = std::array::from_fn(|i| RodFrame::new(&rods[i]));
+        let (loads, _) = self.loads(&frames);
+        self.modes[rod] = self.body.choose_mode(&after, tip, impact.sticks, &loads[rod], self.mu);
+        self.body.slots(self.modes[rod], &after, &mut y[6 * rod..6 * rod + 6]);
+        let settled = self.body.rod_state(self.modes[rod], &y[6 * rod..6 * rod + 6]);
+        Transition::Touchdown {
+            rod,
+            tip,
+            loss: self.body.kinetic(&before) - self.body.kinetic(&settled),
+            omega_after: settled.omega,
+        }
+    }
+
+    /// Kinetic, gravitational and elastic energy of state `y`.
+    pub fn energy(&self, y: &[f64; N]) -> (f64, f64, f64) {
+        let frames = self.frames(y);
+        let rods = self.rods(y);
+        let kinetic = rods.iter().map(|r| self.body.kinetic(r)).sum();
+        let gravity = -self.body.m
+            * rods
+                .iter()
+                .map(|r| r.c[0] * self.gravity[0] + r.c[1] * self.gravity[1])
+                .sum::<f64>();
+        (kinetic, gravity, self.strings.potential(&frames))
+    }
+
+    /// Total mechanical energy (kinetic + gravity + strings).
+    pub fn total_energy(&self, y: &[f64; N]) -> f64 {
+        let (k, g, s) = self.energy(y);
+        k + g + s
+    }
+
+    /// Centre of mass of the three rods.
+    pub fn centre_of_mass(&self, y: &[f64; N]) -> V2 {
+        let f = self.frames(y);
+        [
+            (f[0].c[0] + f[1].c[0] + f[2].c[0]) / 3.0,
+            (f[0].c[1] + f[1].c[1] + f[2].c[1]) / 3.0,
+        ]
+    }
+
+    /// Number of rods with a tip on the ground (0 NLSP … 3 TLSP).
+    pub fn contact_state(&self) -> usize {
+        self.modes.iter().filter(|m| m.tip().is_some()).count()
+    }
+
+    /// Number of rods sliding.
+    pub fn sliding(&self) -> usize {
+        self.modes
+            .iter()
+            .filter(|m| matches!(m, RodMode::Slide { .. }))
+            .count()
+    }
+}

@@ -1,22 +1,262 @@
-//! `simulate(params, options) -> Outcome`.
+//! `simulate(params, options) -> Outcome`: one run of the RTW on the hybrid
+//! engine, with the statistics of MODEL.md §5 gathered as it goes.
 
-use crate::{Options, Outcome, Params, TraceSample};
+use crate::gait::{self, GaitStats};
+use crate::hybrid::{self, EndReason, EngineOptions, Flow, Guards, HybridSystem};
+use crate::initial::initial_state;
+use crate::integrate::{Dense, Method};
+use crate::options::{MethodChoice, Options};
+use crate::outcome::{Energy, FailureDetail, IntegratorWork, Label, Outcome, TraceSample};
+use crate::rtw::{DISSIPATED, N, Rtw, Transition};
+use crate::{Params, Physical};
 
 /// Simulates one RTW run.
 ///
 /// # Panics
 /// If `params` or `options` are invalid (call their `validate` first).
 pub fn simulate(params: &Params, options: &Options) -> Outcome {
-    simulate_traced(params, options, &mut |_| {})
+    simulate_inner(params, options, None)
 }
 
-/// [`simulate`], calling `trace` with the state at every step end (or every
-/// `options.trace_dt` seconds).
+/// [`simulate`], calling `trace` with the state at every step end, event and
+/// the start (or every `options.trace_dt` seconds).
 pub fn simulate_traced(
     params: &Params,
     options: &Options,
     trace: &mut dyn FnMut(&TraceSample),
 ) -> Outcome {
-    let _ = (params, options, trace);
-    todo!("in progress")
+    simulate_inner(params, options, Some(trace))
+}
+
+/// The engine options a run uses.
+pub fn engine_options(o: &Options) -> EngineOptions {
+    EngineOptions {
+        method: match o.method {
+            MethodChoice::Dp54 => Method::Dp54,
+            MethodChoice::Dop853 => Method::Dop853,
+            MethodChoice::Rk4 => Method::Rk4 { h: o.rk4_step },
+        },
+        rtol: o.rtol,
+        atol: o.atol,
+        h_max: o.h_max,
+        max_steps: o.max_steps,
+        ..EngineOptions::default()
+    }
+}
+
+/// One run: the RTW, its statistics, and what ends it.
+struct Run<'a> {
+    rtw: Rtw,
+    stats: GaitStats,
+    stall_time: f64,
+    failure: Option<FailureDetail>,
+    /// Energy removed by resets (impacts; also the hair-width projections of
+    /// a tip onto the ground and of a re-sticking tip to rest).
+    impact_loss: f64,
+    trace: Option<&'a mut dyn FnMut(&TraceSample)>,
+    trace_dt: f64,
+    next_trace: f64,
+}
+
+impl Run<'_> {
+    fn sample(&self, t: f64, y: &[f64; N]) -> TraceSample {
+        let rods = self.rtw.rods(y);
+        let (kinetic, gravity_potential, string_potential) = self.rtw.energy(y);
+        TraceSample {
+            t,
+            pose: std::array::from_fn(|i| [rods[i].c[0], rods[i].c[1], rods[i].theta]),
+            vel: std::array::from_fn(|i| [rods[i].v[0], rods[i].v[1], rods[i].omega]),
+            contact: std::array::from_fn(|i| self.rtw.modes[i].code()),
+            contact_state: self.rtw.contact_state() as u8,
+            kinetic,
+            gravity_potential,
+            string_potential,
+            damping_loss: y[DISSIPATED],
+            impact_loss: self.impact_loss,
+        }
+    }
+
+    fn emit(&mut self, t: f64, y: &[f64; N]) {
+        let s = self.sample(t, y);
+        if let Some(trace) = self.trace.as_mut() {
+            trace(&s);
+        }
+    }
+}
+
+impl HybridSystem<N> for Run<'_> {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
+        self.rtw.dynamics(y, dy);
+    }
+
+    #[inline]
+    fn guards(&self, _t: f64, y: &[f64; N], out: &mut Guards) {
+        self.rtw.guards(y, out);
+    }
+
+    fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Flow {
+        let before = self.rtw.total_energy(y);
+        let transition = self.rtw.reset(y, index);
+        self.impact_loss += before - self.rtw.total_energy(y);
+        let flow = match transition {
+            Transition::Touchdown {
+                rod,
+                tip,
+                omega_after,
+                ..
+            } => {
+                self.stats.on_touchdown(t, rod, tip, omega_after);
+                Flow::Continue
+            }
+            Transition::ModeChange { .. } => Flow::Continue,
+            Transition::Failure(detail) => {
+                self.failure = Some(detail);
+                Flow::Stop
+            }
+        };
+        if self.trace.is_some() {
+            self.emit(t, y);
+        }
+        flow
+    }
+
+    fn observe(&mut self, dense: &Dense<N>) -> Flow {
+        let (t0, t1) = (dense.t0, dense.t1);
+        self.stats
+            .on_interval(t0, t1, self.rtw.contact_state(), self.rtw.sliding());
+        if self.stats.window_com_x.is_none() && t1 >= self.stats.window_start {
+            let mut y = [0.0; N];
+            dense.eval(self.stats.window_start.max(t0), &mut y);
+            self.stats.window_com_x = Some(self.rtw.centre_of_mass(&y)[0]);
+        }
+        if self.trace.is_some() {
+            if self.trace_dt > 0.0 {
+                let mut y = [0.0; N];
+                while self.next_trace <= t1 {
+                    let t = self.next_trace;
+                    dense.eval(t, &mut y);
+                    self.emit(t, &y);
+                    self.next_trace += self.trace_dt;
+                }
+            } else {
+                let y1 = dense.y1;
+                self.emit(t1, &y1);
+            }
+        }
+        if t1 - self.stats.last_touchdown > self.stall_time {
+            self.failure = Some(FailureDetail::NoTouchdown);
+            return Flow::Stop;
+        }
+        Flow::Continue
+    }
+}
+
+fn simulate_inner(
+    params: &Params,
+    options: &Options,
+    trace: Option<&mut dyn FnMut(&TraceSample)>,
+) -> Outcome {
+    if let Err(e) = params.validate().and_then(|_| options.validate()) {
+        panic!("simulate: {e}");
+    }
+    let phys = Physical::new(params, options.normalization, options.g);
+    let mut rtw = Rtw::new(&phys, options);
+    let mut y = match initial_state(&mut rtw, options) {
+        Ok(y) => y,
+        Err(detail) => return failed_at_start(detail),
+    };
+    let window_start = options.t_max * (1.0 - options.analysis_window);
+    let mut run = Run {
+        rtw,
+        stats: GaitStats::new(window_start),
+        stall_time: options.stall_time,
+        failure: None,
+        impact_loss: 0.0,
+        trace,
+        trace_dt: options.trace_dt,
+        next_trace: 0.0,
+    };
+    let e0 = run.rtw.total_energy(&y);
+    let g0 = run.rtw.energy(&y).1;
+    if run.trace.is_some() {
+        run.emit(0.0, &y);
+        run.next_trace = options.trace_dt;
+    }
+    let end = hybrid::run(&mut run, 0.0, &mut y, options.t_max, &engine_options(options));
+
+    let (_, g1, _) = run.rtw.energy(&y);
+    let e1 = run.rtw.total_energy(&y);
+    let energy = Energy {
+        initial: e0,
+        last: e1,
+        gravity_released: g0 - g1,
+        impact_loss: run.impact_loss,
+        damping_loss: y[DISSIPATED],
+        balance_error: e1 + run.impact_loss + y[DISSIPATED] - e0,
+    };
+    let numerical = match end.reason {
+        EndReason::TimeUp | EndReason::Stopped => None,
+        EndReason::NonFinite => Some(FailureDetail::NonFinite),
+        EndReason::StepUnderflow => Some(FailureDetail::StepUnderflow),
+        EndReason::WorkBudget => Some(FailureDetail::WorkBudget),
+        EndReason::Zeno => Some(FailureDetail::Zeno),
+    };
+    let window = (options.t_max - window_start).max(f64::MIN_POSITIVE);
+    let stats = &run.stats;
+    let fractions = stats.fractions();
+    let speed = match stats.window_com_x {
+        Some(x0) if end.reason == EndReason::TimeUp => (run.rtw.centre_of_mass(&y)[0] - x0) / window,
+        _ => 0.0,
+    };
+    let failure = numerical.or(run.failure).or_else(|| {
+        // Over the window the star must roll at least half a rod downhill.
+        (speed * window < 0.5 * phys.length).then_some(FailureDetail::NoProgress)
+    });
+    let label = match failure {
+        None => gait::label(&fractions, options.eps),
+        Some(FailureDetail::RodDown | FailureDetail::CentreOfMassLow) => Label::Collapse,
+        Some(FailureDetail::NoStandingEquilibrium) => Label::Collapse,
+        Some(FailureDetail::NoTouchdown | FailureDetail::NoProgress) => Label::Stall,
+        Some(_) => Label::Diverged,
+    };
+    Outcome {
+        label,
+        failure,
+        t_end: end.t,
+        fractions,
+        touchdowns: stats.touchdowns,
+        f_w: stats.window_touchdowns as f64 / window,
+        f_w_newfoot: stats.window_newfoot as f64 / window,
+        speed,
+        mu_required: run.rtw.mu_required.get(),
+        slide_time: stats.slide_time,
+        energy,
+        period: if label.is_stable() { stats.period() } else { 0 },
+        work: IntegratorWork {
+            steps: end.work.steps,
+            rejected: end.work.rejected,
+            rhs_evals: end.work.rhs_evals,
+            events: end.work.events,
+        },
+    }
+}
+
+/// The outcome of a run that could not start.
+fn failed_at_start(detail: FailureDetail) -> Outcome {
+    Outcome {
+        label: Label::Collapse,
+        failure: Some(detail),
+        t_end: 0.0,
+        fractions: Default::default(),
+        touchdowns: 0,
+        f_w: 0.0,
+        f_w_newfoot: 0.0,
+        speed: 0.0,
+        mu_required: 0.0,
+        slide_time: 0.0,
+        energy: Energy::default(),
+        period: 0,
+        work: IntegratorWork::default(),
+    }
 }

@@ -1,0 +1,535 @@
+//! Rows and their Parquet, JSON and text forms.
+//!
+//! One table, [`COLUMNS`], defines every column of a scan row: its name,
+//! type, nullability and how to read it from a [`Row`]. The Parquet schema,
+//! the record batches, `simulate --json` and the `simulate` text table are all
+//! generated from it, so they cannot drift apart.
+//!
+//! Parquet files are written through [`ParquetFile`]: to a temporary file in
+//! the destination's directory, closed, synced and renamed into place, so a
+//! file at its final name is always complete. `outcome` is a dictionary
+//! column with signed `Int32` keys over the fixed label list
+//! [`Label::ALL`] (pandas and polars read it as categorical); floats are
+//! `Float64`, counts `Int64`; compression is zstd.
+
+use anyhow::{Context, Result, anyhow, bail};
+use arrow::array::{
+    Array, ArrayRef, AsArray, DictionaryArray, Float64Array, Int8Array, Int32Array, Int64Array,
+    RecordBatch, StringArray,
+};
+use arrow::datatypes::{DataType, Field, Float64Type, Int32Type, Schema, SchemaRef};
+use parquet::arrow::ArrowWriter;
+use parquet::arrow::arrow_reader::{ParquetRecordBatchReader, ParquetRecordBatchReaderBuilder};
+use parquet::basic::{Compression, ZstdLevel};
+use parquet::file::metadata::KeyValue;
+use parquet::file::properties::WriterProperties;
+use rtw_model::{Label, Outcome, Params, Physical, TraceSample};
+use serde::ser::{Serialize, SerializeMap, Serializer};
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, LazyLock};
+
+/// Metadata key: the resolved scan config as TOML.
+pub const META_CONFIG: &str = "rtw.config";
+/// Metadata key: rtw-scan's version.
+pub const META_VERSION: &str = "rtw.version";
+/// Metadata key: the scan seed.
+pub const META_SEED: &str = "rtw.seed";
+/// Metadata key: one-line model variant summary ([`crate::config::Variant`]).
+pub const META_VARIANT: &str = "rtw.variant";
+/// Metadata key: seconds spent computing the rows (summed over resumed sessions).
+pub const META_WALL_TIME: &str = "rtw.wall_time_s";
+/// Metadata key: seconds spent computing one chunk (chunk files only).
+pub const META_CHUNK_WALL_TIME: &str = "rtw.chunk_wall_time_s";
+
+/// One scan row: a sample's inputs, derived parameters and outcome.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    pub sample_id: u64,
+    pub params: Params,
+    pub physical: Physical,
+    /// `None` when the simulation panicked (the row is then `diverged`).
+    pub outcome: Option<Outcome>,
+    /// Why a sample became `diverged` without an outcome (panic message).
+    pub message: Option<String>,
+    pub wall_time_s: f64,
+}
+
+impl Row {
+    pub fn label(&self) -> Label {
+        self.outcome.map_or(Label::Diverged, |o| o.label)
+    }
+}
+
+/// How a column reads its value from a row.
+#[derive(Clone, Copy)]
+pub enum Get {
+    F64(fn(&Row) -> Option<f64>),
+    I64(fn(&Row) -> Option<i64>),
+    Str(fn(&Row) -> Option<&str>),
+    /// The outcome label, dictionary-encoded.
+    Label,
+}
+
+/// One column of the scan table.
+pub struct Column {
+    pub name: &'static str,
+    /// Section of the `simulate` text table.
+    pub group: &'static str,
+    pub nullable: bool,
+    pub get: Get,
+}
+
+const fn input(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
+    Column { name, group: "input", nullable: false, get: Get::F64(get) }
+}
+const fn derived(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
+    Column { name, group: "derived", nullable: false, get: Get::F64(get) }
+}
+const fn metric(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
+    Column { name, group: "metric", nullable: true, get: Get::F64(get) }
+}
+const fn count(name: &'static str, group: &'static str, get: fn(&Row) -> Option<i64>) -> Column {
+    Column { name, group, nullable: true, get: Get::I64(get) }
+}
+
+/// Every column of a scan row, in file order.
+pub static COLUMNS: &[Column] = &[
+    Column { name: "sample_id", group: "id", nullable: false, get: Get::I64(|r| Some(r.sample_id as i64)) },
+    input("length", |r| Some(r.params.length)),
+    input("rho", |r| Some(r.params.rho)),
+    input("alpha", |r| Some(r.params.alpha)),
+    input("fn", |r| Some(r.params.f_n)),
+    input("zeta", |r| Some(r.params.zeta)),
+    input("phi", |r| Some(r.params.phi)),
+    derived("m", |r| Some(r.physical.m)),
+    derived("l_c", |r| Some(r.physical.l_c)),
+    derived("inertia", |r| Some(r.physical.inertia)),
+    derived("r", |r| Some(r.physical.r)),
+    derived("k", |r| Some(r.physical.k)),
+    derived("c", |r| Some(r.physical.c)),
+    Column { name: "outcome", group: "outcome", nullable: false, get: Get::Label },
+    Column { name: "failure", group: "outcome", nullable: true, get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())) },
+    Column { name: "message", group: "outcome", nullable: true, get: Get::Str(|r| r.message.as_deref()) },
+    metric("t_end", |r| r.outcome.map(|o| o.t_end)),
+    metric("nlsp", |r| r.outcome.map(|o| o.fractions.nlsp)),
+    metric("slsp", |r| r.outcome.map(|o| o.fractions.slsp)),
+    metric("dlsp", |r| r.outcome.map(|o| o.fractions.dlsp)),
+    metric("tlsp", |r| r.outcome.map(|o| o.fractions.tlsp)),
+    count("touchdowns", "metric", |r| r.outcome.map(|o| o.touchdowns as i64)),
+    metric("f_w", |r| r.outcome.map(|o| o.f_w)),
+    metric("f_w_newfoot", |r| r.outcome.map(|o| o.f_w_newfoot)),
+    metric("speed", |r| r.outcome.map(|o| o.speed)),
+    metric("mu_required", |r| r.outcome.map(|o| o.mu_required)),
+    metric("slide_time", |r| r.outcome.map(|o| o.slide_time)),
+    metric("energy_initial", |r| r.outcome.map(|o| o.energy.initial)),
+    metric("energy_last", |r| r.outcome.map(|o| o.energy.last)),
+    metric("energy_gravity_released", |r| r.outcome.map(|o| o.energy.gravity_released)),
+    metric("energy_impact_loss", |r| r.outcome.map(|o| o.energy.impact_loss)),
+    metric("energy_damping_loss", |r| r.outcome.map(|o| o.energy.damping_loss)),
+    metric("energy_balance_error", |r| r.outcome.map(|o| o.energy.balance_error)),
+    count("period", "metric", |r| r.outcome.map(|o| i64::from(o.period))),
+    count("steps", "work", |r| r.outcome.map(|o| o.work.steps as i64)),
+    count("rejected", "work", |r| r.outcome.map(|o| o.work.rejected as i64)),
+    count("rhs_evals", "work", |r| r.outcome.map(|o| o.work.rhs_evals as i64)),
+    count("events", "work", |r| r.outcome.map(|o| o.work.events as i64)),
+    Column { name: "wall_time_s", group: "work", nullable: false, get: Get::F64(|r| Some(r.wall_time_s)) },
+];
+
+/// The Arrow type of the `outcome` column: dictionary with signed keys.
+pub fn label_type() -> DataType {
+    DataType::Dictionary(Box::new(DataType::Int32), Box::new(DataType::Utf8))
+}
+
+static SCHEMA: LazyLock<SchemaRef> = LazyLock::new(|| {
+    let fields: Vec<Field> = COLUMNS
+        .iter()
+        .map(|c| {
+            let ty = match c.get {
+                Get::F64(_) => DataType::Float64,
+                Get::I64(_) => DataType::Int64,
+                Get::Str(_) => DataType::Utf8,
+                Get::Label => label_type(),
+            };
+            Field::new(c.name, ty, c.nullable)
+        })
+        .collect();
+    Arc::new(Schema::new(fields))
+});
+
+/// The Arrow schema of scan rows.
+pub fn schema() -> SchemaRef {
+    SCHEMA.clone()
+}
+
+/// Labels as a dictionary array over the fixed value list [`Label::ALL`].
+fn label_array(labels: impl Iterator<Item = Label>) -> ArrayRef {
+    let keys: Int32Array = labels
+        .map(|l| Label::ALL.iter().position(|x| *x == l).expect("label in ALL") as i32)
+        .collect();
+    let values = StringArray::from_iter_values(Label::ALL.iter().map(|l| l.as_str()));
+    Arc::new(DictionaryArray::<Int32Type>::try_new(keys, Arc::new(values)).expect("keys in range"))
+}
+
+/// Rows → one record batch in [`schema`].
+pub fn to_batch(rows: &[Row]) -> RecordBatch {
+    let arrays: Vec<ArrayRef> = COLUMNS
+        .iter()
+        .map(|c| match c.get {
+            Get::F64(g) => Arc::new(rows.iter().map(g).collect::<Float64Array>()) as ArrayRef,
+            Get::I64(g) => Arc::new(rows.iter().map(g).collect::<Int64Array>()),
+            Get::Str(g) => Arc::new(rows.iter().map(g).collect::<StringArray>()),
+            Get::Label => label_array(rows.iter().map(Row::label)),
+        })
+        .collect();
+    RecordBatch::try_new(schema(), arrays).expect("rows match the schema")
+}
+
+/// A row as one flat JSON object, keys in column order (`outcome` is the
+/// label string; absent metrics and non-finite floats are `null`).
+pub struct JsonRow<'a>(pub &'a Row);
+
+impl Serialize for JsonRow<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let r = self.0;
+        let mut map = s.serialize_map(Some(COLUMNS.len()))?;
+        for c in COLUMNS {
+            match c.get {
+                Get::F64(g) => map.serialize_entry(c.name, &g(r).filter(|v| v.is_finite()))?,
+                Get::I64(g) => map.serialize_entry(c.name, &g(r))?,
+                Get::Str(g) => map.serialize_entry(c.name, &g(r))?,
+                Get::Label => map.serialize_entry(c.name, r.label().as_str())?,
+            }
+        }
+        map.end()
+    }
+}
+
+/// A row as a readable two-column table, grouped by section.
+pub fn to_text(r: &Row) -> String {
+    let mut out = String::new();
+    let mut group = "";
+    for c in COLUMNS {
+        if c.group != group {
+            group = c.group;
+            out.push_str(&format!("[{group}]\n"));
+        }
+        let value = match c.get {
+            Get::F64(g) => g(r).map(|v| format!("{v:.6}")),
+            Get::I64(g) => g(r).map(|v| v.to_string()),
+            Get::Str(g) => g(r).map(str::to_string),
+            Get::Label => Some(r.label().as_str().to_string()),
+        };
+        out.push_str(&format!("  {:<24} {}\n", c.name, value.as_deref().unwrap_or("-")));
+    }
+    out
+}
+
+/// Writer properties: zstd, row groups of at most `max_rows`, the given
+/// key-value metadata.
+pub fn writer_properties(max_rows: usize, metadata: Vec<KeyValue>) -> WriterProperties {
+    WriterProperties::builder()
+        .set_compression(Compression::ZSTD(ZstdLevel::try_new(3).expect("valid zstd level")))
+        .set_max_row_group_row_count(Some(max_rows.max(1)))
+        .set_key_value_metadata(Some(metadata))
+        .build()
+}
+
+/// A Parquet file being written under a temporary name next to `dest`;
+/// [`ParquetFile::finish`] closes, syncs and renames it. Dropped unfinished,
+/// the temporary file is removed.
+pub struct ParquetFile {
+    tmp: tempfile::NamedTempFile,
+    writer: ArrowWriter<File>,
+    dest: PathBuf,
+}
+
+impl ParquetFile {
+    pub fn create(dest: &Path, schema: SchemaRef, props: WriterProperties) -> Result<Self> {
+        let dir = dest.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let name = dest.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        let tmp = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".tmp")
+            .tempfile_in(dir)
+            .with_context(|| format!("cannot create a file in {}", dir.display()))?;
+        let file = tmp.reopen().with_context(|| format!("cannot open {}", tmp.path().display()))?;
+        let writer = ArrowWriter::try_new(file, schema, Some(props))?;
+        Ok(Self { tmp, writer, dest: dest.to_path_buf() })
+    }
+
+    pub fn write(&mut self, batch: &RecordBatch) -> Result<()> {
+        self.writer
+            .write(batch)
+            .with_context(|| format!("writing {}", self.dest.display()))
+    }
+
+    /// Ends the current row group.
+    pub fn end_row_group(&mut self) -> Result<()> {
+        Ok(self.writer.flush()?)
+    }
+
+    pub fn append_metadata(&mut self, key: &str, value: String) {
+        self.writer.append_key_value_metadata(KeyValue::new(key.to_string(), value));
+    }
+
+    /// Closes the writer, syncs the data and moves the file to its name.
+    pub fn finish(self) -> Result<()> {
+        let Self { tmp, writer, dest } = self;
+        writer.close().with_context(|| format!("closing {}", dest.display()))?;
+        tmp.as_file().sync_all()?;
+        tmp.persist(&dest)
+            .with_context(|| format!("cannot move the finished file to {}", dest.display()))?;
+        Ok(())
+    }
+}
+
+/// Writes `batch` as one complete Parquet file at `dest` (atomically).
+pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> Result<()> {
+    let props = writer_properties(batch.num_rows(), metadata);
+    let mut f = ParquetFile::create(dest, batch.schema(), props)?;
+    f.write(batch)?;
+    f.finish()
+}
+
+/// An open Parquet file: its key-value metadata and a batch reader.
+pub struct ParquetInput {
+    pub metadata: BTreeMap<String, String>,
+    pub rows: i64,
+    pub reader: ParquetRecordBatchReader,
+}
+
+/// Opens a Parquet file for reading, with errors naming the path.
+pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let builder = ParquetRecordBatchReaderBuilder::try_new(file)
+        .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
+    let meta = builder.metadata().file_metadata();
+    let rows = meta.num_rows();
+    let metadata = meta
+        .key_value_metadata()
+        .into_iter()
+        .flatten()
+        .filter_map(|kv| Some((kv.key.clone(), kv.value.clone()?)))
+        .collect();
+    let reader = builder.with_batch_size(batch_size.max(1)).build()?;
+    Ok(ParquetInput { metadata, rows, reader })
+}
+
+/// A `Float64` column of a scan batch, by name.
+pub fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
+    let col = batch
+        .column_by_name(name)
+        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
+    col.as_primitive_opt::<Float64Type>()
+        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Float64", col.data_type()))
+}
+
+/// The `outcome` column of a scan batch, decoded to labels.
+pub fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
+    let col = batch
+        .column_by_name("outcome")
+        .ok_or_else(|| anyhow!("column `outcome` is missing"))?;
+    let decode = |s: &str| s.parse::<Label>().map_err(|e| anyhow!("column `outcome`: {e}"));
+    if let Some(dict) = col.as_dictionary_opt::<Int32Type>() {
+        let values = dict
+            .values()
+            .as_string_opt::<i32>()
+            .ok_or_else(|| anyhow!("column `outcome`: dictionary values are not strings"))?;
+        let table: Vec<Label> = values.iter().map(|v| decode(v.unwrap_or(""))).collect::<Result<_>>()?;
+        dict.keys()
+            .iter()
+            .map(|k| {
+                k.and_then(|k| table.get(k as usize).copied())
+                    .ok_or_else(|| anyhow!("column `outcome`: null or bad key"))
+            })
+            .collect()
+    } else if let Some(s) = col.as_string_opt::<i32>() {
+        s.iter().map(|v| decode(v.unwrap_or(""))).collect()
+    } else {
+        bail!("column `outcome` is {}, expected a string dictionary", col.data_type())
+    }
+}
+
+/// Writes a trajectory ([`TraceSample`]s) to Parquet in row groups of
+/// `BATCH` samples, so a long trace never sits in memory.
+pub struct TraceWriter {
+    file: ParquetFile,
+    buffer: Vec<TraceSample>,
+    rows: u64,
+}
+
+enum TraceGet {
+    F64(Box<dyn Fn(&TraceSample) -> f64>),
+    I8(Box<dyn Fn(&TraceSample) -> i8>),
+}
+
+fn trace_columns() -> Vec<(String, TraceGet)> {
+    use TraceGet::{F64, I8};
+    let mut cols: Vec<(String, TraceGet)> = vec![("t".into(), F64(Box::new(|s| s.t)))];
+    for (rod, name) in ["a", "b", "c"].into_iter().enumerate() {
+        for (j, q) in ["x", "y", "theta"].into_iter().enumerate() {
+            cols.push((format!("{q}_{name}"), F64(Box::new(move |s| s.pose[rod][j]))));
+        }
+        for (j, q) in ["vx", "vy", "omega"].into_iter().enumerate() {
+            cols.push((format!("{q}_{name}"), F64(Box::new(move |s| s.vel[rod][j]))));
+        }
+        cols.push((format!("contact_{name}"), I8(Box::new(move |s| s.contact[rod]))));
+    }
+    cols.push(("contact_state".into(), I8(Box::new(|s| s.contact_state as i8))));
+    let scalars: [(&str, fn(&TraceSample) -> f64); 5] = [
+        ("kinetic", |s| s.kinetic),
+        ("gravity_potential", |s| s.gravity_potential),
+        ("string_potential", |s| s.string_potential),
+        ("damping_loss", |s| s.damping_loss),
+        ("impact_loss", |s| s.impact_loss),
+    ];
+    for (n, g) in scalars {
+        cols.push((n.into(), F64(Box::new(g))));
+    }
+    cols
+}
+
+impl TraceWriter {
+    const BATCH: usize = 8192;
+
+    pub fn create(dest: &Path, metadata: Vec<KeyValue>) -> Result<Self> {
+        let fields: Vec<Field> = trace_columns()
+            .into_iter()
+            .map(|(n, g)| {
+                let ty = match g {
+                    TraceGet::F64(_) => DataType::Float64,
+                    TraceGet::I8(_) => DataType::Int8,
+                };
+                Field::new(n, ty, false)
+            })
+            .collect();
+        let props = writer_properties(Self::BATCH, metadata);
+        let file = ParquetFile::create(dest, Arc::new(Schema::new(fields)), props)?;
+        Ok(Self { file, buffer: Vec::with_capacity(Self::BATCH), rows: 0 })
+    }
+
+    /// Buffers one sample, writing a row group when the buffer is full.
+    pub fn push(&mut self, s: &TraceSample) -> Result<()> {
+        self.buffer.push(*s);
+        if self.buffer.len() >= Self::BATCH {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<()> {
+        if self.buffer.is_empty() {
+            return Ok(());
+        }
+        let arrays: Vec<ArrayRef> = trace_columns()
+            .into_iter()
+            .map(|(_, g)| match g {
+                TraceGet::F64(g) => Arc::new(self.buffer.iter().map(|s| g(s)).collect::<Float64Array>()) as ArrayRef,
+                TraceGet::I8(g) => Arc::new(self.buffer.iter().map(|s| g(s)).collect::<Int8Array>()),
+            })
+            .collect();
+        let schema = self.file.writer.schema().clone();
+        self.file.write(&RecordBatch::try_new(schema, arrays)?)?;
+        self.rows += self.buffer.len() as u64;
+        self.buffer.clear();
+        Ok(())
+    }
+
+    /// Writes what is buffered and moves the file into place; returns the row count.
+    pub fn finish(mut self) -> Result<u64> {
+        self.flush()?;
+        self.file.finish()?;
+        Ok(self.rows)
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use rtw_model::Normalization;
+    use rtw_model::outcome::{ContactFractions, Energy, FailureDetail, IntegratorWork};
+
+    pub(crate) fn outcome(label: Label) -> Outcome {
+        Outcome {
+            label,
+            failure: (label == Label::Stall).then_some(FailureDetail::NoTouchdown),
+            t_end: 20.0,
+            fractions: ContactFractions { nlsp: 0.1, slsp: 0.5, dlsp: 0.4, tlsp: 0.0 },
+            touchdowns: 40,
+            f_w: 3.2,
+            f_w_newfoot: 2.9,
+            speed: 0.8,
+            mu_required: 7.5,
+            slide_time: 0.01,
+            energy: Energy::default(),
+            period: 1,
+            work: IntegratorWork { steps: 100, rejected: 3, rhs_evals: 700, events: 50 },
+        }
+    }
+
+    pub(crate) fn row(id: u64, outcome: Option<Outcome>) -> Row {
+        let params = Params::fig7a();
+        Row {
+            sample_id: id,
+            params,
+            physical: Physical::new(&params, Normalization::Supplementary, 9.81),
+            outcome,
+            message: outcome.is_none().then(|| "boom".to_string()),
+            wall_time_s: 0.25,
+        }
+    }
+
+    #[test]
+    fn batch_has_every_column_and_signed_dictionary_keys() {
+        let rows = vec![row(0, Some(outcome(Label::Walk))), row(1, None), row(2, Some(outcome(Label::Stall)))];
+        let b = to_batch(&rows);
+        assert_eq!(b.num_rows(), 3);
+        assert_eq!(b.num_columns(), COLUMNS.len());
+        assert_eq!(b.schema().field_with_name("outcome").unwrap().data_type(), &label_type());
+        assert_eq!(label_column(&b).unwrap(), vec![Label::Walk, Label::Diverged, Label::Stall]);
+        let t_end = f64_column(&b, "t_end").unwrap();
+        assert!(t_end.is_valid(0) && t_end.is_null(1));
+        let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
+        assert!(failure.is_null(0));
+        assert_eq!(failure.value(2), "no_touchdown");
+        let message = b.column_by_name("message").unwrap().as_string::<i32>();
+        assert_eq!(message.value(1), "boom");
+    }
+
+    #[test]
+    fn parquet_round_trip_keeps_types_and_metadata() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.parquet");
+        let rows: Vec<Row> = (0..5).map(|i| row(i, Some(outcome(Label::Skip)))).collect();
+        write_file(&path, &to_batch(&rows), vec![KeyValue::new(META_SEED.into(), "7".to_string())]).unwrap();
+        let input = open(&path, 100).unwrap();
+        assert_eq!(input.rows, 5);
+        assert_eq!(input.metadata[META_SEED], "7");
+        let batches: Vec<RecordBatch> = input.reader.collect::<Result<_, _>>().unwrap();
+        assert_eq!(batches[0].schema().fields(), schema().fields());
+        assert_eq!(batches[0], to_batch(&rows));
+        // Nothing but the file is left in the directory.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn json_is_flat_and_ordered() {
+        let r = row(4, Some(outcome(Label::Walk)));
+        let s = serde_json::to_string(&JsonRow(&r)).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&s).unwrap();
+        assert_eq!(v["outcome"], "walk");
+        assert_eq!(v["slsp"], 0.5);
+        assert_eq!(v["steps"], 100);
+        assert_eq!(v["k"].as_f64().unwrap().round(), 500.0);
+        assert!(v["failure"].is_null());
+        assert!(s.starts_with("{\"sample_id\":4,\"length\":0.8"));
+        let d = serde_json::to_value(JsonRow(&row(1, None))).unwrap();
+        assert_eq!(d["outcome"], "diverged");
+        assert_eq!(d["message"], "boom");
+        assert!(d["t_end"].is_null());
+        let text = to_text(&r);
+        assert!(text.contains("[metric]") && text.contains("outcome") && text.contains("walk"));
+    }
+}
