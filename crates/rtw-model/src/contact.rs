@@ -117,7 +117,11 @@ impl RodBody {
             }
             RodMode::Stick { tip } | RodMode::Slide { tip, .. } => {
                 let (p, vp) = self.tip_point(r, tip);
-                let vx = if matches!(mode, RodMode::Stick { .. }) { 0.0 } else { vp[0] };
+                let vx = if matches!(mode, RodMode::Stick { .. }) {
+                    0.0
+                } else {
+                    vp[0]
+                };
                 s[..6].copy_from_slice(&[p[0], 0.0, r.theta, vx, 0.0, r.omega]);
             }
         }
@@ -164,7 +168,14 @@ impl RodBody {
         let f = load.force;
         match mode {
             RodMode::Free => RodAccel {
-                deriv: [r.v[0], r.v[1], r.omega, f[0] / m, f[1] / m, load.torque / self.inertia],
+                deriv: [
+                    r.v[0],
+                    r.v[1],
+                    r.omega,
+                    f[0] / m,
+                    f[1] / m,
+                    load.torque / self.inertia,
+                ],
                 lambda: [0.0, 0.0],
             },
             RodMode::Stick { tip } => {
@@ -197,7 +208,8 @@ impl RodBody {
                 let a = (f[0] + kappa * lam_y) / m - beta * d[1] - w2 * d[0];
                 // Slots: (x_t, 0, θ, ẋ_t, 0, ω).
                 RodAccel {
-                    deriv: [r.v[0] + r.omega * d[1], 0.0, r.omega, a, 0.0, beta],
+                    // ẋ_t: the tip's velocity, v + ω d⊥.
+                    deriv: [r.v[0] - r.omega * d[1], 0.0, r.omega, a, 0.0, beta],
                     lambda: [kappa * lam_y, lam_y],
                 }
             }
@@ -250,7 +262,11 @@ impl RodBody {
         }
         // Frictionless (pulling) or sliding (outside the cone) impact:
         // Π = (κ Π_y, Π_y) with the tip's normal velocity brought to zero.
-        let kappa = if impulse[1] >= 0.0 { mu * impulse[0].signum() } else { 0.0 };
+        let kappa = if impulse[1] >= 0.0 {
+            mu * impulse[0].signum()
+        } else {
+            0.0
+        };
         let v_tip_y = r.v[1] + r.omega * d[0];
         let p_y = -v_tip_y / (1.0 / self.m + d[0] * (d[0] - kappa * d[1]) / self.inertia);
         let impulse = [kappa * p_y, p_y];
@@ -299,7 +315,12 @@ impl RodBody {
             -lam[0].signum()
         } else {
             // Frictionless: it slides the way it accelerates.
-            let probe = self.accel(RodMode::Slide { tip, dir: 1.0 }, &frame, load, f64::INFINITY);
+            let probe = self.accel(
+                RodMode::Slide { tip, dir: 1.0 },
+                &frame,
+                load,
+                f64::INFINITY,
+            );
             if probe.deriv[3] < 0.0 { -1.0 } else { 1.0 }
         };
         let slide = RodMode::Slide { tip, dir };
@@ -349,7 +370,10 @@ mod tests {
         let r = rod(-1.0, [0.2, -0.1], 0.7);
         for mode in [
             RodMode::Free,
-            RodMode::Slide { tip: Tip::Plus, dir: 1.0 },
+            RodMode::Slide {
+                tip: Tip::Plus,
+                dir: 1.0,
+            },
         ] {
             let mut s = [0.0; 6];
             // Put the tip on the ground first (θ = −1 puts tip + below the centre).
@@ -371,7 +395,11 @@ mod tests {
     #[test]
     fn impact_conserves_angular_momentum_about_tip_and_loses_energy() {
         let b = body();
-        for (theta, v, w) in [(-1.2, [0.5, -0.8], -1.5), (-2.0, [0.9, -0.3], -3.0), (-0.6, [0.1, -1.0], 2.0)] {
+        for (theta, v, w) in [
+            (-1.2, [0.5, -0.8], -1.5),
+            (-2.0, [0.9, -0.3], -3.0),
+            (-0.6, [0.1, -1.0], 2.0),
+        ] {
             let r = rod(theta, v, w);
             let (p, _) = b.tip_point(&r, Tip::Plus);
             let imp = b.touchdown(&r, Tip::Plus, f64::INFINITY);
@@ -412,7 +440,10 @@ mod tests {
     fn stick_lambda_is_newton_for_the_centre() {
         // λ = m c̈ − F, with c̈ from finite differences of the stick motion.
         let b = body();
-        let load = Load { force: [3.0, -25.0], torque: 1.5 };
+        let load = Load {
+            force: [3.0, -25.0],
+            torque: 1.5,
+        };
         let mode = RodMode::Stick { tip: Tip::Minus };
         let s0 = [0.1, 0.0, 0.9, 0.0, 0.0, 1.3];
         let acc = b.accel(mode, &b.frame(mode, &s0), &load, f64::INFINITY);
@@ -432,9 +463,15 @@ mod tests {
     #[test]
     fn slide_keeps_tip_on_ground_and_obeys_newton() {
         let b = body();
-        let load = Load { force: [3.0, -25.0], torque: 1.5 };
+        let load = Load {
+            force: [3.0, -25.0],
+            torque: 1.5,
+        };
         for mu in [f64::INFINITY, 0.6] {
-            let mode = RodMode::Slide { tip: Tip::Plus, dir: 1.0 };
+            let mode = RodMode::Slide {
+                tip: Tip::Plus,
+                dir: 1.0,
+            };
             let s = [0.1, 0.0, -1.0, 0.4, 0.0, -0.8];
             let r = b.rod_state(mode, &s);
             let acc = b.accel(mode, &b.frame(mode, &s), &load, mu);
@@ -454,9 +491,19 @@ mod tests {
             let (cm, c0, cp) = (at(-h), at(0.0), at(h));
             for k in 0..2 {
                 let cdd = (cp[k] - 2.0 * c0[k] + cm[k]) / (h * h);
-                assert!((b.m * cdd - load.force[k] - acc.lambda[k]).abs() < 1e-4, "mu {mu}");
+                assert!(
+                    (b.m * cdd - load.force[k] - acc.lambda[k]).abs() < 1e-4,
+                    "mu {mu}"
+                );
             }
             let d = b.arm([r.theta.cos(), r.theta.sin()], Tip::Plus);
+            // ẋ_t is the tip's own velocity, which the slots also carry.
+            assert!(
+                (acc.deriv[0] - s[3]).abs() < 1e-12,
+                "{} vs {}",
+                acc.deriv[0],
+                s[3]
+            );
             let res = b.inertia * acc.deriv[5] - load.torque - cross(d, acc.lambda);
             assert!(res.abs() < 1e-12);
             if mu.is_finite() {
@@ -473,11 +520,23 @@ mod tests {
         // Standing, pressed down by gravity: stick.
         let r = rod(-1.2, [0.0, 0.0], 0.0);
         let (p, _) = b.tip_point(&r, tip);
-        let r = RodState { c: [r.c[0], r.c[1] - p[1]], ..r };
-        let gravity = Load { force: [0.0, -19.62], torque: 0.0 };
-        assert_eq!(b.choose_mode(&r, tip, true, &gravity, mu), RodMode::Stick { tip });
+        let r = RodState {
+            c: [r.c[0], r.c[1] - p[1]],
+            ..r
+        };
+        let gravity = Load {
+            force: [0.0, -19.62],
+            torque: 0.0,
+        };
+        assert_eq!(
+            b.choose_mode(&r, tip, true, &gravity, mu),
+            RodMode::Stick { tip }
+        );
         // Pulled up hard: free.
-        let up = Load { force: [0.0, 60.0], torque: 0.0 };
+        let up = Load {
+            force: [0.0, 60.0],
+            torque: 0.0,
+        };
         assert_eq!(b.choose_mode(&r, tip, true, &up, mu), RodMode::Free);
         // The Painlevé-type gap of MODEL.md §4: a large uphill pull F_x that
         // the pinned tip resists makes stick need λ_y < 0, while released the
@@ -485,12 +544,21 @@ mod tests {
         // λ_y = −m d_x (τ − d × F)/I_P − F_y < 0 needs F_x < −115 N here.)
         let r = rod(-0.35, [0.0, 0.0], 0.0);
         let (p, _) = b.tip_point(&r, tip);
-        let r = RodState { c: [r.c[0], r.c[1] - p[1]], ..r };
-        let load = Load { force: [-150.0, -19.62], torque: -12.0 };
+        let r = RodState {
+            c: [r.c[0], r.c[1] - p[1]],
+            ..r
+        };
+        let load = Load {
+            force: [-150.0, -19.62],
+            torque: -12.0,
+        };
         let f = RodFrame::new(&r);
         let stick = b.accel(RodMode::Stick { tip }, &f, &load, mu).lambda;
         let free = b.free_tip_accel(&r, tip, &load);
-        assert!(stick[1] < 0.0 && free[1] < 0.0, "constructed gap: {stick:?} {free:?}");
+        assert!(
+            stick[1] < 0.0 && free[1] < 0.0,
+            "constructed gap: {stick:?} {free:?}"
+        );
         let mode = b.choose_mode(&r, tip, true, &load, mu);
         assert!(matches!(mode, RodMode::Slide { .. }), "{mode:?}");
         assert!(b.accel(mode, &f, &load, mu).lambda[1] > 0.0);

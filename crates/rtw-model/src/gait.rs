@@ -83,7 +83,13 @@ impl GaitStats {
     /// Contact-state fractions over the window.
     pub fn fractions(&self) -> ContactFractions {
         let total: f64 = self.state_time.iter().sum();
-        let f = |i: usize| if total > 0.0 { self.state_time[i] / total } else { 0.0 };
+        let f = |i: usize| {
+            if total > 0.0 {
+                self.state_time[i] / total
+            } else {
+                0.0
+            }
+        };
         ContactFractions {
             nlsp: f(0),
             slsp: f(1),
@@ -130,7 +136,12 @@ mod tests {
 
     #[test]
     fn labels_follow_table_s1() {
-        let f = |n, s, d, t| ContactFractions { nlsp: n, slsp: s, dlsp: d, tlsp: t };
+        let f = |n, s, d, t| ContactFractions {
+            nlsp: n,
+            slsp: s,
+            dlsp: d,
+            tlsp: t,
+        };
         assert_eq!(label(&f(0.3, 0.7, 0.0, 0.0), 0.01), Label::Skip);
         assert_eq!(label(&f(0.005, 0.5, 0.495, 0.0), 0.01), Label::Walk);
         assert_eq!(label(&f(0.0, 0.4, 0.5, 0.1), 0.01), Label::Crawl);

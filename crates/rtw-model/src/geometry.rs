@@ -138,7 +138,10 @@ mod tests {
             let ang = p[1].atan2(p[0]);
             let want = 0.3 + j as f64 * PI / 3.0;
             let d = (ang - want).rem_euclid(2.0 * PI);
-            assert!(d < 1e-12 || 2.0 * PI - d < 1e-12, "spoke {j}: {ang} vs {want}");
+            assert!(
+                d < 1e-12 || 2.0 * PI - d < 1e-12,
+                "spoke {j}: {ang} vs {want}"
+            );
         }
     }
 

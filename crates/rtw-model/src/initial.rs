@@ -37,7 +37,8 @@ pub fn initial_state(rtw: &mut Rtw, opts: &Options) -> Result<[f64; N], FailureD
     let (loads, _) = rtw.loads(&frames(&rods));
     let (i, tip) = FRONT;
     rtw.modes[i] = rtw.body.choose_mode(&rods[i], tip, true, &loads[i], rtw.mu);
-    rtw.body.slots(rtw.modes[i], &rods[i], &mut y[6 * i..6 * i + 6]);
+    rtw.body
+        .slots(rtw.modes[i], &rods[i], &mut y[6 * i..6 * i + 6]);
     // The rear foot lifts if the star rolls forward, rests if it does not
     // turn, and lands (an impact) if it rolls back.
     let (i, tip) = REAR;
@@ -47,8 +48,11 @@ pub fn initial_state(rtw: &mut Rtw, opts: &Options) -> Result<[f64; N], FailureD
     } else if v_tip[1] == 0.0 {
         let rods = rtw.rods(&y);
         let (loads, _) = rtw.loads(&rtw.frames(&y));
-        rtw.modes[i] = rtw.body.choose_mode(&rods[i], tip, v_tip[0] == 0.0, &loads[i], rtw.mu);
-        rtw.body.slots(rtw.modes[i], &rods[i], &mut y[6 * i..6 * i + 6]);
+        rtw.modes[i] = rtw
+            .body
+            .choose_mode(&rods[i], tip, v_tip[0] == 0.0, &loads[i], rtw.mu);
+        rtw.body
+            .slots(rtw.modes[i], &rods[i], &mut y[6 * i..6 * i + 6]);
     }
     Ok(y)
 }
@@ -68,7 +72,10 @@ fn static_equilibrium(rtw: &Rtw, star: [RodState; 3]) -> Option<[RodState; 3]> {
     sys.modes = [
         RodMode::Stick { tip: FRONT.1 },
         RodMode::Free,
-        RodMode::Slide { tip: REAR.1, dir: 1.0 },
+        RodMode::Slide {
+            tip: REAR.1,
+            dir: 1.0,
+        },
     ];
     sys.mu = f64::INFINITY;
     // (slot of the unknown, slot of its equation's acceleration)
@@ -87,7 +94,10 @@ fn static_equilibrium(rtw: &Rtw, star: [RodState; 3]) -> Option<[RodState; 3]> {
             let rods = sys.rods(&y);
             let (loads, _) = sys.loads(&sys.frames(&y));
             let standing = [0usize, 2].iter().all(|&i| {
-                sys.body.accel(sys.modes[i], &sys.frames(&y)[i], &loads[i], sys.mu).lambda[1] > 0.0
+                sys.body
+                    .accel(sys.modes[i], &sys.frames(&y)[i], &loads[i], sys.mu)
+                    .lambda[1]
+                    > 0.0
             });
             let above = rods.iter().all(|r| {
                 let (p, _) = sys.body.tip_point(r, Tip::Plus);

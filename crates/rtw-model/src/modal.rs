@@ -106,7 +106,7 @@ const ZERO_TOL: f64 = 1e-8;
 /// A state-matrix eigenvalue oscillates when `|Im λ| > OSC_TOL · |λ|`.
 const OSC_TOL: f64 = 1e-6;
 
-/// 9 × 9 real matrix (the full star's stiffness, mass, shapes).
+/// 9 × 9 real matrix (the full star's stiffness).
 pub type Matrix9 = SMatrix<f64, 9, 9>;
 
 /// The rest angles of the approximate model: θa = 0, θb = π/3, θc = 2π/3.
@@ -119,13 +119,14 @@ pub struct ApproxModes {
     pub stiffness: Matrix3<f64>,
     /// Damping `C = −∂τ/∂q̇` at the rest angles (finite differences).
     pub damping: Matrix3<f64>,
-    /// The six eigenvalues of `A = [[0, Id], [−M⁻¹K, −M⁻¹C]]` [1/s],
+    /// The six eigenvalues of `A = [[0, Id], [−M⁻¹K, −M⁻¹C]]` (1/s)
+    /// (with `K` symmetrized and its zero modes set to exactly zero),
     /// sorted by modulus, then by imaginary part.
     pub eigenvalues: Vec<Complex<f64>>,
-    /// Undamped frequencies of the oscillating modes, `√(eig(M⁻¹K))/2π` [Hz],
-    /// sorted (zero modes left out). Correctly linearized: `[√3 f_n; 2]`.
+    /// Undamped frequencies of the oscillating modes, `√(eig(M⁻¹K))/2π` (Hz),
+    /// sorted (zero modes left out): `[√3 f_n; 2]` with S21's k and zero rest length.
     pub freq_hz: Vec<f64>,
-    /// Damped frequencies `|Im λ|/2π` of the complex pairs of `A` [Hz], one per
+    /// Damped frequencies `|Im λ|/2π` of the complex pairs of `A` (Hz), one per
     /// pair, sorted by `|λ|` (the natural frequency).
     pub damped_freq_hz: Vec<f64>,
     /// Damping ratios `−Re λ/|λ|` of the same pairs, in the same order.
@@ -133,7 +134,7 @@ pub struct ApproxModes {
     /// Number of zero eigenvalues of `M⁻¹K` (rigid modes): 1, the common rotation.
     pub zero_modes: usize,
     /// The string damping `c` above which no mode of `A` oscillates, found by
-    /// bisection on `c` (everything else fixed) [N·s/m]; `NaN` if nothing
+    /// bisection on `c`, everything else fixed (N·s/m); `NaN` if nothing
     /// oscillates at `c = 0`, `∞` if damping never stops the oscillation.
     pub critical_damping: f64,
 }
@@ -141,9 +142,9 @@ pub struct ApproxModes {
 /// Modes of the free 9-DOF star (no gravity, no ground), linearized at the rest shape.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StarModes {
-    /// The nine frequencies `√ω²/2π` [Hz], sorted; rigid modes come first (≈ 0).
+    /// The nine frequencies `√ω²/2π` (Hz), sorted; rigid modes come first (≈ 0).
     pub freq_hz: [f64; 9],
-    /// The eigenvalues `ω²` of `K v = ω² M v` [rad²/s²], same order (rigid
+    /// The eigenvalues `ω²` of `K v = ω² M v` (rad²/s²), same order (rigid
     /// ones may be round-off negative).
     pub omega_sq: [f64; 9],
     /// Number of modes with `|ω²|` below `1e-8 · max ω²`: 3 (two translations, one rotation).
@@ -152,11 +153,11 @@ pub struct StarModes {
     /// `(x_a, y_a, θ_a, x_b, y_b, θ_b, x_c, y_c, θ_c)`: `shapes[j]` belongs to
     /// `freq_hz[j]`. Within a repeated frequency the basis is arbitrary.
     pub shapes: [[f64; 9]; 9],
-    /// The symmetrized stiffness `K = −∂(F, τ)/∂(x, y, θ)` [N/m, N, N·m].
+    /// The symmetrized stiffness `K = −∂(F, τ)/∂(x, y, θ)` (N/m, N, N·m).
     pub stiffness: Matrix9,
 }
 
-/// S18 as printed: `f_n = (L − 2 l_c)/(4π) · √(k/I)` [Hz].
+/// S18 as printed: `f_n = (L − 2 l_c)/(4π) · √(k/I)` (Hz).
 pub fn s18_frequency(phys: &Physical) -> f64 {
     (phys.length - 2.0 * phys.l_c) / (4.0 * PI) * (phys.k / phys.inertia).sqrt()
 }
@@ -180,7 +181,7 @@ pub fn approx_damping_closed_form(strings: &StringSet) -> Matrix3<f64> {
     let cr2 = strings.c * strings.r * strings.r;
     match strings.damping {
         Damping::Along => laplacian() * (1.5 * cr2),
-        Damping::Relative => (Matrix3::identity() * 3.0 + laplacian()) * cr2,
+        Damping::Relative => (Matrix3::identity() * 2.0 + laplacian()) * cr2,
     }
 }
 
@@ -190,14 +191,14 @@ fn laplacian() -> Matrix3<f64> {
 }
 
 /// Closed form of the approximate model's oscillating (double) pair: undamped
-/// frequency `√(3 κ / I)/2π` [Hz], `κ` as in [`approx_stiffness_closed_form`];
+/// frequency `√(3 κ / I)/2π` (Hz), `κ` as in [`approx_stiffness_closed_form`];
 /// `= √3 · f_n` (S18) for zero rest length.
 pub fn approx_frequency_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
     let kappa = strings.k * strings.r * strings.r * (1.0 + 0.5 * rest_ratio(strings));
     (3.0 * kappa / phys.inertia).sqrt() / (2.0 * PI)
 }
 
-/// Closed form of the decay rate `σ = −Re λ` of the oscillating pair [1/s]:
+/// Closed form of the decay rate `σ = −Re λ` of the oscillating pair (1/s):
 /// `9 c r² / (4 I)` (`along`), `5 c r² / (2 I)` (`relative`).
 pub fn approx_decay_rate_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
     let cr2 = strings.c * strings.r * strings.r;
@@ -295,35 +296,44 @@ pub fn approximate_modes(phys: &Physical, strings: &StringSet) -> ApproxModes {
     let (k, c) = approx_matrices(strings);
 
     // Undamped: eigenvalues of M⁻¹K = K/I (symmetrized).
-    let ks = (k + k.transpose()) * 0.5;
-    let w2 = SymmetricEigen::new(ks / inertia).eigenvalues;
-    let w2_max = w2.iter().fold(0.0_f64, |m, &v| m.max(v.abs()));
-    let is_zero = |v: f64| w2_max <= 0.0 || v.abs() <= ZERO_TOL * w2_max;
-    let zero_modes = w2.iter().filter(|&&v| is_zero(v)).count();
-    let mut freq_hz: Vec<f64> = w2
+    let ks = SymmetricEigen::new((k + k.transpose()) * 0.5);
+    let k_max = ks.eigenvalues.iter().fold(0.0_f64, |m, &v| m.max(v.abs()));
+    let is_zero = |v: f64| k_max <= 0.0 || v.abs() <= ZERO_TOL * k_max;
+    let zero_modes = ks.eigenvalues.iter().filter(|&&v| is_zero(v)).count();
+    let mut freq_hz: Vec<f64> = ks
+        .eigenvalues
         .iter()
         .filter(|&&v| !is_zero(v))
-        .map(|&v| v.max(0.0).sqrt() / (2.0 * PI))
+        .map(|&v| (v.max(0.0) / inertia).sqrt() / (2.0 * PI))
         .collect();
     freq_hz.sort_by(f64::total_cmp);
+    let w2_max = k_max / inertia;
+    // The state matrix uses K with its zero modes set to exactly zero: the
+    // finite-difference noise on the common rotation (≈ 1e-9 k r²) would
+    // otherwise split its Jordan block at λ = 0 into a spurious slow pair.
+    let k_clean = {
+        let mut e = ks;
+        e.eigenvalues.iter_mut().for_each(|v| {
+            if is_zero(*v) {
+                *v = 0.0;
+            }
+        });
+        e.recompose()
+    };
 
     // Damped: eigenvalues of the state matrix.
     let zero = 1e-6 * w2_max.sqrt();
-    let mut eigenvalues: Vec<Complex<f64>> = state_matrix(&k, &c, inertia)
+    let mut eigenvalues: Vec<Complex<f64>> = state_matrix(&k_clean, &c, inertia)
         .complex_eigenvalues()
         .iter()
         .copied()
         .collect();
-    eigenvalues.sort_by(|a, b| {
-        a.norm()
-            .total_cmp(&b.norm())
-            .then(a.im.total_cmp(&b.im))
-    });
+    eigenvalues.sort_by(|a, b| a.norm().total_cmp(&b.norm()).then(a.im.total_cmp(&b.im)));
     let pairs = oscillating_pairs(&eigenvalues, zero);
     let damped_freq_hz = pairs.iter().map(|l| l.im / (2.0 * PI)).collect();
     let damping_ratio = pairs.iter().map(|l| -l.re / l.norm()).collect();
 
-    let critical_damping = critical_damping_bisection(strings, &k, inertia, zero);
+    let critical_damping = critical_damping_bisection(strings, &k_clean, inertia, zero);
     ApproxModes {
         stiffness: k,
         damping: c,
@@ -405,7 +415,11 @@ fn star_forces(strings: &StringSet, dz: &[f64; 9]) -> [f64; 9] {
     let l = strings.loads(&frames);
     std::array::from_fn(|n| {
         let (i, dof) = (n / 3, n % 3);
-        if dof < 2 { l.force[i][dof] } else { l.torque[i] }
+        if dof < 2 {
+            l.force[i][dof]
+        } else {
+            l.torque[i]
+        }
     })
 }
 
@@ -415,7 +429,11 @@ fn star_forces(strings: &StringSet, dz: &[f64; 9]) -> [f64; 9] {
 pub fn star_stiffness(strings: &StringSet) -> Matrix9 {
     let mut k = Matrix9::zeros();
     for j in 0..9 {
-        let h = if j % 3 < 2 { FD_STEP * strings.r } else { FD_STEP };
+        let h = if j % 3 < 2 {
+            FD_STEP * strings.r
+        } else {
+            FD_STEP
+        };
         let (mut zp, mut zm) = ([0.0; 9], [0.0; 9]);
         zp[j] = h;
         zm[j] = -h;
@@ -438,8 +456,7 @@ pub fn star_rest_forces(strings: &StringSet) -> [f64; 9] {
 /// `M^{-1/2} K M^{-1/2}`.
 pub fn free_star_modes(phys: &Physical, strings: &StringSet) -> StarModes {
     let k = star_stiffness(strings);
-    let mass: [f64; 9] =
-        std::array::from_fn(|n| if n % 3 < 2 { phys.m } else { phys.inertia });
+    let mass: [f64; 9] = std::array::from_fn(|n| if n % 3 < 2 { phys.m } else { phys.inertia });
     let inv_sqrt: [f64; 9] = std::array::from_fn(|n| 1.0 / mass[n].sqrt());
     let scaled = Matrix9::from_fn(|i, j| k[(i, j)] * inv_sqrt[i] * inv_sqrt[j]);
     let eig = SymmetricEigen::new(scaled);
@@ -465,7 +482,7 @@ pub fn free_star_modes(phys: &Physical, strings: &StringSet) -> StarModes {
     }
 }
 
-/// Closed form of the free star's nine frequencies [Hz], sorted (see the
+/// Closed form of the free star's nine frequencies (Hz), sorted (see the
 /// module documentation): three rigid modes (0), the rotor pair
 /// `√(3 k r² (1 + s/2) / I)/2π` (×2) and four relative translations
 /// `√(6 k/m · {1 − s, 1 − s/2, 1 − s/2, 1})/2π`, with `s = ℓ₀/r`.

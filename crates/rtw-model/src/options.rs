@@ -178,9 +178,12 @@ impl Options {
         check("trace_dt", self.trace_dt, "finite and >= 0 (s)", |v| {
             v >= 0.0
         })?;
-        check("initial.omega", self.initial.omega, "finite (rad/s)", |_| {
-            true
-        })?;
+        check(
+            "initial.omega",
+            self.initial.omega,
+            "finite (rad/s)",
+            |_| true,
+        )?;
         check(
             "strings.rest_length_ratio",
             self.strings.rest_length_ratio,
@@ -225,8 +228,10 @@ mod tests {
         let mut o = Options::default();
         o.strings.rest_length_ratio = 1.0;
         assert_eq!(o.validate().unwrap_err().field, "strings.rest_length_ratio");
-        let mut o = Options::default();
-        o.rtol = f64::NAN;
+        let o = Options {
+            rtol: f64::NAN,
+            ..Options::default()
+        };
         assert_eq!(o.validate().unwrap_err().field, "rtol");
     }
 }

@@ -122,8 +122,8 @@ pub struct ContactFractions {
 }
 
 /// Energy bookkeeping of a run (J). `balance_error` =
-/// E_end + impact_loss + damping_loss − E_start, where E includes gravity's
-/// potential: zero up to integration error.
+/// E_end + impact_loss + damping_loss + friction_loss − E_start, where E
+/// includes gravity's potential: zero up to integration error.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Energy {
     pub initial: f64,
@@ -132,6 +132,8 @@ pub struct Energy {
     pub gravity_released: f64,
     pub impact_loss: f64,
     pub damping_loss: f64,
+    /// Work of sliding friction (finite μ only).
+    pub friction_loss: f64,
     pub balance_error: f64,
 }
 
@@ -188,5 +190,6 @@ pub struct TraceSample {
     pub gravity_potential: f64,
     pub string_potential: f64,
     pub damping_loss: f64,
+    pub friction_loss: f64,
     pub impact_loss: f64,
 }

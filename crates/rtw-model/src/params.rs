@@ -223,11 +223,39 @@ mod tests {
         let e = Params::new(0.8, 2.5, 0.5, 3.0, 0.05, 0.1).unwrap_err();
         assert_eq!(e.field, "alpha");
         assert!(e.to_string().contains("[0, 0.5)"), "{e}");
-        assert_eq!(Params::new(0.0, 2.5, 0.1, 3.0, 0.05, 0.1).unwrap_err().field, "length");
-        assert_eq!(Params::new(0.8, -1.0, 0.1, 3.0, 0.05, 0.1).unwrap_err().field, "rho");
-        assert_eq!(Params::new(0.8, 1.0, 0.1, f64::NAN, 0.05, 0.1).unwrap_err().field, "fn");
-        assert_eq!(Params::new(0.8, 1.0, 0.1, 3.0, -0.1, 0.1).unwrap_err().field, "zeta");
-        assert_eq!(Params::new(0.8, 1.0, 0.1, 3.0, 0.1, 1.6).unwrap_err().field, "phi");
-        assert_eq!(Params::new(0.8, 1.0, -0.01, 3.0, 0.1, 0.1).unwrap_err().field, "alpha");
+        assert_eq!(
+            Params::new(0.0, 2.5, 0.1, 3.0, 0.05, 0.1)
+                .unwrap_err()
+                .field,
+            "length"
+        );
+        assert_eq!(
+            Params::new(0.8, -1.0, 0.1, 3.0, 0.05, 0.1)
+                .unwrap_err()
+                .field,
+            "rho"
+        );
+        assert_eq!(
+            Params::new(0.8, 1.0, 0.1, f64::NAN, 0.05, 0.1)
+                .unwrap_err()
+                .field,
+            "fn"
+        );
+        assert_eq!(
+            Params::new(0.8, 1.0, 0.1, 3.0, -0.1, 0.1)
+                .unwrap_err()
+                .field,
+            "zeta"
+        );
+        assert_eq!(
+            Params::new(0.8, 1.0, 0.1, 3.0, 0.1, 1.6).unwrap_err().field,
+            "phi"
+        );
+        assert_eq!(
+            Params::new(0.8, 1.0, -0.01, 3.0, 0.1, 0.1)
+                .unwrap_err()
+                .field,
+            "alpha"
+        );
     }
 }

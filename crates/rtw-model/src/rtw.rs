@@ -3,8 +3,9 @@
 //! resets (touchdown, lift-off, re-stick, slip, failure).
 //!
 //! State: three rods × six slots (meaning per mode: see [`crate::contact`])
-//! and, in slot [`DISSIPATED`], the energy the string dampers have dissipated,
-//! integrated alongside the motion for the energy balance.
+//! and, in slots [`DISSIPATED`] and [`FRICTION`], the energy the string
+//! dampers and sliding friction have dissipated, integrated alongside the
+//! motion for the energy balance.
 
 use crate::contact::{Load, RodBody, RodMode};
 use crate::geometry::{RodFrame, RodState, Tip, V2, add, scale};
@@ -15,10 +16,12 @@ use crate::params::Physical;
 use crate::strings::StringSet;
 use std::cell::Cell;
 
-/// State dimension: 3 rods × 6 slots + dissipated energy.
-pub const N: usize = 19;
+/// State dimension: 3 rods × 6 slots + two dissipated energies.
+pub const N: usize = 20;
 /// Slot of the energy dissipated by the string dampers.
 pub const DISSIPATED: usize = 18;
+/// Slot of the energy dissipated by sliding friction (finite μ).
+pub const FRICTION: usize = 19;
 
 /// What a guard watches.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -136,11 +139,19 @@ impl Rtw {
     pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) {
         let frames = self.frames(y);
         let (loads, dissipation) = self.loads(&frames);
+        let mut friction = 0.0;
         for i in 0..3 {
-            let a = self.body.accel(self.modes[i], &frames[i], &loads[i], self.mu);
+            let a = self
+                .body
+                .accel(self.modes[i], &frames[i], &loads[i], self.mu);
             dy[6 * i..6 * i + 6].copy_from_slice(&a.deriv);
+            if let RodMode::Slide { .. } = self.modes[i] {
+                // Power of friction on the sliding tip (λ_x opposes ẋ_t).
+                friction -= a.lambda[0] * y[6 * i + 3];
+            }
         }
         dy[DISSIPATED] = dissipation;
+        dy[FRICTION] = friction;
     }
 
     /// The guards of the current modes, in a fixed order that depends only
@@ -149,8 +160,14 @@ impl Rtw {
         for (rod, mode) in self.modes.iter().enumerate() {
             match *mode {
                 RodMode::Free => {
-                    visit(GuardKind::Touchdown { rod, tip: Tip::Plus });
-                    visit(GuardKind::Touchdown { rod, tip: Tip::Minus });
+                    visit(GuardKind::Touchdown {
+                        rod,
+                        tip: Tip::Plus,
+                    });
+                    visit(GuardKind::Touchdown {
+                        rod,
+                        tip: Tip::Minus,
+                    });
                 }
                 RodMode::Stick { .. } => {
                     visit(GuardKind::LiftOff { rod });
@@ -177,7 +194,10 @@ impl Rtw {
         let mut lambda = [[0.0; 2]; 3];
         for i in 0..3 {
             if self.modes[i] != RodMode::Free {
-                lambda[i] = self.body.accel(self.modes[i], &frames[i], &loads[i], self.mu).lambda;
+                lambda[i] = self
+                    .body
+                    .accel(self.modes[i], &frames[i], &loads[i], self.mu)
+                    .lambda;
                 if matches!(self.modes[i], RodMode::Stick { .. })
                     && lambda[i][1] > 0.05 * self.body.m * self.gravity[1].abs()
                 {
@@ -188,7 +208,8 @@ impl Rtw {
                 }
             }
         }
-        let tip_height = |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).0[1];
+        let tip_height =
+            |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).0[1];
         self.guard_kinds(|kind| {
             let value = match kind {
                 GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
@@ -257,8 +278,11 @@ impl Rtw {
     fn rechoose(&mut self, y: &mut [f64; N], rod: usize, tip: Tip, at_rest: bool) {
         let rods = self.rods(y);
         let (loads, _) = self.loads(&self.frames(y));
-        self.modes[rod] = self.body.choose_mode(&rods[rod], tip, at_rest, &loads[rod], self.mu);
-        self.body.slots(self.modes[rod], &rods[rod], &mut y[6 * rod..6 * rod + 6]);
+        self.modes[rod] = self
+            .body
+            .choose_mode(&rods[rod], tip, at_rest, &loads[rod], self.mu);
+        self.body
+            .slots(self.modes[rod], &rods[rod], &mut y[6 * rod..6 * rod + 6]);
     }
 
     /// Touchdown of a free rod's tip: the impact, then the mode choice.
@@ -275,9 +299,14 @@ impl Rtw {
         // Mode choice needs the loads with the rod in its new place.
         let frames: [RodFrame; 3] = std::array::from_fn(|i| RodFrame::new(&rods[i]));
         let (loads, _) = self.loads(&frames);
-        self.modes[rod] = self.body.choose_mode(&after, tip, impact.sticks, &loads[rod], self.mu);
-        self.body.slots(self.modes[rod], &after, &mut y[6 * rod..6 * rod + 6]);
-        let settled = self.body.rod_state(self.modes[rod], &y[6 * rod..6 * rod + 6]);
+        self.modes[rod] = self
+            .body
+            .choose_mode(&after, tip, impact.sticks, &loads[rod], self.mu);
+        self.body
+            .slots(self.modes[rod], &after, &mut y[6 * rod..6 * rod + 6]);
+        let settled = self
+            .body
+            .rod_state(self.modes[rod], &y[6 * rod..6 * rod + 6]);
         Transition::Touchdown {
             rod,
             tip,

@@ -7,7 +7,7 @@ use crate::initial::initial_state;
 use crate::integrate::{Dense, Method};
 use crate::options::{MethodChoice, Options};
 use crate::outcome::{Energy, FailureDetail, IntegratorWork, Label, Outcome, TraceSample};
-use crate::rtw::{DISSIPATED, N, Rtw, Transition};
+use crate::rtw::{DISSIPATED, FRICTION, N, Rtw, Transition};
 use crate::{Params, Physical};
 
 /// Simulates one RTW run.
@@ -72,6 +72,7 @@ impl Run<'_> {
             gravity_potential,
             string_potential,
             damping_loss: y[DISSIPATED],
+            friction_loss: y[FRICTION],
             impact_loss: self.impact_loss,
         }
     }
@@ -183,7 +184,13 @@ fn simulate_inner(
         run.emit(0.0, &y);
         run.next_trace = options.trace_dt;
     }
-    let end = hybrid::run(&mut run, 0.0, &mut y, options.t_max, &engine_options(options));
+    let end = hybrid::run(
+        &mut run,
+        0.0,
+        &mut y,
+        options.t_max,
+        &engine_options(options),
+    );
 
     let (_, g1, _) = run.rtw.energy(&y);
     let e1 = run.rtw.total_energy(&y);
@@ -193,7 +200,8 @@ fn simulate_inner(
         gravity_released: g0 - g1,
         impact_loss: run.impact_loss,
         damping_loss: y[DISSIPATED],
-        balance_error: e1 + run.impact_loss + y[DISSIPATED] - e0,
+        friction_loss: y[FRICTION],
+        balance_error: e1 + run.impact_loss + y[DISSIPATED] + y[FRICTION] - e0,
     };
     let numerical = match end.reason {
         EndReason::TimeUp | EndReason::Stopped => None,
@@ -206,7 +214,9 @@ fn simulate_inner(
     let stats = &run.stats;
     let fractions = stats.fractions();
     let speed = match stats.window_com_x {
-        Some(x0) if end.reason == EndReason::TimeUp => (run.rtw.centre_of_mass(&y)[0] - x0) / window,
+        Some(x0) if end.reason == EndReason::TimeUp => {
+            (run.rtw.centre_of_mass(&y)[0] - x0) / window
+        }
         _ => 0.0,
     };
     let failure = numerical.or(run.failure).or_else(|| {

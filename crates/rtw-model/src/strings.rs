@@ -40,10 +40,18 @@ impl StringSet {
         let dv = sub(vp, vq);
         let len = dot(d, d).sqrt();
         // A string of zero length has no direction; its force −k d vanishes there.
-        let u = if len > 0.0 { scale(1.0 / len, d) } else { [0.0, 0.0] };
+        let u = if len > 0.0 {
+            scale(1.0 / len, d)
+        } else {
+            [0.0, 0.0]
+        };
         let stretch = len - self.rest_length;
         let len_rate = dot(u, dv);
-        let spring = if self.slack && stretch < 0.0 { 0.0 } else { self.k * stretch };
+        let spring = if self.slack && stretch < 0.0 {
+            0.0
+        } else {
+            self.k * stretch
+        };
         let force = match self.damping {
             Damping::Along => {
                 let t = spring + self.c * len_rate;
@@ -53,7 +61,11 @@ impl StringSet {
             Damping::Relative => {
                 let f = add(scale(-spring, u), scale(-self.c, dv));
                 // Slack: the string can pull only.
-                if self.slack && dot(f, u) > 0.0 { [0.0, 0.0] } else { f }
+                if self.slack && dot(f, u) > 0.0 {
+                    [0.0, 0.0]
+                } else {
+                    f
+                }
             }
         };
         // Power absorbed by the string minus the rate of its stored energy.
@@ -146,8 +158,10 @@ mod tests {
         let fc = [
             -c * r2
                 * (-2.0 * da + db + dc + (-da + db) * (a - b).cos() + (da - dc) * (a - cc).cos()),
-            -c * r2 * (da - 2.0 * db + dc + (da - db) * (a - b).cos() + (-db + dc) * (b - cc).cos()),
-            c * r2 * (-da - db + 2.0 * dc + (da - dc) * (a - cc).cos() + (-db + dc) * (b - cc).cos()),
+            -c * r2
+                * (da - 2.0 * db + dc + (da - db) * (a - b).cos() + (-db + dc) * (b - cc).cos()),
+            c * r2
+                * (-da - db + 2.0 * dc + (da - dc) * (a - cc).cos() + (-db + dc) * (b - cc).cos()),
         ];
         std::array::from_fn(|i| -(fk[i] + fc[i]))
     }
@@ -165,7 +179,9 @@ mod tests {
         };
         let mut seed = 12345u64;
         let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         for _ in 0..200 {
@@ -180,7 +196,10 @@ mod tests {
             let got = set.loads(&rods).torque;
             let want = s5_s6(set.k, set.c, set.r, th, w);
             for i in 0..3 {
-                assert!((got[i] - want[i]).abs() < 1e-9 * (1.0 + want[i].abs()), "{got:?} vs {want:?}");
+                assert!(
+                    (got[i] - want[i]).abs() < 1e-9 * (1.0 + want[i].abs()),
+                    "{got:?} vs {want:?}"
+                );
             }
         }
     }
@@ -215,8 +234,16 @@ mod tests {
                         set.potential(&frames(c2, t2, z, [0.0; 3]))
                     };
                     let grad = (shift(h) - shift(-h)) / (2.0 * h);
-                    let generalized = if dof < 2 { l.force[i][dof] } else { l.torque[i] };
-                    assert!((generalized + grad).abs() < 1e-5, "rod {i} dof {dof}: {generalized} vs {}", -grad);
+                    let generalized = if dof < 2 {
+                        l.force[i][dof]
+                    } else {
+                        l.torque[i]
+                    };
+                    assert!(
+                        (generalized + grad).abs() < 1e-5,
+                        "rod {i} dof {dof}: {generalized} vs {}",
+                        -grad
+                    );
                 }
             }
             // Internal forces: net force and net moment about the origin vanish.

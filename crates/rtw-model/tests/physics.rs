@@ -1,0 +1,397 @@
+//! Physics invariants of the RTW model, each against a conservation law or a
+//! closed form (the reference is stated at each assertion).
+
+use rtw_model::contact::RodMode;
+use rtw_model::geometry::{RodState, Tip, cross, perp, rest_star, scale, sub};
+use rtw_model::hybrid::{self, EngineOptions, Flow, Guards, HybridSystem};
+use rtw_model::integrate::Method;
+use rtw_model::options::{Damping, Options};
+use rtw_model::rtw::{DISSIPATED, N, Rtw};
+use rtw_model::{Label, Params, Physical, simulate};
+
+/// The RTW's continuous dynamics in fixed modes, with no guards: for the
+/// invariants of one mode.
+struct FixedModes(Rtw);
+
+impl HybridSystem<N> for FixedModes {
+    fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
+        self.0.dynamics(y, dy);
+    }
+    fn guards(&self, _t: f64, _y: &[f64; N], out: &mut Guards) {
+        out.clear();
+    }
+    fn reset(&mut self, _t: f64, _y: &mut [f64; N], _i: usize) -> Flow {
+        Flow::Continue
+    }
+}
+
+fn tight() -> EngineOptions {
+    EngineOptions {
+        method: Method::Dp54,
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..EngineOptions::default()
+    }
+}
+
+fn rtw(c_damping: bool, s: f64, damping: Damping) -> (Rtw, Physical) {
+    let mut p = Params::fig7a();
+    if !c_damping {
+        p.zeta = 0.0;
+    }
+    let mut o = Options::default();
+    o.strings.rest_length_ratio = s;
+    o.strings.damping = damping;
+    let phys = Physical::new(&p, o.normalization, o.g);
+    (Rtw::new(&phys, &o), phys)
+}
+
+/// A deformed, moving star high above the ground.
+fn flying_star(sys: &Rtw) -> [f64; N] {
+    let mut rods = rest_star([0.0, 5.0], 0.2);
+    let kick = [
+        [0.02, -0.01, 0.05],
+        [-0.015, 0.02, -0.04],
+        [0.01, 0.005, 0.03],
+    ];
+    for (i, r) in rods.iter_mut().enumerate() {
+        r.c[0] += kick[i][0];
+        r.c[1] += kick[i][1];
+        r.theta += kick[i][2];
+        r.v = [1.0 + 3.0 * kick[i][1], -0.5 + 2.0 * kick[i][0]];
+        r.omega = -2.0 + 20.0 * kick[i][2];
+    }
+    let mut y = [0.0; N];
+    sys.store(&rods, &mut y);
+    y
+}
+
+fn momenta(sys: &Rtw, y: &[f64; N]) -> ([f64; 2], f64) {
+    let rods = sys.rods(y);
+    let m = sys.body.m;
+    let com = scale(
+        1.0 / 3.0,
+        [
+            rods.iter().map(|r| r.c[0]).sum(),
+            rods.iter().map(|r| r.c[1]).sum(),
+        ],
+    );
+    let p = scale(
+        m,
+        [
+            rods.iter().map(|r| r.v[0]).sum(),
+            rods.iter().map(|r| r.v[1]).sum(),
+        ],
+    );
+    let vcom = scale(1.0 / (3.0 * m), p);
+    let h = rods
+        .iter()
+        .map(|r| sys.body.inertia * r.omega + m * cross(sub(r.c, com), sub(r.v, vcom)))
+        .sum();
+    (p, h)
+}
+
+#[test]
+fn flight_without_damping_conserves_energy() {
+    // Conservative flight: E = T + V_gravity + V_strings is constant.
+    for s in [0.0, 0.85] {
+        let (sys, _) = rtw(false, s, Damping::Along);
+        let mut y = flying_star(&sys);
+        let e0 = sys.total_energy(&y);
+        let mut f = FixedModes(sys);
+        let end = hybrid::run(&mut f, 0.0, &mut y, 10.0, &tight());
+        assert_eq!(end.reason, hybrid::EndReason::TimeUp);
+        let e1 = f.0.total_energy(&y);
+        assert!(
+            ((e1 - e0) / e0).abs() < 1e-8,
+            "s = {s}: drift {}",
+            (e1 - e0) / e0
+        );
+    }
+}
+
+#[test]
+fn flight_with_damping_conserves_angular_momentum_and_loses_energy() {
+    // The `relative` damper −c (Ṗ − Q̇) is not along the string: its pair of
+    // forces makes a couple, so it damps rigid rotation and conserves only
+    // linear momentum; the `along` damper conserves both.
+    for damping in [Damping::Along, Damping::Relative] {
+        let (sys, phys) = rtw(true, 0.0, damping);
+        let mut y = flying_star(&sys);
+        let (p0, h0) = momenta(&sys, &y);
+        let mut f = FixedModes(sys);
+        let mut e_prev = f.0.total_energy(&y);
+        let mut t = 0.0;
+        for _ in 0..20 {
+            hybrid::run(&mut f, t, &mut y, t + 0.25, &tight());
+            t += 0.25;
+            let e = f.0.total_energy(&y);
+            // Dampers only remove energy; and the energy balance closes.
+            assert!(
+                e <= e_prev + 1e-9,
+                "{damping:?}: energy rose {e_prev} -> {e}"
+            );
+            e_prev = e;
+            let (p, h) = momenta(&f.0, &y);
+            // Strings are internal: they exert no net moment about the
+            // centre of mass, and gravity acts at it.
+            if damping == Damping::Along {
+                assert!(
+                    (h - h0).abs() < 1e-9 * (1.0 + h0.abs()),
+                    "{damping:?}: H {h0} -> {h}"
+                );
+            } else {
+                assert!(
+                    h.abs() <= h0.abs() + 1e-12,
+                    "relative damping must not spin up"
+                );
+            }
+            // Linear momentum changes by exactly total mass × g × t.
+            let want = [
+                p0[0] + 3.0 * phys.m * f.0.gravity[0] * t,
+                p0[1] + 3.0 * phys.m * f.0.gravity[1] * t,
+            ];
+            assert!((p[0] - want[0]).abs() < 1e-8 && (p[1] - want[1]).abs() < 1e-8);
+        }
+        assert!(y[DISSIPATED] > 0.0);
+        let e0 = {
+            let (sys, _) = rtw(true, 0.0, damping);
+            sys.total_energy(&flying_star(&sys))
+        };
+        assert!(
+            (e_prev + y[DISSIPATED] - e0).abs() < 1e-8,
+            "{damping:?}: balance"
+        );
+    }
+}
+
+/// The star on its front foot: rod a in `mode`, the others free.
+fn grounded(mode: RodMode, s: f64) -> (Rtw, [f64; N]) {
+    let (mut sys, _) = rtw(false, s, Damping::Along);
+    let half = sys.body.half_length;
+    let th = -std::f64::consts::FRAC_PI_3;
+    let hub = scale(-half, [th.cos(), th.sin()]);
+    let mut rods = rest_star(hub, th);
+    for r in rods.iter_mut() {
+        r.v = scale(-2.0, perp(r.c));
+        r.omega = -2.0;
+    }
+    if let RodMode::Slide { .. } = mode {
+        // Give the foot a tangential speed to slide with.
+        for r in rods.iter_mut() {
+            r.v[0] += 0.7;
+        }
+    }
+    sys.modes = [mode, RodMode::Free, RodMode::Free];
+    let mut y = [0.0; N];
+    sys.store(&rods, &mut y);
+    (sys, y)
+}
+
+#[test]
+fn stick_and_frictionless_slide_conserve_energy() {
+    // An ideal pin does no work, and neither does a frictionless slide.
+    for mode in [
+        RodMode::Stick { tip: Tip::Plus },
+        RodMode::Slide {
+            tip: Tip::Plus,
+            dir: 1.0,
+        },
+    ] {
+        let (sys, mut y) = grounded(mode, 0.0);
+        let e0 = sys.total_energy(&y);
+        let mut f = FixedModes(sys);
+        hybrid::run(&mut f, 0.0, &mut y, 1.0, &tight());
+        let e1 = f.0.total_energy(&y);
+        assert!(((e1 - e0) / e0).abs() < 1e-9, "{mode:?}: {e0} -> {e1}");
+    }
+}
+
+#[test]
+fn sticking_lambda_is_m_cddot_minus_external_force_along_the_trajectory() {
+    // λ from the stick equations against m c̈ − F_ext with c̈ from central
+    // differences of the integrated trajectory.
+    let (sys, y0) = grounded(RodMode::Stick { tip: Tip::Plus }, 0.85);
+    let mut f = FixedModes(sys);
+    let h = 1e-3;
+    let at = |f: &mut FixedModes, t: f64| {
+        let mut y = y0;
+        if t > 0.0 {
+            hybrid::run(f, 0.0, &mut y, t, &tight());
+        }
+        y
+    };
+    let t = 0.2;
+    let ys = [at(&mut f, t - h), at(&mut f, t), at(&mut f, t + h)];
+    let c: Vec<[f64; 2]> = ys.iter().map(|y| f.0.rods(y)[0].c).collect();
+    let frames = f.0.frames(&ys[1]);
+    let (loads, _) = f.0.loads(&frames);
+    let lam =
+        f.0.body
+            .accel(f.0.modes[0], &frames[0], &loads[0], f.0.mu)
+            .lambda;
+    for k in 0..2 {
+        let cdd = (c[2][k] - 2.0 * c[1][k] + c[0][k]) / (h * h);
+        let want = f.0.body.m * cdd - loads[0].force[k];
+        // Central difference error O(h²)·c'''' ≈ 1e-6 · O(100).
+        assert!(
+            (lam[k] - want).abs() < 1e-3 * (1.0 + want.abs()),
+            "λ_{k}: {} vs {want}",
+            lam[k]
+        );
+    }
+}
+
+#[test]
+fn touchdown_leaves_other_rods_untouched() {
+    let (mut sys, y) = grounded(RodMode::Stick { tip: Tip::Plus }, 0.0);
+    // Drop rod c's tip − onto the ground and apply the touchdown reset.
+    let mut y2 = y;
+    let mut rods = sys.rods(&y2);
+    let (p, _) = sys.body.tip_point(&rods[2], Tip::Minus);
+    rods[2].c[1] -= p[1] + 1e-12;
+    rods[2].v = [0.3, -0.6];
+    sys.store(&rods, &mut y2);
+    let before = y2;
+    sys.touchdown(&mut y2, 2, Tip::Minus);
+    assert_eq!(before[..12], y2[..12], "rods a and b must not change");
+    assert_ne!(sys.modes[2], RodMode::Free);
+}
+
+fn fig7a_options() -> Options {
+    Options::default()
+}
+
+#[test]
+fn fig7a_runs_without_divergence_and_yields_a_stable_gait() {
+    // MODEL.md §9: with the default variant (zero rest length) the Fig. 7(a)
+    // point skips; with s = 0.85 it walks. Both must be stable and finite.
+    let p = Params::fig7a();
+    let out = simulate(&p, &fig7a_options());
+    assert!(out.label.is_stable(), "default: {:?}", out);
+    let mut o = fig7a_options();
+    o.strings.rest_length_ratio = 0.85;
+    let walk = simulate(&p, &o);
+    assert!(walk.label.is_stable(), "s = 0.85: {walk:?}");
+    // No chatter: a handful of transitions per touchdown at most.
+    for o in [&out, &walk] {
+        assert!(
+            o.work.events as f64 <= 6.0 * o.touchdowns as f64 + 10.0,
+            "{o:?}"
+        );
+    }
+}
+
+#[test]
+fn energy_balance_closes_over_whole_runs_with_impacts_and_damping() {
+    // E_end + impact losses + damping losses − E_start = 0 (E includes
+    // gravity): within 1e-6 of the potential energy released.
+    let mut o = Options {
+        rtol: 1e-11,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    for s in [0.0, 0.85] {
+        o.strings.rest_length_ratio = s;
+        let out = simulate(&Params::fig7a(), &o);
+        assert!(out.touchdowns > 20);
+        let e = out.energy;
+        assert!(e.gravity_released > 1.0);
+        assert!(
+            e.balance_error.abs() < 1e-6 * e.gravity_released,
+            "s = {s}: {e:?}"
+        );
+        assert!(e.impact_loss > 0.0 && e.damping_loss > 0.0);
+    }
+}
+
+/// A hard case must finish without `diverged`, with the energy balance closed.
+fn assert_sound(name: &str, p: Params, o: &Options) -> rtw_model::Outcome {
+    let out = simulate(&p, o);
+    assert_ne!(out.label, Label::Diverged, "{name}: {out:?}");
+    let scale = out.energy.gravity_released.abs() + out.energy.initial.abs();
+    assert!(
+        out.energy.balance_error.abs() < 1e-5 * scale.max(1.0),
+        "{name}: {:?}",
+        out.energy
+    );
+    out
+}
+
+#[test]
+fn hard_cases_finish_soundly() {
+    let o = Options::default();
+    let base = Params::fig7a();
+    let l = 0.8;
+    assert_sound(
+        "stiffest corner",
+        Params::new(l, 5.0, 0.4, 5.0, 0.1, 0.3).unwrap(),
+        &o,
+    );
+    assert_sound(
+        "stiffest corner, flat",
+        Params::new(l, 5.0, 0.4, 5.0, 0.05, 0.05).unwrap(),
+        &o,
+    );
+    assert_sound(
+        "softest corner",
+        Params::new(l, 1.0, 0.0, 1.5, 0.05, 0.3).unwrap(),
+        &o,
+    );
+    assert_sound("no damping", Params { zeta: 0.0, ..base }, &o);
+    let mut long = o;
+    long.t_max = 200.0;
+    assert_sound("200 s horizon", base, &long);
+    let mut s85 = o;
+    s85.strings.rest_length_ratio = 0.85;
+    assert_sound(
+        "softest corner, prestressed",
+        Params::new(l, 1.0, 0.0, 1.5, 0.05, 0.3).unwrap(),
+        &s85,
+    );
+    assert_sound(
+        "near collapse",
+        Params::new(l, 2.0, 0.02, 1.6, 0.05, 0.2).unwrap(),
+        &s85,
+    );
+    let mut slack = s85;
+    slack.strings.slack = true;
+    assert_sound("slack strings", base, &slack);
+    let mut mu = s85;
+    mu.contact.mu = 0.8;
+    assert_sound("finite friction", base, &mu);
+}
+
+#[test]
+fn grazing_touchdown_is_handled() {
+    // The rear foot starts on the ground; a tiny backward roll brings it down
+    // with near-zero normal speed: an impact of almost nothing. Standing on
+    // two feet with no speed the star cannot roll: a clean stall, no chatter.
+    let mut o = Options::default();
+    o.initial.omega = 1e-9;
+    let out = assert_sound("grazing", Params::fig7a(), &o);
+    assert_eq!(out.label, Label::Stall, "{out:?}");
+    assert!(out.work.events < 20, "{out:?}");
+    let mut o = Options::default();
+    o.initial.omega = 0.0;
+    assert_sound("at rest", Params::fig7a(), &o);
+}
+
+#[test]
+fn static_start_is_an_equilibrium() {
+    // With ω = 0 the static shape must stay put: nothing moves.
+    let mut o = Options::default();
+    o.initial.shape = rtw_model::options::InitialShape::Static;
+    o.initial.omega = 0.0;
+    o.strings.rest_length_ratio = 0.85;
+    let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
+    let mut sys = Rtw::new(&phys, &o);
+    let y = rtw_model::initial::initial_state(&mut sys, &o).unwrap();
+    let mut dy = [0.0; N];
+    sys.dynamics(&y, &mut dy);
+    let acc: f64 = (0..3)
+        .map(|i| dy[6 * i + 5].abs() + dy[6 * i + 3].abs() + dy[6 * i + 4].abs())
+        .sum();
+    assert!(acc < 1e-8, "accelerations at the static start: {dy:?}");
+    let _: RodState = sys.rods(&y)[0];
+}
