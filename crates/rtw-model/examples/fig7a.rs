@@ -1,5 +1,6 @@
-//! Prints the outcome at the article's Fig. 7(a) point for each string
-//! variant: `cargo run --release -p rtw-model --example fig7a [-- s ...]`.
+//! Prints the outcome at the article's Fig. 7(a) point for string rest-length
+//! ratios `s` (default 0 and 0.85):
+//! `cargo run --release -p rtw-model --example fig7a [-- s ...]`.
 use rtw_model::{Options, Params, simulate};
 
 fn main() {
@@ -15,28 +16,33 @@ fn main() {
     for s in ratios {
         let mut o = Options::default();
         o.strings.rest_length_ratio = s;
-        let t = std::time::Instant::now();
+        let start = std::time::Instant::now();
         let out = simulate(&Params::fig7a(), &o);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
         let f = out.fractions;
+        let w = out.work;
         println!(
-            "s={s:<5} {:<8} NLSP {:.3} SLSP {:.3} DLSP {:.3} TLSP {:.3}  f_w {:.3} newfoot {:.3} speed {:.3} m/s  period {}  mu_req {:.2}  td {}  steps {} rej {} rhs {} events {}  balance {:.1e}  {:.1} ms",
-            out.label.as_str(),
-            f.nlsp,
-            f.slsp,
-            f.dlsp,
-            f.tlsp,
-            out.f_w,
-            out.f_w_newfoot,
-            out.speed,
-            out.period,
-            out.mu_required,
-            out.touchdowns,
-            out.work.steps,
-            out.work.rejected,
-            out.work.rhs_evals,
-            out.work.events,
-            out.energy.balance_error,
-            t.elapsed().as_secs_f64() * 1e3
+            "s={s:<5} {label:<8} NLSP {n:.3} SLSP {sl:.3} DLSP {d:.3} TLSP {t:.3}  \
+             f_w {fw:.2} newfoot {nf:.2}  speed {v:.3} m/s  period {p}  mu_req {mu:.2}  \
+             slide {slide:.3} s  touchdowns {td}  steps {st} rejected {rj} rhs {rhs} events {ev}  \
+             balance {bal:.1e} J  {ms:.1} ms",
+            label = out.label.as_str(),
+            n = f.nlsp,
+            sl = f.slsp,
+            d = f.dlsp,
+            t = f.tlsp,
+            fw = out.f_w,
+            nf = out.f_w_newfoot,
+            v = out.speed,
+            p = out.period,
+            mu = out.mu_required,
+            slide = out.slide_time,
+            td = out.touchdowns,
+            st = w.steps,
+            rj = w.rejected,
+            rhs = w.rhs_evals,
+            ev = w.events,
+            bal = out.energy.balance_error,
         );
     }
 }

@@ -164,7 +164,7 @@ pub struct Outcome {
     pub f_w_newfoot: f64,
     /// Mean downhill speed of the centre of mass over the window [m/s].
     pub speed: f64,
-    /// Largest |λ_x|/λ_y while sticking with λ_y > 0.05 m g.
+    /// Largest |λ_x|/λ_y while sticking with λ_y > 0.05 m g, over the window.
     pub mu_required: f64,
     /// Rod-seconds spent sliding over the whole run.
     pub slide_time: f64,

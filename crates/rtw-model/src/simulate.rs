@@ -122,6 +122,12 @@ impl HybridSystem<N> for Run<'_> {
         flow
     }
 
+    fn observes_interior(&self) -> bool {
+        // Interior points are read only to sample a trace at `trace_dt` and
+        // once, at the window start.
+        (self.trace.is_some() && self.trace_dt > 0.0) || self.stats.window_com_x.is_none()
+    }
+
     fn observe(&mut self, dense: &Dense<N>) -> Flow {
         let (t0, t1) = (dense.t0, dense.t1);
         self.stats
@@ -130,6 +136,8 @@ impl HybridSystem<N> for Run<'_> {
             let mut y = [0.0; N];
             dense.eval(self.stats.window_start.max(t0), &mut y);
             self.stats.window_com_x = Some(self.rtw.centre_of_mass(&y)[0]);
+            // `mu_required` describes the gait: count it over the window only.
+            self.rtw.mu_required.set(0.0);
         }
         if self.trace.is_some() {
             if self.trace_dt > 0.0 {
