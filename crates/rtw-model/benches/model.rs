@@ -1,12 +1,53 @@
-//! Criterion benches of the model's hot path (filled in with the dynamics).
-use criterion::{Criterion, criterion_group, criterion_main};
+//! Criterion benches of the model's hot path: one right-hand side, one guard
+//! evaluation, and whole 20 s runs at the Fig. 7(a) point per tolerance and
+//! method. `cargo bench -p rtw-model`.
 
-fn params(c: &mut Criterion) {
-    let p = rtw_model::Params::fig7a();
-    c.bench_function("physical_from_params", |b| {
-        b.iter(|| rtw_model::Physical::new(&p, rtw_model::Normalization::Supplementary, 9.81))
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rtw_model::options::MethodChoice;
+use rtw_model::rtw::{N, Rtw};
+use rtw_model::{Options, Params, Physical, simulate};
+use std::hint::black_box;
+
+fn hot_path(c: &mut Criterion) {
+    let o = Options::default();
+    let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
+    let mut rtw = Rtw::new(&phys, &o);
+    let y = rtw_model::initial::initial_state(&mut rtw, &o).expect("standing start");
+    let mut dy = [0.0; N];
+    c.bench_function("rhs", |b| {
+        b.iter(|| rtw.dynamics(black_box(&y), &mut dy));
+    });
+    let mut g = rtw_model::hybrid::Guards::default();
+    c.bench_function("guards", |b| {
+        b.iter(|| rtw.guards(black_box(&y), &mut g));
     });
 }
 
-criterion_group!(benches, params);
+fn runs(c: &mut Criterion) {
+    let mut group = c.benchmark_group("run_20s_fig7a");
+    group.sample_size(20);
+    for (method, name) in [
+        (MethodChoice::Dp54, "dp54"),
+        (MethodChoice::Dop853, "dop853"),
+    ] {
+        for rtol in [1e-6, 1e-8, 1e-10] {
+            for s in [0.0, 0.85] {
+                let mut o = Options {
+                    method,
+                    rtol,
+                    atol: rtol * 1e-2,
+                    ..Options::default()
+                };
+                o.strings.rest_length_ratio = s;
+                let id = BenchmarkId::new(format!("{name}/s={s}"), format!("rtol={rtol:e}"));
+                group.bench_with_input(id, &o, |b, o| {
+                    b.iter(|| simulate(black_box(&Params::fig7a()), o));
+                });
+            }
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, hot_path, runs);
 criterion_main!(benches);
