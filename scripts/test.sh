@@ -22,7 +22,7 @@ if [ -f scripts/check_parquet.py ]; then
   .venv/bin/pip install --quiet --disable-pip-version-check -r scripts/requirements.txt
   out=$(mktemp -d)
   cargo run --release -q -p rtw-scan -- run configs/smoke.toml --out "$out" >/dev/null
-  .venv/bin/python scripts/check_parquet.py "$out/samples.parquet" configs/smoke.toml
+  .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
   rm -rf "$out"
 fi
 echo "all checks passed"

@@ -33,7 +33,11 @@ pub fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
     } else {
         (Label::Walk, None)
     };
-    let t_end = if failure.is_some() { o.t_max * p.phi / 0.3 } else { o.t_max };
+    let t_end = if failure.is_some() {
+        o.t_max * p.phi / 0.3
+    } else {
+        o.t_max
+    };
     let nlsp = if label == Label::Skip { 0.3 } else { 0.0 };
     let tlsp = if label == Label::Crawl { 0.1 } else { 0.0 };
     let slsp = (1.0 - nlsp - tlsp) * p.zeta * 10.0;
@@ -41,7 +45,12 @@ pub fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
         label,
         failure,
         t_end,
-        fractions: ContactFractions { nlsp, slsp, dlsp: 1.0 - nlsp - tlsp - slsp, tlsp },
+        fractions: ContactFractions {
+            nlsp,
+            slsp,
+            dlsp: 1.0 - nlsp - tlsp - slsp,
+            tlsp,
+        },
         touchdowns: (t_end * p.f_n) as u64,
         f_w: p.f_n,
         f_w_newfoot: p.f_n * 0.9,
@@ -54,9 +63,14 @@ pub fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
             gravity_released: p.phi,
             impact_loss: p.phi * 0.5,
             damping_loss: p.zeta,
-            balance_error: 0.0,
+            ..Default::default()
         },
         period: 1,
-        work: IntegratorWork { steps: 1000, rejected: 10, rhs_evals: 7000, events: 100 },
+        work: IntegratorWork {
+            steps: 1000,
+            rejected: 10,
+            rhs_evals: 7000,
+            events: 100,
+        },
     }
 }

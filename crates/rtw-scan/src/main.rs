@@ -1,3 +1,5 @@
-fn main() {
-    println!("rtw-scan: in progress");
+//! `rtw-scan`: see `rtw-scan --help` and the crate docs of [`rtw_scan`].
+
+fn main() -> std::process::ExitCode {
+    rtw_scan::cli::main()
 }

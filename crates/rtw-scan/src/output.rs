@@ -12,6 +12,7 @@
 //! [`Label::ALL`] (pandas and polars read it as categorical); floats are
 //! `Float64`, counts `Int64`; compression is zstd.
 
+use crate::config::{ScanConfig, Variant};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow::array::{
     Array, ArrayRef, AsArray, DictionaryArray, Float64Array, Int8Array, Int32Array, Int64Array,
@@ -42,6 +43,21 @@ pub const META_VARIANT: &str = "rtw.variant";
 pub const META_WALL_TIME: &str = "rtw.wall_time_s";
 /// Metadata key: seconds spent computing one chunk (chunk files only).
 pub const META_CHUNK_WALL_TIME: &str = "rtw.chunk_wall_time_s";
+
+/// A key-value metadata entry.
+pub fn kv(key: &str, value: String) -> KeyValue {
+    KeyValue::new(key.to_string(), value)
+}
+
+/// The file metadata of a scan's Parquet files: config, version, seed, variant.
+pub fn scan_metadata(cfg: &ScanConfig) -> Vec<KeyValue> {
+    vec![
+        kv(META_CONFIG, cfg.to_toml()),
+        kv(META_VERSION, env!("CARGO_PKG_VERSION").to_string()),
+        kv(META_SEED, cfg.seed.to_string()),
+        kv(META_VARIANT, Variant::of(&cfg.simulation).to_string()),
+    ]
+}
 
 /// One scan row: a sample's inputs, derived parameters and outcome.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,21 +98,46 @@ pub struct Column {
 }
 
 const fn input(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
-    Column { name, group: "input", nullable: false, get: Get::F64(get) }
+    Column {
+        name,
+        group: "input",
+        nullable: false,
+        get: Get::F64(get),
+    }
 }
 const fn derived(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
-    Column { name, group: "derived", nullable: false, get: Get::F64(get) }
+    Column {
+        name,
+        group: "derived",
+        nullable: false,
+        get: Get::F64(get),
+    }
 }
 const fn metric(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
-    Column { name, group: "metric", nullable: true, get: Get::F64(get) }
+    Column {
+        name,
+        group: "metric",
+        nullable: true,
+        get: Get::F64(get),
+    }
 }
 const fn count(name: &'static str, group: &'static str, get: fn(&Row) -> Option<i64>) -> Column {
-    Column { name, group, nullable: true, get: Get::I64(get) }
+    Column {
+        name,
+        group,
+        nullable: true,
+        get: Get::I64(get),
+    }
 }
 
 /// Every column of a scan row, in file order.
 pub static COLUMNS: &[Column] = &[
-    Column { name: "sample_id", group: "id", nullable: false, get: Get::I64(|r| Some(r.sample_id as i64)) },
+    Column {
+        name: "sample_id",
+        group: "id",
+        nullable: false,
+        get: Get::I64(|r| Some(r.sample_id as i64)),
+    },
     input("length", |r| Some(r.params.length)),
     input("rho", |r| Some(r.params.rho)),
     input("alpha", |r| Some(r.params.alpha)),
@@ -109,15 +150,32 @@ pub static COLUMNS: &[Column] = &[
     derived("r", |r| Some(r.physical.r)),
     derived("k", |r| Some(r.physical.k)),
     derived("c", |r| Some(r.physical.c)),
-    Column { name: "outcome", group: "outcome", nullable: false, get: Get::Label },
-    Column { name: "failure", group: "outcome", nullable: true, get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())) },
-    Column { name: "message", group: "outcome", nullable: true, get: Get::Str(|r| r.message.as_deref()) },
+    Column {
+        name: "outcome",
+        group: "outcome",
+        nullable: false,
+        get: Get::Label,
+    },
+    Column {
+        name: "failure",
+        group: "outcome",
+        nullable: true,
+        get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())),
+    },
+    Column {
+        name: "message",
+        group: "outcome",
+        nullable: true,
+        get: Get::Str(|r| r.message.as_deref()),
+    },
     metric("t_end", |r| r.outcome.map(|o| o.t_end)),
     metric("nlsp", |r| r.outcome.map(|o| o.fractions.nlsp)),
     metric("slsp", |r| r.outcome.map(|o| o.fractions.slsp)),
     metric("dlsp", |r| r.outcome.map(|o| o.fractions.dlsp)),
     metric("tlsp", |r| r.outcome.map(|o| o.fractions.tlsp)),
-    count("touchdowns", "metric", |r| r.outcome.map(|o| o.touchdowns as i64)),
+    count("touchdowns", "metric", |r| {
+        r.outcome.map(|o| o.touchdowns as i64)
+    }),
     metric("f_w", |r| r.outcome.map(|o| o.f_w)),
     metric("f_w_newfoot", |r| r.outcome.map(|o| o.f_w_newfoot)),
     metric("speed", |r| r.outcome.map(|o| o.speed)),
@@ -125,16 +183,40 @@ pub static COLUMNS: &[Column] = &[
     metric("slide_time", |r| r.outcome.map(|o| o.slide_time)),
     metric("energy_initial", |r| r.outcome.map(|o| o.energy.initial)),
     metric("energy_last", |r| r.outcome.map(|o| o.energy.last)),
-    metric("energy_gravity_released", |r| r.outcome.map(|o| o.energy.gravity_released)),
-    metric("energy_impact_loss", |r| r.outcome.map(|o| o.energy.impact_loss)),
-    metric("energy_damping_loss", |r| r.outcome.map(|o| o.energy.damping_loss)),
-    metric("energy_balance_error", |r| r.outcome.map(|o| o.energy.balance_error)),
-    count("period", "metric", |r| r.outcome.map(|o| i64::from(o.period))),
+    metric("energy_gravity_released", |r| {
+        r.outcome.map(|o| o.energy.gravity_released)
+    }),
+    metric("energy_impact_loss", |r| {
+        r.outcome.map(|o| o.energy.impact_loss)
+    }),
+    metric("energy_damping_loss", |r| {
+        r.outcome.map(|o| o.energy.damping_loss)
+    }),
+    metric("energy_friction_loss", |r| {
+        r.outcome.map(|o| o.energy.friction_loss)
+    }),
+    metric("energy_balance_error", |r| {
+        r.outcome.map(|o| o.energy.balance_error)
+    }),
+    count("period", "metric", |r| {
+        r.outcome.map(|o| i64::from(o.period))
+    }),
     count("steps", "work", |r| r.outcome.map(|o| o.work.steps as i64)),
-    count("rejected", "work", |r| r.outcome.map(|o| o.work.rejected as i64)),
-    count("rhs_evals", "work", |r| r.outcome.map(|o| o.work.rhs_evals as i64)),
-    count("events", "work", |r| r.outcome.map(|o| o.work.events as i64)),
-    Column { name: "wall_time_s", group: "work", nullable: false, get: Get::F64(|r| Some(r.wall_time_s)) },
+    count("rejected", "work", |r| {
+        r.outcome.map(|o| o.work.rejected as i64)
+    }),
+    count("rhs_evals", "work", |r| {
+        r.outcome.map(|o| o.work.rhs_evals as i64)
+    }),
+    count("events", "work", |r| {
+        r.outcome.map(|o| o.work.events as i64)
+    }),
+    Column {
+        name: "wall_time_s",
+        group: "work",
+        nullable: false,
+        get: Get::F64(|r| Some(r.wall_time_s)),
+    },
 ];
 
 /// The Arrow type of the `outcome` column: dictionary with signed keys.
@@ -163,11 +245,18 @@ pub fn schema() -> SchemaRef {
     SCHEMA.clone()
 }
 
+/// Position of a label in [`Label::ALL`]: its dictionary key in the
+/// `outcome` column and its slot in per-label counts.
+pub fn label_index(label: Label) -> usize {
+    Label::ALL
+        .iter()
+        .position(|l| *l == label)
+        .expect("every label is in Label::ALL")
+}
+
 /// Labels as a dictionary array over the fixed value list [`Label::ALL`].
 fn label_array(labels: impl Iterator<Item = Label>) -> ArrayRef {
-    let keys: Int32Array = labels
-        .map(|l| Label::ALL.iter().position(|x| *x == l).expect("label in ALL") as i32)
-        .collect();
+    let keys: Int32Array = labels.map(|l| label_index(l) as i32).collect();
     let values = StringArray::from_iter_values(Label::ALL.iter().map(|l| l.as_str()));
     Arc::new(DictionaryArray::<Int32Type>::try_new(keys, Arc::new(values)).expect("keys in range"))
 }
@@ -221,7 +310,11 @@ pub fn to_text(r: &Row) -> String {
             Get::Str(g) => g(r).map(str::to_string),
             Get::Label => Some(r.label().as_str().to_string()),
         };
-        out.push_str(&format!("  {:<24} {}\n", c.name, value.as_deref().unwrap_or("-")));
+        out.push_str(&format!(
+            "  {:<24} {}\n",
+            c.name,
+            value.as_deref().unwrap_or("-")
+        ));
     }
     out
 }
@@ -230,10 +323,42 @@ pub fn to_text(r: &Row) -> String {
 /// key-value metadata.
 pub fn writer_properties(max_rows: usize, metadata: Vec<KeyValue>) -> WriterProperties {
     WriterProperties::builder()
-        .set_compression(Compression::ZSTD(ZstdLevel::try_new(3).expect("valid zstd level")))
+        .set_compression(Compression::ZSTD(
+            ZstdLevel::try_new(3).expect("valid zstd level"),
+        ))
         .set_max_row_group_row_count(Some(max_rows.max(1)))
         .set_key_value_metadata(Some(metadata))
         .build()
+}
+
+/// A temporary file next to `dest` (same directory, so a rename moves it
+/// into place atomically), named `.NAME.XXXXXX.tmp`, with the usual
+/// permissions (0666 less the umask) rather than tempfile's 0600.
+fn temp_file_for(dest: &Path) -> Result<tempfile::NamedTempFile> {
+    let dir = dest
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = dest.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    builder
+        .tempfile_in(dir)
+        .with_context(|| format!("cannot create a file in {}", dir.display()))
+}
+
+/// Writes `bytes` to `path` through a temporary file and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write;
+    let mut tmp = temp_file_for(path)?;
+    tmp.write_all(bytes)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
 }
 
 /// A Parquet file being written under a temporary name next to `dest`;
@@ -247,16 +372,16 @@ pub struct ParquetFile {
 
 impl ParquetFile {
     pub fn create(dest: &Path, schema: SchemaRef, props: WriterProperties) -> Result<Self> {
-        let dir = dest.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        let name = dest.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-        let tmp = tempfile::Builder::new()
-            .prefix(&format!(".{name}."))
-            .suffix(".tmp")
-            .tempfile_in(dir)
-            .with_context(|| format!("cannot create a file in {}", dir.display()))?;
-        let file = tmp.reopen().with_context(|| format!("cannot open {}", tmp.path().display()))?;
+        let tmp = temp_file_for(dest)?;
+        let file = tmp
+            .reopen()
+            .with_context(|| format!("cannot open {}", tmp.path().display()))?;
         let writer = ArrowWriter::try_new(file, schema, Some(props))?;
-        Ok(Self { tmp, writer, dest: dest.to_path_buf() })
+        Ok(Self {
+            tmp,
+            writer,
+            dest: dest.to_path_buf(),
+        })
     }
 
     pub fn write(&mut self, batch: &RecordBatch) -> Result<()> {
@@ -271,13 +396,16 @@ impl ParquetFile {
     }
 
     pub fn append_metadata(&mut self, key: &str, value: String) {
-        self.writer.append_key_value_metadata(KeyValue::new(key.to_string(), value));
+        self.writer
+            .append_key_value_metadata(KeyValue::new(key.to_string(), value));
     }
 
     /// Closes the writer, syncs the data and moves the file to its name.
     pub fn finish(self) -> Result<()> {
         let Self { tmp, writer, dest } = self;
-        writer.close().with_context(|| format!("closing {}", dest.display()))?;
+        writer
+            .close()
+            .with_context(|| format!("closing {}", dest.display()))?;
         tmp.as_file().sync_all()?;
         tmp.persist(&dest)
             .with_context(|| format!("cannot move the finished file to {}", dest.display()))?;
@@ -314,7 +442,11 @@ pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
         .filter_map(|kv| Some((kv.key.clone(), kv.value.clone()?)))
         .collect();
     let reader = builder.with_batch_size(batch_size.max(1)).build()?;
-    Ok(ParquetInput { metadata, rows, reader })
+    Ok(ParquetInput {
+        metadata,
+        rows,
+        reader,
+    })
 }
 
 /// A `Float64` column of a scan batch, by name.
@@ -331,13 +463,19 @@ pub fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
     let col = batch
         .column_by_name("outcome")
         .ok_or_else(|| anyhow!("column `outcome` is missing"))?;
-    let decode = |s: &str| s.parse::<Label>().map_err(|e| anyhow!("column `outcome`: {e}"));
+    let decode = |s: &str| {
+        s.parse::<Label>()
+            .map_err(|e| anyhow!("column `outcome`: {e}"))
+    };
     if let Some(dict) = col.as_dictionary_opt::<Int32Type>() {
         let values = dict
             .values()
             .as_string_opt::<i32>()
             .ok_or_else(|| anyhow!("column `outcome`: dictionary values are not strings"))?;
-        let table: Vec<Label> = values.iter().map(|v| decode(v.unwrap_or(""))).collect::<Result<_>>()?;
+        let table: Vec<Label> = values
+            .iter()
+            .map(|v| decode(v.unwrap_or("")))
+            .collect::<Result<_>>()?;
         dict.keys()
             .iter()
             .map(|k| {
@@ -348,7 +486,10 @@ pub fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
     } else if let Some(s) = col.as_string_opt::<i32>() {
         s.iter().map(|v| decode(v.unwrap_or(""))).collect()
     } else {
-        bail!("column `outcome` is {}, expected a string dictionary", col.data_type())
+        bail!(
+            "column `outcome` is {}, expected a string dictionary",
+            col.data_type()
+        )
     }
 }
 
@@ -356,6 +497,7 @@ pub fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
 /// `BATCH` samples, so a long trace never sits in memory.
 pub struct TraceWriter {
     file: ParquetFile,
+    schema: SchemaRef,
     buffer: Vec<TraceSample>,
     rows: u64,
 }
@@ -365,20 +507,32 @@ enum TraceGet {
     I8(Box<dyn Fn(&TraceSample) -> i8>),
 }
 
+/// A scalar field of a trace sample.
+type TraceScalar = fn(&TraceSample) -> f64;
+
 fn trace_columns() -> Vec<(String, TraceGet)> {
     use TraceGet::{F64, I8};
     let mut cols: Vec<(String, TraceGet)> = vec![("t".into(), F64(Box::new(|s| s.t)))];
     for (rod, name) in ["a", "b", "c"].into_iter().enumerate() {
         for (j, q) in ["x", "y", "theta"].into_iter().enumerate() {
-            cols.push((format!("{q}_{name}"), F64(Box::new(move |s| s.pose[rod][j]))));
+            cols.push((
+                format!("{q}_{name}"),
+                F64(Box::new(move |s| s.pose[rod][j])),
+            ));
         }
         for (j, q) in ["vx", "vy", "omega"].into_iter().enumerate() {
             cols.push((format!("{q}_{name}"), F64(Box::new(move |s| s.vel[rod][j]))));
         }
-        cols.push((format!("contact_{name}"), I8(Box::new(move |s| s.contact[rod]))));
+        cols.push((
+            format!("contact_{name}"),
+            I8(Box::new(move |s| s.contact[rod])),
+        ));
     }
-    cols.push(("contact_state".into(), I8(Box::new(|s| s.contact_state as i8))));
-    let scalars: [(&str, fn(&TraceSample) -> f64); 5] = [
+    cols.push((
+        "contact_state".into(),
+        I8(Box::new(|s| s.contact_state as i8)),
+    ));
+    let scalars: [(&str, TraceScalar); 5] = [
         ("kinetic", |s| s.kinetic),
         ("gravity_potential", |s| s.gravity_potential),
         ("string_potential", |s| s.string_potential),
@@ -405,9 +559,15 @@ impl TraceWriter {
                 Field::new(n, ty, false)
             })
             .collect();
+        let schema = Arc::new(Schema::new(fields));
         let props = writer_properties(Self::BATCH, metadata);
-        let file = ParquetFile::create(dest, Arc::new(Schema::new(fields)), props)?;
-        Ok(Self { file, buffer: Vec::with_capacity(Self::BATCH), rows: 0 })
+        let file = ParquetFile::create(dest, schema.clone(), props)?;
+        Ok(Self {
+            file,
+            schema,
+            buffer: Vec::with_capacity(Self::BATCH),
+            rows: 0,
+        })
     }
 
     /// Buffers one sample, writing a row group when the buffer is full.
@@ -426,12 +586,14 @@ impl TraceWriter {
         let arrays: Vec<ArrayRef> = trace_columns()
             .into_iter()
             .map(|(_, g)| match g {
-                TraceGet::F64(g) => Arc::new(self.buffer.iter().map(|s| g(s)).collect::<Float64Array>()) as ArrayRef,
-                TraceGet::I8(g) => Arc::new(self.buffer.iter().map(|s| g(s)).collect::<Int8Array>()),
+                TraceGet::F64(g) => {
+                    Arc::new(self.buffer.iter().map(&g).collect::<Float64Array>()) as ArrayRef
+                }
+                TraceGet::I8(g) => Arc::new(self.buffer.iter().map(&g).collect::<Int8Array>()),
             })
             .collect();
-        let schema = self.file.writer.schema().clone();
-        self.file.write(&RecordBatch::try_new(schema, arrays)?)?;
+        self.file
+            .write(&RecordBatch::try_new(self.schema.clone(), arrays)?)?;
         self.rows += self.buffer.len() as u64;
         self.buffer.clear();
         Ok(())
@@ -456,7 +618,12 @@ pub(crate) mod tests {
             label,
             failure: (label == Label::Stall).then_some(FailureDetail::NoTouchdown),
             t_end: 20.0,
-            fractions: ContactFractions { nlsp: 0.1, slsp: 0.5, dlsp: 0.4, tlsp: 0.0 },
+            fractions: ContactFractions {
+                nlsp: 0.1,
+                slsp: 0.5,
+                dlsp: 0.4,
+                tlsp: 0.0,
+            },
             touchdowns: 40,
             f_w: 3.2,
             f_w_newfoot: 2.9,
@@ -465,7 +632,12 @@ pub(crate) mod tests {
             slide_time: 0.01,
             energy: Energy::default(),
             period: 1,
-            work: IntegratorWork { steps: 100, rejected: 3, rhs_evals: 700, events: 50 },
+            work: IntegratorWork {
+                steps: 100,
+                rejected: 3,
+                rhs_evals: 700,
+                events: 50,
+            },
         }
     }
 
@@ -483,12 +655,22 @@ pub(crate) mod tests {
 
     #[test]
     fn batch_has_every_column_and_signed_dictionary_keys() {
-        let rows = vec![row(0, Some(outcome(Label::Walk))), row(1, None), row(2, Some(outcome(Label::Stall)))];
+        let rows = vec![
+            row(0, Some(outcome(Label::Walk))),
+            row(1, None),
+            row(2, Some(outcome(Label::Stall))),
+        ];
         let b = to_batch(&rows);
         assert_eq!(b.num_rows(), 3);
         assert_eq!(b.num_columns(), COLUMNS.len());
-        assert_eq!(b.schema().field_with_name("outcome").unwrap().data_type(), &label_type());
-        assert_eq!(label_column(&b).unwrap(), vec![Label::Walk, Label::Diverged, Label::Stall]);
+        assert_eq!(
+            b.schema().field_with_name("outcome").unwrap().data_type(),
+            &label_type()
+        );
+        assert_eq!(
+            label_column(&b).unwrap(),
+            vec![Label::Walk, Label::Diverged, Label::Stall]
+        );
         let t_end = f64_column(&b, "t_end").unwrap();
         assert!(t_end.is_valid(0) && t_end.is_null(1));
         let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
@@ -503,7 +685,12 @@ pub(crate) mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("x.parquet");
         let rows: Vec<Row> = (0..5).map(|i| row(i, Some(outcome(Label::Skip)))).collect();
-        write_file(&path, &to_batch(&rows), vec![KeyValue::new(META_SEED.into(), "7".to_string())]).unwrap();
+        write_file(
+            &path,
+            &to_batch(&rows),
+            vec![KeyValue::new(META_SEED.into(), "7".to_string())],
+        )
+        .unwrap();
         let input = open(&path, 100).unwrap();
         assert_eq!(input.rows, 5);
         assert_eq!(input.metadata[META_SEED], "7");
@@ -530,6 +717,25 @@ pub(crate) mod tests {
         assert_eq!(d["message"], "boom");
         assert!(d["t_end"].is_null());
         let text = to_text(&r);
+        // Every field of Outcome has a column: nested structs flatten to
+        // their field names (`energy` with an `energy_` prefix).
+        let o = serde_json::to_value(r.outcome.unwrap()).unwrap();
+        for (k, val) in o.as_object().unwrap() {
+            let names: Vec<String> = match val.as_object() {
+                Some(inner) if k == "energy" => {
+                    inner.keys().map(|f| format!("energy_{f}")).collect()
+                }
+                Some(inner) => inner.keys().cloned().collect(),
+                None if k == "label" => vec!["outcome".into()],
+                None => vec![k.clone()],
+            };
+            for n in names {
+                assert!(
+                    COLUMNS.iter().any(|c| c.name == n),
+                    "Outcome field {n} has no column"
+                );
+            }
+        }
         assert!(text.contains("[metric]") && text.contains("outcome") && text.contains("walk"));
     }
 }

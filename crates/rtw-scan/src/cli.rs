@@ -1,0 +1,360 @@
+//! The command line: `run`, `simulate`, `cluster`, `summary`.
+
+use crate::config;
+use crate::fake;
+use crate::output::{self, JsonRow, TraceWriter, kv};
+use crate::report::{self, clusters_markdown};
+use crate::run::{self, ProgressMode, RunSettings, RunStatus};
+use anyhow::{Context, Result, anyhow};
+use clap::{Args, Parser, Subcommand};
+use rtw_model::{Options, Outcome, Params};
+use std::num::NonZeroUsize;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// Exit code of a run stopped by Ctrl-C (128 + SIGINT).
+const EXIT_INTERRUPTED: u8 = 130;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "rtw-scan",
+    version,
+    about = "Seeded, parallel parameter scans of the RTW model, streamed to Parquet, with failure clustering.",
+    long_about = "Seeded, parallel parameter scans of the rimless wheel-like tensegrity (RTW) model, streamed to \
+                  Parquet, with outcome statistics and k-means clustering of the failures.\n\n\
+                  A scan's rows depend only on (seed, sample_id): any thread count, an interrupted and resumed \
+                  run, or a subset gives the same rows."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scan from a TOML config: writes DIR/samples.parquet, DIR/summary.json, DIR/summary.md.
+    #[command(long_about = "Run a scan from a TOML config.\n\n\
+        Writes DIR/samples.parquet (one row per sample: inputs, derived parameters, outcome, every metric, \
+        integrator work, wall time), DIR/summary.json and DIR/summary.md, and prints the summary. Finished chunks \
+        are kept in DIR/.partial while the run goes on, so an interrupted run (Ctrl-C, kill) loses at most the \
+        chunk in progress: finish it with --resume. A sample that panics or fails numerically becomes a \
+        `diverged` row; the scan goes on.\n\n\
+        Config keys: seed, samples, name (optional); [params] length, rho, alpha, fn, zeta, phi, each a number, \
+        { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
+        grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
+        every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...).")]
+    Run(RunArgs),
+    /// Simulate one RTW and print its outcome and every metric.
+    #[command(
+        long_about = "Simulate one RTW and print its outcome and every metric.\n\n\
+        The simulation options come from the [simulation] table of --config (default: MODEL.md's defaults) and \
+        then the --set overrides, e.g. --set initial.omega=-3 --set contact.mu=0.8 --set strings.slack=true \
+        --set method=dop853. Values are read as TOML values (inf, true, \"text\"); a value that is not one is taken \
+        as a string."
+    )]
+    Simulate(SimulateArgs),
+    /// Cluster the failed samples of a finished scan (k-means on standardized α, f_n, φ).
+    Cluster(ClusterArgs),
+    /// Recompute a finished scan's summary: prints it and rewrites summary.json and summary.md beside the file.
+    Summary(SummaryArgs),
+}
+
+#[derive(Args, Debug)]
+struct RunArgs {
+    /// Scan config (TOML).
+    config: PathBuf,
+    /// Output directory [default: results/<config file stem>/].
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Worker threads [default: one per core]. The rows do not depend on it.
+    #[arg(long, value_name = "N")]
+    threads: Option<NonZeroUsize>,
+    /// Finish the interrupted run in DIR (keeps its finished chunks).
+    #[arg(long)]
+    resume: bool,
+    /// Rows per chunk and row group (a resumed run keeps its own).
+    #[arg(long, hide = true, value_name = "N", default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
+    chunk_size: NonZeroUsize,
+    /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
+    #[arg(long, hide = true, value_name = "MS")]
+    fake_sim: Option<u64>,
+}
+
+#[derive(Args, Debug)]
+struct SimulateArgs {
+    /// Rod length L [m].
+    #[arg(long)]
+    length: f64,
+    /// Mass per length ρ [kg/m].
+    #[arg(long)]
+    rho: f64,
+    /// Connection ratio α, in [0, 0.5).
+    #[arg(long)]
+    alpha: f64,
+    /// Eigen-frequency f_n [Hz].
+    #[arg(long = "fn", value_name = "FN")]
+    f_n: f64,
+    /// Damping ratio ζ.
+    #[arg(long)]
+    zeta: f64,
+    /// Slope φ [rad].
+    #[arg(long, allow_negative_numbers = true)]
+    phi: f64,
+    /// Take the [simulation] options of this config file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Override one simulation option (repeatable), e.g. contact.mu=0.8.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Print one JSON object: `outcome` (the label) and every metric, flattened, with the derived parameters.
+    #[arg(long)]
+    json: bool,
+    /// Write the time series (one row per trace sample) to this Parquet file.
+    #[arg(long, value_name = "FILE.parquet")]
+    trace: Option<PathBuf>,
+    /// Testing only: use the fake simulator.
+    #[arg(long, hide = true)]
+    fake_sim: bool,
+}
+
+#[derive(Args, Debug)]
+struct ClusterArgs {
+    /// A samples.parquet written by `rtw-scan run`.
+    samples: PathBuf,
+    /// Number of clusters [default: the config's cluster.k].
+    #[arg(long)]
+    k: Option<NonZeroUsize>,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args, Debug)]
+struct SummaryArgs {
+    /// A samples.parquet written by `rtw-scan run`.
+    samples: PathBuf,
+    /// Number of failure clusters [default: the config's cluster.k].
+    #[arg(long)]
+    k: Option<NonZeroUsize>,
+}
+
+/// Parses the command line, runs it, and turns errors into a message and
+/// exit code 1.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(a) => cmd_run(a),
+        Command::Simulate(a) => cmd_simulate(a),
+        Command::Cluster(a) => cmd_cluster(a),
+        Command::Summary(a) => cmd_summary(a),
+    };
+    result.unwrap_or_else(|e| {
+        eprintln!("error: {e:#}");
+        ExitCode::FAILURE
+    })
+}
+
+static STOP: AtomicBool = AtomicBool::new(false);
+
+fn cmd_run(a: RunArgs) -> Result<ExitCode> {
+    let cfg = config::load(&a.config)?;
+    let out = match a.out {
+        Some(d) => d,
+        None => {
+            let stem = a
+                .config
+                .file_stem()
+                .ok_or_else(|| anyhow!("config path {} has no file name", a.config.display()))?;
+            Path::new("results").join(stem)
+        }
+    };
+    ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            eprintln!("rtw-scan: second interrupt, exiting now");
+            std::process::exit(EXIT_INTERRUPTED.into());
+        }
+        eprintln!(
+            "rtw-scan: interrupted: finishing the samples in flight (Ctrl-C again to quit at once)"
+        );
+    })
+    .context("cannot install the Ctrl-C handler")?;
+    let settings = RunSettings {
+        out_dir: out.clone(),
+        threads: a.threads,
+        resume: a.resume,
+        chunk_size: a.chunk_size,
+        progress: ProgressMode::Auto,
+    };
+    let status = match a.fake_sim {
+        Some(ms) => {
+            let delay = Duration::from_millis(ms);
+            run::run_scan(&cfg, &settings, &|p, o| fake::simulate(p, o, delay), &STOP)?
+        }
+        None => run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP)?,
+    };
+    match status {
+        RunStatus::Complete {
+            samples, computed, ..
+        } => {
+            if computed == 0 && a.resume {
+                eprintln!("rtw-scan: {} is already complete", samples.display());
+            }
+            let summary = report::summarize(&samples, None)?;
+            report::write_summary(&out, &summary)?;
+            print!("{}", summary.to_markdown());
+            Ok(ExitCode::SUCCESS)
+        }
+        RunStatus::Interrupted {
+            chunks_done,
+            chunks,
+            partial,
+        } => {
+            eprintln!(
+                "rtw-scan: interrupted: {chunks_done} of {chunks} chunks kept in {}; finish with: rtw-scan run {} --out {} --resume",
+                partial.display(),
+                a.config.display(),
+                out.display()
+            );
+            Ok(ExitCode::from(EXIT_INTERRUPTED))
+        }
+    }
+}
+
+/// The simulation options of `simulate`: the config's [simulation] table, then `--set`.
+fn simulate_options(config_file: Option<&Path>, sets: &[String]) -> Result<Options> {
+    let mut table = match config_file {
+        Some(path) => {
+            let mut t = config::parse_table(&config::read_text(path)?)
+                .with_context(|| format!("config {}", path.display()))?;
+            match t.remove("simulation") {
+                None => toml::Table::new(),
+                Some(toml::Value::Table(s)) => s,
+                Some(_) => anyhow::bail!("config {}: `simulation` is not a table", path.display()),
+            }
+        }
+        None => toml::Table::new(),
+    };
+    for s in sets {
+        config::apply_set(&mut table, s)?;
+    }
+    config::options_from_table(table, "simulation")
+}
+
+fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
+    let params = Params::new(a.length, a.rho, a.alpha, a.f_n, a.zeta, a.phi)
+        .map_err(|e| anyhow!("--{}: {} is invalid: must be {}", e.field, e.value, e.range))?;
+    let options = simulate_options(a.config.as_deref(), &a.set)?;
+    let mut trace = match &a.trace {
+        Some(path) => {
+            let meta = vec![
+                kv(output::META_VERSION, env!("CARGO_PKG_VERSION").into()),
+                kv("rtw.params", serde_json::to_string(&params)?),
+                kv("rtw.options", toml::to_string(&options)?),
+            ];
+            Some(
+                TraceWriter::create(path, meta)
+                    .with_context(|| format!("trace {}", path.display()))?,
+            )
+        }
+        None => None,
+    };
+    let mut trace_error = None;
+    let row = run::run_one(0, params, &options, |p: &Params, o: &Options| -> Outcome {
+        if a.fake_sim {
+            return fake::simulate(p, o, Duration::ZERO);
+        }
+        match trace.as_mut() {
+            Some(w) => rtw_model::simulate_traced(p, o, &mut |s| {
+                if trace_error.is_none() {
+                    trace_error = w.push(s).err();
+                }
+            }),
+            None => rtw_model::simulate(p, o),
+        }
+    });
+    if let Some(e) = trace_error {
+        return Err(e.context("writing the trace"));
+    }
+    if let (Some(w), Some(path)) = (trace, &a.trace) {
+        let n = w.finish()?;
+        eprintln!(
+            "rtw-scan: trace of {n} samples written to {}",
+            path.display()
+        );
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&JsonRow(&row))?);
+    } else {
+        print!("{}", output::to_text(&row));
+    }
+    match &row.message {
+        Some(m) => {
+            eprintln!("error: the simulation did not finish: {m}");
+            Ok(ExitCode::FAILURE)
+        }
+        None => Ok(ExitCode::SUCCESS),
+    }
+}
+
+fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
+    let data = report::read_scan(&a.samples)?;
+    let k =
+        a.k.map_or(data.config.cluster.k as usize, NonZeroUsize::get);
+    let clusters = data.clusters(Some(k));
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&clusters)?);
+    } else {
+        print!(
+            "{}",
+            clusters_markdown(k, clusters.as_ref(), data.failures.len())
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn cmd_summary(a: SummaryArgs) -> Result<ExitCode> {
+    let summary = report::summarize(&a.samples, a.k.map(NonZeroUsize::get))?;
+    let dir = a
+        .samples
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    report::write_summary(dir, &summary)?;
+    print!("{}", summary.to_markdown());
+    Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn cli_is_well_formed() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn simulate_options_layer_config_and_sets() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("c.toml");
+        std::fs::write(
+            &f,
+            "seed = 1\n[simulation]\nt_max = 5.0\ncontact.mu = 0.5\n",
+        )
+        .unwrap();
+        let o = simulate_options(
+            Some(&f),
+            &["contact.mu=0.8".into(), "initial.omega=-3".into()],
+        )
+        .unwrap();
+        assert_eq!((o.t_max, o.contact.mu, o.initial.omega), (5.0, 0.8, -3.0));
+        let e = simulate_options(None, &["contact.mu=2".into()]).unwrap_err();
+        assert!(
+            format!("{e:#}").contains("simulation.contact.mu: 2 is invalid"),
+            "{e:#}"
+        );
+    }
+}

@@ -1,0 +1,42 @@
+//! # rtw-scan
+//!
+//! Seeded, parallel parameter scans of the RTW model (`rtw-model`), streamed
+//! to Parquet, with outcome statistics and failure clustering. The binary
+//! `rtw-scan` is a thin shell over [`cli::main`].
+//!
+//! A scan flows through the modules in this order:
+//!
+//! | module | role |
+//! |---|---|
+//! | [`config`] | TOML config → validated [`config::ScanConfig`] (errors name the key) |
+//! | [`sample`] | sample id → parameters, from (seed, id) only |
+//! | [`run`] | parallel chunks, durable parts, resume, panics → `diverged` rows |
+//! | [`output`] | the row schema; Parquet, JSON and text forms; trace files |
+//! | [`cluster`] | k-means++ of the failures, silhouette, naming by kind |
+//! | [`report`] | shares with Wilson intervals, paper numbers, summary files |
+//! | [`cli`] | the `run`, `simulate`, `cluster`, `summary` subcommands |
+//! | [`fake`] | a deterministic stand-in simulator for testing the machinery |
+//!
+//! ## Usage
+//!
+//! ```text
+//! rtw-scan run configs/paper.toml [--out DIR] [--threads N] [--resume]
+//! rtw-scan simulate --length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15 \
+//!     [--config FILE] [--set contact.mu=0.8]... [--json] [--trace trace.parquet]
+//! rtw-scan cluster results/paper/samples.parquet [--k 3] [--json]
+//! rtw-scan summary results/paper/samples.parquet
+//! ```
+//!
+//! `run` writes `DIR/samples.parquet`, `DIR/summary.json` and
+//! `DIR/summary.md` (default `DIR`: `results/<config file stem>/`). The
+//! Parquet file is checked from Python (pandas, polars, pyarrow) by
+//! `scripts/check_parquet.py`.
+
+pub mod cli;
+pub mod cluster;
+pub mod config;
+pub mod fake;
+pub mod output;
+pub mod report;
+pub mod run;
+pub mod sample;

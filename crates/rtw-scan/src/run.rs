@@ -1,0 +1,747 @@
+//! Running a scan: samples in parallel, chunk by chunk, into durable parts.
+//!
+//! The scan's rows `0..N` are cut into chunks of `chunk_size` rows. Each chunk
+//! is computed in parallel on a local rayon pool, collected in `sample_id`
+//! order and written as one complete, closed Parquet file
+//! `DIR/.partial/chunk-NNNNN.parquet` (temporary name, then rename). When all
+//! chunks exist they are merged, in order and one chunk at a time (so memory
+//! stays flat in N), into `DIR/samples.parquet` (again through a temporary
+//! file), and `.partial` is removed.
+//!
+//! An interrupted run (Ctrl-C sets the `stop` flag; `kill -9` just stops)
+//! keeps every finished chunk. `--resume` checks `.partial/manifest.json`
+//! against the config, keeps the chunks that are present and valid, and
+//! computes the rest; since a row depends only on (seed, sample_id), the
+//! result is the same as an uninterrupted run's.
+//!
+//! The simulator is a parameter, so tests can inject a fake one. A sample
+//! whose simulation panics becomes a `diverged` row with the panic message in
+//! `message`; the scan never aborts for one sample.
+
+use crate::config::ScanConfig;
+use crate::output::{
+    self, META_CHUNK_WALL_TIME, META_CONFIG, META_WALL_TIME, ParquetFile, Row, schema,
+};
+use crate::sample::Sampler;
+use anyhow::{Context, Result, anyhow, bail};
+use arrow::array::{AsArray, RecordBatch};
+use arrow::datatypes::Int64Type;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use rtw_model::{Label, Options, Outcome, Params, Physical};
+use serde::{Deserialize, Serialize};
+use std::cell::{Cell, RefCell};
+use std::io::IsTerminal;
+use std::num::NonZeroUsize;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Mutex, Once};
+use std::time::{Duration, Instant};
+
+/// Rows per chunk (and per row group) unless told otherwise.
+pub const DEFAULT_CHUNK_SIZE: usize = 256;
+
+/// A simulator: `rtw_model::simulate` or a test double.
+pub type Simulator<'a> = &'a (dyn Fn(&Params, &Options) -> Outcome + Sync);
+
+/// How progress is shown on stderr.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProgressMode {
+    /// A bar when stderr is a terminal, else plain lines.
+    Auto,
+    /// Plain lines every 5 s or 10 %.
+    Lines,
+    /// Nothing.
+    Quiet,
+}
+
+/// How to run a scan (the config says what to run).
+#[derive(Clone, Debug)]
+pub struct RunSettings {
+    pub out_dir: PathBuf,
+    /// Worker threads (`None`: one per core).
+    pub threads: Option<NonZeroUsize>,
+    pub resume: bool,
+    /// Rows per chunk; a resumed run keeps the size it was started with.
+    pub chunk_size: NonZeroUsize,
+    pub progress: ProgressMode,
+}
+
+/// How a scan ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RunStatus {
+    /// `samples` is complete; `computed` rows were simulated in this session.
+    Complete {
+        samples: PathBuf,
+        rows: u64,
+        computed: u64,
+    },
+    /// Stopped early; finished chunks are kept in `partial`.
+    Interrupted {
+        chunks_done: u64,
+        chunks: u64,
+        partial: PathBuf,
+    },
+}
+
+/// What `.partial/manifest.json` records to make a resume safe.
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
+struct Manifest {
+    version: String,
+    config: String,
+    chunk_size: usize,
+    rows: u64,
+}
+
+/// Where a scan writes.
+pub struct Layout {
+    pub samples: PathBuf,
+    pub partial: PathBuf,
+}
+
+impl Layout {
+    pub fn new(out_dir: &Path) -> Self {
+        Self {
+            samples: out_dir.join("samples.parquet"),
+            partial: out_dir.join(".partial"),
+        }
+    }
+    fn manifest(&self) -> PathBuf {
+        self.partial.join("manifest.json")
+    }
+    fn chunk(&self, c: u64) -> PathBuf {
+        self.partial.join(format!("chunk-{c:05}.parquet"))
+    }
+}
+
+/// Runs (or resumes) a scan into `settings.out_dir`.
+pub fn run_scan(
+    cfg: &ScanConfig,
+    settings: &RunSettings,
+    sim: Simulator,
+    stop: &AtomicBool,
+) -> Result<RunStatus> {
+    let rows = cfg.total_rows()?;
+    let config_toml = cfg.to_toml();
+    let out = &settings.out_dir;
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("cannot create output directory {}", out.display()))?;
+    let layout = Layout::new(out);
+
+    let chunk_size = if layout.partial.exists() {
+        if !settings.resume {
+            bail!(
+                "{} holds an unfinished run: pass --resume to finish it, or delete it to start over",
+                layout.partial.display()
+            );
+        }
+        let manifest = read_manifest(&layout.manifest())?;
+        if manifest.config != config_toml || manifest.rows != rows {
+            bail!(
+                "cannot resume: the unfinished run in {} was started with a different config; \
+                 delete it to start over",
+                layout.partial.display()
+            );
+        }
+        remove_stray_files(&layout.partial)?;
+        manifest.chunk_size.max(1)
+    } else {
+        if settings.resume && is_complete(&layout.samples, &config_toml) {
+            return Ok(RunStatus::Complete {
+                samples: layout.samples,
+                rows,
+                computed: 0,
+            });
+        }
+        std::fs::create_dir(&layout.partial)
+            .with_context(|| format!("cannot create {}", layout.partial.display()))?;
+        let manifest = Manifest {
+            version: env!("CARGO_PKG_VERSION").into(),
+            config: config_toml.clone(),
+            chunk_size: settings.chunk_size.get(),
+            rows,
+        };
+        output::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
+        settings.chunk_size.get()
+    };
+
+    let cs = chunk_size as u64;
+    let chunks = rows.div_ceil(cs);
+    let range = |c: u64| c * cs..((c + 1) * cs).min(rows);
+    let metadata = output::scan_metadata(cfg);
+
+    // Chunks already on disk (resume), with their labels for the progress counts.
+    let mut done = vec![false; chunks as usize];
+    let progress = Progress::new(rows, settings.progress);
+    for c in 0..chunks {
+        let path = layout.chunk(c);
+        if !path.exists() {
+            continue;
+        }
+        match chunk_labels(&path, range(c), &config_toml) {
+            Ok(labels) => {
+                done[c as usize] = true;
+                labels.into_iter().for_each(|l| progress.record_previous(l));
+            }
+            Err(e) => {
+                progress.println(&format!("redoing {}: {e:#}", path.display()));
+                std::fs::remove_file(&path)
+                    .with_context(|| format!("cannot remove {}", path.display()))?;
+            }
+        }
+    }
+
+    let sampler = Sampler::new(cfg);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads.map_or(0, NonZeroUsize::get))
+        .build()
+        .context("cannot start the worker threads")?;
+    let mut computed = 0;
+    for c in 0..chunks {
+        if done[c as usize] {
+            continue;
+        }
+        if stop.load(Ordering::SeqCst) {
+            break;
+        }
+        let started = Instant::now();
+        let results: Vec<Option<Row>> = pool.install(|| {
+            range(c)
+                .into_par_iter()
+                .map(|id| {
+                    if stop.load(Ordering::SeqCst) {
+                        return None;
+                    }
+                    let row = run_one(id, sampler.params(id), &cfg.simulation, sim);
+                    progress.record(row.label());
+                    Some(row)
+                })
+                .collect()
+        });
+        let Some(chunk): Option<Vec<Row>> = results.into_iter().collect() else {
+            break;
+        };
+        let mut meta = metadata.clone();
+        meta.push(output::kv(
+            META_CHUNK_WALL_TIME,
+            started.elapsed().as_secs_f64().to_string(),
+        ));
+        output::write_file(&layout.chunk(c), &output::to_batch(&chunk), meta)?;
+        done[c as usize] = true;
+        computed += chunk.len() as u64;
+    }
+
+    let chunks_done = done.iter().filter(|d| **d).count() as u64;
+    if chunks_done < chunks {
+        progress.finish(false);
+        return Ok(RunStatus::Interrupted {
+            chunks_done,
+            chunks,
+            partial: layout.partial,
+        });
+    }
+    progress.finish(true);
+    merge(&layout, chunks, chunk_size, metadata)?;
+    Ok(RunStatus::Complete {
+        samples: layout.samples,
+        rows,
+        computed,
+    })
+}
+
+/// Merges the chunk files, in order, into `samples.parquet` and removes
+/// `.partial`.
+fn merge(
+    layout: &Layout,
+    chunks: u64,
+    chunk_size: usize,
+    metadata: Vec<parquet::file::metadata::KeyValue>,
+) -> Result<()> {
+    let props = output::writer_properties(chunk_size, metadata);
+    let mut file = ParquetFile::create(&layout.samples, schema(), props)?;
+    let mut wall = 0.0;
+    for c in 0..chunks {
+        let path = layout.chunk(c);
+        let input = output::open(&path, chunk_size)?;
+        wall += input
+            .metadata
+            .get(META_CHUNK_WALL_TIME)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0);
+        for batch in input.reader {
+            let batch = batch.with_context(|| format!("reading {}", path.display()))?;
+            file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
+        }
+        file.end_row_group()?;
+    }
+    file.append_metadata(META_WALL_TIME, wall.to_string());
+    file.finish()?;
+    std::fs::remove_dir_all(&layout.partial)
+        .with_context(|| format!("cannot remove {}", layout.partial.display()))
+}
+
+/// Checks a chunk file (config, row count, ids) and returns its labels.
+fn chunk_labels(path: &Path, ids: std::ops::Range<u64>, config: &str) -> Result<Vec<Label>> {
+    let input = output::open(path, ids.end.saturating_sub(ids.start) as usize)?;
+    if input.metadata.get(META_CONFIG).map(String::as_str) != Some(config) {
+        bail!("written for another config");
+    }
+    if input.rows as u64 != ids.end - ids.start {
+        bail!("{} rows, expected {}", input.rows, ids.end - ids.start);
+    }
+    let mut labels = Vec::new();
+    let mut next = ids.start;
+    for batch in input.reader {
+        let batch = batch?;
+        let col = batch
+            .column_by_name("sample_id")
+            .and_then(|c| c.as_primitive_opt::<Int64Type>())
+            .ok_or_else(|| anyhow!("no Int64 sample_id column"))?;
+        for id in col.iter() {
+            if id != Some(next as i64) {
+                bail!("sample_id {id:?} where {next} was expected");
+            }
+            next += 1;
+        }
+        labels.extend(output::label_column(&batch)?);
+    }
+    Ok(labels)
+}
+
+fn read_manifest(path: &Path) -> Result<Manifest> {
+    let text = std::fs::read_to_string(path).with_context(|| {
+        format!(
+            "cannot read {}: delete its directory to start over",
+            path.display()
+        )
+    })?;
+    serde_json::from_str(&text).with_context(|| format!("{} is corrupt", path.display()))
+}
+
+/// Removes everything in `.partial` that is neither the manifest nor a chunk
+/// (temporary files of a killed run).
+fn remove_stray_files(partial: &Path) -> Result<()> {
+    for entry in std::fs::read_dir(partial)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        let keep =
+            name == "manifest.json" || (name.starts_with("chunk-") && name.ends_with(".parquet"));
+        if !keep {
+            std::fs::remove_file(entry.path())
+                .with_context(|| format!("cannot remove {}", entry.path().display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// Does `samples` exist, complete, for this very config?
+fn is_complete(samples: &Path, config: &str) -> bool {
+    output::open(samples, 1)
+        .map(|i| i.metadata.get(META_CONFIG).map(String::as_str) == Some(config))
+        .unwrap_or(false)
+}
+
+/// Runs one sample: derived parameters, the simulation (panics caught) and
+/// its wall time. Used by scans and by `rtw-scan simulate`.
+pub fn run_one(
+    sample_id: u64,
+    params: Params,
+    options: &Options,
+    sim: impl FnOnce(&Params, &Options) -> Outcome,
+) -> Row {
+    let physical = Physical::new(&params, options.normalization, options.g);
+    let started = Instant::now();
+    let (outcome, message) = match params.validate() {
+        Err(e) => (None, Some(format!("invalid parameters: {e}"))),
+        Ok(()) => match catch_panic(|| sim(&params, options)) {
+            Ok(o) => (Some(o), None),
+            Err(msg) => (None, Some(msg)),
+        },
+    };
+    Row {
+        sample_id,
+        params,
+        physical,
+        outcome,
+        message,
+        wall_time_s: started.elapsed().as_secs_f64(),
+    }
+}
+
+thread_local! {
+    static CAPTURING: Cell<bool> = const { Cell::new(false) };
+    static CAUGHT: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+fn payload_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        s.to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "non-string panic payload".into()
+    }
+}
+
+/// Runs `f`, turning a panic into `Err("panicked at FILE:LINE:COL: MESSAGE")`
+/// without printing it (other threads' panics still print as usual).
+pub fn catch_panic<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    static HOOK: Once = Once::new();
+    HOOK.call_once(|| {
+        let default = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if CAPTURING.get() {
+                let at = info
+                    .location()
+                    .map(|l| format!(" at {}:{}:{}", l.file(), l.line(), l.column()))
+                    .unwrap_or_default();
+                CAUGHT.set(Some(format!(
+                    "panicked{at}: {}",
+                    payload_text(info.payload())
+                )));
+            } else {
+                default(info);
+            }
+        }));
+    });
+    let was = CAPTURING.replace(true);
+    let result = catch_unwind(AssertUnwindSafe(f));
+    CAPTURING.set(was);
+    result.map_err(|payload| {
+        CAUGHT
+            .take()
+            .unwrap_or_else(|| format!("panicked: {}", payload_text(&*payload)))
+    })
+}
+
+/// Progress on stderr: a bar on a terminal, plain lines otherwise.
+struct Progress {
+    bar: Option<ProgressBar>,
+    lines: Option<Mutex<LineState>>,
+    counts: [AtomicU64; 6],
+    done: AtomicU64,
+    previous: AtomicU64,
+    total: u64,
+    started: Instant,
+}
+
+struct LineState {
+    last: Instant,
+    decile: u64,
+    /// `done` at the last line printed.
+    printed: u64,
+}
+
+impl Progress {
+    const EVERY: Duration = Duration::from_secs(5);
+
+    fn new(total: u64, mode: ProgressMode) -> Self {
+        let terminal = std::io::stderr().is_terminal();
+        let bar = (mode == ProgressMode::Auto && terminal).then(|| {
+            let bar = ProgressBar::new(total);
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "{elapsed_precise} [{wide_bar}] {pos}/{len} {per_sec} ETA {eta}\n{msg}",
+                )
+                .expect("valid template")
+                .progress_chars("=> "),
+            );
+            bar.enable_steady_tick(Duration::from_millis(200));
+            bar
+        });
+        let lines = (mode == ProgressMode::Lines || (mode == ProgressMode::Auto && !terminal))
+            .then(|| {
+                Mutex::new(LineState {
+                    last: Instant::now(),
+                    decile: 0,
+                    printed: 0,
+                })
+            });
+        Self {
+            bar,
+            lines,
+            counts: Default::default(),
+            done: AtomicU64::new(0),
+            previous: AtomicU64::new(0),
+            total,
+            started: Instant::now(),
+        }
+    }
+
+    fn count(&self, label: Label) {
+        let i = output::label_index(label);
+        self.counts[i].fetch_add(1, Ordering::Relaxed);
+        self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// A row found on disk (resume).
+    fn record_previous(&self, label: Label) {
+        self.count(label);
+        self.previous.fetch_add(1, Ordering::Relaxed);
+        if let Some(bar) = &self.bar {
+            bar.inc(1);
+            bar.reset_eta();
+        }
+    }
+
+    /// A row just computed.
+    fn record(&self, label: Label) {
+        self.count(label);
+        if let Some(bar) = &self.bar {
+            bar.inc(1);
+            bar.set_message(self.counts_text());
+        }
+        if let Some(lines) = &self.lines {
+            let mut st = lines.lock().expect("progress lock");
+            let done = self.done.load(Ordering::Relaxed);
+            let decile = done * 10 / self.total.max(1);
+            if st.last.elapsed() >= Self::EVERY || decile > st.decile {
+                st.last = Instant::now();
+                st.decile = decile;
+                st.printed = done;
+                eprintln!("{}", self.line());
+            }
+        }
+    }
+
+    fn counts_text(&self) -> String {
+        Label::ALL
+            .iter()
+            .zip(&self.counts)
+            .map(|(l, c)| format!("{l} {}", c.load(Ordering::Relaxed)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    fn line(&self) -> String {
+        let done = self.done.load(Ordering::Relaxed);
+        let new = done - self.previous.load(Ordering::Relaxed);
+        let secs = self.started.elapsed().as_secs_f64();
+        let rate = new as f64 / secs.max(1e-9);
+        let eta = if rate > 0.0 {
+            format!("{:.0} s", (self.total - done) as f64 / rate)
+        } else {
+            "?".into()
+        };
+        format!(
+            "[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2} samples/s, ETA {eta} | {}",
+            self.total,
+            100.0 * done as f64 / self.total.max(1) as f64,
+            self.counts_text()
+        )
+    }
+
+    fn println(&self, msg: &str) {
+        match &self.bar {
+            Some(bar) => bar.println(msg),
+            None if self.lines.is_some() => eprintln!("{msg}"),
+            None => {}
+        }
+    }
+
+    fn finish(&self, complete: bool) {
+        if let Some(bar) = &self.bar {
+            bar.set_message(self.counts_text());
+            if complete {
+                bar.finish()
+            } else {
+                bar.abandon()
+            }
+        }
+        if let Some(lines) = &self.lines {
+            let st = lines.lock().expect("progress lock");
+            if st.printed != self.done.load(Ordering::Relaxed) {
+                eprintln!("{}", self.line());
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::parse;
+    use crate::fake;
+    use arrow::array::Array;
+
+    const CFG: &str = r#"
+seed = 11
+samples = 37
+[params]
+length = 0.8
+rho = { uniform = [1, 5] }
+alpha = { uniform = [0, 0.4] }
+fn = { uniform = [1.5, 5] }
+zeta = 0.05
+phi = { uniform = [0.05, 0.3] }
+[simulation]
+t_max = 2.0
+"#;
+
+    fn fake_sim(p: &Params, o: &Options) -> Outcome {
+        fake::simulate(p, o, Duration::ZERO)
+    }
+
+    fn settings(dir: &Path, threads: usize, chunk: usize) -> RunSettings {
+        RunSettings {
+            out_dir: dir.to_path_buf(),
+            threads: NonZeroUsize::new(threads),
+            resume: false,
+            chunk_size: NonZeroUsize::new(chunk).unwrap(),
+            progress: ProgressMode::Quiet,
+        }
+    }
+
+    /// Every row of a samples file with wall time zeroed.
+    fn rows_without_wall_time(path: &Path) -> RecordBatch {
+        let input = output::open(path, 1 << 20).unwrap();
+        let batches: Vec<RecordBatch> = input.reader.map(|b| b.unwrap()).collect();
+        let b = arrow::compute::concat_batches(&schema(), &batches).unwrap();
+        let i = b.schema().index_of("wall_time_s").unwrap();
+        let mut cols = b.columns().to_vec();
+        cols[i] = std::sync::Arc::new(arrow::array::Float64Array::from(vec![0.0; b.num_rows()]));
+        RecordBatch::try_new(schema(), cols).unwrap()
+    }
+
+    #[test]
+    fn same_rows_for_any_thread_count_and_chunk_size() {
+        let cfg = parse(CFG).unwrap();
+        let stop = AtomicBool::new(false);
+        let a = tempfile::tempdir().unwrap();
+        let b = tempfile::tempdir().unwrap();
+        run_scan(&cfg, &settings(a.path(), 1, 5), &fake_sim, &stop).unwrap();
+        let st = run_scan(&cfg, &settings(b.path(), 2, 8), &fake_sim, &stop).unwrap();
+        assert!(
+            matches!(
+                st,
+                RunStatus::Complete {
+                    rows: 37,
+                    computed: 37,
+                    ..
+                }
+            ),
+            "{st:?}"
+        );
+        let (ra, rb) = (
+            rows_without_wall_time(&a.path().join("samples.parquet")),
+            rows_without_wall_time(&b.path().join("samples.parquet")),
+        );
+        assert_eq!(ra.num_rows(), 37);
+        assert_eq!(ra, rb);
+        assert!(!a.path().join(".partial").exists());
+        // Row groups are the chunks.
+        let f = std::fs::File::open(a.path().join("samples.parquet")).unwrap();
+        let meta =
+            parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(f).unwrap();
+        let groups: Vec<i64> = meta
+            .metadata()
+            .row_groups()
+            .iter()
+            .map(|g| g.num_rows())
+            .collect();
+        assert_eq!(groups, vec![5, 5, 5, 5, 5, 5, 5, 2]);
+    }
+
+    #[test]
+    fn panics_become_diverged_rows_with_the_message() {
+        let cfg = parse(CFG).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let stop = AtomicBool::new(false);
+        run_scan(&cfg, &settings(dir.path(), 2, 16), &fake_sim, &stop).unwrap();
+        let b = rows_without_wall_time(&dir.path().join("samples.parquet"));
+        let labels = output::label_column(&b).unwrap();
+        let rho = output::f64_column(&b, "rho").unwrap();
+        let msg = b.column_by_name("message").unwrap().as_string::<i32>();
+        let mut panicked = 0;
+        for (i, label) in labels.iter().enumerate() {
+            if rho.value(i) > 4.75 {
+                panicked += 1;
+                assert_eq!(*label, Label::Diverged);
+                assert!(
+                    msg.value(i).contains("fake simulator: rho"),
+                    "{}",
+                    msg.value(i)
+                );
+                assert!(msg.value(i).starts_with("panicked at "), "{}", msg.value(i));
+            } else {
+                assert!(msg.is_null(i));
+            }
+        }
+        assert!(panicked > 0, "the seed should draw some rho > 4.75");
+    }
+
+    #[test]
+    fn interrupted_run_resumes_to_the_same_rows() {
+        let cfg = parse(CFG).unwrap();
+        let full = tempfile::tempdir().unwrap();
+        let part = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        run_scan(&cfg, &settings(full.path(), 2, 4), &fake_sim, &never).unwrap();
+
+        // Stop after 3 samples: the chunk in progress is dropped.
+        let stop = AtomicBool::new(false);
+        let n = AtomicU64::new(0);
+        let stopping = |p: &Params, o: &Options| {
+            if n.fetch_add(1, Ordering::SeqCst) >= 6 {
+                stop.store(true, Ordering::SeqCst);
+            }
+            fake_sim(p, o)
+        };
+        let st = run_scan(&cfg, &settings(part.path(), 1, 4), &stopping, &stop).unwrap();
+        let RunStatus::Interrupted {
+            chunks_done,
+            chunks,
+            ..
+        } = st
+        else {
+            panic!("{st:?}")
+        };
+        assert_eq!((chunks_done, chunks), (1, 10));
+        assert!(!part.path().join("samples.parquet").exists());
+
+        // Without --resume the unfinished run is not silently dropped.
+        let e = run_scan(&cfg, &settings(part.path(), 1, 4), &fake_sim, &never).unwrap_err();
+        assert!(e.to_string().contains("--resume"), "{e}");
+        // A different config cannot resume it.
+        let other = parse(&CFG.replace("seed = 11", "seed = 12")).unwrap();
+        let mut s = settings(part.path(), 2, 4);
+        s.resume = true;
+        let e = run_scan(&other, &s, &fake_sim, &never).unwrap_err();
+        assert!(e.to_string().contains("different config"), "{e}");
+        // A stray temporary file and a corrupt chunk are cleaned up.
+        std::fs::write(
+            part.path().join(".partial/.chunk-00003.parquet.x.tmp"),
+            b"junk",
+        )
+        .unwrap();
+        std::fs::write(part.path().join(".partial/chunk-00002.parquet"), b"junk").unwrap();
+        let st = run_scan(&cfg, &s, &fake_sim, &never).unwrap();
+        assert!(
+            matches!(st, RunStatus::Complete { computed: 33, .. }),
+            "{st:?}"
+        );
+        assert_eq!(
+            rows_without_wall_time(&full.path().join("samples.parquet")),
+            rows_without_wall_time(&part.path().join("samples.parquet"))
+        );
+        // Resuming a finished run does nothing.
+        let st = run_scan(&cfg, &s, &fake_sim, &never).unwrap();
+        assert!(
+            matches!(st, RunStatus::Complete { computed: 0, .. }),
+            "{st:?}"
+        );
+    }
+
+    #[test]
+    fn catch_panic_reports_message_and_location() {
+        let e = catch_panic(|| -> u8 { panic!("kaboom {}", 7) }).unwrap_err();
+        assert!(
+            e.starts_with("panicked at ") && e.ends_with("kaboom 7"),
+            "{e}"
+        );
+        assert!(e.contains("run.rs"), "{e}");
+        assert_eq!(catch_panic(|| 5), Ok(5));
+    }
+}

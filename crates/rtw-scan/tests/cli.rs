@@ -1,0 +1,623 @@
+//! End-to-end tests of the scan machinery through the binary, with the fake
+//! simulator (hidden `--fake-sim MS`): determinism, interruption and resume,
+//! bad input, the `simulate`, `cluster` and `summary` commands. They need no
+//! physics; `tests/cli_physics.rs` runs the real simulator.
+
+mod common;
+
+use common::*;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+fn write_config(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn same_seed_same_rows_with_one_or_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &paper_like(50, 5));
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    let (a_s, b_s) = (a.to_str().unwrap(), b.to_str().unwrap());
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        a_s,
+        "--threads",
+        "1",
+        "--chunk-size",
+        "7",
+        "--fake-sim",
+        "0",
+    ]);
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        b_s,
+        "--threads",
+        "2",
+        "--chunk-size",
+        "7",
+        "--fake-sim",
+        "1",
+    ]);
+    let (ra, rb) = (
+        rows(&a.join("samples.parquet")),
+        rows(&b.join("samples.parquet")),
+    );
+    assert_eq!(ra.len(), 50);
+    assert_eq!(ra, rb);
+    // The rows are not all alike, and ids run 0..50 in order.
+    assert!(
+        ra.iter()
+            .any(|r| r.contains(&"outcome=diverged".to_string()))
+    );
+    assert!(ra.iter().any(|r| r.contains(&"outcome=walk".to_string())));
+    for (i, r) in ra.iter().enumerate() {
+        assert_eq!(r[0], format!("sample_id={i}"));
+    }
+    for d in [&a, &b] {
+        assert!(d.join("summary.json").exists() && d.join("summary.md").exists());
+        assert!(!d.join(".partial").exists());
+    }
+    // A different seed gives different rows.
+    let c = dir.path().join("c");
+    let cfg2 = write_config(dir.path(), "c2.toml", &paper_like(50, 6));
+    run_ok(&[
+        "run",
+        &cfg2,
+        "--out",
+        c.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+    assert_ne!(rows(&c.join("samples.parquet")), ra);
+}
+
+fn chunk_files(partial: &Path) -> usize {
+    std::fs::read_dir(partial)
+        .map(|d| {
+            d.filter_map(Result::ok)
+                .filter(|e| {
+                    let n = e.file_name().to_string_lossy().into_owned();
+                    n.starts_with("chunk-") && n.ends_with(".parquet")
+                })
+                .count()
+        })
+        .unwrap_or(0)
+}
+
+/// Starts a slow fake run and waits until `chunks` chunk files have landed.
+fn start_and_wait(cfg: &str, out: &Path, chunks: usize) -> std::process::Child {
+    let child = bin()
+        .args(["run", cfg, "--out", out.to_str().unwrap(), "--threads", "2"])
+        .args(["--chunk-size", "4", "--fake-sim", "25"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    while chunk_files(&out.join(".partial")) < chunks {
+        assert!(t0.elapsed() < Duration::from_secs(60), "no chunks landed");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child
+}
+
+#[test]
+fn killed_run_resumes_to_the_same_rows() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &paper_like(80, 8));
+    let full = dir.path().join("full");
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        full.to_str().unwrap(),
+        "--chunk-size",
+        "4",
+        "--fake-sim",
+        "0",
+    ]);
+
+    let out = dir.path().join("killed");
+    let mut child = start_and_wait(&cfg, &out, 3);
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let kept = chunk_files(&out.join(".partial"));
+    assert!((3..20).contains(&kept), "{kept} chunks kept");
+    assert!(!out.join("samples.parquet").exists());
+    assert!(!out.join("summary.json").exists());
+
+    // Without --resume the unfinished run is refused, not overwritten.
+    let o = run(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--resume"), "{}", stderr(&o));
+
+    let o = run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--resume",
+        "--fake-sim",
+        "0",
+    ]);
+    assert!(stdout(&o).contains("rtw-scan summary"));
+    assert_eq!(
+        rows(&out.join("samples.parquet")),
+        rows(&full.join("samples.parquet"))
+    );
+    assert!(!out.join(".partial").exists());
+    assert!(out.join("summary.md").exists());
+
+    // Resuming a finished run recomputes nothing.
+    let o = run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--resume",
+        "--fake-sim",
+        "0",
+    ]);
+    assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
+}
+
+#[test]
+fn ctrl_c_keeps_finished_chunks_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &paper_like(80, 9));
+    let full = dir.path().join("full");
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        full.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+
+    let out = dir.path().join("int");
+    let mut child = start_and_wait(&cfg, &out, 2);
+    let pid = child.id().to_string();
+    assert!(
+        std::process::Command::new("kill")
+            .args(["-INT", &pid])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "interrupted runs exit 130");
+    assert!(chunk_files(&out.join(".partial")) >= 2);
+    assert!(!out.join("samples.parquet").exists());
+
+    // The resumed run may use another chunk size flag: the manifest's wins.
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--resume",
+        "--chunk-size",
+        "64",
+        "--fake-sim",
+        "0",
+    ]);
+    assert_eq!(
+        rows(&out.join("samples.parquet")),
+        rows(&full.join("samples.parquet"))
+    );
+}
+
+/// Runs a config that must be refused: non-zero exit, the message names
+/// `expect`, and nothing is written to the output directory.
+fn refused(config_path: &str, out: &Path, expect: &[&str]) {
+    let o = run(&[
+        "run",
+        config_path,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "accepted {config_path}");
+    assert_eq!(o.status.code(), Some(1));
+    for e in expect {
+        assert!(err.contains(e), "message lacks {e:?}: {err}");
+    }
+    assert!(err.starts_with("error: "), "{err}");
+    for f in ["samples.parquet", "summary.json", "summary.md", ".partial"] {
+        assert!(!out.join(f).exists(), "{f} was written");
+    }
+}
+
+#[test]
+fn bad_configs_are_refused_with_a_message_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let good = paper_like(5, 1);
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "zeta = { uniform = [0.05, 0.1] }",
+            "zeta = 0.05\nrhoo = 2",
+            &["params.rhoo", "unknown key `rhoo`"],
+        ),
+        (
+            "alpha = { uniform = [0, 0.4] }",
+            "alpha = 0.5",
+            &["params.alpha: 0.5 is invalid: must be in [0, 0.5)"],
+        ),
+        (
+            "alpha = { uniform = [0, 0.4] }",
+            "alpha = { uniform = [0, 0.5] }",
+            &["params.alpha.uniform[1] (hi): 0.5 is invalid"],
+        ),
+        (
+            "rho = { uniform = [1, 5] }",
+            "rho = { uniform = [5, 1] }",
+            &["params.rho.uniform: lo 5 > hi 1"],
+        ),
+        (
+            "phi = { uniform = [0.05, 0.3] }",
+            "phi = nan",
+            &["params.phi: NaN is invalid", "(-pi/2, pi/2)"],
+        ),
+        (
+            "samples = 5",
+            "samples = -3",
+            &["samples: -3 is invalid: must be an integer >= 1"],
+        ),
+        (
+            "t_max = 3.0",
+            "t_max = 3.0\ncontact.muu = 1",
+            &["simulation.contact.muu", "unknown key `muu`"],
+        ),
+        (
+            "t_max = 3.0",
+            "t_max = -1.0",
+            &["simulation.t_max: -1 is invalid"],
+        ),
+        (
+            "seed = 1",
+            "seed = \"x\"",
+            &["seed: invalid type: string \"x\""],
+        ),
+        (
+            "fn = { uniform = [1.5, 5] }",
+            "fn = { linspace = [1, 2, 0] }",
+            &["params.fn", "n = 0"],
+        ),
+        ("seed = 1", "seed = 1\n[oops", &["invalid TOML", "line"]),
+    ];
+    for (i, (from, to, expect)) in cases.iter().enumerate() {
+        assert!(good.contains(from), "{from}");
+        let cfg = write_config(
+            dir.path(),
+            &format!("bad{i}.toml"),
+            &good.replacen(from, to, 1),
+        );
+        refused(&cfg, &out, expect);
+        assert!(!out.exists(), "case {i} created the output directory");
+    }
+}
+
+#[test]
+fn missing_unreadable_and_unwritable_paths_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let missing = dir.path().join("missing.toml");
+    refused(
+        missing.to_str().unwrap(),
+        &out,
+        &["cannot read config", "missing.toml"],
+    );
+    refused(dir.path().to_str().unwrap(), &out, &["cannot read config"]);
+    let binary = dir.path().join("binary.toml");
+    std::fs::write(&binary, b"seed = 1\n\xff\xfe\n").unwrap();
+    refused(
+        binary.to_str().unwrap(),
+        &out,
+        &["binary.toml is not valid UTF-8"],
+    );
+    assert!(!out.exists());
+    // An output directory under a regular file.
+    let file = dir.path().join("plain");
+    std::fs::write(&file, "x").unwrap();
+    let cfg = write_config(dir.path(), "ok.toml", &paper_like(3, 1));
+    refused(
+        &cfg,
+        &file.join("out"),
+        &["cannot create output directory", "plain/out"],
+    );
+}
+
+#[test]
+fn default_output_directory_is_results_slash_config_stem() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "tiny-scan.toml", &paper_like(3, 2));
+    let o = bin()
+        .current_dir(dir.path())
+        .args(["run", &cfg, "--fake-sim", "0"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let d = dir.path().join("results/tiny-scan");
+    assert!(d.join("samples.parquet").exists() && d.join("summary.md").exists());
+}
+
+#[test]
+fn samples_file_has_the_documented_columns_and_metadata() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(
+        dir.path(),
+        "c.toml",
+        &format!("name = \"meta\"\n{}", paper_like(20, 4)),
+    );
+    let out = dir.path().join("o");
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+    let path = out.join("samples.parquet");
+    let names = column_names(&path);
+    for c in [
+        "sample_id",
+        "length",
+        "rho",
+        "alpha",
+        "fn",
+        "zeta",
+        "phi",
+        "m",
+        "l_c",
+        "inertia",
+        "r",
+        "k",
+        "c",
+        "outcome",
+        "failure",
+        "message",
+        "t_end",
+        "nlsp",
+        "slsp",
+        "dlsp",
+        "tlsp",
+        "touchdowns",
+        "f_w",
+        "f_w_newfoot",
+        "speed",
+        "mu_required",
+        "slide_time",
+        "energy_initial",
+        "energy_last",
+        "energy_gravity_released",
+        "energy_impact_loss",
+        "energy_damping_loss",
+        "energy_balance_error",
+        "period",
+        "steps",
+        "rejected",
+        "rhs_evals",
+        "events",
+        "wall_time_s",
+    ] {
+        assert!(names.iter().any(|n| n == c), "missing column {c}");
+    }
+    let b = batches(&path);
+    let schema = b[0].schema();
+    assert_eq!(
+        schema.field_with_name("outcome").unwrap().data_type(),
+        &arrow::datatypes::DataType::Dictionary(
+            Box::new(arrow::datatypes::DataType::Int32),
+            Box::new(arrow::datatypes::DataType::Utf8)
+        )
+    );
+    assert_eq!(
+        schema.field_with_name("alpha").unwrap().data_type(),
+        &arrow::datatypes::DataType::Float64
+    );
+    let f = std::fs::File::open(&path).unwrap();
+    let reader = parquet::file::reader::SerializedFileReader::new(f).unwrap();
+    use parquet::file::reader::FileReader;
+    let meta = reader.metadata();
+    let kv: std::collections::HashMap<_, _> = meta
+        .file_metadata()
+        .key_value_metadata()
+        .unwrap()
+        .iter()
+        .map(|kv| (kv.key.clone(), kv.value.clone().unwrap_or_default()))
+        .collect();
+    assert!(kv["rtw.config"].contains("samples = 20") && kv["rtw.config"].contains("[simulation]"));
+    assert_eq!(kv["rtw.seed"], "4");
+    assert_eq!(kv["rtw.version"], env!("CARGO_PKG_VERSION"));
+    assert!(kv["rtw.variant"].contains("rest_length_ratio=0"));
+    assert!(kv.contains_key("rtw.wall_time_s"));
+    let rg = meta.row_group(0);
+    assert_eq!(
+        rg.column(1).compression(),
+        parquet::basic::Compression::ZSTD(Default::default())
+    );
+}
+
+#[test]
+fn summary_and_cluster_commands_redo_the_steps_from_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &paper_like(120, 3));
+    let out = dir.path().join("o");
+    let printed = stdout(&run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]));
+    let samples = out.join("samples.parquet");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(json["samples"], 120);
+    let total: u64 = json["outcomes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["count"].as_u64().unwrap())
+        .sum();
+    assert_eq!(total, 120);
+    assert_eq!(json["paper_scan"], true);
+    assert_eq!(json["stable"]["paper_percent"], 73.7);
+    assert!(
+        json["stable"]["ci95"][0].as_f64().unwrap() < json["stable"]["percent"].as_f64().unwrap()
+    );
+    assert_eq!(json["clusters"]["k"], 2);
+    assert_eq!(json["variant"]["normalization"], "supplementary");
+    assert_eq!(json["variant"]["mu"], "inf", "JSON has no infinity");
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert_eq!(md, printed);
+    assert!(md.contains("| skip |") && md.contains("paper %") && md.contains("stiffness collapse"));
+    assert!(md.contains("energy barrier") && md.contains("silhouette"));
+
+    // `summary` rebuilds the same files (wall time comes from the file).
+    std::fs::remove_file(out.join("summary.json")).unwrap();
+    let again = stdout(&run_ok(&["summary", samples.to_str().unwrap()]));
+    assert_eq!(again, printed);
+    assert!(out.join("summary.json").exists());
+
+    let o = run_ok(&["cluster", samples.to_str().unwrap(), "--k", "3", "--json"]);
+    let c: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(c["k"], 3);
+    assert_eq!(c["clusters"].as_array().unwrap().len(), 3);
+    let o = run_ok(&["cluster", samples.to_str().unwrap()]);
+    assert!(stdout(&o).contains("| cluster | name |"));
+
+    // Not a samples file.
+    let o = run(&["summary", cfg.as_str()]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("not a readable Parquet file"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn simulate_prints_flat_json_and_validates_input() {
+    let base = [
+        "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269",
+        "--zeta", "0.0514",
+    ];
+    let o = run_ok(&[&base[..], &["--phi", "0.15", "--json", "--fake-sim"]].concat());
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["outcome"], "walk");
+    for key in [
+        "nlsp",
+        "slsp",
+        "dlsp",
+        "tlsp",
+        "f_w",
+        "f_w_newfoot",
+        "mu_required",
+        "energy_balance_error",
+        "steps",
+        "m",
+        "k",
+        "c",
+        "r",
+        "inertia",
+        "l_c",
+    ] {
+        assert!(v.get(key).is_some(), "JSON lacks {key}");
+    }
+    assert!((v["k"].as_f64().unwrap() - 500.0067).abs() < 1e-3);
+    // Text form.
+    let o = run_ok(&[&base[..], &["--phi", "-0.05", "--fake-sim"]].concat());
+    assert!(stdout(&o).contains("[outcome]") && stdout(&o).contains("stall"));
+    // Bad parameter, bad option, bad --set.
+    let o = run(&[&base[..], &["--phi", "1.6", "--fake-sim"]].concat());
+    assert!(
+        !o.status.success() && stderr(&o).contains("--phi: 1.6 is invalid"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&[
+        &base[..],
+        &["--phi", "0.1", "--set", "contact.mu=2", "--fake-sim"],
+    ]
+    .concat());
+    assert!(
+        stderr(&o).contains("simulation.contact.mu: 2 is invalid"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&[
+        &base[..],
+        &["--phi", "0.1", "--set", "contact.nope=2", "--fake-sim"],
+    ]
+    .concat());
+    assert!(
+        stderr(&o).contains("simulation.contact.nope: unknown key"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&[
+        &base[..],
+        &["--phi", "0.1", "--set", "method=euler", "--fake-sim"],
+    ]
+    .concat());
+    assert!(
+        stderr(&o).contains("simulation.method") && stderr(&o).contains("dop853"),
+        "{}",
+        stderr(&o)
+    );
+    // --config takes its [simulation] table.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "s.toml", "[simulation]\nt_max = 2.0\n");
+    let o = run_ok(
+        &[
+            &base[..],
+            &["--phi", "0.15", "--json", "--fake-sim", "--config", &cfg],
+        ]
+        .concat(),
+    );
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["t_end"], 2.0);
+}
+
+#[test]
+fn help_documents_every_subcommand_and_hides_test_flags() {
+    let h = stdout(&run_ok(&["--help"]));
+    for s in ["run", "simulate", "cluster", "summary"] {
+        assert!(h.contains(s), "{h}");
+    }
+    let h = stdout(&run_ok(&["run", "--help"]));
+    for s in [
+        "--out",
+        "--threads",
+        "--resume",
+        "results/<config file stem>",
+    ] {
+        assert!(h.contains(s), "{h}");
+    }
+    assert!(!h.contains("--fake-sim") && !h.contains("--chunk-size"));
+    let h = stdout(&run_ok(&["simulate", "--help"]));
+    for s in ["--fn", "--set", "--json", "--trace", "--config"] {
+        assert!(h.contains(s), "{h}");
+    }
+}

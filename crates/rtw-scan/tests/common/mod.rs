@@ -1,0 +1,109 @@
+//! Helpers shared by the CLI tests: running the binary, reading rows back.
+#![allow(dead_code)]
+
+use arrow::array::RecordBatch;
+use arrow::util::display::{ArrayFormatter, FormatOptions};
+use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `rtw-scan` binary under test.
+pub fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rtw-scan"))
+}
+
+/// The workspace root.
+pub fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// `configs/NAME.toml`.
+pub fn config(name: &str) -> PathBuf {
+    workspace().join("configs").join(format!("{name}.toml"))
+}
+
+/// Runs the binary and returns its output, whatever the exit status.
+pub fn run(args: &[&str]) -> Output {
+    bin().args(args).output().expect("rtw-scan runs")
+}
+
+/// Runs the binary and asserts success.
+pub fn run_ok(args: &[&str]) -> Output {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "rtw-scan {args:?} failed ({}):\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+pub fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// A scan config with the paper's ranges and `samples` rows.
+pub fn paper_like(samples: u64, seed: u64) -> String {
+    format!(
+        "seed = {seed}\nsamples = {samples}\n[params]\nlength = 0.8\nrho = {{ uniform = [1, 5] }}\n\
+         alpha = {{ uniform = [0, 0.4] }}\nfn = {{ uniform = [1.5, 5] }}\nzeta = {{ uniform = [0.05, 0.1] }}\n\
+         phi = {{ uniform = [0.05, 0.3] }}\n[simulation]\nt_max = 3.0\n"
+    )
+}
+
+/// All batches of a Parquet file.
+pub fn batches(path: &Path) -> Vec<RecordBatch> {
+    let f = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    ParquetRecordBatchReaderBuilder::try_new(f)
+        .unwrap()
+        .build()
+        .unwrap()
+        .map(|b| b.unwrap())
+        .collect()
+}
+
+/// Every row of a samples file as strings, all columns but `wall_time_s`
+/// (floats print as their shortest round-trip form: equal strings, equal bits).
+pub fn rows(path: &Path) -> Vec<Vec<String>> {
+    let opts = FormatOptions::default().with_null("null");
+    let mut rows = Vec::new();
+    for b in batches(path) {
+        let schema = b.schema();
+        let cols: Vec<_> = schema
+            .fields()
+            .iter()
+            .zip(b.columns())
+            .filter(|(f, _)| f.name() != "wall_time_s")
+            .map(|(f, c)| {
+                (
+                    f.name().clone(),
+                    ArrayFormatter::try_new(c.as_ref(), &opts).unwrap(),
+                )
+            })
+            .collect();
+        for i in 0..b.num_rows() {
+            rows.push(
+                cols.iter()
+                    .map(|(n, f)| format!("{n}={}", f.value(i)))
+                    .collect(),
+            );
+        }
+    }
+    rows
+}
+
+/// The column names of a Parquet file.
+pub fn column_names(path: &Path) -> Vec<String> {
+    let f = std::fs::File::open(path).unwrap();
+    let b = ParquetRecordBatchReaderBuilder::try_new(f).unwrap();
+    b.schema()
+        .fields()
+        .iter()
+        .map(|f| f.name().clone())
+        .collect()
+}
