@@ -59,3 +59,34 @@ fn run_does_not_allocate() {
         );
     }
 }
+
+#[test]
+fn simulate_does_not_allocate() {
+    // A whole RTW run (initial state, engine, guards, resets, statistics)
+    // lives in fixed-size arrays: zero heap allocations, whatever t_max.
+    use rtw_model::options::{InitialShape, MethodChoice};
+    use rtw_model::{Options, Params, simulate};
+    for (s, shape, method) in [
+        (0.0, InitialShape::RigidStar, MethodChoice::Dop853),
+        (0.85, InitialShape::Static, MethodChoice::Dp54),
+        (0.85, InitialShape::RigidStar, MethodChoice::Rk4),
+    ] {
+        let mut o = Options {
+            method,
+            t_max: 6.0,
+            ..Options::default()
+        };
+        o.strings.rest_length_ratio = s;
+        o.initial.shape = shape;
+        let before = allocs();
+        let out = simulate(&Params::fig7a(), &o);
+        let after = allocs();
+        assert!(out.touchdowns > 5, "{out:?}");
+        assert_eq!(
+            after,
+            before,
+            "s = {s}, {shape:?}, {method:?}: {} allocations",
+            after - before
+        );
+    }
+}
