@@ -255,10 +255,6 @@ impl<const N: usize> Dense<N> {
 // ---------------------------------------------------------------------------
 
 // Dormand–Prince 5(4) (Hairer's dopri5).
-const C2: f64 = 1.0 / 5.0;
-const C3: f64 = 3.0 / 10.0;
-const C4: f64 = 4.0 / 5.0;
-const C5: f64 = 8.0 / 9.0;
 const A21: f64 = 1.0 / 5.0;
 const A31: f64 = 3.0 / 40.0;
 const A32: f64 = 9.0 / 40.0;
@@ -556,15 +552,8 @@ pub(crate) fn fill_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])
     match method {
         Method::Dp54 => {
             dense.terms = 4;
-            for i in 0..N {
-                dense.coef[3][i] = h
-                    * (D1 * st.k[0][i]
-                        + D3 * st.k[2][i]
-                        + D4 * st.k[3][i]
-                        + D5 * st.k[4][i]
-                        + D6 * st.k[5][i]
-                        + D7 * st.fnew[i]);
-            }
+            // `k[6]` holds f(t + h, y_new) (set by the trial).
+            combine(&mut dense.coef[3], &[0.0; N], h, &DENSE5, NZ_ERR5, &st.k);
             0
         }
         Method::Dop853 => {
@@ -574,6 +563,82 @@ pub(crate) fn fill_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])
         Method::Rk4 { .. } => 0,
     }
 }
+
+/// `out = base + h · Σ_{j ∈ cols} a[j] · k[j]`: one Runge–Kutta stage
+/// combination over the nonzero columns `cols` of a tableau row `a` (the
+/// tableaux are sparse; their zeros are skipped, not multiplied).
+#[inline(always)]
+fn combine<const N: usize, const S: usize>(
+    out: &mut [f64; N],
+    base: &[f64; N],
+    h: f64,
+    a: &[f64; S],
+    cols: &[usize],
+    k: &[[f64; N]; 16],
+) {
+    *out = *base;
+    for &j in cols {
+        let c = h * a[j];
+        for i in 0..N {
+            out[i] += c * k[j][i];
+        }
+    }
+}
+
+/// DP5's tableau as rows (row 6 is the 5th-order solution's weights b).
+const A5: [[f64; 7]; 7] = [
+    [0.0; 7],
+    [A21, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [A31, A32, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [A41, A42, A43, 0.0, 0.0, 0.0, 0.0],
+    [A51, A52, A53, A54, 0.0, 0.0, 0.0],
+    [A61, A62, A63, A64, A65, 0.0, 0.0],
+    [A71, 0.0, A73, A74, A75, A76, 0.0],
+];
+/// DP5's nodes.
+const C5: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+/// DP5's error weights (b − b̂) and dense-output weights, over k[0..7]
+/// with k[6] = f(t + h, y_new).
+const ERR5: [f64; 7] = [E1, 0.0, E3, E4, E5, E6, E7];
+const DENSE5: [f64; 7] = [D1, 0.0, D3, D4, D5, D6, D7];
+/// Nonzero columns of each row of [`A5`].
+const NZ5: [&[usize]; 7] = [
+    &[],
+    &[0],
+    &[0, 1],
+    &[0, 1, 2],
+    &[0, 1, 2, 3],
+    &[0, 1, 2, 3, 4],
+    &[0, 2, 3, 4, 5],
+];
+/// Nonzero columns of [`ERR5`] and [`DENSE5`].
+const NZ_ERR5: &[usize] = &[0, 2, 3, 4, 5, 6];
+
+/// Nonzero columns of each row of [`A8`] (row 12 is the 8th-order weights b;
+/// rows 13–15 are the dense output's extra stages, where column 12 stands
+/// for f(t + h, y_new)).
+const NZ8: [&[usize]; 16] = [
+    &[],
+    &[0],
+    &[0, 1],
+    &[0, 2],
+    &[0, 2, 3],
+    &[0, 3, 4],
+    &[0, 3, 4, 5],
+    &[0, 3, 4, 5, 6],
+    &[0, 3, 4, 5, 6, 7],
+    &[0, 3, 4, 5, 6, 7, 8],
+    &[0, 3, 4, 5, 6, 7, 8, 9],
+    &[0, 3, 4, 5, 6, 7, 8, 9, 10],
+    &[0, 5, 6, 7, 8, 9, 10, 11],
+    &[0, 6, 7, 8, 9, 10, 11, 12],
+    &[0, 5, 6, 7, 10, 11, 12, 13],
+    &[0, 5, 6, 7, 8, 12, 13, 14],
+];
+/// Nonzero columns of [`E8`].
+const NZ_E8: &[usize] = &[0, 5, 6, 7, 8, 9, 10, 11];
+/// Nonzero columns of the rows of [`D8`].
+const NZ_D8: &[usize] = &[0, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
 
 #[inline]
 fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
@@ -585,52 +650,18 @@ fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     rtol: f64,
     st: &mut Stages<N>,
 ) -> f64 {
-    for i in 0..N {
-        st.yt[i] = y[i] + h * (A21 * st.k[0][i]);
+    for s in 1..6 {
+        combine(&mut st.yt, y, h, &A5[s], NZ5[s], &st.k);
+        f(t + C5[s] * h, &st.yt, &mut st.k[s]);
     }
-    f(t + C2 * h, &st.yt, &mut st.k[1]);
-    for i in 0..N {
-        st.yt[i] = y[i] + h * (A31 * st.k[0][i] + A32 * st.k[1][i]);
-    }
-    f(t + C3 * h, &st.yt, &mut st.k[2]);
-    for i in 0..N {
-        st.yt[i] = y[i] + h * (A41 * st.k[0][i] + A42 * st.k[1][i] + A43 * st.k[2][i]);
-    }
-    f(t + C4 * h, &st.yt, &mut st.k[3]);
-    for i in 0..N {
-        st.yt[i] =
-            y[i] + h * (A51 * st.k[0][i] + A52 * st.k[1][i] + A53 * st.k[2][i] + A54 * st.k[3][i]);
-    }
-    f(t + C5 * h, &st.yt, &mut st.k[4]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A61 * st.k[0][i]
-                + A62 * st.k[1][i]
-                + A63 * st.k[2][i]
-                + A64 * st.k[3][i]
-                + A65 * st.k[4][i]);
-    }
-    f(t + h, &st.yt, &mut st.k[5]);
-    for i in 0..N {
-        st.ynew[i] = y[i]
-            + h * (A71 * st.k[0][i]
-                + A73 * st.k[2][i]
-                + A74 * st.k[3][i]
-                + A75 * st.k[4][i]
-                + A76 * st.k[5][i]);
-    }
+    combine(&mut st.ynew, y, h, &A5[6], NZ5[6], &st.k);
     f(t + h, &st.ynew, &mut st.fnew);
+    st.k[6] = st.fnew;
+    // The error estimate h Σ (b − b̂)_j k_j, into `yt`.
+    combine(&mut st.yt, &[0.0; N], h, &ERR5, NZ_ERR5, &st.k);
     let mut sum = 0.0;
     for i in 0..N {
-        let e = h
-            * (E1 * st.k[0][i]
-                + E3 * st.k[2][i]
-                + E4 * st.k[3][i]
-                + E5 * st.k[4][i]
-                + E6 * st.k[5][i]
-                + E7 * st.fnew[i]);
-        let sk = scale(atol, rtol, y[i], st.ynew[i]);
-        let r = e / sk;
+        let r = st.yt[i] / scale(atol, rtol, y[i], st.ynew[i]);
         sum += r * r;
     }
     if N == 0 { 0.0 } else { (sum / N as f64).sqrt() }
@@ -646,106 +677,19 @@ fn dop853_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     rtol: f64,
     st: &mut Stages<N>,
 ) -> f64 {
-    for i in 0..N {
-        st.yt[i] = y[i] + h * (A8[1][0] * st.k[0][i]);
+    for s in 1..12 {
+        combine(&mut st.yt, y, h, &A8[s], NZ8[s], &st.k);
+        f(t + C8[s] * h, &st.yt, &mut st.k[s]);
     }
-    f(t + C8[1] * h, &st.yt, &mut st.k[1]);
-    for i in 0..N {
-        st.yt[i] = y[i] + h * (A8[2][0] * st.k[0][i] + A8[2][1] * st.k[1][i]);
-    }
-    f(t + C8[2] * h, &st.yt, &mut st.k[2]);
-    for i in 0..N {
-        st.yt[i] = y[i] + h * (A8[3][0] * st.k[0][i] + A8[3][2] * st.k[2][i]);
-    }
-    f(t + C8[3] * h, &st.yt, &mut st.k[3]);
-    for i in 0..N {
-        st.yt[i] =
-            y[i] + h * (A8[4][0] * st.k[0][i] + A8[4][2] * st.k[2][i] + A8[4][3] * st.k[3][i]);
-    }
-    f(t + C8[4] * h, &st.yt, &mut st.k[4]);
-    for i in 0..N {
-        st.yt[i] =
-            y[i] + h * (A8[5][0] * st.k[0][i] + A8[5][3] * st.k[3][i] + A8[5][4] * st.k[4][i]);
-    }
-    f(t + C8[5] * h, &st.yt, &mut st.k[5]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[6][0] * st.k[0][i]
-                + A8[6][3] * st.k[3][i]
-                + A8[6][4] * st.k[4][i]
-                + A8[6][5] * st.k[5][i]);
-    }
-    f(t + C8[6] * h, &st.yt, &mut st.k[6]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[7][0] * st.k[0][i]
-                + A8[7][3] * st.k[3][i]
-                + A8[7][4] * st.k[4][i]
-                + A8[7][5] * st.k[5][i]
-                + A8[7][6] * st.k[6][i]);
-    }
-    f(t + C8[7] * h, &st.yt, &mut st.k[7]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[8][0] * st.k[0][i]
-                + A8[8][3] * st.k[3][i]
-                + A8[8][4] * st.k[4][i]
-                + A8[8][5] * st.k[5][i]
-                + A8[8][6] * st.k[6][i]
-                + A8[8][7] * st.k[7][i]);
-    }
-    f(t + C8[8] * h, &st.yt, &mut st.k[8]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[9][0] * st.k[0][i]
-                + A8[9][3] * st.k[3][i]
-                + A8[9][4] * st.k[4][i]
-                + A8[9][5] * st.k[5][i]
-                + A8[9][6] * st.k[6][i]
-                + A8[9][7] * st.k[7][i]
-                + A8[9][8] * st.k[8][i]);
-    }
-    f(t + C8[9] * h, &st.yt, &mut st.k[9]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[10][0] * st.k[0][i]
-                + A8[10][3] * st.k[3][i]
-                + A8[10][4] * st.k[4][i]
-                + A8[10][5] * st.k[5][i]
-                + A8[10][6] * st.k[6][i]
-                + A8[10][7] * st.k[7][i]
-                + A8[10][8] * st.k[8][i]
-                + A8[10][9] * st.k[9][i]);
-    }
-    f(t + C8[10] * h, &st.yt, &mut st.k[10]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[11][0] * st.k[0][i]
-                + A8[11][3] * st.k[3][i]
-                + A8[11][4] * st.k[4][i]
-                + A8[11][5] * st.k[5][i]
-                + A8[11][6] * st.k[6][i]
-                + A8[11][7] * st.k[7][i]
-                + A8[11][8] * st.k[8][i]
-                + A8[11][9] * st.k[9][i]
-                + A8[11][10] * st.k[10][i]);
-    }
-    f(t + C8[11] * h, &st.yt, &mut st.k[11]);
     // 8th-order solution; `yt` keeps Σ b_j k_j for the 3rd-order estimate.
+    combine(&mut st.yt, &[0.0; N], 1.0, &A8[12], NZ8[12], &st.k);
     for i in 0..N {
-        let s = A8[12][0] * st.k[0][i]
-            + A8[12][5] * st.k[5][i]
-            + A8[12][6] * st.k[6][i]
-            + A8[12][7] * st.k[7][i]
-            + A8[12][8] * st.k[8][i]
-            + A8[12][9] * st.k[9][i]
-            + A8[12][10] * st.k[10][i]
-            + A8[12][11] * st.k[11][i];
-        st.yt[i] = s;
-        st.ynew[i] = y[i] + h * s;
+        st.ynew[i] = y[i] + h * st.yt[i];
     }
     f(t + h, &st.ynew, &mut st.fnew);
     // Hairer's estimator: err = h·‖e5‖² / sqrt(‖e5‖² + 0.01‖e3‖²) (RMS).
+    let mut e5 = [0.0; N];
+    combine(&mut e5, &[0.0; N], 1.0, &E8, NZ_E8, &st.k);
     let mut err5 = 0.0;
     let mut err3 = 0.0;
     for i in 0..N {
@@ -753,15 +697,7 @@ fn dop853_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
         let e3 = st.yt[i] - BHH8[0] * st.k[0][i] - BHH8[1] * st.k[8][i] - BHH8[2] * st.k[11][i];
         let r3 = e3 / sk;
         err3 += r3 * r3;
-        let e5 = E8[0] * st.k[0][i]
-            + E8[5] * st.k[5][i]
-            + E8[6] * st.k[6][i]
-            + E8[7] * st.k[7][i]
-            + E8[8] * st.k[8][i]
-            + E8[9] * st.k[9][i]
-            + E8[10] * st.k[10][i]
-            + E8[11] * st.k[11][i];
-        let r5 = e5 / sk;
+        let r5 = e5[i] / sk;
         err5 += r5 * r5;
     }
     let mut deno = err5 + 0.01 * err3;
@@ -786,95 +722,13 @@ fn dop853_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     st: &mut Stages<N>,
     dense: &mut Dense<N>,
 ) {
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[13][0] * st.k[0][i]
-                + A8[13][6] * st.k[6][i]
-                + A8[13][7] * st.k[7][i]
-                + A8[13][8] * st.k[8][i]
-                + A8[13][9] * st.k[9][i]
-                + A8[13][10] * st.k[10][i]
-                + A8[13][11] * st.k[11][i]
-                + A8[13][12] * st.fnew[i]);
+    st.k[12] = st.fnew;
+    for s in 13..16 {
+        combine(&mut st.yt, y, h, &A8[s], NZ8[s], &st.k);
+        f(t + C8[s] * h, &st.yt, &mut st.k[s]);
     }
-    f(t + C8[13] * h, &st.yt, &mut st.k[13]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[14][0] * st.k[0][i]
-                + A8[14][5] * st.k[5][i]
-                + A8[14][6] * st.k[6][i]
-                + A8[14][7] * st.k[7][i]
-                + A8[14][10] * st.k[10][i]
-                + A8[14][11] * st.k[11][i]
-                + A8[14][12] * st.fnew[i]
-                + A8[14][13] * st.k[13][i]);
-    }
-    f(t + C8[14] * h, &st.yt, &mut st.k[14]);
-    for i in 0..N {
-        st.yt[i] = y[i]
-            + h * (A8[15][0] * st.k[0][i]
-                + A8[15][5] * st.k[5][i]
-                + A8[15][6] * st.k[6][i]
-                + A8[15][7] * st.k[7][i]
-                + A8[15][8] * st.k[8][i]
-                + A8[15][12] * st.fnew[i]
-                + A8[15][13] * st.k[13][i]
-                + A8[15][14] * st.k[14][i]);
-    }
-    f(t + C8[15] * h, &st.yt, &mut st.k[15]);
-    for i in 0..N {
-        dense.coef[3][i] = h
-            * (D8[0][0] * st.k[0][i]
-                + D8[0][5] * st.k[5][i]
-                + D8[0][6] * st.k[6][i]
-                + D8[0][7] * st.k[7][i]
-                + D8[0][8] * st.k[8][i]
-                + D8[0][9] * st.k[9][i]
-                + D8[0][10] * st.k[10][i]
-                + D8[0][11] * st.k[11][i]
-                + D8[0][12] * st.fnew[i]
-                + D8[0][13] * st.k[13][i]
-                + D8[0][14] * st.k[14][i]
-                + D8[0][15] * st.k[15][i]);
-        dense.coef[4][i] = h
-            * (D8[1][0] * st.k[0][i]
-                + D8[1][5] * st.k[5][i]
-                + D8[1][6] * st.k[6][i]
-                + D8[1][7] * st.k[7][i]
-                + D8[1][8] * st.k[8][i]
-                + D8[1][9] * st.k[9][i]
-                + D8[1][10] * st.k[10][i]
-                + D8[1][11] * st.k[11][i]
-                + D8[1][12] * st.fnew[i]
-                + D8[1][13] * st.k[13][i]
-                + D8[1][14] * st.k[14][i]
-                + D8[1][15] * st.k[15][i]);
-        dense.coef[5][i] = h
-            * (D8[2][0] * st.k[0][i]
-                + D8[2][5] * st.k[5][i]
-                + D8[2][6] * st.k[6][i]
-                + D8[2][7] * st.k[7][i]
-                + D8[2][8] * st.k[8][i]
-                + D8[2][9] * st.k[9][i]
-                + D8[2][10] * st.k[10][i]
-                + D8[2][11] * st.k[11][i]
-                + D8[2][12] * st.fnew[i]
-                + D8[2][13] * st.k[13][i]
-                + D8[2][14] * st.k[14][i]
-                + D8[2][15] * st.k[15][i]);
-        dense.coef[6][i] = h
-            * (D8[3][0] * st.k[0][i]
-                + D8[3][5] * st.k[5][i]
-                + D8[3][6] * st.k[6][i]
-                + D8[3][7] * st.k[7][i]
-                + D8[3][8] * st.k[8][i]
-                + D8[3][9] * st.k[9][i]
-                + D8[3][10] * st.k[10][i]
-                + D8[3][11] * st.k[11][i]
-                + D8[3][12] * st.fnew[i]
-                + D8[3][13] * st.k[13][i]
-                + D8[3][14] * st.k[14][i]
-                + D8[3][15] * st.k[15][i]);
+    for (d, row) in D8.iter().enumerate() {
+        combine(&mut dense.coef[3 + d], &[0.0; N], h, row, NZ_D8, &st.k);
     }
     dense.terms = 7;
 }
@@ -1013,4 +867,32 @@ pub fn step_with_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     trial(method, &mut rhs, t0, y0, h, 1.0, 0.0, &mut st);
     1 + method.evals_per_step()
         + fill_dense(method, &mut rhs, t0, y0, h, t0 + h, &mut st, true, dense)
+}
+
+#[cfg(test)]
+mod sparsity_tests {
+    use super::*;
+
+    /// The nonzero-column lists that [`combine`] walks must name exactly the
+    /// nonzero entries of each tableau row: a missing column would silently
+    /// drop a term.
+    fn nonzeros<const S: usize>(row: &[f64; S]) -> Vec<usize> {
+        (0..S).filter(|&j| row[j] != 0.0).collect()
+    }
+
+    #[test]
+    fn column_lists_match_the_tableaux() {
+        for s in 0..7 {
+            assert_eq!(nonzeros(&A5[s]), NZ5[s], "DP5 row {s}");
+        }
+        assert_eq!(nonzeros(&ERR5), NZ_ERR5);
+        assert_eq!(nonzeros(&DENSE5), NZ_ERR5);
+        for s in 0..16 {
+            assert_eq!(nonzeros(&A8[s]), NZ8[s], "DOP853 row {s}");
+        }
+        assert_eq!(nonzeros(&E8), NZ_E8);
+        for (d, row) in D8.iter().enumerate() {
+            assert_eq!(nonzeros(row), NZ_D8, "DOP853 dense row {d}");
+        }
+    }
 }
