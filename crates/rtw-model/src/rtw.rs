@@ -14,7 +14,6 @@ use crate::options::Options;
 use crate::outcome::FailureDetail;
 use crate::params::Physical;
 use crate::strings::StringSet;
-use std::cell::Cell;
 
 /// State dimension: 3 rods × 6 slots + two dissipated energies.
 pub const N: usize = 20;
@@ -73,8 +72,6 @@ pub struct Rtw {
     pub restick_speed: f64,
     /// Collapse when the centre of mass height falls below this.
     pub collapse_height: f64,
-    /// Largest |λ_x|/λ_y seen while sticking with λ_y > 0.05 m g (updated as guards are evaluated).
-    pub mu_required: Cell<f64>,
 }
 
 impl Rtw {
@@ -100,7 +97,6 @@ impl Rtw {
             touchdown_height: -opts.touchdown_offset * phys.length,
             restick_speed: 1e-9 * phys.length,
             collapse_height: opts.collapse_height_ratio * phys.standing_height(),
-            mu_required: Cell::new(0.0),
         }
     }
 
@@ -198,14 +194,6 @@ impl Rtw {
                     .body
                     .accel(self.modes[i], &frames[i], &loads[i], self.mu)
                     .lambda;
-                if matches!(self.modes[i], RodMode::Stick { .. })
-                    && lambda[i][1] > 0.05 * self.body.m * self.gravity[1].abs()
-                {
-                    let ratio = lambda[i][0].abs() / lambda[i][1];
-                    if ratio > self.mu_required.get() {
-                        self.mu_required.set(ratio);
-                    }
-                }
             }
         }
         let tip_height =
@@ -313,6 +301,25 @@ impl Rtw {
             loss: self.body.kinetic(&before) - self.body.kinetic(&settled),
             omega_after: settled.omega,
         }
+    }
+
+    /// The largest friction ratio |λ_x|/λ_y over the sticking rods whose
+    /// normal force exceeds 5 % of a rod's weight (MODEL.md §4's
+    /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
+    pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
+        let frames = self.frames(y);
+        let (loads, _) = self.loads(&frames);
+        let floor = 0.05 * self.body.m * (self.gravity[0].hypot(self.gravity[1]));
+        (0..3)
+            .filter(|&i| matches!(self.modes[i], RodMode::Stick { .. }))
+            .map(|i| {
+                self.body
+                    .accel(self.modes[i], &frames[i], &loads[i], self.mu)
+                    .lambda
+            })
+            .filter(|l| l[1] > floor)
+            .map(|l| l[0].abs() / l[1])
+            .fold(0.0, f64::max)
     }
 
     /// Kinetic, gravitational and elastic energy of state `y`.

@@ -50,6 +50,9 @@ struct Run<'a> {
     stats: GaitStats,
     stall_time: f64,
     failure: Option<FailureDetail>,
+    /// Largest friction ratio needed while sticking, over the window,
+    /// sampled at every accepted step end (never at trial states past an event).
+    mu_required: f64,
     /// Energy removed by resets (impacts; also the hair-width projections of
     /// a tip onto the ground and of a re-sticking tip to rest).
     impact_loss: f64,
@@ -136,8 +139,10 @@ impl HybridSystem<N> for Run<'_> {
             let mut y = [0.0; N];
             dense.eval(self.stats.window_start.max(t0), &mut y);
             self.stats.window_com_x = Some(self.rtw.centre_of_mass(&y)[0]);
-            // `mu_required` describes the gait: count it over the window only.
-            self.rtw.mu_required.set(0.0);
+        }
+        // `mu_required` describes the gait: count it over the window only.
+        if t1 >= self.stats.window_start && self.rtw.contact_state() > 0 {
+            self.mu_required = self.mu_required.max(self.rtw.friction_ratio(&dense.y1));
         }
         if self.trace.is_some() {
             if self.trace_dt > 0.0 {
@@ -181,6 +186,7 @@ fn simulate_inner(
         stats: GaitStats::new(window_start),
         stall_time: options.stall_time,
         failure: None,
+        mu_required: 0.0,
         impact_loss: 0.0,
         trace,
         trace_dt: options.trace_dt,
@@ -247,7 +253,7 @@ fn simulate_inner(
         f_w: stats.window_touchdowns as f64 / window,
         f_w_newfoot: stats.window_newfoot as f64 / window,
         speed,
-        mu_required: run.rtw.mu_required.get(),
+        mu_required: run.mu_required,
         slide_time: stats.slide_time,
         energy,
         period: if label.is_stable() { stats.period() } else { 0 },

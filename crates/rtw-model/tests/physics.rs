@@ -410,3 +410,19 @@ fn static_start_is_an_equilibrium() {
     assert!(acc < 1e-8, "accelerations at the static start: {dy:?}");
     let _: RodState = sys.rods(&y)[0];
 }
+
+#[test]
+fn finite_friction_never_sticks_outside_its_cone() {
+    // Coulomb: while sticking |λ_x| ≤ μ λ_y, so the ratio a run reports can
+    // reach μ (the slip event) but not exceed it; friction does work.
+    let mut o = Options::default();
+    o.strings.rest_length_ratio = 0.85;
+    o.contact.mu = 0.5;
+    let out = simulate(&Params::fig7a(), &o);
+    assert_ne!(out.label, Label::Diverged, "{out:?}");
+    assert!(out.mu_required <= 0.5 * (1.0 + 1e-6), "{out:?}");
+    assert!(
+        out.energy.friction_loss > 0.0 && out.slide_time > 0.0,
+        "{out:?}"
+    );
+}
