@@ -85,24 +85,12 @@ impl RodBody {
     /// Full coordinates of a rod from its slots.
     #[inline]
     pub fn rod_state(&self, mode: RodMode, s: &[f64]) -> RodState {
-        match mode {
-            RodMode::Free => RodState {
-                c: [s[0], s[1]],
-                theta: s[2],
-                v: [s[3], s[4]],
-                omega: s[5],
-            },
-            RodMode::Stick { tip } | RodMode::Slide { tip, .. } => {
-                let (sin, cos) = s[2].sin_cos();
-                let d = self.arm([cos, sin], tip);
-                let omega = s[5];
-                RodState {
-                    c: sub([s[0], 0.0], d),
-                    theta: s[2],
-                    v: sub([s[3], 0.0], scale(omega, perp(d))),
-                    omega,
-                }
-            }
+        let f = self.frame(mode, s);
+        RodState {
+            c: f.c,
+            theta: s[2],
+            v: f.v,
+            omega: f.omega,
         }
     }
 

@@ -92,10 +92,11 @@ fn static_equilibrium(rtw: &Rtw, star: [RodState; 3]) -> Option<[RodState; 3]> {
         let r = residual(&y);
         if r.norm() < 1e-11 * scale_acc {
             let rods = sys.rods(&y);
-            let (loads, _) = sys.loads(&sys.frames(&y));
+            let frames = sys.frames(&y);
+            let (loads, _) = sys.loads(&frames);
             let standing = [0usize, 2].iter().all(|&i| {
                 sys.body
-                    .accel(sys.modes[i], &sys.frames(&y)[i], &loads[i], sys.mu)
+                    .accel(sys.modes[i], &frames[i], &loads[i], sys.mu)
                     .lambda[1]
                     > 0.0
             });
