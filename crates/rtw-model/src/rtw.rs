@@ -42,12 +42,10 @@ pub enum GuardKind {
 /// What a reset did, for the run's statistics.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Transition {
-    /// A touchdown of `tip` of `rod`, with the kinetic energy it took and the
-    /// rod's angular velocity just after.
+    /// A touchdown of `tip` of `rod`, with the rod's angular velocity just after.
     Touchdown {
         rod: usize,
         tip: Tip,
-        loss: f64,
         omega_after: f64,
     },
     /// Any other change of a rod's mode.
@@ -276,8 +274,7 @@ impl Rtw {
     /// Touchdown of a free rod's tip: the impact, then the mode choice.
     pub fn touchdown(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
         let rods = self.rods(y);
-        let before = rods[rod];
-        let impact = self.body.touchdown(&before, tip, self.mu);
+        let impact = self.body.touchdown(&rods[rod], tip, self.mu);
         let mut after = impact.after;
         // Put the tip exactly on the ground (it was declared a hair below).
         let (p, _) = self.body.tip_point(&after, tip);
@@ -292,14 +289,10 @@ impl Rtw {
             .choose_mode(&after, tip, impact.sticks, &loads[rod], self.mu);
         self.body
             .slots(self.modes[rod], &after, &mut y[6 * rod..6 * rod + 6]);
-        let settled = self
-            .body
-            .rod_state(self.modes[rod], &y[6 * rod..6 * rod + 6]);
         Transition::Touchdown {
             rod,
             tip,
-            loss: self.body.kinetic(&before) - self.body.kinetic(&settled),
-            omega_after: settled.omega,
+            omega_after: y[6 * rod + 5],
         }
     }
 

@@ -108,7 +108,6 @@ impl HybridSystem<N> for Run<'_> {
                 rod,
                 tip,
                 omega_after,
-                ..
             } => {
                 self.stats.on_touchdown(t, rod, tip, omega_after);
                 Flow::Continue

@@ -116,16 +116,6 @@ impl StringSet {
             })
             .sum()
     }
-
-    /// Current lengths of the six strings.
-    pub fn lengths(&self, rods: &[RodFrame; 3]) -> [f64; 6] {
-        let ends: [V2; 6] =
-            std::array::from_fn(|j| rods[SPOKES[j].0].point(SPOKES[j].1.sign() * self.r).0);
-        std::array::from_fn(|j| {
-            let d = sub(ends[j], ends[(j + 1) % 6]);
-            dot(d, d).sqrt()
-        })
-    }
 }
 
 #[cfg(test)]
