@@ -134,16 +134,17 @@ fn killed_run_resumes_to_the_same_rows() {
     assert!(!out.join("summary.json").exists());
 
     // Without --resume the unfinished run is refused, not overwritten.
-    let o = run(&[
-        "run",
-        &cfg,
-        "--out",
-        out.to_str().unwrap(),
-        "--fake-sim",
-        "0",
-    ]);
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("--resume"), "{}", stderr(&o));
+    run_err(
+        &[
+            "run",
+            &cfg,
+            "--out",
+            out.to_str().unwrap(),
+            "--fake-sim",
+            "0",
+        ],
+        &["--resume"],
+    );
 
     let o = run_ok(&[
         "run",
@@ -508,13 +509,7 @@ fn summary_and_cluster_commands_redo_the_steps_from_the_file() {
     assert!(stdout(&o).contains("| cluster | name |"));
 
     // Not a samples file.
-    let o = run(&["summary", cfg.as_str()]);
-    assert!(!o.status.success());
-    assert!(
-        stderr(&o).contains("not a readable Parquet file"),
-        "{}",
-        stderr(&o)
-    );
+    run_err(&["summary", cfg.as_str()], &["not a readable Parquet file"]);
 }
 
 #[test]
@@ -550,41 +545,19 @@ fn simulate_prints_flat_json_and_validates_input() {
     let o = run_ok(&[&base[..], &["--phi", "-0.05", "--fake-sim"]].concat());
     assert!(stdout(&o).contains("[outcome]") && stdout(&o).contains("stall"));
     // Bad parameter, bad option, bad --set.
-    let o = run(&[&base[..], &["--phi", "1.6", "--fake-sim"]].concat());
-    assert!(
-        !o.status.success() && stderr(&o).contains("--phi: 1.6 is invalid"),
-        "{}",
-        stderr(&o)
+    let with = |extra: &[&'static str]| [&base[..], extra, &["--fake-sim"]].concat();
+    run_err(&with(&["--phi", "1.6"]), &["--phi: 1.6 is invalid"]);
+    run_err(
+        &with(&["--phi", "0.1", "--set", "contact.mu=2"]),
+        &["simulation.contact.mu: 2 is invalid"],
     );
-    let o = run(&[
-        &base[..],
-        &["--phi", "0.1", "--set", "contact.mu=2", "--fake-sim"],
-    ]
-    .concat());
-    assert!(
-        stderr(&o).contains("simulation.contact.mu: 2 is invalid"),
-        "{}",
-        stderr(&o)
+    run_err(
+        &with(&["--phi", "0.1", "--set", "contact.nope=2"]),
+        &["simulation.contact.nope: unknown key"],
     );
-    let o = run(&[
-        &base[..],
-        &["--phi", "0.1", "--set", "contact.nope=2", "--fake-sim"],
-    ]
-    .concat());
-    assert!(
-        stderr(&o).contains("simulation.contact.nope: unknown key"),
-        "{}",
-        stderr(&o)
-    );
-    let o = run(&[
-        &base[..],
-        &["--phi", "0.1", "--set", "method=euler", "--fake-sim"],
-    ]
-    .concat());
-    assert!(
-        stderr(&o).contains("simulation.method") && stderr(&o).contains("dop853"),
-        "{}",
-        stderr(&o)
+    run_err(
+        &with(&["--phi", "0.1", "--set", "method=euler"]),
+        &["simulation.method", "dop853"],
     );
     // --config takes its [simulation] table.
     let dir = tempfile::tempdir().unwrap();

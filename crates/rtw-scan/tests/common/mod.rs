@@ -39,6 +39,24 @@ pub fn run_ok(args: &[&str]) -> Output {
     out
 }
 
+/// Runs the binary and asserts it fails with every one of `needles` in its
+/// error message.
+pub fn run_err(args: &[&str], needles: &[&str]) -> Output {
+    let out = run(args);
+    let err = stderr(&out);
+    assert!(
+        !out.status.success(),
+        "rtw-scan {args:?} should fail:\n{err}"
+    );
+    for needle in needles {
+        assert!(
+            err.contains(needle),
+            "rtw-scan {args:?}: no {needle:?} in:\n{err}"
+        );
+    }
+    out
+}
+
 pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
