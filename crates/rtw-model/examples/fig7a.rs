@@ -1,5 +1,6 @@
-//! Prints the outcome at the article's Fig. 7(a) point for string rest-length
-//! ratios `s` (default 0 and 0.85):
+//! Prints the outcome at the article's Fig. 7(a) point for the literal model
+//! (MODEL.md §1–§6) with string rest-length ratios `s` (default 0 and 0.85),
+//! then for the adopted default model:
 //! `cargo run --release -p rtw-model --example fig7a [-- s ...]`.
 use rtw_model::{Options, Params, simulate};
 
@@ -13,16 +14,23 @@ fn main() {
     } else {
         ratios
     };
-    for s in ratios {
-        let mut o = Options::default();
-        o.strings.rest_length_ratio = s;
+    let mut runs: Vec<(String, Options)> = ratios
+        .into_iter()
+        .map(|s| {
+            let mut o = Options::literal();
+            o.strings.rest_length_ratio = s;
+            (format!("literal s={s}"), o)
+        })
+        .collect();
+    runs.push(("default".into(), Options::default()));
+    for (name, o) in runs {
         let start = std::time::Instant::now();
         let out = simulate(&Params::fig7a(), &o);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let f = out.fractions;
         let w = out.work;
         println!(
-            "s={s:<5} {label:<8} NLSP {n:.3} SLSP {sl:.3} DLSP {d:.3} TLSP {t:.3}  \
+            "{name:<16} {label:<8} NLSP {n:.3} SLSP {sl:.3} DLSP {d:.3} TLSP {t:.3}  \
              f_w {fw:.2} newfoot {nf:.2}  speed {v:.3} m/s  period {p}  mu_req {mu:.2}  \
              slide {slide:.3} s  touchdowns {td}  steps {st} rejected {rj} rhs {rhs} events {ev}  \
              balance {bal:.1e} J  {ms:.1} ms",

@@ -221,8 +221,9 @@ pub fn critical_damping_closed_form(phys: &Physical, strings: &StringSet) -> f64
     }
 }
 
-/// String torques on three rods pinned at a common centre (the approximate model).
-fn rotor_torques(strings: &StringSet, theta: [f64; 3], omega: [f64; 3]) -> [f64; 3] {
+/// String torques on three rods pinned at a common centre (the approximate
+/// model), at angles `theta` and angular velocities `omega`.
+pub fn rotor_torques(strings: &StringSet, theta: [f64; 3], omega: [f64; 3]) -> [f64; 3] {
     let frames: [RodFrame; 3] = std::array::from_fn(|i| {
         RodFrame::new(&RodState {
             c: [0.0, 0.0],

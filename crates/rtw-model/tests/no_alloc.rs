@@ -66,6 +66,22 @@ fn simulate_does_not_allocate() {
     // lives in fixed-size arrays: zero heap allocations, whatever t_max.
     use rtw_model::options::{InitialShape, MethodChoice};
     use rtw_model::{Options, Params, simulate};
+    // The adopted default (finite friction: sliding phases, slack strings,
+    // static start) as well as the literal variant.
+    let o = Options {
+        t_max: 6.0,
+        ..Options::default()
+    };
+    let before = allocs();
+    let out = simulate(&Params::fig7a(), &o);
+    let after = allocs();
+    assert!(out.touchdowns > 5 && out.slide_time > 0.0, "{out:?}");
+    assert_eq!(
+        after,
+        before,
+        "default options: {} allocations",
+        after - before
+    );
     for (s, shape, method) in [
         (0.0, InitialShape::RigidStar, MethodChoice::Dop853),
         (0.85, InitialShape::Static, MethodChoice::Dp54),
@@ -74,7 +90,7 @@ fn simulate_does_not_allocate() {
         let mut o = Options {
             method,
             t_max: 6.0,
-            ..Options::default()
+            ..Options::literal()
         };
         o.strings.rest_length_ratio = s;
         o.initial.shape = shape;

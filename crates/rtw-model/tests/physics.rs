@@ -39,7 +39,7 @@ fn rtw(c_damping: bool, s: f64, damping: Damping) -> (Rtw, Physical) {
     if !c_damping {
         p.zeta = 0.0;
     }
-    let mut o = Options::default();
+    let mut o = Options::literal();
     o.strings.rest_length_ratio = s;
     o.strings.damping = damping;
     let phys = Physical::new(&p, o.normalization, o.g);
@@ -259,7 +259,7 @@ fn touchdown_leaves_other_rods_untouched() {
 }
 
 fn fig7a_options() -> Options {
-    Options::default()
+    Options::literal()
 }
 
 #[test]
@@ -304,7 +304,7 @@ fn energy_balance_closes_over_whole_runs_with_impacts_and_damping() {
     let mut o = Options {
         rtol: 1e-11,
         atol: 1e-12,
-        ..Options::default()
+        ..Options::literal()
     };
     for s in [0.0, 0.85] {
         o.strings.rest_length_ratio = s;
@@ -335,7 +335,7 @@ fn assert_sound(name: &str, p: Params, o: &Options) -> rtw_model::Outcome {
 
 #[test]
 fn hard_cases_finish_soundly() {
-    let o = Options::default();
+    let o = Options::literal();
     let base = Params::fig7a();
     let l = 0.8;
     assert_sound(
@@ -375,6 +375,50 @@ fn hard_cases_finish_soundly() {
     let mut mu = s85;
     mu.contact.mu = 0.8;
     assert_sound("finite friction", base, &mu);
+    // The adopted default model (prestress, slack, μ = 0.8, static start) on
+    // the same corners.
+    let d = Options::default();
+    for (name, p) in [
+        (
+            "default, stiffest corner",
+            Params::new(l, 5.0, 0.4, 5.0, 0.1, 0.3).unwrap(),
+        ),
+        (
+            "default, softest corner",
+            Params::new(l, 1.0, 0.0, 1.5, 0.05, 0.3).unwrap(),
+        ),
+        (
+            "default, near collapse",
+            Params::new(l, 2.0, 0.02, 1.6, 0.05, 0.2).unwrap(),
+        ),
+        ("default, no damping", Params { zeta: 0.0, ..base }),
+    ] {
+        assert_sound(name, p, &d);
+    }
+}
+
+#[test]
+fn adopted_default_walks_at_fig7a_within_its_friction_cone() {
+    // The selection rule of the variant study (results/variants/summary.md):
+    // the default model walks at the article's Fig. 7(a) point, on a floor
+    // with μ = 0.8, from a standing start; its friction ratio never exceeds μ
+    // (Coulomb), and the energy balance (with friction) closes.
+    let o = Options::default();
+    assert_eq!(o.strings.rest_length_ratio, 0.85);
+    assert!(o.strings.slack);
+    assert_eq!(o.contact.mu, 0.8);
+    assert_eq!(o.initial.shape, rtw_model::options::InitialShape::Static);
+    let out = simulate(&Params::fig7a(), &o);
+    assert_eq!(out.label, Label::Walk, "{out:?}");
+    assert!(out.mu_required <= o.contact.mu * (1.0 + 1e-9), "{out:?}");
+    assert!(out.energy.friction_loss > 0.0, "{out:?}");
+    let scale = out.energy.gravity_released.abs().max(1.0);
+    assert!(out.energy.balance_error.abs() < 1e-6 * scale, "{out:?}");
+    // And the literal variant does not walk there (MODEL.md §9).
+    assert_eq!(
+        simulate(&Params::fig7a(), &Options::literal()).label,
+        Label::Skip
+    );
 }
 
 #[test]
@@ -382,12 +426,12 @@ fn grazing_touchdown_is_handled() {
     // The rear foot starts on the ground; a tiny backward roll brings it down
     // with near-zero normal speed: an impact of almost nothing. Standing on
     // two feet with no speed the star cannot roll: a clean stall, no chatter.
-    let mut o = Options::default();
+    let mut o = Options::literal();
     o.initial.omega = 1e-9;
     let out = assert_sound("grazing", Params::fig7a(), &o);
     assert_eq!(out.label, Label::Stall, "{out:?}");
     assert!(out.work.events < 20, "{out:?}");
-    let mut o = Options::default();
+    let mut o = Options::literal();
     o.initial.omega = 0.0;
     assert_sound("at rest", Params::fig7a(), &o);
 }
@@ -395,7 +439,7 @@ fn grazing_touchdown_is_handled() {
 #[test]
 fn static_start_is_an_equilibrium() {
     // With ω = 0 the static shape must stay put: nothing moves.
-    let mut o = Options::default();
+    let mut o = Options::literal();
     o.initial.shape = rtw_model::options::InitialShape::Static;
     o.initial.omega = 0.0;
     o.strings.rest_length_ratio = 0.85;
@@ -415,7 +459,7 @@ fn static_start_is_an_equilibrium() {
 fn finite_friction_never_sticks_outside_its_cone() {
     // Coulomb: while sticking |λ_x| ≤ μ λ_y, so the ratio a run reports can
     // reach μ (the slip event) but not exceed it; friction does work.
-    let mut o = Options::default();
+    let mut o = Options::literal();
     o.strings.rest_length_ratio = 0.85;
     o.contact.mu = 0.5;
     let out = simulate(&Params::fig7a(), &o);

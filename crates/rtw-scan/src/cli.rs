@@ -71,6 +71,13 @@ struct RunArgs {
     /// Worker threads [default: one per core]. The rows do not depend on it.
     #[arg(long, value_name = "N")]
     threads: Option<NonZeroUsize>,
+    /// Layer a model variant file (configs/variants/*.toml: name, description, [simulation]) over the
+    /// config's [simulation] table; the scan is named CONFIG-NAME+VARIANT-NAME.
+    #[arg(long, value_name = "FILE")]
+    variant: Option<PathBuf>,
+    /// Override one simulation option after the variant (repeatable), e.g. initial.omega=-3.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
     /// Finish the interrupted run in DIR (keeps its finished chunks).
     #[arg(long)]
     resume: bool,
@@ -159,7 +166,7 @@ pub fn main() -> ExitCode {
 static STOP: AtomicBool = AtomicBool::new(false);
 
 fn cmd_run(a: RunArgs) -> Result<ExitCode> {
-    let cfg = config::load(&a.config)?;
+    let cfg = config::load_layered(&a.config, a.variant.as_deref(), &a.set)?;
     let out = match a.out {
         Some(d) => d,
         None => {
@@ -211,10 +218,16 @@ fn cmd_run(a: RunArgs) -> Result<ExitCode> {
             chunks,
             partial,
         } => {
+            let mut again = format!("rtw-scan run {}", a.config.display());
+            if let Some(v) = &a.variant {
+                again += &format!(" --variant {}", v.display());
+            }
+            for s in &a.set {
+                again += &format!(" --set {s}");
+            }
             eprintln!(
-                "rtw-scan: interrupted: {chunks_done} of {chunks} chunks kept in {}; finish with: rtw-scan run {} --out {} --resume",
+                "rtw-scan: interrupted: {chunks_done} of {chunks} chunks kept in {}; finish with: {again} --out {} --resume",
                 partial.display(),
-                a.config.display(),
                 out.display()
             );
             Ok(ExitCode::from(EXIT_INTERRUPTED))

@@ -278,7 +278,81 @@ fn from_value<'de, T: Deserialize<'de>>(value: toml::Value, prefix: &str) -> Res
 
 /// Parses and validates config text.
 pub fn parse(text: &str) -> Result<ScanConfig> {
-    let table = parse_table(text)?;
+    parse_value(parse_table(text)?)
+}
+
+/// A model variant file (`configs/variants/*.toml`): a name, what it tests,
+/// and the `[simulation]` keys it changes. Layered over a scan config by
+/// `rtw-scan run CONFIG --variant FILE`, so one parameter box is scanned
+/// under every variant without copying its `[params]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawVariant {
+    name: String,
+    #[serde(default)]
+    #[allow(dead_code)] // documentation for the reader of the file
+    description: String,
+    #[serde(default)]
+    simulation: toml::Table,
+}
+
+/// Loads a scan config, layers a variant file's `[simulation]` keys over its
+/// own (the variant wins; the scan is then named `NAME+VARIANT`), then the
+/// `--set KEY=VALUE` overrides, and validates the result. Errors name the
+/// file and the key.
+pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
+    let mut table =
+        parse_table(&read_text(path)?).with_context(|| format!("config {}", path.display()))?;
+    let mut simulation = match table.remove("simulation") {
+        None => toml::Table::new(),
+        Some(toml::Value::Table(s)) => s,
+        Some(_) => bail!("config {}: `simulation` is not a table", path.display()),
+    };
+    let mut suffix = None;
+    if let Some(vpath) = variant {
+        let vt = parse_table(&read_text(vpath)?)
+            .with_context(|| format!("variant {}", vpath.display()))?;
+        let v: RawVariant = from_value(toml::Value::Table(vt), "")
+            .with_context(|| format!("variant {}", vpath.display()))?;
+        merge_tables(&mut simulation, v.simulation);
+        suffix = Some(v.name);
+    }
+    for s in sets {
+        apply_set(&mut simulation, s)?;
+    }
+    table.insert("simulation".into(), simulation.into());
+    if let Some(suffix) = suffix {
+        let base = match table.get("name") {
+            Some(toml::Value::String(n)) => n.clone(),
+            _ => path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        };
+        table.insert("name".into(), format!("{base}+{suffix}").into());
+    }
+    let what = if variant.is_some() || !sets.is_empty() {
+        "config (with variant and --set)"
+    } else {
+        "config"
+    };
+    parse_value(table).with_context(|| format!("{what} {}", path.display()))
+}
+
+/// Deep-merges `over` into `base`: nested tables merge key by key, any other
+/// value replaces the one in `base`.
+fn merge_tables(base: &mut toml::Table, over: toml::Table) {
+    for (k, v) in over {
+        match (base.get_mut(&k), v) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge_tables(b, o),
+            (_, v) => {
+                base.insert(k, v);
+            }
+        }
+    }
+}
+
+fn parse_value(table: toml::Table) -> Result<ScanConfig> {
     let raw: RawConfig = from_value(toml::Value::Table(table), "")?;
     if raw.samples < 1 {
         bail!(
@@ -671,6 +745,49 @@ phi = [0.1, 0.2]
     }
 
     #[test]
+    fn variant_and_sets_layer_over_the_config() {
+        let dir = tempfile::tempdir().unwrap();
+        let cfg = dir.path().join("base.toml");
+        let text = format!(
+            "name = \"box\"\n{BASE}\n[simulation]\nt_max = 5.0\nstrings.slack = true\ncontact.mu = 0.5\n"
+        );
+        std::fs::write(&cfg, text).unwrap();
+        let var = dir.path().join("v.toml");
+        std::fs::write(
+            &var,
+            "name = \"pre\"\ndescription = \"prestress\"\n[simulation]\nstrings.rest_length_ratio = 0.85\ncontact.mu = 0.8\n",
+        )
+        .unwrap();
+        let c = load_layered(&cfg, Some(&var), &["initial.omega=-3".into()]).unwrap();
+        assert_eq!(c.name.as_deref(), Some("box+pre"));
+        // The variant's keys win, the config's other keys stay (deep merge).
+        assert_eq!(c.simulation.strings.rest_length_ratio, 0.85);
+        assert!(c.simulation.strings.slack);
+        assert_eq!(c.simulation.contact.mu, 0.8);
+        assert_eq!(c.simulation.t_max, 5.0);
+        assert_eq!(c.simulation.initial.omega, -3.0);
+        // Without a variant the file loads as it is.
+        assert_eq!(load_layered(&cfg, None, &[]).unwrap(), load(&cfg).unwrap());
+        // A bad variant key is named.
+        std::fs::write(
+            &var,
+            "name = \"x\"\n[simulation]\nstrings.rest_length_ratio = 1.5\n",
+        )
+        .unwrap();
+        let e = format!("{:#}", load_layered(&cfg, Some(&var), &[]).unwrap_err());
+        assert!(
+            e.contains("simulation.strings.rest_length_ratio: 1.5 is invalid"),
+            "{e}"
+        );
+        std::fs::write(&var, "name = \"x\"\nseed = 3\n").unwrap();
+        let e = format!("{:#}", load_layered(&cfg, Some(&var), &[]).unwrap_err());
+        assert!(
+            e.contains("unknown key `seed`") && e.contains("v.toml"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn detects_the_paper_scan() {
         let text = r#"
 seed = 1
@@ -725,7 +842,7 @@ phi = { uniform = [0.05, 0.3] }
 
     #[test]
     fn variant_names_every_choice() {
-        let v = Variant::of(&Options::default()).to_string();
+        let v = Variant::of(&Options::literal()).to_string();
         for s in [
             "rest_length_ratio=0",
             "mu=inf",

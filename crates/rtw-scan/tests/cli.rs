@@ -463,9 +463,12 @@ fn summary_and_cluster_commands_redo_the_steps_from_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = write_config(dir.path(), "c.toml", &paper_like(120, 3));
     let out = dir.path().join("o");
+    // μ = ∞ (the literal variant's) to check how JSON spells infinity.
     let printed = stdout(&run_ok(&[
         "run",
         &cfg,
+        "--set",
+        "contact.mu=inf",
         "--out",
         out.to_str().unwrap(),
         "--fake-sim",
@@ -593,4 +596,101 @@ fn help_documents_every_subcommand_and_hides_test_flags() {
     for s in ["--fn", "--set", "--json", "--trace", "--config"] {
         assert!(h.contains(s), "{h}");
     }
+}
+
+#[test]
+fn variant_files_layer_over_a_config_and_are_recorded() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "box.toml", &paper_like(20, 3));
+    let variant = write_config(
+        dir.path(),
+        "pre.toml",
+        "name = \"pre\"\ndescription = \"prestress\"\n[simulation]\nstrings.rest_length_ratio = 0.85\n",
+    );
+    let out = dir.path().join("o");
+    run_ok(&[
+        "run",
+        &cfg,
+        "--variant",
+        &variant,
+        "--set",
+        "contact.mu=0.8",
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["name"], "box+pre");
+    assert_eq!(summary["variant"]["rest_length_ratio"], 0.85);
+    assert_eq!(summary["variant"]["mu"], 0.8);
+    // The base config's own keys stay.
+    assert_eq!(summary["variant"]["t_max"], 3.0);
+    // A bad variant value is refused, naming the file and the key.
+    let bad = write_config(
+        dir.path(),
+        "bad.toml",
+        "name = \"bad\"\n[simulation]\ncontact.mu = -1\n",
+    );
+    run_err(
+        &["run", &cfg, "--variant", &bad, "--fake-sim", "0"],
+        &["simulation.contact.mu: -1 is invalid"],
+    );
+}
+
+#[test]
+fn every_committed_variant_and_sensitivity_file_is_valid() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut n = 0;
+    for sub in ["variants", "sensitivity"] {
+        for entry in std::fs::read_dir(workspace().join("configs").join(sub)).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_stem().unwrap().to_str().unwrap().to_string();
+            let text = std::fs::read_to_string(&path).unwrap();
+            // The file names itself, so results say which variant made them.
+            assert!(
+                text.contains(&format!("name = \"{name}\"")),
+                "{}: name must match the file name",
+                path.display()
+            );
+            // It layers over a scan config (name, description and valid
+            // [simulation] keys only), and `simulate --config` reads it too.
+            let out = tmp.path().join(&name);
+            let smoke = config("smoke");
+            let file = path.to_str().unwrap();
+            run_ok(&[
+                "run",
+                smoke.to_str().unwrap(),
+                "--variant",
+                file,
+                "--out",
+                out.to_str().unwrap(),
+                "--fake-sim",
+                "0",
+            ]);
+            let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+            assert!(summary.contains(&format!("\"smoke+{name}\"")), "{summary}");
+            run_ok(&[
+                "simulate",
+                "--length",
+                "0.8",
+                "--rho",
+                "2.5",
+                "--alpha",
+                "0.125",
+                "--fn",
+                "3.269",
+                "--zeta",
+                "0.0514",
+                "--phi",
+                "0.15",
+                "--config",
+                file,
+                "--fake-sim",
+            ]);
+            n += 1;
+        }
+    }
+    assert!(n >= 20, "only {n} files");
 }

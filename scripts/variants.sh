@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The variant study of MODEL.md §9 (issue 4): for every model variant in
+# configs/variants/ (or those named as arguments), measure with rtw-scan
+#   * the Fig. 7(a) gait            -> results/variants/<v>/fig7a.json
+#   * the Fig. S3 slope sweep       -> results/variants/<v>/fig-s3/
+#   * the 1000-sample paper scan    -> results/variants/<v>/paper/
+# then tabulate every variant against the paper's targets
+#   -> results/variants/summary.md, summary.json   (scripts/variants_report.py)
+#
+#   ./scripts/variants.sh                      # all variants (~1 min each on 2 cores)
+#   ./scripts/variants.sh literal prestress-0.85
+#   REPORT_ONLY=1 ./scripts/variants.sh        # re-tabulate existing results
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ $# -gt 0 ]; then
+  variants=("$@")
+else
+  variants=()
+  for f in configs/variants/*.toml; do variants+=("$(basename "$f" .toml)"); done
+fi
+
+if [ -z "${REPORT_ONLY:-}" ]; then
+  cargo build --release -q -p rtw-scan
+  scan=target/release/rtw-scan
+  # The Fig. 7(a) point (main article; MODEL.md §8).
+  fig7a=(--length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15)
+  for v in "${variants[@]}"; do
+    file=configs/variants/$v.toml
+    out=results/variants/$v
+    echo "== $v"
+    rm -rf "$out"
+    mkdir -p "$out"
+    $scan simulate "${fig7a[@]}" --config "$file" --json >"$out/fig7a.json"
+    $scan run configs/fig-s3.toml --variant "$file" --out "$out/fig-s3" >/dev/null
+    $scan run configs/paper.toml --variant "$file" --out "$out/paper" >/dev/null
+  done
+fi
+
+./scripts/venv.sh
+.venv/bin/python scripts/variants_report.py results/variants

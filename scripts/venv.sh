@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Creates (once) the project's Python venv in .venv and installs
+# scripts/requirements.txt into it. Used by the test command, the figures
+# and the report scripts; safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
+.venv/bin/pip install --quiet --disable-pip-version-check -r scripts/requirements.txt
