@@ -352,10 +352,10 @@ def failure_rates(scan: Scan, out: Path, nbins: int = 8) -> Path:
         kc = np.bincount(b, weights=collapse.astype(float), minlength=nbins)
         centres = 0.5 * (edges[1:] + edges[:-1])
         rate = np.divide(k, n, out=np.zeros(nbins), where=n > 0)
-        wl, wh = wilson(k, n)
+        wl, wh = wilson(k, n)  # at k = 0 the lower end is 0 up to rounding: clipped below
         ax.axhspan(100 * lo_all[0], 100 * hi_all[0], color="#dddddd", zorder=0)
         ax.axhline(100 * overall, color="#888888", lw=1, zorder=1)
-        ax.errorbar(centres, 100 * rate, yerr=[100 * (rate - wl), 100 * (wh - rate)], fmt="o-", color="black",
+        ax.errorbar(centres, 100 * rate, yerr=100 * np.clip([rate - wl, wh - rate], 0, None), fmt="o-", color="black",
                     capsize=3, lw=1.2, zorder=3)
         ax.plot(centres, 100 * np.divide(kc, n, out=np.zeros(nbins), where=n > 0), "^--",
                 color=OUTCOME_COLOR["collapse"], lw=1, ms=5, zorder=2)
@@ -404,6 +404,8 @@ class Gait:
     caption: str
     params: dict
     sets: list[str]
+    # A config whose [simulation] table the run takes first (then `sets`).
+    config: Path | None = None
 
 
 def simulate(binary: Path, g: Gait, trace: Path) -> dict:
@@ -411,6 +413,8 @@ def simulate(binary: Path, g: Gait, trace: Path) -> dict:
     args = [str(binary), "simulate"]
     for key in ("length", "rho", "alpha", "fn", "zeta", "phi"):
         args += [f"--{key}", repr(float(g.params[key]))]
+    if g.config is not None:
+        args += ["--config", str(g.config)]
     for s in g.sets + [f"trace_dt={TRACE_DT}"]:
         args += ["--set", s]
     args += ["--json", "--trace", str(trace)]
@@ -534,18 +538,22 @@ def timeline(ax_modes, ax_state, tr: pl.DataFrame, t0: float, t1: float, frames:
 
 def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: int = 8) -> Path:
     crawl = pick_crawl(paper)
+    paper_config = data_dir / "paper-config.toml"
+    paper_config.write_text((pq.read_metadata(paper.path).metadata or {})[b"rtw.config"].decode())
     fig7a_text = "Fig. 7(a) point: L = 0.8, ρ = 2.5, α = 0.125, f_n = 3.269, ζ = 0.0514, φ = 0.15"
     gaits = [
         Gait("walk", f"{fig7a_text}; prestressed strings s = ℓ₀/r = {PRESTRESSED}", FIG7A,
              [f"strings.rest_length_ratio={PRESTRESSED}"]),
         Gait("skip", f"{fig7a_text}; paper-faithful variant s = {PAPER_FAITHFUL:g} (S5–S6 literally)", FIG7A,
              [f"strings.rest_length_ratio={PAPER_FAITHFUL}"]),
+        # The crawl is re-run with the paper scan's own [simulation] table (its
+        # variant, whatever the default is), so it is that scan's row again.
         Gait("crawl",
              f"paper-scan sample {crawl['sample_id']}: L = {crawl['length']:.2g}, ρ = {crawl['rho']:.3f}, "
              f"α = {crawl['alpha']:.3f}, f_n = {crawl['fn']:.3f}, ζ = {crawl['zeta']:.4f}, φ = {crawl['phi']:.3f}; "
-             f"s = {PRESTRESSED}",
+             f"the paper scan's {variant_tag(paper.variant)}",
              {k: crawl[k] for k in ("length", "rho", "alpha", "fn", "zeta", "phi")},
-             [f"strings.rest_length_ratio={PRESTRESSED}"]),
+             [], paper_config),
     ]
     fig = plt.figure(figsize=(15, 5.0 * len(gaits)))
     outer = fig.add_gridspec(len(gaits), 1, hspace=0.32, top=0.955, bottom=0.04, left=0.06, right=0.99)
@@ -555,6 +563,8 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
         tr = pl.read_parquet(trace_file)
         if m["outcome"] != g.name:
             print(f"figures: warning: the {g.name} example came out {m['outcome']}", file=sys.stderr)
+        if g.name == "crawl" and m["tlsp"] != crawl["tlsp"]:
+            sys.exit(f"figures: sample {crawl['sample_id']} re-run gives TLSP {m['tlsp']}, the scan {crawl['tlsp']}")
         length = float(g.params["length"])
         r = float(m["r"])
         check_geometry(tr, length, r)
