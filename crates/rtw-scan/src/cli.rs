@@ -136,6 +136,10 @@ struct ClusterArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
+    /// Also write each failed sample's cluster to this Parquet file (sample_id, cluster, cluster_name,
+    /// outcome, alpha, fn, phi; the clustering as JSON in its `rtw.clusters` metadata).
+    #[arg(long, value_name = "FILE.parquet")]
+    assignments: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -316,6 +320,21 @@ fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
     let k =
         a.k.map_or(data.config.cluster.k as usize, NonZeroUsize::get);
     let clusters = data.clusters(Some(k));
+    if let Some(path) = &a.assignments {
+        let fc = clusters.as_ref().ok_or_else(|| {
+            anyhow!(
+                "--assignments: {} failed samples (collapse or stall) in {}, fewer than k = {k}: nothing to cluster",
+                data.failures.len(),
+                a.samples.display()
+            )
+        })?;
+        let meta = vec![
+            kv(output::META_VERSION, env!("CARGO_PKG_VERSION").into()),
+            kv(output::META_SEED, data.config.seed.to_string()),
+        ];
+        output::write_assignments(path, &data.failures, fc, meta)
+            .with_context(|| format!("--assignments {}", path.display()))?;
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&clusters)?);
     } else {

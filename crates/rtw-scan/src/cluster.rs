@@ -212,6 +212,8 @@ pub const SILHOUETTE_MAX_POINTS: usize = 5000;
 /// One failed sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Failure {
+    /// Its row's `sample_id`, so a cluster member can be traced back to its sample.
+    pub sample_id: u64,
     pub alpha: f64,
     pub f_n: f64,
     pub phi: f64,
@@ -244,6 +246,11 @@ pub struct FailureClusters {
     pub silhouette: Option<f64>,
     /// Inertia in the standardized space.
     pub inertia: f64,
+    /// Cluster (index into `clusters`) of each failure, in the order given to
+    /// [`cluster_failures`]; written by `cluster --assignments`, kept out of
+    /// the summary JSON (one entry per failure).
+    #[serde(skip)]
+    pub assignment: Vec<usize>,
 }
 
 /// Clusters the failures on standardized (α, f_n, φ). `None` when there are
@@ -312,6 +319,7 @@ pub fn cluster_failures(
         clusters,
         silhouette,
         inertia: km.inertia,
+        assignment: km.assignment,
     })
 }
 
@@ -389,6 +397,7 @@ mod tests {
         for i in 0..30 {
             // Small α with low f_n: collapses (one stall among them).
             failures.push(Failure {
+                sample_id: i,
                 alpha: 0.02 + 0.05 * rng.random::<f64>(),
                 f_n: 1.6 + 0.5 * rng.random::<f64>(),
                 phi: 0.1 + 0.15 * rng.random::<f64>(),
@@ -399,9 +408,10 @@ mod tests {
                 },
             });
         }
-        for _ in 0..20 {
+        for i in 30..50 {
             // Any α, high f_n, small φ: stalls.
             failures.push(Failure {
+                sample_id: i,
                 alpha: 0.4 * rng.random::<f64>(),
                 f_n: 3.5 + 1.5 * rng.random::<f64>(),
                 phi: 0.05 + 0.02 * rng.random::<f64>(),
@@ -423,6 +433,10 @@ mod tests {
         assert!(c0.alpha < 0.07 && c0.f_n < 2.1, "{c0:?}");
         assert!(c1.phi < 0.07 && c1.f_n > 3.5, "{c1:?}");
         assert!(fc.silhouette.unwrap() > 0.4);
+        // The assignment follows the input order: the 30 collapses' blob is cluster 0.
+        assert_eq!(fc.assignment.len(), 50);
+        assert!(fc.assignment[..30].iter().all(|a| *a == 0));
+        assert!(fc.assignment[30..].iter().all(|a| *a == 1));
         assert!(cluster_failures(&failures[..1], 2, 1, 10).is_none());
     }
 }

@@ -12,13 +12,14 @@
 //! [`Label::ALL`] (pandas and polars read it as categorical); floats are
 //! `Float64`, counts `Int64`; compression is zstd.
 
+use crate::cluster::{Failure, FailureClusters};
 use crate::config::{ScanConfig, Variant};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow::array::{
     Array, ArrayRef, AsArray, DictionaryArray, Float64Array, Int8Array, Int32Array, Int64Array,
     RecordBatch, StringArray,
 };
-use arrow::datatypes::{DataType, Field, Float64Type, Int32Type, Schema, SchemaRef};
+use arrow::datatypes::{DataType, Field, Float64Type, Int32Type, Int64Type, Schema, SchemaRef};
 use parquet::arrow::ArrowWriter;
 use parquet::arrow::arrow_reader::{ParquetRecordBatchReader, ParquetRecordBatchReaderBuilder};
 use parquet::basic::{Compression, ZstdLevel};
@@ -456,6 +457,76 @@ pub fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64A
         .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
     col.as_primitive_opt::<Float64Type>()
         .ok_or_else(|| anyhow!("column `{name}` is {}, expected Float64", col.data_type()))
+}
+
+/// An `Int64` column of a scan batch, by name.
+pub fn i64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Int64Array> {
+    let col = batch
+        .column_by_name(name)
+        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
+    col.as_primitive_opt::<Int64Type>()
+        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Int64", col.data_type()))
+}
+
+/// Metadata key of an assignments file: the clustering (centres, sizes,
+/// cross-table) as JSON, exactly what `cluster --json` prints.
+pub const META_CLUSTERS: &str = "rtw.clusters";
+
+/// Writes the cluster of each failed sample (`cluster --assignments`): one
+/// row per failure with `sample_id`, `cluster` (1-based, the row of the
+/// cluster table), `cluster_name`, `outcome` (collapse or stall) and the
+/// clustered coordinates `alpha`, `fn`, `phi`; the clustering itself goes in
+/// the file's metadata under [`META_CLUSTERS`].
+pub fn write_assignments(
+    dest: &Path,
+    failures: &[Failure],
+    clusters: &FailureClusters,
+    mut metadata: Vec<KeyValue>,
+) -> Result<()> {
+    let f64s = |g: fn(&Failure) -> f64| -> ArrayRef {
+        Arc::new(failures.iter().map(g).collect::<Float64Array>())
+    };
+    let batch = RecordBatch::try_from_iter([
+        (
+            "sample_id",
+            Arc::new(
+                failures
+                    .iter()
+                    .map(|f| f.sample_id as i64)
+                    .collect::<Int64Array>(),
+            ) as ArrayRef,
+        ),
+        (
+            "cluster",
+            Arc::new(
+                clusters
+                    .assignment
+                    .iter()
+                    .map(|a| *a as i64 + 1)
+                    .collect::<Int64Array>(),
+            ),
+        ),
+        (
+            "cluster_name",
+            Arc::new(StringArray::from_iter_values(
+                clusters
+                    .assignment
+                    .iter()
+                    .map(|a| clusters.clusters[*a].name.as_str()),
+            )),
+        ),
+        (
+            "outcome",
+            Arc::new(StringArray::from_iter_values(
+                failures.iter().map(|f| f.label.as_str()),
+            )),
+        ),
+        ("alpha", f64s(|f| f.alpha)),
+        ("fn", f64s(|f| f.f_n)),
+        ("phi", f64s(|f| f.phi)),
+    ])?;
+    metadata.push(kv(META_CLUSTERS, serde_json::to_string(clusters)?));
+    write_file(dest, &batch, metadata)
 }
 
 /// The `outcome` column of a scan batch, decoded to labels.

@@ -111,6 +111,7 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
         let batch = batch.with_context(|| format!("reading {}", path.display()))?;
         let ctx = || format!("{}", path.display());
         let labels = output::label_column(&batch).with_context(ctx)?;
+        let sample_id = output::i64_column(&batch, "sample_id").with_context(ctx)?;
         let alpha = output::f64_column(&batch, "alpha").with_context(ctx)?;
         let f_n = output::f64_column(&batch, "fn").with_context(ctx)?;
         let phi = output::f64_column(&batch, "phi").with_context(ctx)?;
@@ -120,6 +121,7 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
             data.counts[li] += 1;
             if label.is_failure() {
                 data.failures.push(Failure {
+                    sample_id: sample_id.value(i) as u64,
                     alpha: alpha.value(i),
                     f_n: f_n.value(i),
                     phi: phi.value(i),

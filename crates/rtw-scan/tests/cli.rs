@@ -516,6 +516,151 @@ fn summary_and_cluster_commands_redo_the_steps_from_the_file() {
 }
 
 #[test]
+fn cluster_assignments_name_every_failure_once_and_match_the_summary() {
+    use arrow::array::{AsArray, Float64Array, Int64Array, StringArray};
+    use std::collections::BTreeMap;
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &paper_like(150, 4));
+    let out = dir.path().join("o");
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+    ]);
+    let samples = out.join("samples.parquet");
+    let assign = dir.path().join("assign.parquet");
+    let o = run_ok(&[
+        "cluster",
+        samples.to_str().unwrap(),
+        "--json",
+        "--assignments",
+        assign.to_str().unwrap(),
+    ]);
+    let printed: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+
+    // The failed samples of the scan itself: sample_id → (outcome, alpha, fn, phi) as printed.
+    let field = |r: &[String], name: &str| {
+        r.iter()
+            .find_map(|c| c.strip_prefix(&format!("{name}=")).map(str::to_string))
+            .unwrap()
+    };
+    let failed: BTreeMap<i64, [String; 4]> = rows(&samples)
+        .iter()
+        .filter(|r| ["collapse", "stall"].contains(&field(r, "outcome").as_str()))
+        .map(|r| {
+            (
+                field(r, "sample_id").parse().unwrap(),
+                ["outcome", "alpha", "fn", "phi"].map(|n| field(r, n)),
+            )
+        })
+        .collect();
+    for kind in ["collapse", "stall"] {
+        assert!(
+            failed.values().filter(|f| f[0] == kind).count() >= 5,
+            "the fake scan has {kind} failures"
+        );
+    }
+
+    let mut seen: BTreeMap<i64, [String; 4]> = BTreeMap::new();
+    let mut sizes: BTreeMap<i64, u64> = BTreeMap::new();
+    let mut kinds: BTreeMap<(i64, String), u64> = BTreeMap::new();
+    for b in batches(&assign) {
+        let col = |n: &str| {
+            b.column_by_name(n)
+                .unwrap_or_else(|| panic!("no column {n}"))
+        };
+        let id = col("sample_id")
+            .as_any()
+            .downcast_ref::<Int64Array>()
+            .unwrap();
+        let cluster = col("cluster")
+            .as_any()
+            .downcast_ref::<Int64Array>()
+            .unwrap();
+        let outcome = col("outcome")
+            .as_any()
+            .downcast_ref::<StringArray>()
+            .unwrap();
+        let name = col("cluster_name").as_string::<i32>();
+        let f = |n: &str| {
+            col(n)
+                .as_any()
+                .downcast_ref::<Float64Array>()
+                .unwrap()
+                .clone()
+        };
+        let (alpha, f_n, phi) = (f("alpha"), f("fn"), f("phi"));
+        for i in 0..b.num_rows() {
+            let c = cluster.value(i);
+            let prev = seen.insert(
+                id.value(i),
+                [
+                    outcome.value(i).to_string(),
+                    alpha.value(i).to_string(),
+                    f_n.value(i).to_string(),
+                    phi.value(i).to_string(),
+                ],
+            );
+            assert!(prev.is_none(), "sample {} listed twice", id.value(i));
+            *sizes.entry(c).or_default() += 1;
+            *kinds.entry((c, outcome.value(i).to_string())).or_default() += 1;
+            let row = &printed["clusters"][(c - 1) as usize];
+            assert_eq!(row["name"], name.value(i), "cluster {c}: name");
+        }
+    }
+    // Every failed sample exactly once, with its own outcome and coordinates.
+    assert_eq!(seen, failed);
+    // Cluster sizes and the kind cross-table are those of `cluster --json`.
+    let clusters = printed["clusters"].as_array().unwrap();
+    assert_eq!(sizes.len(), clusters.len());
+    for (j, c) in clusters.iter().enumerate() {
+        let j = j as i64 + 1;
+        assert_eq!(sizes[&j], c["size"].as_u64().unwrap(), "cluster {j}: size");
+        for kind in ["collapse", "stall"] {
+            let n = kinds.get(&(j, kind.to_string())).copied().unwrap_or(0);
+            assert_eq!(n, c[kind].as_u64().unwrap(), "cluster {j}: {kind}");
+        }
+    }
+    // ... and those of the run's summary, which the file's metadata repeats.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["clusters"], printed);
+    let f = std::fs::File::open(&assign).unwrap();
+    let meta = parquet::file::reader::FileReader::metadata(
+        &parquet::file::serialized_reader::SerializedFileReader::new(f).unwrap(),
+    )
+    .file_metadata()
+    .key_value_metadata()
+    .unwrap()
+    .iter()
+    .find(|kv| kv.key == "rtw.clusters")
+    .and_then(|kv| kv.value.clone())
+    .unwrap();
+    assert_eq!(
+        serde_json::from_str::<serde_json::Value>(&meta).unwrap(),
+        printed
+    );
+
+    // Fewer failures than clusters: a clear error, and no file.
+    let none = dir.path().join("none.parquet");
+    run_err(
+        &[
+            "cluster",
+            samples.to_str().unwrap(),
+            "--k",
+            "1000",
+            "--assignments",
+            none.to_str().unwrap(),
+        ],
+        &["--assignments", "fewer than k = 1000"],
+    );
+    assert!(!none.exists());
+}
+
+#[test]
 fn simulate_prints_flat_json_and_validates_input() {
     let base = [
         "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269",

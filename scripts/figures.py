@@ -1,0 +1,646 @@
+"""Every figure of results/figures/ from rtw-scan's output (issue 4, item 3).
+
+Run through scripts/figures.sh, which sets up the venv and builds rtw-scan.
+Inputs: the scans results/paper, results/fig-s2 and results/fig-s3
+(samples.parquet each), rtw-scan's own k-means assignment of the paper
+scan's failures (`rtw-scan cluster --assignments`), and three trajectories
+this script records with `rtw-scan simulate --trace` for the gait gallery.
+Nothing here recomputes a simulation result: every number drawn is read
+from a file rtw-scan wrote, or from `rtw-scan simulate --json`.
+
+    python scripts/figures.py --bin target/release/rtw-scan [--out results/figures]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import polars as pl  # noqa: E402
+import pyarrow.parquet as pq  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch, Polygon  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+DPI = 130
+
+# Outcome styles, shared by every figure.
+OUTCOME_COLOR = {
+    "skip": "#d95f02",
+    "walk": "#1b9e77",
+    "crawl": "#7570b3",
+    "collapse": "#e7298a",
+    "stall": "#666666",
+    "diverged": "#000000",
+}
+STABLE = ("skip", "walk", "crawl")
+FAILED = ("collapse", "stall")
+STATE_NAMES = ("NLSP", "SLSP", "DLSP", "TLSP")
+STATE_COLOR = {"NLSP": "#e6ab02", "SLSP": "#1f78b4", "DLSP": "#33a02c", "TLSP": "#6a3d9a"}
+ROD_COLOR = ("#1f77b4", "#d62728", "#2ca02c")  # rods a, b, c
+CLUSTER_COLOR = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf")
+KIND_MARKER = {"collapse": "^", "stall": "o"}
+
+# The article's walking example (Fig. 7(a), MODEL.md §1), for the gait gallery.
+FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
+# The variant that walks there (MODEL.md §9) and the paper-faithful one (S5–S6 literally).
+PRESTRESSED = 0.85
+PAPER_FAITHFUL = 0.0
+# Trace sampling for the gait gallery (events are recorded as well).
+TRACE_DT = 0.004
+
+
+# --------------------------------------------------------------------- inputs
+
+
+@dataclass
+class Scan:
+    """A scan's rows with the metadata rtw-scan stored in the file."""
+
+    path: Path
+    df: pl.DataFrame
+    variant: str
+    config: dict
+
+    @classmethod
+    def read(cls, path: Path) -> "Scan":
+        if not path.exists():
+            sys.exit(
+                f"figures: {path} is missing: run the scan first "
+                f"(cargo run --release -p rtw-scan -- run configs/{path.parent.name}.toml)"
+            )
+        meta = pq.read_metadata(path).metadata or {}
+        variant = meta.get(b"rtw.variant", b"(unknown variant)").decode()
+        config = tomllib.loads(meta.get(b"rtw.config", b"").decode())
+        df = pl.read_parquet(path).with_columns(pl.col("outcome").cast(pl.Utf8))
+        return cls(path, df, variant, config)
+
+    def footer(self) -> str:
+        name = self.path.relative_to(ROOT) if self.path.is_relative_to(ROOT) else self.path
+        return f"{name} · model variant: {self.variant}"
+
+
+# The §1–§6 defaults (MODEL.md); a title names only what a variant changes.
+DEFAULTS = {"mu": "inf", "slack": "false", "damping": "along", "normalization": "supplementary",
+            "initial": "rigid_star(omega=-2)"}
+
+
+def variant_tag(variant: str) -> str:
+    """A short name of a model variant for titles: s = ℓ₀/r and every §9 option off its default."""
+    kv = dict(p.split("=", 1) for p in variant.split() if "=" in p)
+    s = float(kv.get("rest_length_ratio", "nan"))
+    tag = f"s = {s:g}" + (" (paper-faithful S5–S6)" if s == 0 else " (prestressed strings)")
+    rest = [f"{k}={v}" for k, v in kv.items() if k in DEFAULTS and v != DEFAULTS[k]]
+    return "variant " + ", ".join([tag] + rest)
+
+
+def add_footer(fig, text: str) -> None:
+    """The data source and full variant, as the figure's bottom label (constrained layout makes room)."""
+    fig.supxlabel(text, fontsize=7.5, color="#444444", wrap=True)
+
+
+def save(fig, out: Path, name: str) -> Path:
+    path = out / f"{name}.png"
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    print(f"figures: wrote {path.relative_to(ROOT) if path.is_relative_to(ROOT) else path}")
+    return path
+
+
+def wilson(k: np.ndarray, n: np.ndarray, z: float = 1.959963984540054) -> tuple[np.ndarray, np.ndarray]:
+    """Wilson score 95 % interval of k successes in n trials (as in rtw-scan's summary)."""
+    n = np.asarray(n, dtype=float)
+    p = np.divide(k, n, out=np.zeros_like(n), where=n > 0)
+    denom = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
+    return centre - half, centre + half
+
+
+# -------------------------------------------------------------------- Fig. S2
+
+
+def fig_s2(scan: Scan, out: Path) -> Path:
+    df = scan.df.sort("fn")
+    fn = df["fn"].to_numpy()
+    stable = df["outcome"].is_in(STABLE).to_numpy()
+    fig, ax = plt.subplots(figsize=(11, 5.8), constrained_layout=True)
+    lo, hi = fn.min(), fn.max()
+    grid = np.linspace(lo, hi, 2)
+    ax.plot(grid, grid, color="black", lw=1, ls="--", label=r"$f_w = f_n$")
+    ax.plot(grid, math.sqrt(3) * grid, color="black", lw=1, ls=":", label=r"$f_w = \sqrt{3}\,f_n$ (true mode, MODEL.md §7)")
+    # Squares (new-foot rate) under circles (all touchdowns): where the two
+    # definitions agree, a dot sits inside a square.
+    for col, marker, size, ls, name in (
+        ("f_w_newfoot", "s", 70, "--", r"$f_w^{\rm new}$: touchdowns on a new foot per second (hollow squares)"),
+        ("f_w", "o", 22, "-", r"$f_w$: all touchdowns per second (dots)"),
+    ):
+        y = df[col].to_numpy()
+        ax.plot(fn, y, color="#999999", lw=0.7, ls=ls, zorder=1)
+        for label in STABLE:
+            m = (df["outcome"] == label).to_numpy()
+            c = OUTCOME_COLOR[label]
+            ax.scatter(fn[m], y[m], marker=marker, s=size, edgecolors=c, zorder=3 if marker == "s" else 4,
+                       facecolors=c if marker == "o" else "white", linewidths=1.3)
+        ax.scatter(fn[~stable], y[~stable], marker="x", s=40, color="black", zorder=5)
+        ax.plot([], [], marker=marker, ls=ls, color="#555555", markersize=8 if marker == "s" else 5,
+                markerfacecolor="#555555" if marker == "o" else "white", label=name)
+    for label in STABLE:
+        n = int((df["outcome"] == label).sum())
+        ax.plot([], [], marker="o", ls="none", color=OUTCOME_COLOR[label], label=f"{label} ({n} of {len(df)})")
+    n_failed = int((~stable).sum())
+    ax.plot([], [], marker="x", ls="none", color="black", label=f"not stable ({n_failed}): collapse/stall/diverged")
+    ax.set_xlabel(r"design eigen-frequency $f_n$ [Hz]")
+    ax.set_ylabel(r"walking frequency $f_w$ [Hz]")
+    p = df.row(0, named=True)
+    ax.set_title(
+        "Fig. S2: walking frequency against $f_n$\n"
+        f"L = {p['length']}, ρ = {p['rho']}, α = {p['alpha']}, ζ = {p['zeta']}, φ = {p['phi']} rad; "
+        f"{variant_tag(scan.variant)}",
+        fontsize=10,
+    )
+    ax.set_xlim(lo - 0.1, hi + 0.1)
+    ax.set_ylim(0, max(math.sqrt(3) * hi, np.nanmax(df["f_w"].to_numpy())) * 1.05)
+    ax.grid(alpha=0.3)
+    fig.legend(fontsize=8, loc="outside right upper")
+    add_footer(fig, scan.footer())
+    return save(fig, out, "fig-s2")
+
+
+# -------------------------------------------------------------------- Fig. S3
+
+
+def fig_s3(scan: Scan, out: Path) -> Path:
+    lengths = sorted(scan.df["length"].unique().to_list())
+    fig, axes = plt.subplots(1, len(lengths), figsize=(4.6 * len(lengths) + 2.6, 5.0), sharey=True,
+                             constrained_layout=True, squeeze=False)
+    for ax, length in zip(axes[0], lengths):
+        df = scan.df.filter(pl.col("length") == length).sort("phi")
+        phi = df["phi"].to_numpy()
+        ok = df["outcome"].is_in(STABLE).to_numpy()
+        ax.axhline(50, color="black", lw=0.8, ls="--", zorder=0)
+        for state in STATE_NAMES:
+            y = 100 * df[state.lower()].to_numpy()
+            c = STATE_COLOR[state]
+            ax.plot(phi, y, color=c, lw=1.4, zorder=2)
+            ax.scatter(phi[ok], y[ok], color=c, s=26, zorder=3)
+            ax.scatter(phi[~ok], y[~ok], facecolors="white", edgecolors=c, s=26, zorder=3, linewidths=1.2)
+        # The outcome of each point, as a letter strip along the top.
+        for x, label in zip(phi, df["outcome"].to_list()):
+            ax.text(x, 103, label[0].upper() if label in STABLE else "×", ha="center", va="bottom",
+                    fontsize=8, color=OUTCOME_COLOR[label], fontweight="bold")
+        ax.set_title(f"L = {length} m", fontsize=10)
+        ax.set_xlabel("slope φ [rad]")
+        ax.set_ylim(-3, 110)
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("time in contact state [% of analysis window]")
+    handles = [Line2D([], [], color=STATE_COLOR[s], marker="o", label=s) for s in STATE_NAMES]
+    handles += [
+        Line2D([], [], color="#555555", marker="o", markerfacecolor="white", ls="none", label="not stable (hollow)"),
+        Line2D([], [], color="black", ls="--", lw=0.8, label="50 % (paper: SLSP ≈ DLSP ≈ 50 %)"),
+    ]
+    handles += [Line2D([], [], color=OUTCOME_COLOR[k], marker=f"${k[0].upper()}$", ls="none", label=k) for k in STABLE]
+    handles += [Line2D([], [], color=OUTCOME_COLOR["stall"], marker="$×$", ls="none", label="collapse/stall")]
+    fig.legend(handles=handles, fontsize=8, loc="outside right upper")
+    p = scan.df.row(0, named=True)
+    fig.suptitle(
+        f"Fig. S3: contact-state fractions against slope; ρ = {p['rho']}, α = {p['alpha']}, "
+        f"f_n = {p['fn']} Hz, ζ = {p['zeta']}; {variant_tag(scan.variant)}",
+        fontsize=10,
+    )
+    add_footer(fig, scan.footer() + " · letters: outcome of each run (S skip, W walk, C crawl, × failed)")
+    return save(fig, out, "fig-s3")
+
+
+# -------------------------------------------------------------------- Fig. S4
+
+
+def cluster_assignments(binary: Path, samples: Path, out_file: Path) -> tuple[pl.DataFrame, dict]:
+    """rtw-scan's own k-means of the failures: per failure its cluster, and the centres."""
+    subprocess.run([str(binary), "cluster", str(samples), "--assignments", str(out_file)],
+                   check=True, stdout=subprocess.DEVNULL)
+    meta = pq.read_metadata(out_file).metadata
+    return pl.read_parquet(out_file), json.loads(meta[b"rtw.clusters"])
+
+
+def fig_s4(scan: Scan, binary: Path, data_dir: Path, out: Path) -> Path:
+    assign, clusters = cluster_assignments(binary, scan.path, data_dir / "paper-clusters.parquet")
+    fig = plt.figure(figsize=(12.5, 10.8), constrained_layout=True)
+    # A third, short row holds the legend (outside-legend placement collides
+    # with the suptitle or the footer under constrained layout).
+    gs = fig.add_gridspec(3, 2, height_ratios=[1, 1, 0.14])
+    ax3 = fig.add_subplot(gs[0, 0], projection="3d")
+    projections = [("alpha", "fn"), ("alpha", "phi"), ("fn", "phi")]
+    axes2 = [fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, 0]), fig.add_subplot(gs[1, 1])]
+    axis_label = {"alpha": "connection ratio α", "fn": "$f_n$ [Hz]", "phi": "slope φ [rad]"}
+    params = scan.config.get("params", {})
+    stable = scan.df.filter(pl.col("outcome").is_in(STABLE))
+
+    def style(j: int, kind: str) -> dict:
+        c = CLUSTER_COLOR[j % len(CLUSTER_COLOR)]
+        filled = kind == "collapse"
+        return dict(marker=KIND_MARKER[kind], s=30, edgecolors=c, facecolors=c if filled else "none",
+                    linewidths=1.1, alpha=0.9)
+
+    for j, c in enumerate(clusters["clusters"]):
+        for kind in FAILED:
+            sel = assign.filter((pl.col("cluster") == j + 1) & (pl.col("outcome") == kind))
+            if sel.is_empty():
+                continue
+            ax3.scatter(sel["alpha"], sel["fn"], sel["phi"], **style(j, kind))
+            for ax, (x, y) in zip(axes2, projections):
+                ax.scatter(sel[x], sel[y], **style(j, kind), zorder=3)
+        centre = {"alpha": c["alpha"], "fn": c["fn"], "phi": c["phi"]}
+        cc = CLUSTER_COLOR[j % len(CLUSTER_COLOR)]
+        ax3.scatter([centre["alpha"]], [centre["fn"]], [centre["phi"]], marker="*", s=420, color=cc,
+                    edgecolors="black", linewidths=1.2, depthshade=False)
+        for ax, (x, y) in zip(axes2, projections):
+            ax.scatter([centre[x]], [centre[y]], marker="*", s=420, color=cc, edgecolors="black",
+                       linewidths=1.2, zorder=5)
+    for ax, (x, y) in zip(axes2, projections):
+        ax.scatter(stable[x], stable[y], s=5, color="#cccccc", zorder=1)
+        ax.set_xlabel(axis_label[x])
+        ax.set_ylabel(axis_label[y])
+        for name, setter in ((x, ax.set_xlim), (y, ax.set_ylim)):
+            rng = params.get(name, {}).get("uniform") if isinstance(params.get(name), dict) else None
+            if rng:
+                pad = 0.03 * (rng[1] - rng[0])
+                setter(rng[0] - pad, rng[1] + pad)
+        ax.grid(alpha=0.3)
+    ax3.set_xlabel("α")
+    ax3.set_ylabel("$f_n$ [Hz]")
+    ax3.set_zlabel("φ [rad]")
+    ax3.view_init(elev=22, azim=-58)
+    handles = []
+    for j, c in enumerate(clusters["clusters"]):
+        cc = CLUSTER_COLOR[j % len(CLUSTER_COLOR)]
+        handles.append(Patch(color=cc, label=(
+            f"cluster {j + 1}: {c['name']} — {c['size']} ({c['collapse']} collapse, {c['stall']} stall); "
+            f"centre α = {c['alpha']:.3f}, f_n = {c['fn']:.2f} Hz, φ = {c['phi']:.3f}")))
+    handles += [
+        Line2D([], [], marker="^", color="#444444", ls="none", label="collapse (filled)"),
+        Line2D([], [], marker="o", color="#444444", markerfacecolor="none", ls="none", label="stall (hollow)"),
+        Line2D([], [], marker="*", color="#888888", markeredgecolor="black", markersize=14, ls="none",
+               label="cluster centre (rtw-scan k-means)"),
+        Line2D([], [], marker="o", color="#cccccc", markersize=4, ls="none", label="stable samples (2-D views)"),
+    ]
+    key = fig.add_subplot(gs[2, :])
+    key.axis("off")
+    key.legend(handles=handles, loc="center", ncol=2, fontsize=8.5, frameon=False)
+    sil = clusters.get("silhouette")
+    n = len(scan.df)
+    fig.suptitle(
+        f"Fig. S4: the {clusters['failures']} failures of {n} samples in (α, f_n, φ), "
+        f"k-means k = {clusters['k']} on standardized coordinates"
+        + (f", silhouette {sil:.2f}" if sil is not None else "")
+        + f"\n{variant_tag(scan.variant)}",
+        fontsize=11,
+    )
+    add_footer(fig, scan.footer() + " · clusters: rtw-scan cluster --assignments")
+    return save(fig, out, "fig-s4")
+
+
+# ------------------------------------------------------- failure rate (binned)
+
+
+def permutation_p(bins: np.ndarray, failed: np.ndarray, nbins: int, rounds: int, seed: int) -> tuple[float, float]:
+    """χ² of failure against bin, and its permutation p-value (failure labels shuffled)."""
+
+    def chi2(f: np.ndarray) -> float:
+        n = np.bincount(bins, minlength=nbins).astype(float)
+        k = np.bincount(bins, weights=f, minlength=nbins)
+        p = f.mean()
+        expected_k, expected_ok = n * p, n * (1 - p)
+        m = n > 0
+        return float((((k - expected_k) ** 2 / expected_k)[m]).sum() + (((n - k - expected_ok) ** 2 / expected_ok)[m]).sum())
+
+    observed = chi2(failed)
+    rng = np.random.default_rng(seed)
+    more = sum(chi2(rng.permutation(failed)) >= observed for _ in range(rounds))
+    return observed, (more + 1) / (rounds + 1)
+
+
+def failure_rates(scan: Scan, out: Path, nbins: int = 8) -> Path:
+    df = scan.df
+    failed = df["outcome"].is_in(FAILED).to_numpy().astype(float)
+    collapse = (df["outcome"] == "collapse").to_numpy()
+    overall = failed.mean()
+    lo_all, hi_all = wilson(np.array([failed.sum()]), np.array([len(failed)]))
+    names = [("rho", "ρ [kg/m]"), ("zeta", "ζ"), ("alpha", "α"), ("fn", "$f_n$ [Hz]"), ("phi", "φ [rad]")]
+    params = scan.config.get("params", {})
+    fig, grid = plt.subplots(2, 3, figsize=(13, 8.2), constrained_layout=True)
+    axes = grid.flat
+    for ax, (col, label) in zip(axes, names):
+        x = df[col].to_numpy()
+        spec = params.get(col)
+        lo, hi = spec["uniform"] if isinstance(spec, dict) and "uniform" in spec else (x.min(), x.max())
+        edges = np.linspace(lo, hi, nbins + 1)
+        b = np.clip(np.digitize(x, edges) - 1, 0, nbins - 1)
+        n = np.bincount(b, minlength=nbins)
+        k = np.bincount(b, weights=failed, minlength=nbins)
+        kc = np.bincount(b, weights=collapse.astype(float), minlength=nbins)
+        centres = 0.5 * (edges[1:] + edges[:-1])
+        rate = np.divide(k, n, out=np.zeros(nbins), where=n > 0)
+        wl, wh = wilson(k, n)  # at k = 0 the lower end is 0 up to rounding: clipped below
+        ax.axhspan(100 * lo_all[0], 100 * hi_all[0], color="#dddddd", zorder=0)
+        ax.axhline(100 * overall, color="#888888", lw=1, zorder=1)
+        ax.errorbar(centres, 100 * rate, yerr=100 * np.clip([rate - wl, wh - rate], 0, None), fmt="o-", color="black",
+                    capsize=3, lw=1.2, zorder=3)
+        ax.plot(centres, 100 * np.divide(kc, n, out=np.zeros(nbins), where=n > 0), "^--",
+                color=OUTCOME_COLOR["collapse"], lw=1, ms=5, zorder=2)
+        ax.plot(centres, 100 * np.divide(k - kc, n, out=np.zeros(nbins), where=n > 0), "o--",
+                color=OUTCOME_COLOR["stall"], lw=1, ms=4, mfc="white", zorder=2)
+        rounds = 2000
+        stat, p = permutation_p(b, failed, nbins, rounds=rounds, seed=1)
+        # No shuffle reached the observed χ²: p is only bounded by the number of shuffles.
+        p_text = f"< {1 / rounds:.1g}" if p <= 1 / (rounds + 1) else f"= {p:.2g}"
+        ax.set_title(f"{label.split(' ')[0]}:  χ² = {stat:.1f} ({nbins - 1} dof), permutation p {p_text}")
+        ax.set_xlabel(label)
+        ax.set_xlim(lo, hi)
+        ax.set_ylim(bottom=-2)
+        ax.grid(alpha=0.3)
+    for ax in (grid[0][0], grid[1][0]):
+        ax.set_ylabel("failure rate [% of samples in bin]")
+    ymax = max(ax.get_ylim()[1] for ax in grid.flat[:5])
+    for ax in grid.flat[:5]:
+        ax.set_ylim(-2, ymax)
+    key = grid[1][2]
+    key.axis("off")
+    key.legend(handles=[
+        Line2D([], [], marker="o", color="black", label="failed (collapse + stall), Wilson 95 % interval"),
+        Line2D([], [], marker="^", ls="--", color=OUTCOME_COLOR["collapse"], label="collapse"),
+        Line2D([], [], marker="o", ls="--", mfc="white", color=OUTCOME_COLOR["stall"], label="stall"),
+        Patch(color="#dddddd", label=f"overall failure rate {100 * overall:.1f} % and its interval"),
+    ], loc="upper left", fontsize=9, frameon=False)
+    key.text(0.0, 0.45,
+             f"{len(df)} samples, {nbins} equal bins over each\nparameter's sampled range.\n\n"
+             f"χ²: failure against bin (2 × {nbins} table);\n"
+             "p: share of 2000 shuffles of the failure\nlabels with χ² at least as large\n"
+             "(small p: the rate depends on the parameter).\n\n"
+             "Paper (Fig. S4): failure is nearly independent\nof ρ and ζ.",
+             transform=key.transAxes, va="top", fontsize=9)
+    fig.suptitle(f"Failure rate against each parameter — paper scan, {variant_tag(scan.variant)}", fontsize=11)
+    add_footer(fig, scan.footer())
+    return save(fig, out, "failure-rate")
+
+
+# --------------------------------------------------------------- gait gallery
+
+
+@dataclass
+class Gait:
+    name: str
+    caption: str
+    params: dict
+    sets: list[str]
+    # A config whose [simulation] table the run takes first (then `sets`).
+    config: Path | None = None
+
+
+def simulate(binary: Path, g: Gait, trace: Path) -> dict:
+    """One traced run: `rtw-scan simulate ... --json --trace`; returns its metrics."""
+    args = [str(binary), "simulate"]
+    for key in ("length", "rho", "alpha", "fn", "zeta", "phi"):
+        args += [f"--{key}", repr(float(g.params[key]))]
+    if g.config is not None:
+        args += ["--config", str(g.config)]
+    for s in g.sets + [f"trace_dt={TRACE_DT}"]:
+        args += ["--set", s]
+    args += ["--json", "--trace", str(trace)]
+    print("figures: " + " ".join(args[1:]), file=sys.stderr)
+    res = subprocess.run(args, check=True, capture_output=True, text=True)
+    return json.loads(res.stdout)
+
+
+def pick_crawl(paper: Scan) -> dict:
+    """The paper scan's clearest crawl: the largest TLSP fraction among periodic
+    crawls (period ≥ 1), else among all crawls."""
+    crawls = paper.df.filter(pl.col("outcome") == "crawl")
+    if crawls.is_empty():
+        sys.exit(f"figures: no crawl in {paper.path}: the gait gallery needs one")
+    periodic = crawls.filter(pl.col("period") >= 1)
+    pool = periodic if not periodic.is_empty() else crawls
+    return pool.sort("tlsp", descending=True).row(0, named=True)
+
+
+def rod_points(x: float, y: float, th: float, half: float, r: float):
+    """Tips c ± (L/2) e and connection points c ± r e (geometry.rs)."""
+    e = np.array([math.cos(th), math.sin(th)])
+    c = np.array([x, y])
+    return (c + half * e, c - half * e), (c + r * e, c - r * e)
+
+
+# Spokes in angular order a+, b+, c+, a−, b−, c−; string j joins spoke j and j+1 (strings.rs).
+SPOKES = [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (2, 1)]
+
+
+def check_geometry(tr: pl.DataFrame, length: float, r: float) -> None:
+    """The drawing's geometry must be the model's: every foot the trace says is
+    on the ground (contact code ±1 stick, ±2 slide on tip ±) lies on y = 0
+    (the tip sign convention), and in the first sample, the rest star, the six
+    strings drawn are all r long (spokes of length r at 60°: the string order).
+    Fails loudly rather than draw a wrong picture."""
+    worst = 0.0
+    for row in tr.iter_rows(named=True):
+        for rod in "abc":
+            code = int(row[f"contact_{rod}"])
+            if code:
+                tips, _ = rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)
+                worst = max(worst, abs(tips[0 if code > 0 else 1][1]))
+    if worst > 1e-6 * length:
+        sys.exit(f"figures: a foot in contact is drawn {worst:.3g} m off the ground: geometry mismatch")
+    row = tr.row(0, named=True)
+    conns = [rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)[1] for rod in "abc"]
+    sides = [np.linalg.norm(conns[i][k] - conns[i2][k2]) for (i, k), (i2, k2) in zip(SPOKES, SPOKES[1:] + SPOKES[:1])]
+    if max(abs(x - r) for x in sides) > 1e-9 * length:
+        sys.exit(f"figures: the initial star's strings are {sides}, not r = {r}: geometry mismatch")
+
+
+def draw_star(ax, row: dict, length: float, r: float, phi: float, window: float) -> None:
+    """One frame of the filmstrip, turned from the slope frame (x downhill,
+    y normal) into the world so the ground appears at its angle φ."""
+    down = np.array([math.cos(phi), -math.sin(phi)])
+    normal = np.array([math.sin(phi), math.cos(phi)])
+
+    def world(p):
+        return p[0] * down + p[1] * normal
+
+    tips, conns = [], []
+    for i, rod in enumerate("abc"):
+        t, s = rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)
+        tips.append(t)
+        conns.append(s)
+    hub = np.mean([[row[f"x_{rod}"], row[f"y_{rod}"]] for rod in "abc"], axis=0)
+    centre = world(np.array([hub[0], 0.0])) + 0.45 * length * np.array([0, 1])
+    # Ground: the slope line y = 0 and a band below it.
+    g0, g1 = world(np.array([hub[0] - 2 * length, 0])), world(np.array([hub[0] + 2 * length, 0]))
+    below = -0.6 * length * normal
+    ax.add_patch(Polygon([g0, g1, g1 + below, g0 + below], closed=True, color="#e8dcc4", zorder=0))
+    ax.plot([g0[0], g1[0]], [g0[1], g1[1]], color="#8c6d31", lw=1.5, zorder=1)
+    for j in range(6):
+        (i, k), (i2, k2) = SPOKES[j], SPOKES[(j + 1) % 6]
+        p, q = world(conns[i][k]), world(conns[i2][k2])
+        ax.plot([p[0], q[0]], [p[1], q[1]], color="#555555", lw=0.9, zorder=2)
+    for i, rod in enumerate("abc"):
+        p, q = world(tips[i][0]), world(tips[i][1])
+        ax.plot([p[0], q[0]], [p[1], q[1]], color=ROD_COLOR[i], lw=3.2, solid_capstyle="round", zorder=3)
+        code = int(row[f"contact_{rod}"])
+        if code != 0:
+            foot = world(tips[i][0 if code > 0 else 1])
+            ax.scatter([foot[0]], [foot[1]], s=38, zorder=4, marker="o" if abs(code) == 1 else "D",
+                       color="black" if abs(code) == 1 else "white", edgecolors="black", linewidths=1.2)
+    ax.set_xlim(centre[0] - window / 2, centre[0] + window / 2)
+    ax.set_ylim(centre[1] - 0.62 * window, centre[1] + 0.58 * window)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for s in ax.spines.values():
+        s.set_visible(False)
+
+
+def timeline(ax_modes, ax_state, tr: pl.DataFrame, t0: float, t1: float, frames: np.ndarray) -> None:
+    """Per-rod contact mode (stick / slide / free) and the number of rods on the ground."""
+    w = tr.filter((pl.col("t") >= t0) & (pl.col("t") <= t1))
+    t = w["t"].to_numpy()
+    nxt = np.append(t[1:], t1)
+    for i, rod in enumerate("abc"):
+        code = w[f"contact_{rod}"].to_numpy()
+        for kind, hatch, alpha in ((1, None, 0.95), (2, "////", 0.45)):
+            m = np.abs(code) == kind
+            spans = [(a, b - a) for a, b in zip(t[m], nxt[m])]
+            ax_modes.broken_barh(spans, (2 - i - 0.38, 0.76), facecolors=ROD_COLOR[i], alpha=alpha,
+                                 hatch=hatch, edgecolor=ROD_COLOR[i] if hatch else "none", linewidth=0)
+    ax_modes.set_yticks([2, 1, 0], ["rod a", "rod b", "rod c"], fontsize=8)
+    ax_modes.set_ylim(-0.6, 2.6)
+    state = w["contact_state"].to_numpy()
+    ax_state.step(t, state, where="post", color="black", lw=1.1)
+    ax_state.set_yticks([0, 1, 2, 3], [f"{n} {s}" for n, s in enumerate(STATE_NAMES)], fontsize=7.5)
+    ax_state.set_ylim(-0.3, 3.3)
+    ax_state.set_xlabel("time t [s]")
+    for ax in (ax_modes, ax_state):
+        ax.set_xlim(t0, t1)
+        ax.axvspan(frames[0], frames[-1], color="#fff3c4", zorder=-1)
+        for f in frames:
+            ax.axvline(f, color="#999999", lw=0.7, ls=":", zorder=0)
+        ax.grid(axis="x", alpha=0.2)
+
+
+def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: int = 8) -> Path:
+    crawl = pick_crawl(paper)
+    paper_config = data_dir / "paper-config.toml"
+    paper_config.write_text((pq.read_metadata(paper.path).metadata or {})[b"rtw.config"].decode())
+    fig7a_text = "Fig. 7(a) point: L = 0.8, ρ = 2.5, α = 0.125, f_n = 3.269, ζ = 0.0514, φ = 0.15"
+    gaits = [
+        Gait("walk", f"{fig7a_text}; prestressed strings s = ℓ₀/r = {PRESTRESSED}", FIG7A,
+             [f"strings.rest_length_ratio={PRESTRESSED}"]),
+        Gait("skip", f"{fig7a_text}; paper-faithful variant s = {PAPER_FAITHFUL:g} (S5–S6 literally)", FIG7A,
+             [f"strings.rest_length_ratio={PAPER_FAITHFUL}"]),
+        # The crawl is re-run with the paper scan's own [simulation] table (its
+        # variant, whatever the default is), so it is that scan's row again.
+        Gait("crawl",
+             f"paper-scan sample {crawl['sample_id']}: L = {crawl['length']:.2g}, ρ = {crawl['rho']:.3f}, "
+             f"α = {crawl['alpha']:.3f}, f_n = {crawl['fn']:.3f}, ζ = {crawl['zeta']:.4f}, φ = {crawl['phi']:.3f}; "
+             f"the paper scan's {variant_tag(paper.variant)}",
+             {k: crawl[k] for k in ("length", "rho", "alpha", "fn", "zeta", "phi")},
+             [], paper_config),
+    ]
+    fig = plt.figure(figsize=(15, 5.0 * len(gaits)))
+    outer = fig.add_gridspec(len(gaits), 1, hspace=0.32, top=0.955, bottom=0.04, left=0.06, right=0.99)
+    for gi, g in enumerate(gaits):
+        trace_file = data_dir / f"trace-{g.name}.parquet"
+        m = simulate(binary, g, trace_file)
+        tr = pl.read_parquet(trace_file)
+        if m["outcome"] != g.name:
+            print(f"figures: warning: the {g.name} example came out {m['outcome']}", file=sys.stderr)
+        if g.name == "crawl" and m["tlsp"] != crawl["tlsp"]:
+            sys.exit(f"figures: sample {crawl['sample_id']} re-run gives TLSP {m['tlsp']}, the scan {crawl['tlsp']}")
+        length = float(g.params["length"])
+        r = float(m["r"])
+        check_geometry(tr, length, r)
+        # After the transient: the first touchdown (rods on the ground rise)
+        # past three quarters of the run, then two steps (new-foot touchdowns).
+        t_end = float(m["t_end"])
+        state = tr["contact_state"].to_numpy()
+        t = tr["t"].to_numpy()
+        rise = np.nonzero((np.diff(state) > 0) & (t[1:] >= 0.75 * t_end))[0]
+        t_start = float(t[rise[0] + 1]) if len(rise) else 0.75 * t_end
+        step = 1.0 / m["f_w_newfoot"] if m["f_w_newfoot"] > 0 else 0.5
+        span = min(max(2 * step, 0.3), 1.5)
+        frames = t_start + np.linspace(0, span, nframes)
+        inner = outer[gi].subgridspec(3, nframes, height_ratios=[2.6, 0.75, 0.75], hspace=0.08, wspace=0.02)
+        window = 1.45 * length
+        for fi, tf in enumerate(frames):
+            ax = fig.add_subplot(inner[0, fi])
+            row = tr.row(int(np.argmin(np.abs(t - tf))), named=True)
+            draw_star(ax, row, length, r, float(g.params["phi"]), window)
+            ax.set_title(f"t = {row['t']:.3f} s", fontsize=8, pad=1)
+        ax_modes = fig.add_subplot(inner[1, :])
+        ax_state = fig.add_subplot(inner[2, :], sharex=ax_modes)
+        plt.setp(ax_modes.get_xticklabels(), visible=False)
+        timeline(ax_modes, ax_state, tr, t_start - 0.25 * span, t_start + max(2.0, 2.5 * span), frames)
+        frac = " / ".join(f"{s} {100 * m[s.lower()]:.0f} %" for s in STATE_NAMES)
+        fig.text(0.06, outer[gi].get_position(fig).y1 + 0.004,
+                 f"{g.name.upper()} (rtw label: {m['outcome']}) — {g.caption}\n"
+                 f"over the analysis window: {frac}; f_w = {m['f_w']:.1f} Hz "
+                 f"(new foot {m['f_w_newfoot']:.1f} Hz); speed {m['speed']:.2f} m/s; period {m['period']}; "
+                 f"μ required {m['mu_required']:.2f}",
+                 fontsize=9, va="bottom", fontweight="normal")
+    handles = [Line2D([], [], color=ROD_COLOR[i], lw=3, label=f"rod {'abc'[i]}") for i in range(3)]
+    handles += [
+        Line2D([], [], color="#555555", lw=1, label="string"),
+        Line2D([], [], marker="o", color="black", ls="none", label="stick (foot pinned)"),
+        Line2D([], [], marker="D", color="black", markerfacecolor="white", ls="none", label="slide"),
+        Patch(facecolor="#888888", label="timeline: stick"),
+        Patch(facecolor="#cccccc", hatch="////", label="timeline: slide (blank: free)"),
+    ]
+    fig.legend(handles=handles, loc="upper center", ncol=8, fontsize=8.5, frameon=False, bbox_to_anchor=(0.5, 1.0))
+    fig.text(0.5, 0.004,
+             f"rtw-scan simulate … --set strings.rest_length_ratio=s --set trace_dt={TRACE_DT} --trace; "
+             f"frames: {nframes} snapshots over two steps after the first touchdown past 3/4 of the run, "
+             "drawn in the world with the slope at its angle φ; timelines: yellow span and dotted lines = the frames",
+             ha="center", va="bottom", fontsize=7.5, color="#444444")
+    return save(fig, out, "gait-gallery")
+
+
+# ----------------------------------------------------------------------- main
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bin", type=Path, default=ROOT / "target/release/rtw-scan", help="the rtw-scan binary")
+    ap.add_argument("--results", type=Path, default=ROOT / "results", help="where the scans are")
+    ap.add_argument("--out", type=Path, default=ROOT / "results/figures", help="where the PNGs go")
+    ap.add_argument("--only", nargs="*", choices=["fig-s2", "fig-s3", "fig-s4", "failure-rate", "gait-gallery"],
+                    help="make only these figures")
+    a = ap.parse_args()
+    a.out.mkdir(parents=True, exist_ok=True)
+    data = a.out / "data"
+    data.mkdir(exist_ok=True)
+    want = set(a.only or ["fig-s2", "fig-s3", "fig-s4", "failure-rate", "gait-gallery"])
+    plt.rcParams.update({"font.size": 9.5, "axes.titlesize": 10})
+    paper = Scan.read(a.results / "paper/samples.parquet") if want & {"fig-s4", "failure-rate", "gait-gallery"} else None
+    if "fig-s2" in want:
+        fig_s2(Scan.read(a.results / "fig-s2/samples.parquet"), a.out)
+    if "fig-s3" in want:
+        fig_s3(Scan.read(a.results / "fig-s3/samples.parquet"), a.out)
+    if "fig-s4" in want:
+        fig_s4(paper, a.bin, data, a.out)
+    if "failure-rate" in want:
+        failure_rates(paper, a.out)
+    if "gait-gallery" in want:
+        gait_gallery(a.bin, paper, data, a.out)
+
+
+if __name__ == "__main__":
+    main()
