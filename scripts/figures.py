@@ -55,8 +55,8 @@ KIND_MARKER = {"collapse": "^", "stall": "o"}
 # The article's walking example (Fig. 7(a), MODEL.md §1), for the gait gallery.
 FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
 # The variant that walks there (MODEL.md §9) and the paper-faithful one (S5–S6 literally).
-PRESTRESSED = 0.85
-PAPER_FAITHFUL = 0.0
+# The variant files the gallery's walk and skip are run with (configs/variants/).
+DEFAULT_VARIANT = "prestress-0.85-static-mu0.8-slack"
 # Trace sampling for the gait gallery (events are recorded as well).
 TRACE_DT = 0.004
 
@@ -173,7 +173,7 @@ def fig_s2(scan: Scan, out: Path) -> Path:
     ax.set_xlim(lo - 0.1, hi + 0.1)
     ax.set_ylim(0, max(math.sqrt(3) * hi, np.nanmax(df["f_w"].to_numpy())) * 1.05)
     ax.grid(alpha=0.3)
-    fig.legend(fontsize=8, loc="outside right upper")
+    fig.legend(fontsize=8, loc="outside upper center", ncol=4)
     add_footer(fig, scan.footer())
     return save(fig, out, "fig-s2")
 
@@ -216,7 +216,7 @@ def fig_s3(scan: Scan, out: Path) -> Path:
     p = scan.df.row(0, named=True)
     fig.suptitle(
         f"Fig. S3: contact-state fractions against slope; ρ = {p['rho']}, α = {p['alpha']}, "
-        f"f_n = {p['fn']} Hz, ζ = {p['zeta']}; {variant_tag(scan.variant)}",
+        f"f_n = {p['fn']} Hz, ζ = {p['zeta']}\n{variant_tag(scan.variant)}",
         fontsize=10,
     )
     add_footer(fig, scan.footer() + " · letters: outcome of each run (S skip, W walk, C crawl, × failed)")
@@ -445,12 +445,13 @@ def rod_points(x: float, y: float, th: float, half: float, r: float):
 SPOKES = [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (2, 1)]
 
 
-def check_geometry(tr: pl.DataFrame, length: float, r: float) -> None:
+def check_geometry(tr: pl.DataFrame, length: float, r: float, k: float, options: dict) -> None:
     """The drawing's geometry must be the model's: every foot the trace says is
     on the ground (contact code ±1 stick, ±2 slide on tip ±) lies on y = 0
-    (the tip sign convention), and in the first sample, the rest star, the six
-    strings drawn are all r long (spokes of length r at 60°: the string order).
-    Fails loudly rather than draw a wrong picture."""
+    (the tip sign convention), and the six strings drawn (spoke j to j+1,
+    natural length s·r, slack when short if the run's strings go slack) store
+    the string energy the trace reports, at every sample. Fails loudly rather
+    than draw a wrong picture."""
     worst = 0.0
     for row in tr.iter_rows(named=True):
         for rod in "abc":
@@ -460,11 +461,17 @@ def check_geometry(tr: pl.DataFrame, length: float, r: float) -> None:
                 worst = max(worst, abs(tips[0 if code > 0 else 1][1]))
     if worst > 1e-6 * length:
         sys.exit(f"figures: a foot in contact is drawn {worst:.3g} m off the ground: geometry mismatch")
-    row = tr.row(0, named=True)
-    conns = [rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)[1] for rod in "abc"]
-    sides = [np.linalg.norm(conns[i][k] - conns[i2][k2]) for (i, k), (i2, k2) in zip(SPOKES, SPOKES[1:] + SPOKES[:1])]
-    if max(abs(x - r) for x in sides) > 1e-9 * length:
-        sys.exit(f"figures: the initial star's strings are {sides}, not r = {r}: geometry mismatch")
+    strings = options.get("strings", {})
+    rest = float(strings.get("rest_length_ratio", 0.0)) * r
+    slack = bool(strings.get("slack", False))
+    worst_energy = 0.0
+    for row in tr.iter_rows(named=True):
+        conns = [rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)[1] for rod in "abc"]
+        sides = [np.linalg.norm(conns[i][a] - conns[i2][a2]) for (i, a), (i2, a2) in zip(SPOKES, SPOKES[1:] + SPOKES[:1])]
+        energy = sum(0.5 * k * (x - rest) ** 2 for x in sides if not (slack and x < rest))
+        worst_energy = max(worst_energy, abs(energy - row["string_potential"]) / max(abs(row["string_potential"]), 1e-12))
+    if worst_energy > 1e-6:
+        sys.exit(f"figures: the strings drawn store energy off the trace's by {worst_energy:.3g} (relative): geometry mismatch")
 
 
 def draw_star(ax, row: dict, length: float, r: float, phi: float, window: float) -> None:
@@ -542,10 +549,10 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
     paper_config.write_text((pq.read_metadata(paper.path).metadata or {})[b"rtw.config"].decode())
     fig7a_text = "Fig. 7(a) point: L = 0.8, ρ = 2.5, α = 0.125, f_n = 3.269, ζ = 0.0514, φ = 0.15"
     gaits = [
-        Gait("walk", f"{fig7a_text}; prestressed strings s = ℓ₀/r = {PRESTRESSED}", FIG7A,
-             [f"strings.rest_length_ratio={PRESTRESSED}"]),
-        Gait("skip", f"{fig7a_text}; paper-faithful variant s = {PAPER_FAITHFUL:g} (S5–S6 literally)", FIG7A,
-             [f"strings.rest_length_ratio={PAPER_FAITHFUL}"]),
+        Gait("walk", f"{fig7a_text}; the default model (variant {DEFAULT_VARIANT})", FIG7A, [],
+             Path("configs/variants") / f"{DEFAULT_VARIANT}.toml"),
+        Gait("skip", f"{fig7a_text}; the paper-faithful model (variant literal: S5–S6 literally, s = 0)",
+             FIG7A, [], Path("configs/variants/literal.toml")),
         # The crawl is re-run with the paper scan's own [simulation] table (its
         # variant, whatever the default is), so it is that scan's row again.
         Gait("crawl",
@@ -567,7 +574,8 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
             sys.exit(f"figures: sample {crawl['sample_id']} re-run gives TLSP {m['tlsp']}, the scan {crawl['tlsp']}")
         length = float(g.params["length"])
         r = float(m["r"])
-        check_geometry(tr, length, r)
+        options = tomllib.loads((pq.read_metadata(trace_file).metadata or {})[b"rtw.options"].decode())
+        check_geometry(tr, length, r, float(m["k"]), options)
         # After the transient: the first touchdown (rods on the ground rise)
         # past three quarters of the run, then two steps (new-foot touchdowns).
         t_end = float(m["t_end"])
@@ -606,7 +614,7 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
     ]
     fig.legend(handles=handles, loc="upper center", ncol=8, fontsize=8.5, frameon=False, bbox_to_anchor=(0.5, 1.0))
     fig.text(0.5, 0.004,
-             f"rtw-scan simulate … --set strings.rest_length_ratio=s --set trace_dt={TRACE_DT} --trace; "
+             f"rtw-scan simulate … --config configs/variants/VARIANT.toml --set trace_dt={TRACE_DT} --trace; "
              f"frames: {nframes} snapshots over two steps after the first touchdown past 3/4 of the run, "
              "drawn in the world with the slope at its angle φ; timelines: yellow span and dotted lines = the frames",
              ha="center", va="bottom", fontsize=7.5, color="#444444")

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Sensitivity of the 1000-sample statistic (issue 4): reruns configs/paper.toml
+# (the default model) with one choice changed per file of configs/sensitivity/
+# -> results/sensitivity/<name>/, and tabulates every run against the default
+# run results/paper/ (run the main job first) and against the paper
+# -> results/sensitivity/summary.md   (scripts/sensitivity_report.py)
+#
+#   ./scripts/sensitivity.sh                # all (~10-20 s each on 2 cores; t_max 40 twice that)
+#   REPORT_ONLY=1 ./scripts/sensitivity.sh  # re-tabulate
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ -z "${REPORT_ONLY:-}" ]; then
+  cargo build --release -q -p rtw-scan
+  [ -f results/paper/samples.parquet ] || target/release/rtw-scan run configs/paper.toml >/dev/null
+  for f in configs/sensitivity/*.toml; do
+    n=$(basename "$f" .toml)
+    echo "== $n"
+    rm -rf "results/sensitivity/$n"
+    target/release/rtw-scan run configs/paper.toml --variant "$f" --out "results/sensitivity/$n" >/dev/null
+  done
+fi
+./scripts/venv.sh
+.venv/bin/python scripts/sensitivity_report.py results/paper results/sensitivity
