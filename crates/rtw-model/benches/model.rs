@@ -1,8 +1,10 @@
 //! Criterion benches of the model's hot path: one right-hand side, one guard
-//! evaluation, and whole 20 s runs at the Fig. 7(a) point per tolerance and
-//! method. `cargo bench -p rtw-model`.
+//! evaluation, one integrator step (with its dense output) per method, and
+//! whole 20 s runs at the Fig. 7(a) point per tolerance and method.
+//! `cargo bench -p rtw-model`.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rtw_model::integrate::{Method, step_with_dense};
 use rtw_model::options::MethodChoice;
 use rtw_model::rtw::{N, Rtw};
 use rtw_model::{Options, Params, Physical, simulate};
@@ -21,6 +23,27 @@ fn hot_path(c: &mut Criterion) {
     c.bench_function("guards", |b| {
         b.iter(|| rtw.guards(black_box(&y), &mut g));
     });
+    // One step of each method from the standing start, with the method's
+    // full dense output (what a step with an event costs).
+    let mut dense = rtw_model::integrate::Dense::<N>::default();
+    for (method, name) in [
+        (Method::Rk4 { h: 1e-3 }, "step/rk4"),
+        (Method::Dp54, "step/dp54"),
+        (Method::Dop853, "step/dop853"),
+    ] {
+        c.bench_function(name, |b| {
+            b.iter(|| {
+                step_with_dense(
+                    method,
+                    |_, y, dy| rtw.dynamics(y, dy),
+                    0.0,
+                    black_box(&y),
+                    1e-3,
+                    &mut dense,
+                )
+            });
+        });
+    }
 }
 
 fn runs(c: &mut Criterion) {

@@ -148,6 +148,22 @@ impl Rtw {
         dy[FRICTION] = friction;
     }
 
+    /// Contact forces λ of the rods at `y` (zero when free).
+    pub fn contact_forces(&self, y: &[f64; N]) -> [V2; 3] {
+        let frames = self.frames(y);
+        let (loads, _) = self.loads(&frames);
+        let mut lambda = [[0.0; 2]; 3];
+        for i in 0..3 {
+            if self.modes[i] != RodMode::Free {
+                lambda[i] = self
+                    .body
+                    .accel(self.modes[i], &frames[i], &loads[i], self.mu)
+                    .lambda;
+            }
+        }
+        lambda
+    }
+
     /// The guards of the current modes, in a fixed order that depends only
     /// on the modes (the engine compares the same index across a step).
     pub fn guard_kinds(&self, mut visit: impl FnMut(GuardKind)) {
@@ -184,16 +200,7 @@ impl Rtw {
     pub fn guards(&self, y: &[f64; N], out: &mut Guards) {
         out.clear();
         let frames = self.frames(y);
-        let (loads, _) = self.loads(&frames);
-        let mut lambda = [[0.0; 2]; 3];
-        for i in 0..3 {
-            if self.modes[i] != RodMode::Free {
-                lambda[i] = self
-                    .body
-                    .accel(self.modes[i], &frames[i], &loads[i], self.mu)
-                    .lambda;
-            }
-        }
+        let lambda = self.contact_forces(y);
         let tip_height =
             |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).0[1];
         self.guard_kinds(|kind| {
@@ -300,16 +307,11 @@ impl Rtw {
     /// normal force exceeds 5 % of a rod's weight (MODEL.md §4's
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
     pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
-        let frames = self.frames(y);
-        let (loads, _) = self.loads(&frames);
+        let lambda = self.contact_forces(y);
         let floor = 0.05 * self.body.m * (self.gravity[0].hypot(self.gravity[1]));
         (0..3)
             .filter(|&i| matches!(self.modes[i], RodMode::Stick { .. }))
-            .map(|i| {
-                self.body
-                    .accel(self.modes[i], &frames[i], &loads[i], self.mu)
-                    .lambda
-            })
+            .map(|i| lambda[i])
             .filter(|l| l[1] > floor)
             .map(|l| l[0].abs() / l[1])
             .fold(0.0, f64::max)

@@ -1,7 +1,7 @@
 //! `simulate(params, options) -> Outcome`: one run of the RTW on the hybrid
 //! engine, with the statistics of MODEL.md §5 gathered as it goes.
 
-use crate::gait::{self, GaitStats};
+use crate::gait::{self, GaitStats, Settled};
 use crate::hybrid::{self, EndReason, EngineOptions, Flow, Guards, HybridSystem};
 use crate::initial::initial_state;
 use crate::integrate::{Dense, Method};
@@ -59,6 +59,12 @@ struct Run<'a> {
     trace: Option<&'a mut dyn FnMut(&TraceSample)>,
     trace_dt: f64,
     next_trace: f64,
+    /// `Options::stop_when_settled`.
+    stop_when_settled: bool,
+    /// Largest friction ratio needed since the last touchdown (early stop).
+    mu_since_touchdown: f64,
+    /// The settled gait, when the run stopped early for it.
+    settled: Option<Settled>,
 }
 
 impl Run<'_> {
@@ -100,6 +106,7 @@ impl HybridSystem<N> for Run<'_> {
     }
 
     fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Flow {
+        let com_x = self.rtw.centre_of_mass(y)[0];
         let before = self.rtw.total_energy(y);
         let transition = self.rtw.reset(y, index);
         self.impact_loss += before - self.rtw.total_energy(y);
@@ -110,7 +117,15 @@ impl HybridSystem<N> for Run<'_> {
                 omega_after,
             } => {
                 self.stats.on_touchdown(t, rod, tip, omega_after);
-                Flow::Continue
+                if self.stop_when_settled {
+                    let mu = std::mem::take(&mut self.mu_since_touchdown);
+                    self.settled = self.stats.mark(t, omega_after, com_x, mu);
+                }
+                if self.settled.is_some() {
+                    Flow::Stop
+                } else {
+                    Flow::Continue
+                }
             }
             Transition::ModeChange { .. } => Flow::Continue,
             Transition::Failure(detail) => {
@@ -139,9 +154,15 @@ impl HybridSystem<N> for Run<'_> {
             dense.eval(self.stats.window_start.max(t0), &mut y);
             self.stats.window_com_x = Some(self.rtw.centre_of_mass(&y)[0]);
         }
-        // `mu_required` describes the gait: count it over the window only.
-        if t1 >= self.stats.window_start && self.rtw.contact_state() > 0 {
-            self.mu_required = self.mu_required.max(self.rtw.friction_ratio(&dense.y1));
+        // `mu_required` describes the gait: count it over the window only
+        // (or, with an early stop, over the settled window).
+        let in_window = t1 >= self.stats.window_start;
+        if (in_window || self.stop_when_settled) && self.rtw.contact_state() > 0 {
+            let mu = self.rtw.friction_ratio(&dense.y1);
+            if in_window {
+                self.mu_required = self.mu_required.max(mu);
+            }
+            self.mu_since_touchdown = self.mu_since_touchdown.max(mu);
         }
         if self.trace.is_some() {
             if self.trace_dt > 0.0 {
@@ -190,6 +211,9 @@ fn simulate_inner(
         trace,
         trace_dt: options.trace_dt,
         next_trace: 0.0,
+        stop_when_settled: options.stop_when_settled,
+        mu_since_touchdown: 0.0,
+        settled: None,
     };
     let e0 = run.rtw.total_energy(&y);
     let g0 = run.rtw.energy(&y).1;
@@ -225,15 +249,34 @@ fn simulate_inner(
     };
     let window = (options.t_max - window_start).max(f64::MIN_POSITIVE);
     let stats = &run.stats;
-    let fractions = stats.fractions();
-    let speed = match stats.window_com_x {
-        Some(x0) if end.reason == EndReason::TimeUp => {
-            (run.rtw.centre_of_mass(&y)[0] - x0) / window
-        }
-        _ => 0.0,
+    // What the analysis window measures: over the last `analysis_window` of
+    // the run, or over the settled gait's whole periods after an early stop.
+    let (fractions, f_w, f_w_newfoot, speed, mu_required, period) = match run.settled {
+        Some(s) => (
+            s.fractions,
+            s.f_w,
+            s.f_w_newfoot,
+            s.speed,
+            s.mu_required,
+            s.period,
+        ),
+        None => (
+            stats.fractions(),
+            stats.window_touchdowns as f64 / window,
+            stats.window_newfoot as f64 / window,
+            match stats.window_com_x {
+                Some(x0) if end.reason == EndReason::TimeUp => {
+                    (run.rtw.centre_of_mass(&y)[0] - x0) / window
+                }
+                _ => 0.0,
+            },
+            run.mu_required,
+            stats.period(),
+        ),
     };
     let failure = numerical.or(run.failure).or_else(|| {
-        // Over the window the star must roll at least half a rod downhill.
+        // Over the window the star must roll at least half a rod downhill
+        // (for a settled gait: at the same mean speed).
         (speed * window < 0.5 * phys.length).then_some(FailureDetail::NoProgress)
     });
     let label = match failure {
@@ -249,13 +292,13 @@ fn simulate_inner(
         t_end: end.t,
         fractions,
         touchdowns: stats.touchdowns,
-        f_w: stats.window_touchdowns as f64 / window,
-        f_w_newfoot: stats.window_newfoot as f64 / window,
+        f_w,
+        f_w_newfoot,
         speed,
-        mu_required: run.mu_required,
+        mu_required,
         slide_time: stats.slide_time,
         energy,
-        period: if label.is_stable() { stats.period() } else { 0 },
+        period: if label.is_stable() { period } else { 0 },
         work: IntegratorWork {
             steps: end.work.steps,
             rejected: end.work.rejected,

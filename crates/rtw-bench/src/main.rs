@@ -1,0 +1,641 @@
+//! `cargo run --release -p rtw-bench [-- --quick] [--out DIR] [--threads N]`
+//!
+//! The work–precision benchmark (see the library docs): writes
+//! `DIR/work-precision.md` and `DIR/work-precision.svg` (default
+//! `results/bench`). `--quick` runs a few settings on a 40-sample scan, one
+//! repetition each (a smoke test of the machinery, not a measurement).
+
+use anyhow::{Context, Result, bail};
+use rayon::prelude::*;
+use rtw_bench::svg::{Panel, Series, render};
+use rtw_bench::{
+    Events, ScanDiff, ScanPoint, compare_scans, event_state_error, full, median, state_error,
+    touchdown_time_error,
+};
+use rtw_model::options::MethodChoice;
+use rtw_model::{Label, Options, Outcome, Params, simulate, simulate_traced};
+use rtw_scan::config;
+use rtw_scan::sample::Sampler;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// An integrator setting: the method and its tolerance (RK4: its step).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Setting {
+    method: MethodChoice,
+    /// rtol of the adaptive methods (atol = rtol/100), or RK4's step [s].
+    tol: f64,
+}
+
+/// The reference: the highest-order method at rtol 1e-13.
+const REFERENCE: Setting = Setting {
+    method: MethodChoice::Dop853,
+    tol: 1e-13,
+};
+
+impl Setting {
+    fn name(&self) -> String {
+        match self.method {
+            MethodChoice::Rk4 => format!("rk4 h={:e}", self.tol),
+            MethodChoice::Dp54 => format!("dp54 {:e}", self.tol),
+            MethodChoice::Dop853 => format!("dop853 {:e}", self.tol),
+        }
+    }
+
+    fn method_name(&self) -> &'static str {
+        match self.method {
+            MethodChoice::Rk4 => "rk4",
+            MethodChoice::Dp54 => "dp54",
+            MethodChoice::Dop853 => "dop853",
+        }
+    }
+
+    /// `base` with this setting's method and tolerances (all else unchanged).
+    fn apply(&self, base: &Options) -> Options {
+        let mut o = *base;
+        o.method = self.method;
+        match self.method {
+            MethodChoice::Rk4 => o.rk4_step = self.tol,
+            _ => {
+                o.rtol = self.tol;
+                o.atol = self.tol * 1e-2;
+            }
+        }
+        o
+    }
+}
+
+fn settings(quick: bool) -> Vec<Setting> {
+    let s = |method, tol| Setting { method, tol };
+    use MethodChoice::*;
+    if quick {
+        return vec![
+            s(Rk4, 1e-3),
+            s(Dp54, 1e-6),
+            s(Dop853, 1e-6),
+            s(Dop853, 1e-10),
+        ];
+    }
+    let mut v = vec![];
+    for h in [2e-3, 1e-3, 5e-4, 2.5e-4] {
+        v.push(s(Rk4, h));
+    }
+    for tol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-10] {
+        v.push(s(Dp54, tol));
+    }
+    for tol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-12] {
+        v.push(s(Dop853, tol));
+    }
+    v
+}
+
+/// A fixed case: parameters and the model variant, stated explicitly.
+struct Case {
+    name: &'static str,
+    params: Params,
+    /// `strings.rest_length_ratio`.
+    s: f64,
+}
+
+/// Options of a case: the defaults with every choice that matters here
+/// spelled out, so that the benchmark does not move when a default does.
+fn case_options(s: f64) -> Options {
+    let mut o = Options {
+        t_max: 20.0,
+        h_max: 0.01,
+        stop_when_settled: false,
+        ..Options::default()
+    };
+    o.strings.rest_length_ratio = s;
+    o
+}
+
+fn cases(crawl: Params) -> Vec<Case> {
+    let p = |rho, alpha, f_n, zeta, phi| {
+        Params::new(0.8, rho, alpha, f_n, zeta, phi).expect("a valid case")
+    };
+    vec![
+        Case {
+            name: "Fig. 7(a) walk",
+            params: Params::fig7a(),
+            s: 0.85,
+        },
+        Case {
+            name: "Fig. 7(a) skip",
+            params: Params::fig7a(),
+            s: 0.0,
+        },
+        Case {
+            name: "crawl (scan200 #68)",
+            params: crawl,
+            s: 0.85,
+        },
+        Case {
+            name: "stiffest corner",
+            params: p(5.0, 0.4, 5.0, 0.1, 0.3),
+            s: 0.85,
+        },
+        Case {
+            name: "near collapse",
+            params: p(2.0, 0.02, 1.6, 0.05, 0.2),
+            s: 0.85,
+        },
+    ]
+}
+
+/// Events considered for the state and event-time errors.
+const FIRST_EVENTS: usize = 5;
+/// The fixed time of the state error, before chaos can set in [s].
+const T_FIX: f64 = 1.0;
+
+/// What one case gives at one setting.
+struct CaseRun {
+    ms: f64,
+    out: Outcome,
+    events: Events,
+    at_fix: Option<rtw_bench::Full>,
+}
+
+fn run_case(case: &Case, setting: &Setting, reps: usize) -> CaseRun {
+    let o = setting.apply(&case_options(case.s));
+    let mut times = Vec::with_capacity(reps);
+    let mut out = None;
+    for _ in 0..reps {
+        let t = Instant::now();
+        out = Some(simulate(&case.params, &o));
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    // The traced runs take the same steps (tracing changes no step), so
+    // their events are those of the timed runs.
+    let mut events = Events::default();
+    simulate_traced(&case.params, &Options { trace_dt: 0.0, ..o }, &mut |s| {
+        events.push(s)
+    });
+    let mut at_fix = None;
+    simulate_traced(&case.params, &Options { trace_dt: 0.5, ..o }, &mut |s| {
+        if (s.t - T_FIX).abs() < 1e-9 {
+            at_fix = Some(full(s));
+        }
+    });
+    CaseRun {
+        ms: median(&mut times),
+        out: out.expect("reps >= 1"),
+        events,
+        at_fix,
+    }
+}
+
+fn fractions(o: &Outcome) -> [f64; 4] {
+    let f = o.fractions;
+    [f.nlsp, f.slsp, f.dlsp, f.tlsp]
+}
+
+fn sci(v: Option<f64>) -> String {
+    match v {
+        Some(x) if x.is_finite() => format!("{x:.1e}"),
+        Some(_) => "∞".into(),
+        None => "–".into(),
+    }
+}
+
+/// A scan at one setting: per-sample points and summed sample seconds.
+struct ScanRun {
+    points: Vec<ScanPoint>,
+    /// Right-hand-side evaluations over the scan: the machine-independent work.
+    rhs: u64,
+    cpu_s: f64,
+    wall_s: f64,
+}
+
+fn run_scan(params: &[Params], o: &Options) -> ScanRun {
+    let started = Instant::now();
+    let rows: Vec<(ScanPoint, f64, u64)> = params
+        .par_iter()
+        .map(|p| {
+            let t = Instant::now();
+            let out = simulate(p, o);
+            (
+                ScanPoint {
+                    label: out.label,
+                    f_w: out.f_w,
+                },
+                t.elapsed().as_secs_f64(),
+                out.work.rhs_evals,
+            )
+        })
+        .collect();
+    ScanRun {
+        cpu_s: rows.iter().map(|r| r.1).sum(),
+        rhs: rows.iter().map(|r| r.2).sum(),
+        points: rows.into_iter().map(|r| r.0).collect(),
+        wall_s: started.elapsed().as_secs_f64(),
+    }
+}
+
+fn scan_params(path: &Path, limit: Option<u64>) -> Result<(Options, Vec<Params>)> {
+    let cfg = config::load(path)?;
+    let sampler = Sampler::new(&cfg);
+    let n = limit.unwrap_or(u64::MAX).min(sampler.total());
+    Ok((cfg.simulation, (0..n).map(|i| sampler.params(i)).collect()))
+}
+
+struct Args {
+    quick: bool,
+    out: PathBuf,
+    threads: Option<usize>,
+}
+
+fn parse_args() -> Result<Args> {
+    let mut a = Args {
+        quick: false,
+        out: PathBuf::from("results/bench"),
+        threads: None,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "--quick" => a.quick = true,
+            "--out" => a.out = it.next().context("--out needs a directory")?.into(),
+            "--threads" => {
+                let v = it.next().context("--threads needs a count")?;
+                let n: usize = v
+                    .parse()
+                    .ok()
+                    .filter(|&n| n >= 1)
+                    .with_context(|| format!("--threads: an integer >= 1, not {v:?}"))?;
+                a.threads = Some(n);
+            }
+            other => bail!("unknown argument {other:?} (valid: --quick, --out DIR, --threads N)"),
+        }
+    }
+    Ok(a)
+}
+
+fn main() -> Result<()> {
+    let args = parse_args()?;
+    if let Some(n) = args.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()?;
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let scan_cfg = root.join("configs/bench/scan200.toml");
+    let (mut scan_base, all_params) = scan_params(&scan_cfg, None)?;
+    // Full-length runs unless a section says otherwise.
+    scan_base.stop_when_settled = false;
+    let crawl = all_params[68];
+    let reps = if args.quick { 1 } else { 5 };
+    let settings = settings(args.quick);
+    let cases = cases(crawl);
+    let mut md = String::new();
+    let command = if args.quick {
+        "cargo run --release -p rtw-bench -- --quick"
+    } else {
+        "cargo run --release -p rtw-bench"
+    };
+    let _ = writeln!(md, "# Work–precision benchmark\n");
+    let _ = writeln!(
+        md,
+        "Made by `{command}` on a machine with {} logical cores ({} worker threads). \
+         Reference: DOP853 at rtol 1e-13, atol 1e-15. Adaptive settings use atol = rtol/100; \
+         every setting has h_max = 0.01 s and t_max = 20 s. Wall times are medians of {reps} \
+         runs, one thread.\n",
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
+        rayon::current_num_threads(),
+    );
+
+    // ---- Fixed cases -------------------------------------------------------
+    let _ = writeln!(md, "## Fixed cases\n");
+    let _ = writeln!(
+        md,
+        "State error: largest |Δ| of the full coordinates (x, y, θ, ẋ, ẏ, ω of each rod) \
+         just before each of the first {FIRST_EVENTS} events, and at t = {T_FIX} s; \
+         event-time error: largest |Δt| of the first {FIRST_EVENTS} touchdowns; f_w error \
+         relative; fractions: largest |Δ| of NLSP/SLSP/DLSP/TLSP.\n"
+    );
+    let mut walk_fw_err: Vec<(Setting, f64)> = vec![];
+    let mut plot_cases: Vec<Vec<(Setting, f64, f64)>> = vec![vec![]; cases.len()];
+    for (ci, case) in cases.iter().enumerate() {
+        eprintln!("case {}", case.name);
+        let reference = run_case(case, &REFERENCE, 1);
+        let p = case.params;
+        let _ = writeln!(
+            md,
+            "### {} (ρ {:.4}, α {:.4}, f_n {:.4}, ζ {:.4}, φ {:.4}; s = {})\n",
+            case.name, p.rho, p.alpha, p.f_n, p.zeta, p.phi, case.s
+        );
+        let r = &reference.out;
+        let _ = writeln!(
+            md,
+            "Reference: **{}**, f_w {:.4} Hz, NLSP/SLSP/DLSP/TLSP {:.3}/{:.3}/{:.3}/{:.3}, \
+             period {}, t_end {:.3} s, {} RHS evaluations.\n",
+            r.label.as_str(),
+            r.f_w,
+            r.fractions.nlsp,
+            r.fractions.slsp,
+            r.fractions.dlsp,
+            r.fractions.tlsp,
+            r.period,
+            r.t_end,
+            r.work.rhs_evals
+        );
+        let _ = writeln!(
+            md,
+            "| setting | median ms | RHS evals | label | state err, {FIRST_EVENTS} events | \
+             touchdown time err (s) | state err at {T_FIX} s | f_w rel err | fraction err |"
+        );
+        let _ = writeln!(md, "|---|---:|---:|---|---:|---:|---:|---:|---:|");
+        for setting in &settings {
+            let run = run_case(case, setting, reps);
+            let ev = event_state_error(&run.events, &reference.events, FIRST_EVENTS);
+            let te = touchdown_time_error(&run.events, &reference.events, FIRST_EVENTS);
+            let fix = match (&run.at_fix, &reference.at_fix) {
+                (Some(a), Some(b)) => Some(state_error(a, b)),
+                _ => None,
+            };
+            let fw = (r.f_w > 0.0).then(|| ((run.out.f_w - r.f_w) / r.f_w).abs());
+            let (fa, fb) = (fractions(&run.out), fractions(r));
+            let fr = (0..4).map(|i| (fa[i] - fb[i]).abs()).fold(0.0, f64::max);
+            if ci == 0 {
+                walk_fw_err.push((*setting, fw.unwrap_or(f64::INFINITY)));
+            }
+            if let Some(e) = ev {
+                plot_cases[ci].push((*setting, e, run.ms));
+            }
+            let _ = writeln!(
+                md,
+                "| {} | {:.2} | {} | {}{} | {} | {} | {} | {} | {:.1e} |",
+                setting.name(),
+                run.ms,
+                run.out.work.rhs_evals,
+                run.out.label.as_str(),
+                if run.out.label == r.label { "" } else { " ≠" },
+                sci(ev),
+                sci(te),
+                sci(fix),
+                sci(fw),
+                fr
+            );
+        }
+        md.push('\n');
+    }
+
+    // ---- The scan ----------------------------------------------------------
+    let n_scan = if args.quick { 40 } else { all_params.len() };
+    let scan = &all_params[..n_scan];
+    eprintln!("scan: reference");
+    let ref_opts = REFERENCE.apply(&scan_base);
+    let reference = run_scan(scan, &ref_opts);
+    let _ = writeln!(
+        md,
+        "## Scan: {n_scan} samples of the paper's box, s = 0.85\n"
+    );
+    let _ = writeln!(
+        md,
+        "`configs/bench/scan200.toml` (MODEL.md §8's box at L = 0.8, prestressed strings). \
+         CPU s: the sum of the per-sample times; wall s: the whole scan on the worker threads. \
+         Outcome % per label, largest |Δ| against the reference (pp), labels that differ \
+         (flips), median relative f_w error over samples stable in both with the same label.\n"
+    );
+    let labels: Vec<&str> = Label::ALL.iter().map(|l| l.as_str()).collect();
+    let _ = writeln!(
+        md,
+        "| setting | RHS evals | CPU s | wall s | max Δ (pp) | flips | median f_w err | {} |",
+        labels.join(" % | ") + " %"
+    );
+    let _ = writeln!(
+        md,
+        "|---|---:|---:|---:|---:|---:|---:|{}",
+        "---:|".repeat(6)
+    );
+    let pct = |p: &[f64; 6]| {
+        p.iter()
+            .map(|v| format!("{v:.1}"))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    };
+    let self_diff = compare_scans(&reference.points, &reference.points);
+    let _ = writeln!(
+        md,
+        "| **{} (reference)** | {} | {:.2} | {:.2} | – | – | – | {} |",
+        REFERENCE.name(),
+        reference.rhs,
+        reference.cpu_s,
+        reference.wall_s,
+        pct(&self_diff.percent)
+    );
+    let mut scan_results: Vec<(Setting, ScanRun, ScanDiff)> = vec![];
+    for setting in &settings {
+        eprintln!("scan: {}", setting.name());
+        let run = run_scan(scan, &setting.apply(&scan_base));
+        let diff = compare_scans(&run.points, &reference.points);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.2} | {:.2} | {:.1} | {} | {:.1e} | {} |",
+            setting.name(),
+            run.rhs,
+            run.cpu_s,
+            run.wall_s,
+            diff.max_pp,
+            diff.flips.len(),
+            diff.median_fw_rel,
+            pct(&diff.percent)
+        );
+        scan_results.push((*setting, run, diff));
+    }
+    let _ = writeln!(
+        md,
+        "\nThe samples whose label differs from the reference:\n"
+    );
+    for (setting, _, diff) in &scan_results {
+        let flips: Vec<String> = diff
+            .flips
+            .iter()
+            .map(|(i, a, b)| format!("#{i} {}→{}", a.as_str(), b.as_str()))
+            .collect();
+        let _ = writeln!(
+            md,
+            "* {}: {}",
+            setting.name(),
+            if flips.is_empty() {
+                "none".to_string()
+            } else {
+                flips.join(", ")
+            }
+        );
+    }
+
+    // ---- The default -------------------------------------------------------
+    let walk_err = |s: &Setting| {
+        walk_fw_err
+            .iter()
+            .find(|(w, _)| w == s)
+            .map_or(f64::INFINITY, |w| w.1)
+    };
+    let chosen = scan_results
+        .iter()
+        .filter(|(s, _, d)| d.max_pp <= 1.0 && d.median_fw_rel < 0.01 && walk_err(s) < 0.01)
+        // Least work by RHS evaluations: on a shared machine the CPU times of
+        // settings with equal work differ by up to 2× from run to run.
+        .min_by_key(|(_, r, _)| r.rhs);
+    let _ = writeln!(md, "\n## The default, by measurement\n");
+    let Some((best, best_run, best_diff)) = chosen else {
+        let _ = writeln!(md, "No setting meets the criteria.");
+        return write_out(&args.out, &md, &plot_cases, &cases, &scan_results);
+    };
+    let _ = writeln!(
+        md,
+        "The cheapest setting (fewest RHS evaluations over the scan) whose scan outcome \
+         fractions stay within 1 pp of the reference, whose median f_w error over the scan is \
+         below 1 % and whose f_w at the Fig. 7(a) walk errs by less than 1 %: **{}** ({} RHS \
+         evaluations, {:.1}× fewer than the reference; {:.2} CPU s against {:.2}; max Δ {:.1} pp, \
+         {} flips, median f_w error {:.1e}, Fig. 7(a) f_w error {:.1e}).\n",
+        best.name(),
+        best_run.rhs,
+        reference.rhs as f64 / best_run.rhs as f64,
+        best_run.cpu_s,
+        reference.cpu_s,
+        best_diff.max_pp,
+        best_diff.flips.len(),
+        best_diff.median_fw_rel,
+        walk_err(best)
+    );
+    for (i, _, _) in &best_diff.flips {
+        let p = scan[*i];
+        let _ = writeln!(
+            md,
+            "* flip #{i}: ρ {:.3}, α {:.3}, f_n {:.3}, ζ {:.3}, φ {:.3}",
+            p.rho, p.alpha, p.f_n, p.zeta, p.phi
+        );
+    }
+
+    // ---- Early stop ----------------------------------------------------------
+    let _ = writeln!(
+        md,
+        "\n## Early stop (`stop_when_settled`) at {}\n",
+        best.name()
+    );
+    let _ = writeln!(
+        md,
+        "Each scan run at the chosen setting with and without the early stop; CPU s summed over \
+         samples; Δ and flips of the early-stopped scan against the full-length one; stopped \
+         early: stable samples whose run ended before t_max.\n"
+    );
+    let _ = writeln!(
+        md,
+        "| scan | samples | full RHS evals | early RHS evals | work ratio | full CPU s | early CPU s | max Δ (pp) | flips | stopped early |"
+    );
+    let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut early_scans = vec![(
+        "configs/bench/scan200.toml",
+        scan_cfg.clone(),
+        Some(n_scan as u64),
+    )];
+    if !args.quick {
+        early_scans.push((
+            "configs/bench/paper-s085.toml",
+            root.join("configs/bench/paper-s085.toml"),
+            None,
+        ));
+    }
+    for (name, path, limit) in early_scans {
+        eprintln!("early stop: {name}");
+        let (base, params) = scan_params(&path, limit)?;
+        let full_o = best.apply(&Options {
+            stop_when_settled: false,
+            ..base
+        });
+        let early_o = Options {
+            stop_when_settled: true,
+            ..full_o
+        };
+        let full_run = run_scan(&params, &full_o);
+        let early_run = run_scan(&params, &early_o);
+        let stopped = params
+            .par_iter()
+            .filter(|p| {
+                let o = simulate(p, &early_o);
+                o.label.is_stable() && o.t_end < early_o.t_max
+            })
+            .count();
+        let diff = compare_scans(&early_run.points, &full_run.points);
+        let _ = writeln!(
+            md,
+            "| `{name}` | {} | {} | {} | {:.2}× | {:.2} | {:.2} | {:.1} | {} | {} |",
+            params.len(),
+            full_run.rhs,
+            early_run.rhs,
+            full_run.rhs as f64 / early_run.rhs as f64,
+            full_run.cpu_s,
+            early_run.cpu_s,
+            diff.max_pp,
+            diff.flips.len(),
+            stopped
+        );
+    }
+    write_out(&args.out, &md, &plot_cases, &cases, &scan_results)
+}
+
+const COLORS: [(&str, &str); 3] = [
+    ("rk4", "#d62728"),
+    ("dp54", "#1f77b4"),
+    ("dop853", "#2ca02c"),
+];
+
+fn by_method(points: impl Iterator<Item = (Setting, f64, f64)> + Clone) -> Vec<Series> {
+    COLORS
+        .iter()
+        .map(|&(m, color)| Series {
+            name: m.to_string(),
+            color,
+            points: points
+                .clone()
+                .filter(|(s, _, _)| s.method_name() == m)
+                .map(|(_, x, y)| (x, y))
+                .collect(),
+        })
+        .collect()
+}
+
+fn write_out(
+    dir: &Path,
+    md: &str,
+    plot_cases: &[Vec<(Setting, f64, f64)>],
+    cases: &[Case],
+    scans: &[(Setting, ScanRun, ScanDiff)],
+) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let mut panels = vec![];
+    for ci in [0, 3] {
+        panels.push(Panel {
+            title: format!("{} (s = {})", cases[ci].name, cases[ci].s),
+            x_label: format!("state error over the first {FIRST_EVENTS} events"),
+            y_label: "median wall time per 20 s run (ms)".into(),
+            x_log: true,
+            y_log: true,
+            series: by_method(plot_cases[ci].iter().copied()),
+        });
+    }
+    panels.push(Panel {
+        title: format!(
+            "scan of {} samples, s = 0.85",
+            scans.first().map_or(0, |s| s.1.points.len())
+        ),
+        x_label: "largest outcome-fraction error (pp)".into(),
+        y_label: "CPU time of the scan (s)".into(),
+        x_log: false,
+        y_log: true,
+        series: by_method(scans.iter().map(|(s, r, d)| (*s, d.max_pp, r.cpu_s))),
+    });
+    let svg = render(
+        "Work against precision (reference: DOP853, rtol 1e-13)",
+        &panels,
+    );
+    let md_path = dir.join("work-precision.md");
+    std::fs::write(&md_path, md).with_context(|| format!("writing {}", md_path.display()))?;
+    let svg_path = dir.join("work-precision.svg");
+    std::fs::write(&svg_path, svg).with_context(|| format!("writing {}", svg_path.display()))?;
+    eprintln!("wrote {} and {}", md_path.display(), svg_path.display());
+    Ok(())
+}
