@@ -94,22 +94,30 @@ fn settings(quick: bool) -> Vec<Setting> {
 struct Case {
     name: &'static str,
     params: Params,
-    /// `strings.rest_length_ratio`.
-    s: f64,
+    /// The model variant: `default` (the adopted model) or `literal`
+    /// (MODEL.md §1–§6, zero-rest-length strings).
+    variant: &'static str,
 }
 
-/// Options of a case: the defaults with every choice that matters here
+/// Options of a case: its variant with every choice that matters here
 /// spelled out, so that the benchmark does not move when a default does.
-fn case_options(s: f64) -> Options {
-    let mut o = Options {
+fn case_options(variant: &str) -> Options {
+    let base = match variant {
+        "literal" => Options::literal(),
+        _ => Options::default(),
+    };
+    Options {
         t_max: 20.0,
         h_max: 0.01,
         stop_when_settled: false,
-        ..Options::default()
-    };
-    o.strings.rest_length_ratio = s;
-    o
+        ..base
+    }
 }
+
+/// The benchmark's crawl: sample 38 of `configs/bench/scan200.toml` (the
+/// paper scan's first 200 samples), the only crawl among them under the
+/// default model (`results/paper`).
+const CRAWL_SAMPLE: usize = 38;
 
 fn cases(crawl: Params) -> Vec<Case> {
     let p = |rho, alpha, f_n, zeta, phi| {
@@ -119,27 +127,27 @@ fn cases(crawl: Params) -> Vec<Case> {
         Case {
             name: "Fig. 7(a) walk",
             params: Params::fig7a(),
-            s: 0.85,
+            variant: "default",
         },
         Case {
             name: "Fig. 7(a) skip",
             params: Params::fig7a(),
-            s: 0.0,
+            variant: "literal",
         },
         Case {
-            name: "crawl (scan200 #68)",
+            name: "crawl (scan200 #38)",
             params: crawl,
-            s: 0.85,
+            variant: "default",
         },
         Case {
             name: "stiffest corner",
             params: p(5.0, 0.4, 5.0, 0.1, 0.3),
-            s: 0.85,
+            variant: "default",
         },
         Case {
             name: "near collapse",
             params: p(2.0, 0.02, 1.6, 0.05, 0.2),
-            s: 0.85,
+            variant: "default",
         },
     ]
 }
@@ -158,7 +166,7 @@ struct CaseRun {
 }
 
 fn run_case(case: &Case, setting: &Setting, reps: usize) -> CaseRun {
-    let o = setting.apply(&case_options(case.s));
+    let o = setting.apply(&case_options(case.variant));
     let mut times = Vec::with_capacity(reps);
     let mut out = None;
     for _ in 0..reps {
@@ -284,7 +292,7 @@ fn main() -> Result<()> {
     let (mut scan_base, all_params) = scan_params(&scan_cfg, None)?;
     // Full-length runs unless a section says otherwise.
     scan_base.stop_when_settled = false;
-    let crawl = all_params[68];
+    let crawl = all_params[CRAWL_SAMPLE];
     let reps = if args.quick { 1 } else { 5 };
     let settings = settings(args.quick);
     let cases = cases(crawl);
@@ -322,8 +330,8 @@ fn main() -> Result<()> {
         let p = case.params;
         let _ = writeln!(
             md,
-            "### {} (ρ {:.4}, α {:.4}, f_n {:.4}, ζ {:.4}, φ {:.4}; s = {})\n",
-            case.name, p.rho, p.alpha, p.f_n, p.zeta, p.phi, case.s
+            "### {} (ρ {:.4}, α {:.4}, f_n {:.4}, ζ {:.4}, φ {:.4}; model {})\n",
+            case.name, p.rho, p.alpha, p.f_n, p.zeta, p.phi, case.variant
         );
         let r = &reference.out;
         let _ = writeln!(
@@ -389,11 +397,11 @@ fn main() -> Result<()> {
     let reference = run_scan(scan, &ref_opts);
     let _ = writeln!(
         md,
-        "## Scan: {n_scan} samples of the paper's box, s = 0.85\n"
+        "## Scan: {n_scan} samples of the paper's box, default model\n"
     );
     let _ = writeln!(
         md,
-        "`configs/bench/scan200.toml` (MODEL.md §8's box at L = 0.8, prestressed strings). \
+        "`configs/bench/scan200.toml` (MODEL.md §8's box at L = 0.8: the first 200 samples of `configs/paper.toml`, default model). \
          CPU s: the sum of the per-sample times; wall s: the whole scan on the worker threads. \
          Outcome % per label, largest |Δ| against the reference (pp), labels that differ \
          (flips), median relative f_w error over samples stable in both with the same label.\n"
@@ -534,8 +542,8 @@ fn main() -> Result<()> {
     )];
     if !args.quick {
         early_scans.push((
-            "configs/bench/paper-s085.toml",
-            root.join("configs/bench/paper-s085.toml"),
+            "configs/paper.toml",
+            root.join("configs/paper.toml"),
             None,
         ));
     }
@@ -609,7 +617,7 @@ fn write_out(
     let mut panels = vec![];
     for ci in [0, 3] {
         panels.push(Panel {
-            title: format!("{} (s = {})", cases[ci].name, cases[ci].s),
+            title: format!("{} ({})", cases[ci].name, cases[ci].variant),
             x_label: format!("state error over the first {FIRST_EVENTS} events"),
             y_label: "median wall time per 20 s run (ms)".into(),
             x_log: true,
@@ -619,7 +627,7 @@ fn write_out(
     }
     panels.push(Panel {
         title: format!(
-            "scan of {} samples, s = 0.85",
+            "scan of {} samples, default model",
             scans.first().map_or(0, |s| s.1.points.len())
         ),
         x_label: "largest outcome-fraction error (pp)".into(),

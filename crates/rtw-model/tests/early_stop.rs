@@ -2,10 +2,11 @@
 //! map has converged measures the same gait as the full-length run.
 use rtw_model::{Label, Options, Params, simulate};
 
+/// The literal model (MODEL.md §1–§6) with rest-length ratio `s`.
 fn options(s: f64, stop: bool) -> Options {
     let mut o = Options {
         stop_when_settled: stop,
-        ..Options::default()
+        ..Options::literal()
     };
     o.strings.rest_length_ratio = s;
     o

@@ -1,0 +1,54 @@
+"""Copies generated tables into README.md between markers, so that no number
+in the README is typed by hand:
+
+    <!-- begin: results/reproduction.md -->
+    ...replaced by the file's Markdown tables...
+    <!-- end: results/reproduction.md -->
+
+A marker may name a section: `results/variants/summary.md#At a glance` takes
+only the tables under that heading, and a row filter after `|` keeps the
+header and the rows whose first cell is listed:
+`results/variants/summary.md#Fig. 7(a)|literal,prestress-0.85`. Usage: python scripts/readme_tables.py README.md
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BLOCK = re.compile(r"(<!-- begin: (?P<src>[^>]+?) -->\n)(?P<body>.*?)(<!-- end: (?P=src) -->)", re.S)
+
+
+def tables(src: str) -> str:
+    src, _, keep = src.partition("|")
+    path, _, section = src.partition("#")
+    text = (ROOT / path).read_text()
+    if section:
+        m = re.search(rf"^#+ {re.escape(section)}.*?$(?P<body>.*?)(?=^#+ |\Z)", text, re.S | re.M)
+        if not m:
+            sys.exit(f"readme_tables: no section {section!r} in {path}")
+        text = m.group("body")
+    rows = [line for line in text.splitlines() if line.startswith("|")]
+    if keep:
+        names = set(keep.split(","))
+
+        def first(line: str) -> str:
+            return line.split("|")[1].strip().strip("*").split("*")[0].strip()
+
+        rows = [r for i, r in enumerate(rows) if i < 2 or first(r) in names]
+    if not rows:
+        sys.exit(f"readme_tables: no table in {src}")
+    return "\n".join(rows) + "\n"
+
+
+def main(readme: Path) -> None:
+    text = readme.read_text()
+    new, n = BLOCK.subn(lambda m: m.group(1) + tables(m.group("src")) + m.group(4), text)
+    readme.write_text(new)
+    print(f"readme_tables: {n} tables refreshed in {readme}")
+
+
+if __name__ == "__main__":
+    main(Path(sys.argv[1] if len(sys.argv) > 1 else ROOT / "README.md"))
