@@ -6,6 +6,8 @@
 # --dependency=afterok, and the merged samples.parquet compared value by value
 # with a single-machine run of the same config (scripts/compare_scans.py;
 # also the parts read directly with polars.scan_parquet("DIR/part-*.parquet")).
+# Then a lost shard is rerun alone and merged again, and a failing array task
+# must make Slurm cancel the merge job.
 #
 # If Slurm cannot be installed or started, this fails loudly (exit 1); it
 # never passes without having run the jobs. The daemons it started are
@@ -22,6 +24,25 @@ started=$(date +%s)
 fail() {
   echo "test_slurm: FAILED: $*" >&2
   exit 1
+}
+
+# submit_wait OUTPUT_FILE SBATCH_ARGS...: submits a job, waits for its end
+# (polling squeue, bounded by timeout_s), prints its final state. (sbatch
+# --wait polls more slowly, and exits 0 for a job that Slurm cancelled
+# before it ran.)
+submit_wait() {
+  local log=$1 id t0
+  shift
+  id=$(sbatch --parsable --output="$log" "$@") || fail "sbatch $* was refused"
+  t0=$(date +%s)
+  while [ -n "$(squeue -h -j "$id" 2>/dev/null)" ]; do
+    if [ $(($(date +%s) - t0)) -gt "$timeout_s" ]; then
+      squeue -t all >&2 || true
+      fail "job $id did not finish within $timeout_s s"
+    fi
+    sleep 0.2
+  done
+  scontrol show job "$id" | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'
 }
 
 cargo build --release -q -p rtw-scan
@@ -48,21 +69,16 @@ jid=$(sbatch --parsable --array=0-$((shards - 1)) --cpus-per-task=1 \
   --output="$work/task-%a.out" scripts/slurm/scan-array.sbatch "$config" "$out") ||
   fail "sbatch of the array was refused"
 echo "test_slurm: array job $jid ($shards tasks) submitted"
-# --wait: returns when the merge job ends, with its exit code. A failed array
-# task makes the dependency impossible and Slurm cancels the merge
-# (DependencyParameters=kill_invalid_depend), so this cannot hang; timeout
-# bounds it anyway.
-merge_rc=0
-timeout "$timeout_s" sbatch --wait --parsable --dependency=afterok:"$jid" \
-  --output="$work/merge.out" scripts/slurm/merge.sbatch "$out" || merge_rc=$?
+# A failed array task makes the merge's dependency impossible and Slurm
+# cancels the merge (DependencyParameters=kill_invalid_depend), so this
+# cannot hang; the timeout bounds it anyway.
+merge_state=$(submit_wait "$work/merge.out" --dependency=afterok:"$jid" scripts/slurm/merge.sbatch "$out")
 for f in "$work"/task-*.out "$work"/merge.out; do
   [ -f "$f" ] && { echo "----- $(basename "$f")"; cat "$f"; }
 done
-if [ "$merge_rc" -ne 0 ]; then
-  squeue || true
-  scontrol show job "$jid" || true
-  [ "$merge_rc" -eq 124 ] && fail "the jobs did not finish within $timeout_s s"
-  fail "the merge job failed or was cancelled (exit $merge_rc)"
+if [ "$merge_state" != COMPLETED ]; then
+  squeue -t all || true
+  fail "the merge job ended $merge_state, not COMPLETED"
 fi
 for k in $(seq 0 $((shards - 1))); do
   [ -f "$out/part-$k.parquet" ] || fail "part-$k.parquet was not written"
@@ -77,4 +93,26 @@ done
 .venv/bin/python scripts/compare_scans.py "$out/part-*.parquet" "$work/single/samples.parquet" ||
   fail "the parts, read with polars.scan_parquet, differ from the single-machine run"
 
-echo "test_slurm: passed: $shards Slurm array tasks + merge give the single-machine rows ($(($(date +%s) - started)) s)"
+# A lost shard rerun alone, as the README says (RTW_SHARDS: that array has
+# one task), then merged again: still the single-machine rows.
+rm "$out/part-2.parquet" "$out/samples.parquet"
+jid=$(sbatch --parsable --array=2 --export=ALL,RTW_SHARDS=$shards --cpus-per-task=1 \
+  --output="$work/rerun-%a.out" scripts/slurm/scan-array.sbatch "$config" "$out")
+merge_state=$(submit_wait "$work/merge2.out" --dependency=afterok:"$jid" scripts/slurm/merge.sbatch "$out")
+[ "$merge_state" = COMPLETED ] ||
+  fail "the rerun of shard 2 or its merge failed ($merge_state): $(cat "$work"/rerun-2.out "$work"/merge2.out 2>/dev/null)"
+grep -q "shard 2/$shards" "$work/rerun-2.out" || fail "the rerun did not run shard 2/$shards"
+.venv/bin/python scripts/compare_scans.py "$out/samples.parquet" "$work/single/samples.parquet" ||
+  fail "after rerunning shard 2, the merged file differs from the single-machine run"
+
+# A failing task (no such config) makes the merge's dependency impossible:
+# Slurm cancels the merge instead of leaving it pending, and nothing is merged.
+bad=$work/bad
+jid=$(sbatch --parsable --array=0-1 --cpus-per-task=1 --output="$work/bad-%a.out" \
+  scripts/slurm/scan-array.sbatch "$work/no-such-config.toml" "$bad")
+merge_state=$(submit_wait "$work/merge-bad.out" --dependency=afterok:"$jid" scripts/slurm/merge.sbatch "$bad")
+[ "$merge_state" = CANCELLED ] || fail "after a failed array the merge job ended $merge_state, not CANCELLED"
+grep -q "cannot read config" "$work/bad-0.out" || fail "the failing task did not say why: $(cat "$work/bad-0.out")"
+[ ! -e "$bad/samples.parquet" ] || fail "a samples.parquet was merged from a failed array"
+
+echo "test_slurm: passed: $shards Slurm array tasks + merge give the single-machine rows, also after a shard is rerun alone; a failed array cancels the merge ($(($(date +%s) - started)) s)"

@@ -39,7 +39,8 @@ pub const META_VERSION: &str = "rtw.version";
 pub const META_SEED: &str = "rtw.seed";
 /// Metadata key: one-line model variant summary ([`crate::config::Variant`]).
 pub const META_VARIANT: &str = "rtw.variant";
-/// Metadata key: seconds spent computing the rows (summed over resumed sessions).
+/// Metadata key: seconds spent computing the rows (summed over resumed
+/// sessions and, in a merged file, over the shards).
 pub const META_WALL_TIME: &str = "rtw.wall_time_s";
 /// Metadata key: seconds spent computing one chunk (chunk files only).
 pub const META_CHUNK_WALL_TIME: &str = "rtw.chunk_wall_time_s";
