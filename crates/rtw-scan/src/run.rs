@@ -167,8 +167,8 @@ pub fn run_scan(
         let manifest = read_manifest(&layout.manifest())?;
         if manifest.config != config_toml || manifest.rows != rows || manifest.shard != shard_text {
             bail!(
-                "cannot resume: the unfinished run in {} was started with a different config; \
-                 delete it to start over",
+                "cannot resume: the unfinished run in {} was started with a different config \
+                 (or another --shard split); delete it to start over",
                 layout.partial.display()
             );
         }

@@ -199,6 +199,21 @@ fn killed_shard_rerun_with_resume_merges_to_the_identical_file() {
             "--resume",
         ],
     );
+    // Its chunks cannot be taken over by shard 2 of another split.
+    run_err(
+        &[
+            "run",
+            &cfg,
+            "--out",
+            out.to_str().unwrap(),
+            "--shard",
+            "2/5",
+            "--resume",
+            "--fake-sim",
+            "0",
+        ],
+        &["cannot resume", "another --shard split"],
+    );
     // Rerun with --resume: the kept chunks are reused, the rest computed.
     let o = run_ok(&[
         "run",
