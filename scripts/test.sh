@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The project's test command (README): formatting, lints, every Rust test,
-# and the Python interoperability check of the Parquet output.
-# Sets up what it needs on a fresh machine (a Python venv under .venv).
+# the Python interoperability check of the Parquet output, and the Slurm test
+# (a real one-node cluster running a sharded scan).
+# Sets up what it needs on a fresh machine (a Python venv under .venv; Slurm
+# and munge from Debian's packages, which needs root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,4 +27,7 @@ if [ -f scripts/check_parquet.py ]; then
   .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
   rm -rf "$out"
 fi
+echo "== slurm: a 4-task job array + merge on a one-node cluster (scripts/test_slurm.sh)"
+./scripts/test_slurm.sh
+
 echo "all checks passed"

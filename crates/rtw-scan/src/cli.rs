@@ -1,10 +1,11 @@
-//! The command line: `run`, `simulate`, `cluster`, `summary`.
+//! The command line: `run`, `merge`, `simulate`, `cluster`, `summary`.
 
 use crate::config;
 use crate::fake;
 use crate::output::{self, JsonRow, TraceWriter, kv};
 use crate::report::{self, clusters_markdown};
 use crate::run::{self, ProgressMode, RunSettings, RunStatus};
+use crate::shard::{self, Shard};
 use anyhow::{Context, Result, anyhow};
 use clap::{Args, Parser, Subcommand};
 use rtw_model::{Options, Outcome, Params};
@@ -46,6 +47,16 @@ enum Command {
         grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
         every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...).")]
     Run(RunArgs),
+    /// Merge the shards of a scan (DIR/part-K.parquet from `run --shard K/N`) into DIR/samples.parquet and its summary.
+    #[command(
+        long_about = "Merge the shards of a scan into DIR/samples.parquet, DIR/summary.json and DIR/summary.md.\n\n\
+        The parts DIR/part-K.parquet written by `rtw-scan run CONFIG --shard K/N --out DIR` must all come from one \
+        config (same config hash) and one rtw-scan version, with the same N, every shard 0..N-1 present and their \
+        sample_ids exactly 0..n-1 once each; otherwise merge refuses, naming what is missing or mismatched, and \
+        writes nothing. The merged rows are the rows of a single-machine run of the config. The parts are kept \
+        (polars.scan_parquet(\"DIR/part-*.parquet\") reads them directly)."
+    )]
+    Merge(MergeArgs),
     /// Simulate one RTW and print its outcome and every metric.
     #[command(
         long_about = "Simulate one RTW and print its outcome and every metric.\n\n\
@@ -81,12 +92,21 @@ struct RunArgs {
     /// Finish the interrupted run in DIR (keeps its finished chunks).
     #[arg(long)]
     resume: bool,
+    /// Run only shard K of N (0-based): the K-th contiguous block of sample ids, into DIR/part-K.parquet; join the N parts with `rtw-scan merge DIR`.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<Shard>,
     /// Rows per chunk and row group (a resumed run keeps its own).
     #[arg(long, hide = true, value_name = "N", default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
     /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
     #[arg(long, hide = true, value_name = "MS")]
     fake_sim: Option<u64>,
+}
+
+#[derive(Args, Debug)]
+struct MergeArgs {
+    /// The directory holding part-0.parquet … part-(N-1).parquet.
+    dir: PathBuf,
 }
 
 #[derive(Args, Debug)]
@@ -157,6 +177,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run(a) => cmd_run(a),
+        Command::Merge(a) => cmd_merge(a),
         Command::Simulate(a) => cmd_simulate(a),
         Command::Cluster(a) => cmd_cluster(a),
         Command::Summary(a) => cmd_summary(a),
@@ -197,6 +218,7 @@ fn cmd_run(a: RunArgs) -> Result<ExitCode> {
         resume: a.resume,
         chunk_size: a.chunk_size,
         progress: ProgressMode::Auto,
+        shard: a.shard,
     };
     let status = match a.fake_sim {
         Some(ms) => {
@@ -207,15 +229,24 @@ fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     };
     match status {
         RunStatus::Complete {
-            samples, computed, ..
+            samples,
+            computed,
+            rows,
         } => {
             if computed == 0 && a.resume {
                 eprintln!("rtw-scan: {} is already complete", samples.display());
             }
-            let summary = report::summarize(&samples, None)?;
-            report::write_summary(&out, &summary)?;
-            print!("{}", summary.to_markdown());
-            Ok(ExitCode::SUCCESS)
+            if let Some(s) = a.shard {
+                // One part is not the scan: the summary comes with `merge`.
+                println!(
+                    "rtw-scan: shard {s}: {rows} rows in {}; when all {} shards are done: rtw-scan merge {}",
+                    samples.display(),
+                    s.count,
+                    out.display()
+                );
+                return Ok(ExitCode::SUCCESS);
+            }
+            write_and_print_summary(&out, &samples)
         }
         RunStatus::Interrupted {
             chunks_done,
@@ -229,14 +260,35 @@ fn cmd_run(a: RunArgs) -> Result<ExitCode> {
             for s in &a.set {
                 again += &format!(" --set {s}");
             }
+            let shard = a.shard.map_or(String::new(), |s| format!(" --shard {s}"));
             eprintln!(
-                "rtw-scan: interrupted: {chunks_done} of {chunks} chunks kept in {}; finish with: {again} --out {} --resume",
+                "rtw-scan: interrupted: {chunks_done} of {chunks} chunks kept in {}; finish with: {again} --out {}{shard} --resume",
                 partial.display(),
                 out.display()
             );
             Ok(ExitCode::from(EXIT_INTERRUPTED))
         }
     }
+}
+
+/// The end of a whole scan (`run`, `merge`): `summary.json` and `summary.md`
+/// beside the samples file, and the summary printed.
+fn write_and_print_summary(dir: &Path, samples: &Path) -> Result<ExitCode> {
+    let summary = report::summarize(samples, None)?;
+    report::write_summary(dir, &summary)?;
+    print!("{}", summary.to_markdown());
+    Ok(ExitCode::SUCCESS)
+}
+
+fn cmd_merge(a: MergeArgs) -> Result<ExitCode> {
+    let merged = shard::merge_parts(&a.dir)?;
+    eprintln!(
+        "rtw-scan: merged {} shards, {} rows, into {}",
+        merged.shards,
+        merged.rows,
+        merged.samples.display()
+    );
+    write_and_print_summary(&a.dir, &merged.samples)
 }
 
 /// The simulation options of `simulate`: the config's [simulation] table, then `--set`.

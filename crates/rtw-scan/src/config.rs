@@ -514,6 +514,12 @@ impl ScanConfig {
         toml::to_string(&t).expect("config serializes")
     }
 
+    /// The config hash: [`config_hash`] of [`Self::to_toml`]. Two runs with
+    /// the same hash computed the same rows (given the same rtw-scan version).
+    pub fn hash(&self) -> String {
+        config_hash(&self.to_toml())
+    }
+
     /// Is this the article's 1000-sample scan (MODEL.md §8: L = 0.8 and the
     /// stated uniform ranges), whatever the sample count, seed or variant?
     pub fn is_paper_scan(&self) -> bool {
@@ -528,6 +534,22 @@ impl ScanConfig {
                 u(0.05, 0.3),
             ]
     }
+}
+
+/// FNV-1a (64-bit) of `bytes`. A fixed algorithm, the same on every machine
+/// and in every process (std's hasher is randomly keyed per process, so it
+/// could not tell whether shards run on different nodes share a config).
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    bytes
+        .iter()
+        .fold(OFFSET, |h, b| (h ^ u64::from(*b)).wrapping_mul(PRIME))
+}
+
+/// The hash of a resolved config's TOML text, as 16 hex digits.
+pub fn config_hash(toml_text: &str) -> String {
+    format!("{:016x}", fnv1a64(toml_text.as_bytes()))
 }
 
 /// The model variant of MODEL.md §9 that a run used: every open choice.
@@ -854,5 +876,32 @@ phi = { uniform = [0.05, 0.3] }
         ] {
             assert!(v.contains(s), "{v} lacks {s}");
         }
+    }
+
+    #[test]
+    fn fnv1a64_matches_the_published_test_vectors() {
+        // Reference values: the FNV test suite of Fowler, Noll and Vo
+        // (FNV-1a, 64 bit): "" is the offset basis itself.
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+        assert_eq!(config_hash("a"), "af63dc4c8601ec8c");
+    }
+
+    #[test]
+    fn config_hash_follows_the_resolved_config() {
+        let text = "seed = 1\nsamples = 4\n[params]\nlength = 0.8\nrho = 2\nalpha = 0.1\n\
+                    fn = 3\nzeta = 0.05\nphi = 0.1\n";
+        let a = parse(text).unwrap();
+        // Keys in another order and a default spelled out resolve to the same config.
+        let b = parse(&format!(
+            "samples = 4\n{}[simulation]\nt_max = 20.0\n",
+            text.replace("samples = 4\n", "")
+        ))
+        .unwrap();
+        assert_eq!(a.hash(), b.hash());
+        assert_eq!(a.hash(), config_hash(&a.to_toml()));
+        let c = parse(&text.replace("seed = 1", "seed = 2")).unwrap();
+        assert_ne!(a.hash(), c.hash());
     }
 }

@@ -11,16 +11,18 @@
 //! | [`config`] | TOML config → validated [`config::ScanConfig`] (errors name the key) |
 //! | [`sample`] | sample id → parameters, from (seed, id) only |
 //! | [`run`] | parallel chunks, durable parts, resume, panics → `diverged` rows |
+//! | [`shard`] | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | [`output`] | the row schema; Parquet, JSON and text forms; trace files |
 //! | [`cluster`] | k-means++ of the failures, silhouette, naming by kind |
 //! | [`report`] | shares with Wilson intervals, paper numbers, summary files |
-//! | [`cli`] | the `run`, `simulate`, `cluster`, `summary` subcommands |
+//! | [`cli`] | the `run`, `merge`, `simulate`, `cluster`, `summary` subcommands |
 //! | [`fake`] | a deterministic stand-in simulator for testing the machinery |
 //!
 //! ## Usage
 //!
 //! ```text
-//! rtw-scan run configs/paper.toml [--out DIR] [--threads N] [--resume]
+//! rtw-scan run configs/paper.toml [--out DIR] [--threads N] [--resume] [--shard K/N]
+//! rtw-scan merge DIR
 //! rtw-scan simulate --length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15 \
 //!     [--config FILE] [--set contact.mu=0.8]... [--json] [--trace trace.parquet]
 //! rtw-scan cluster results/paper/samples.parquet [--k 3] [--json]
@@ -40,3 +42,4 @@ pub mod output;
 pub mod report;
 pub mod run;
 pub mod sample;
+pub mod shard;

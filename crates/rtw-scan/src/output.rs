@@ -40,20 +40,31 @@ pub const META_VERSION: &str = "rtw.version";
 pub const META_SEED: &str = "rtw.seed";
 /// Metadata key: one-line model variant summary ([`crate::config::Variant`]).
 pub const META_VARIANT: &str = "rtw.variant";
-/// Metadata key: seconds spent computing the rows (summed over resumed sessions).
+/// Metadata key: seconds spent computing the rows (summed over resumed
+/// sessions and, in a merged file, over the shards).
 pub const META_WALL_TIME: &str = "rtw.wall_time_s";
 /// Metadata key: seconds spent computing one chunk (chunk files only).
 pub const META_CHUNK_WALL_TIME: &str = "rtw.chunk_wall_time_s";
+/// Metadata key: [`ScanConfig::hash`] of the config in [`META_CONFIG`].
+pub const META_CONFIG_HASH: &str = "rtw.config_hash";
+/// Metadata key: the shard a part file holds, `K/N` (part files only).
+pub const META_SHARD: &str = "rtw.shard";
+/// Metadata key: the rows of the whole scan, all shards together (part files only).
+pub const META_TOTAL_ROWS: &str = "rtw.total_rows";
+/// Metadata key: how many shards a merged file was made of.
+pub const META_SHARDS: &str = "rtw.shards";
 
 /// A key-value metadata entry.
 pub fn kv(key: &str, value: String) -> KeyValue {
     KeyValue::new(key.to_string(), value)
 }
 
-/// The file metadata of a scan's Parquet files: config, version, seed, variant.
+/// The file metadata of a scan's Parquet files: config, its hash, version,
+/// seed, variant.
 pub fn scan_metadata(cfg: &ScanConfig) -> Vec<KeyValue> {
     vec![
         kv(META_CONFIG, cfg.to_toml()),
+        kv(META_CONFIG_HASH, cfg.hash()),
         kv(META_VERSION, env!("CARGO_PKG_VERSION").to_string()),
         kv(META_SEED, cfg.seed.to_string()),
         kv(META_VARIANT, Variant::of(&cfg.simulation).to_string()),

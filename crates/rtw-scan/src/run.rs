@@ -14,15 +14,23 @@
 //! computes the rest; since a row depends only on (seed, sample_id), the
 //! result is the same as an uninterrupted run's.
 //!
+//! A shard (`--shard K/N`, [`Shard`]) is the same scan restricted to the
+//! contiguous id range of shard K: its chunks live in `DIR/.partial-K` and
+//! its rows end up in `DIR/part-K.parquet`, with the shard and the config
+//! hash in the file's metadata, so shards can run at once into one directory
+//! and be resumed the same way; [`crate::shard::merge_parts`] joins them.
+//!
 //! The simulator is a parameter, so tests can inject a fake one. A sample
 //! whose simulation panics becomes a `diverged` row with the panic message in
 //! `message`; the scan never aborts for one sample.
 
 use crate::config::ScanConfig;
 use crate::output::{
-    self, META_CHUNK_WALL_TIME, META_CONFIG, META_WALL_TIME, ParquetFile, Row, schema,
+    self, META_CHUNK_WALL_TIME, META_CONFIG, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME,
+    ParquetFile, Row, schema,
 };
 use crate::sample::Sampler;
+use crate::shard::Shard;
 use anyhow::{Context, Result, anyhow, bail};
 use arrow::array::{AsArray, RecordBatch};
 use arrow::datatypes::Int64Type;
@@ -66,12 +74,15 @@ pub struct RunSettings {
     /// Rows per chunk; a resumed run keeps the size it was started with.
     pub chunk_size: NonZeroUsize,
     pub progress: ProgressMode,
+    /// Run only this shard's id range, into `part-K.parquet`.
+    pub shard: Option<Shard>,
 }
 
 /// How a scan ended.
 #[derive(Clone, Debug, PartialEq)]
 pub enum RunStatus {
-    /// `samples` is complete; `computed` rows were simulated in this session.
+    /// `samples` (or the shard's part file) is complete with `rows` rows;
+    /// `computed` rows were simulated in this session.
     Complete {
         samples: PathBuf,
         rows: u64,
@@ -92,19 +103,30 @@ struct Manifest {
     config: String,
     chunk_size: usize,
     rows: u64,
+    /// The shard (`K/N`) this run computes; absent for a whole scan.
+    #[serde(default)]
+    shard: Option<String>,
 }
 
-/// Where a scan writes.
+/// Where a scan (or one shard of it) writes.
 pub struct Layout {
+    /// `samples.parquet`, or `part-K.parquet` for shard K.
     pub samples: PathBuf,
+    /// `.partial`, or `.partial-K` for shard K (shards share a directory).
     pub partial: PathBuf,
 }
 
 impl Layout {
-    pub fn new(out_dir: &Path) -> Self {
-        Self {
-            samples: out_dir.join("samples.parquet"),
-            partial: out_dir.join(".partial"),
+    pub fn new(out_dir: &Path, shard: Option<Shard>) -> Self {
+        match shard {
+            None => Self {
+                samples: out_dir.join("samples.parquet"),
+                partial: out_dir.join(".partial"),
+            },
+            Some(s) => Self {
+                samples: out_dir.join(s.part_name()),
+                partial: out_dir.join(s.partial_name()),
+            },
         }
     }
     fn manifest(&self) -> PathBuf {
@@ -122,12 +144,18 @@ pub fn run_scan(
     sim: Simulator,
     stop: &AtomicBool,
 ) -> Result<RunStatus> {
-    let rows = cfg.total_rows()?;
+    let total = cfg.total_rows()?;
+    let ids = match settings.shard {
+        Some(s) => s.ids(total)?,
+        None => 0..total,
+    };
+    let rows = ids.end - ids.start;
+    let shard_text = settings.shard.map(|s| s.to_string());
     let config_toml = cfg.to_toml();
     let out = &settings.out_dir;
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output directory {}", out.display()))?;
-    let layout = Layout::new(out);
+    let layout = Layout::new(out, settings.shard);
 
     let chunk_size = if layout.partial.exists() {
         if !settings.resume {
@@ -137,17 +165,17 @@ pub fn run_scan(
             );
         }
         let manifest = read_manifest(&layout.manifest())?;
-        if manifest.config != config_toml || manifest.rows != rows {
+        if manifest.config != config_toml || manifest.rows != rows || manifest.shard != shard_text {
             bail!(
-                "cannot resume: the unfinished run in {} was started with a different config; \
-                 delete it to start over",
+                "cannot resume: the unfinished run in {} was started with a different config \
+                 (or another --shard split); delete it to start over",
                 layout.partial.display()
             );
         }
         remove_stray_files(&layout.partial)?;
         manifest.chunk_size.max(1)
     } else {
-        if settings.resume && is_complete(&layout.samples, &config_toml) {
+        if settings.resume && is_complete(&layout.samples, &config_toml, shard_text.as_deref()) {
             return Ok(RunStatus::Complete {
                 samples: layout.samples,
                 rows,
@@ -161,6 +189,7 @@ pub fn run_scan(
             config: config_toml.clone(),
             chunk_size: settings.chunk_size.get(),
             rows,
+            shard: shard_text.clone(),
         };
         output::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
         settings.chunk_size.get()
@@ -168,8 +197,12 @@ pub fn run_scan(
 
     let cs = chunk_size as u64;
     let chunks = rows.div_ceil(cs);
-    let range = |c: u64| c * cs..((c + 1) * cs).min(rows);
-    let metadata = output::scan_metadata(cfg);
+    let range = |c: u64| ids.start + c * cs..(ids.start + (c + 1) * cs).min(ids.end);
+    let mut metadata = output::scan_metadata(cfg);
+    if let Some(s) = &shard_text {
+        metadata.push(output::kv(META_SHARD, s.clone()));
+        metadata.push(output::kv(META_TOTAL_ROWS, total.to_string()));
+    }
 
     // Chunks already on disk (resume), with their labels for the progress counts.
     let mut done = vec![false; chunks as usize];
@@ -242,7 +275,17 @@ pub fn run_scan(
         });
     }
     progress.finish(true);
-    merge(&layout, chunks, chunk_size, metadata)?;
+    let chunk_files: Vec<PathBuf> = (0..chunks).map(|c| layout.chunk(c)).collect();
+    concat_scan_files(
+        &chunk_files,
+        ids,
+        &layout.samples,
+        chunk_size,
+        metadata,
+        META_CHUNK_WALL_TIME,
+    )?;
+    std::fs::remove_dir_all(&layout.partial)
+        .with_context(|| format!("cannot remove {}", layout.partial.display()))?;
     Ok(RunStatus::Complete {
         samples: layout.samples,
         rows,
@@ -250,35 +293,74 @@ pub fn run_scan(
     })
 }
 
-/// Merges the chunk files, in order, into `samples.parquet` and removes
-/// `.partial`.
-fn merge(
-    layout: &Layout,
-    chunks: u64,
-    chunk_size: usize,
+/// Concatenates scan files (a run's chunks, or a scan's shard parts), in
+/// order, into `dest` with `metadata` and [`META_WALL_TIME`] = the sum of the
+/// inputs' `wall_key` values. Streams one row group at a time (memory stays
+/// flat in the row count) and checks on the way that the `sample_id`s run
+/// through `ids` exactly once, in order; on any error `dest` is left as it was.
+pub fn concat_scan_files(
+    inputs: &[PathBuf],
+    ids: std::ops::Range<u64>,
+    dest: &Path,
+    row_group_rows: usize,
     metadata: Vec<parquet::file::metadata::KeyValue>,
+    wall_key: &str,
 ) -> Result<()> {
-    let props = output::writer_properties(chunk_size, metadata);
-    let mut file = ParquetFile::create(&layout.samples, schema(), props)?;
+    let props = output::writer_properties(row_group_rows, metadata);
+    let mut file = ParquetFile::create(dest, schema(), props)?;
     let mut wall = 0.0;
-    for c in 0..chunks {
-        let path = layout.chunk(c);
-        let input = output::open(&path, chunk_size)?;
+    let mut next = ids.start;
+    for path in inputs {
+        let input = output::open(path, row_group_rows)?;
         wall += input
             .metadata
-            .get(META_CHUNK_WALL_TIME)
+            .get(wall_key)
             .and_then(|v| v.parse::<f64>().ok())
             .unwrap_or(0.0);
         for batch in input.reader {
             let batch = batch.with_context(|| format!("reading {}", path.display()))?;
+            let col = batch
+                .column_by_name("sample_id")
+                .and_then(|c| c.as_primitive_opt::<Int64Type>())
+                .ok_or_else(|| anyhow!("{}: no Int64 sample_id column", path.display()))?;
+            for id in col.iter() {
+                let id = id.ok_or_else(|| anyhow!("{}: null sample_id", path.display()))? as u64;
+                if id < next {
+                    bail!(
+                        "{}: sample_id {id} is already in an earlier file (or twice in this one): \
+                         the files overlap",
+                        path.display()
+                    );
+                }
+                if id > next {
+                    bail!(
+                        "{}: sample_id {id} where {next} was expected: sample_ids {next}..{} are in no file",
+                        path.display(),
+                        id - 1
+                    );
+                }
+                next += 1;
+            }
+            if next > ids.end {
+                bail!(
+                    "{}: sample_id {} is beyond the scan's last id {}",
+                    path.display(),
+                    next - 1,
+                    ids.end.saturating_sub(1)
+                );
+            }
             file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
         }
         file.end_row_group()?;
     }
+    if next != ids.end {
+        bail!(
+            "sample_ids {next}..{} are in no file",
+            ids.end.saturating_sub(1)
+        );
+    }
     file.append_metadata(META_WALL_TIME, wall.to_string());
-    file.finish()?;
-    std::fs::remove_dir_all(&layout.partial)
-        .with_context(|| format!("cannot remove {}", layout.partial.display()))
+    file.finish()
 }
 
 /// Checks a chunk file (config, row count, ids) and returns its labels.
@@ -336,10 +418,13 @@ fn remove_stray_files(partial: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Does `samples` exist, complete, for this very config?
-fn is_complete(samples: &Path, config: &str) -> bool {
+/// Does `samples` exist, complete, for this very config (and shard)?
+fn is_complete(samples: &Path, config: &str, shard: Option<&str>) -> bool {
     output::open(samples, 1)
-        .map(|i| i.metadata.get(META_CONFIG).map(String::as_str) == Some(config))
+        .map(|i| {
+            i.metadata.get(META_CONFIG).map(String::as_str) == Some(config)
+                && i.metadata.get(META_SHARD).map(String::as_str) == shard
+        })
         .unwrap_or(false)
 }
 
@@ -591,6 +676,7 @@ t_max = 2.0
             resume: false,
             chunk_size: NonZeroUsize::new(chunk).unwrap(),
             progress: ProgressMode::Quiet,
+            shard: None,
         }
     }
 
