@@ -7,10 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if [ ! -x .venv/bin/python ]; then
-  python3 -m venv .venv
-fi
-.venv/bin/pip install --quiet --disable-pip-version-check -r scripts/requirements.txt
+./scripts/venv.sh
 
 cargo build --release -q -p rtw-scan
 bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"

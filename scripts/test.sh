@@ -18,15 +18,25 @@ cargo test --workspace --release
 
 if [ -f scripts/check_parquet.py ]; then
   echo "== python interop (pandas, polars, pyarrow)"
-  if [ ! -x .venv/bin/python ]; then
-    python3 -m venv .venv
-  fi
-  .venv/bin/pip install --quiet --disable-pip-version-check -r scripts/requirements.txt
+  ./scripts/venv.sh
   out=$(mktemp -d)
   cargo run --release -q -p rtw-scan -- run configs/smoke.toml --out "$out" >/dev/null
   .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
   rm -rf "$out"
 fi
+echo "== generated tables match the committed results they are made from"
+# The variant study's and the reproduction's tables, and the README's copies
+# of them, are regenerated from the committed results and must not change:
+# no number in them is typed by hand.
+check=$(mktemp -d)
+cp README.md "$check/README.md"
+.venv/bin/python scripts/variants_report.py results/variants >/dev/null
+.venv/bin/python scripts/reproduction_report.py >/dev/null
+.venv/bin/python scripts/readme_tables.py "$check/README.md" >/dev/null
+diff -u README.md "$check/README.md"
+git diff --exit-code -- results/variants/summary.md results/variants/summary.json results/reproduction.md
+rm -rf "$check"
+
 echo "== slurm: a 4-task job array + merge on a one-node cluster (scripts/test_slurm.sh)"
 ./scripts/test_slurm.sh
 

@@ -90,7 +90,7 @@ def one_variant(d: Path) -> dict:
     s3_walk = s3.filter(pl.col("outcome") == "walk").height
     s3_off = (s3["slsp"].fill_null(0.0) * 100 - 50).abs().mean()
     spread = (
-        s3.group_by("phi")
+        s3.group_by("phi", maintain_order=True)
         .agg((pl.col("slsp").max() - pl.col("slsp").min()) * 100)
         .get_column("slsp")
         .mean()
@@ -114,7 +114,7 @@ def one_variant(d: Path) -> dict:
         "fig_s3": {
             "points": s3.height,
             "walk": s3_walk,
-            "outcomes": dict(s3.group_by("outcome").len().iter_rows()),
+            "outcomes": dict(sorted(s3.group_by("outcome").len().iter_rows())),
             "mean_abs_slsp_minus_50_pp": s3_off,
             "mean_L_spread_of_slsp_pp": spread,
             "walk_phi_range": [walk_phi.min(), walk_phi.max()] if s3_walk else None,
