@@ -541,11 +541,7 @@ fn main() -> Result<()> {
         Some(n_scan as u64),
     )];
     if !args.quick {
-        early_scans.push((
-            "configs/paper.toml",
-            root.join("configs/paper.toml"),
-            None,
-        ));
+        early_scans.push(("configs/paper.toml", root.join("configs/paper.toml"), None));
     }
     for (name, path, limit) in early_scans {
         eprintln!("early stop: {name}");
