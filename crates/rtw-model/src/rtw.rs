@@ -54,6 +54,15 @@ pub enum Transition {
     Failure(FailureDetail),
 }
 
+/// What [`Rtw::dynamics`] computed at a state on the way that the guards
+/// also need there.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AtState {
+    pub frames: [RodFrame; 3],
+    /// Contact forces λ of the rods (zero when free).
+    pub lambda: [V2; 3],
+}
+
 /// The RTW: its constants and its current contact modes.
 #[derive(Clone, Debug)]
 pub struct Rtw {
@@ -129,11 +138,11 @@ impl Rtw {
     }
 
     /// Continuous dynamics: `ẏ = f(y)` in the current modes. Returns the
-    /// contact forces λ at `y` it computed on the way (bit for bit those of
-    /// [`contact_forces`](Self::contact_forces)), so that the guards at the
-    /// same state need not solve for them again.
+    /// frames and contact forces λ at `y` it computed on the way (λ bit for
+    /// bit that of [`contact_forces`](Self::contact_forces)), so that the
+    /// guards at the same state need not compute them again.
     #[inline]
-    pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) -> [V2; 3] {
+    pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) -> AtState {
         let frames = self.frames(y);
         let (loads, dissipation) = self.loads(&frames);
         let mut friction = 0.0;
@@ -151,7 +160,7 @@ impl Rtw {
         }
         dy[DISSIPATED] = dissipation;
         dy[FRICTION] = friction;
-        lambda
+        AtState { frames, lambda }
     }
 
     /// Contact forces λ of the rods at `y` (zero when free).
@@ -213,10 +222,10 @@ impl Rtw {
         self.guards_of(y, &frames, &lambda, out);
     }
 
-    /// [`guards`](Self::guards) at `y` with its contact forces `lambda`
-    /// already known (returned by [`dynamics`](Self::dynamics) at `y`).
-    pub fn guards_with_forces(&self, y: &[f64; N], lambda: &[V2; 3], out: &mut Guards) {
-        self.guards_of(y, &self.frames(y), lambda, out);
+    /// [`guards`](Self::guards) at `y` from what [`dynamics`](Self::dynamics)
+    /// returned at `y`.
+    pub fn guards_at(&self, y: &[f64; N], at: &AtState, out: &mut Guards) {
+        self.guards_of(y, &at.frames, &at.lambda, out);
     }
 
     fn guards_of(&self, y: &[f64; N], frames: &[RodFrame; 3], lambda: &[V2; 3], out: &mut Guards) {

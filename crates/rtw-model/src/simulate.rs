@@ -8,7 +8,7 @@ use crate::initial::initial_state;
 use crate::integrate::{Dense, Method};
 use crate::options::{MethodChoice, Options};
 use crate::outcome::{Energy, FailureDetail, IntegratorWork, Label, Outcome, TraceSample};
-use crate::rtw::{DISSIPATED, FRICTION, N, Rtw, Transition};
+use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
 use crate::{Params, Physical};
 
 /// Simulates one RTW run.
@@ -96,8 +96,8 @@ impl Run<'_> {
 }
 
 impl HybridSystem<N> for Run<'_> {
-    /// The contact forces λ of the rods.
-    type Aux = [V2; 3];
+    /// Frames and contact forces λ of the rods.
+    type Aux = AtState;
 
     #[inline]
     fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
@@ -105,8 +105,8 @@ impl HybridSystem<N> for Run<'_> {
     }
 
     #[inline]
-    fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], lambda: &mut [V2; 3]) {
-        *lambda = self.rtw.dynamics(y, dy);
+    fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
+        *at = self.rtw.dynamics(y, dy);
     }
 
     #[inline]
@@ -115,8 +115,8 @@ impl HybridSystem<N> for Run<'_> {
     }
 
     #[inline]
-    fn guards_aux(&self, _t: f64, y: &[f64; N], lambda: &[V2; 3], out: &mut Guards) {
-        self.rtw.guards_with_forces(y, lambda, out);
+    fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
+        self.rtw.guards_at(y, at, out);
     }
 
     fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Flow {
@@ -163,8 +163,8 @@ impl HybridSystem<N> for Run<'_> {
         self.observe_step(dense, None)
     }
 
-    fn observe_aux(&mut self, dense: &Dense<N>, lambda: &[V2; 3]) -> Flow {
-        self.observe_step(dense, Some(lambda))
+    fn observe_aux(&mut self, dense: &Dense<N>, at: &AtState) -> Flow {
+        self.observe_step(dense, Some(&at.lambda))
     }
 }
 

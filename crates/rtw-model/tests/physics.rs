@@ -536,12 +536,13 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
             y[6 * i + 5] -= 0.3 * (i as f64 + 0.5);
         }
         let mut dy = [0.0; N];
-        let lambda = s.dynamics(&y, &mut dy);
+        let at = s.dynamics(&y, &mut dy);
+        let lambda = at.lambda;
         assert_eq!(lambda, s.contact_forces(&y), "case {case}");
         assert!(grounded.iter().all(|&i| lambda[i][1] != 0.0), "{lambda:?}");
         let (mut a, mut b) = (Guards::default(), Guards::default());
         s.guards(&y, &mut a);
-        s.guards_with_forces(&y, &lambda, &mut b);
+        s.guards_at(&y, &at, &mut b);
         assert_eq!(a.len, b.len);
         for k in 0..a.len {
             assert_eq!(
