@@ -35,7 +35,9 @@ fn hot_path(c: &mut Criterion) {
             b.iter(|| {
                 step_with_dense(
                     method,
-                    |_, y, dy| rtw.dynamics(y, dy),
+                    |_, y, dy| {
+                        rtw.dynamics(y, dy);
+                    },
                     0.0,
                     black_box(&y),
                     1e-3,

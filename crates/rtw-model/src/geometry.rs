@@ -74,7 +74,7 @@ pub struct RodState {
 }
 
 /// A rod's kinematic quantities that every force evaluation needs once.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct RodFrame {
     pub c: V2,
     pub v: V2,

@@ -73,13 +73,34 @@ pub enum Flow {
 
 /// A hybrid dynamical system with an `N`-dimensional state.
 pub trait HybridSystem<const N: usize> {
+    /// By-products of the right-hand side that the guards (or `observe`) also
+    /// need at the same state, such as constraint forces; `()` if none.
+    type Aux: Copy + Default;
+
     /// Continuous dynamics of the current mode: writes `ẏ = f(t, y)` into `dy`.
     fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]);
+
+    /// [`rhs`](HybridSystem::rhs) that also writes its by-products at `y` into
+    /// `aux`. The engine calls it where it evaluates the guards at the same
+    /// state next: the last stage of a trial step (FSAL: `f(t + h, y_new)`),
+    /// the start and each restart. The default leaves `aux` alone.
+    #[inline]
+    fn rhs_aux(&self, t: f64, y: &[f64; N], dy: &mut [f64; N], _aux: &mut Self::Aux) {
+        self.rhs(t, y, dy);
+    }
 
     /// Guard functions of the current mode, evaluated at `(t, y)`. The set of
     /// guards (count and meaning of each index) may depend on the mode but not
     /// on `(t, y)`: the engine compares values of the same index across a step.
     fn guards(&self, t: f64, y: &[f64; N], out: &mut Guards);
+
+    /// [`guards`](HybridSystem::guards) at a state where `rhs_aux` has just
+    /// written `aux`; must give the same values, bit for bit. The default
+    /// ignores `aux`.
+    #[inline]
+    fn guards_aux(&self, t: f64, y: &[f64; N], _aux: &Self::Aux, out: &mut Guards) {
+        self.guards(t, y, out);
+    }
 
     /// The reset of guard `index`, applied at its located event time `t` with
     /// `y` the state there: may change the mode and jump `y`.
@@ -91,6 +112,14 @@ pub trait HybridSystem<const N: usize> {
     /// go here. The default does nothing.
     fn observe(&mut self, _dense: &Dense<N>) -> Flow {
         Flow::Continue
+    }
+
+    /// [`observe`](HybridSystem::observe) on a step without an event, whose
+    /// end state `dense.y1` is the one `rhs_aux` wrote `aux` at. The default
+    /// calls `observe`.
+    #[inline]
+    fn observe_aux(&mut self, dense: &Dense<N>, _aux: &Self::Aux) -> Flow {
+        self.observe(dense)
     }
 
     /// Whether [`observe`](HybridSystem::observe) evaluates the dense output
@@ -475,14 +504,16 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
         finish!(EndReason::NonFinite);
     }
     let mut st = Stages::<N>::new();
-    sys.rhs(t, y, &mut st.k[0]);
+    // By-products of the latest `rhs_aux` call, reused by the guards there.
+    let mut aux = S::Aux::default();
+    sys.rhs_aux(t, y, &mut st.k[0], &mut aux);
     work.rhs_evals += 1;
     if !all_finite(&st.k[0]) {
         finish!(EndReason::NonFinite);
     }
     let mut gp = Guards::default();
     let mut gn = Guards::default();
-    sys.guards(t, y, &mut gp);
+    sys.guards_aux(t, y, &aux, &mut gp);
     if !(t < t_end) {
         finish!(EndReason::TimeUp);
     }
@@ -555,9 +586,11 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
             finish!(EndReason::StepUnderflow);
         }
 
+        // Every method's last evaluation in a trial is `f(t + hs, ynew)`, so
+        // `aux` ends up holding the by-products at the step's end.
         let err = trial(
             method,
-            &mut |tt, yy, dd| sys.rhs(tt, yy, dd),
+            &mut |tt, yy, dd| sys.rhs_aux(tt, yy, dd, &mut aux),
             t,
             y,
             hs,
@@ -596,7 +629,7 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
         };
         after_reject = false;
 
-        sys.guards(t_new, &st.ynew, &mut gn);
+        sys.guards_aux(t_new, &st.ynew, &aux, &mut gn);
         let len = gp.len.min(gn.len);
         let mut crossed = false;
         for i in 0..len {
@@ -648,12 +681,12 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
                 finish!(EndReason::NonFinite);
             }
             // Clean restart: fresh derivative, guards at the post-reset state.
-            sys.rhs(t, y, &mut st.k[0]);
+            sys.rhs_aux(t, y, &mut st.k[0], &mut aux);
             work.rhs_evals += 1;
             if !all_finite(&st.k[0]) {
                 finish!(EndReason::NonFinite);
             }
-            sys.guards(t, y, &mut gp);
+            sys.guards_aux(t, y, &aux, &mut gp);
             if t >= t_end {
                 finish!(EndReason::TimeUp);
             }
@@ -666,7 +699,8 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
         *y = st.ynew;
         st.k[0] = st.fnew;
         core::mem::swap(&mut gp, &mut gn);
-        if sys.observe(&dense) == Flow::Stop {
+        // `fill_dense` evaluates with plain `rhs`: `aux` is still at `y`.
+        if sys.observe_aux(&dense, &aux) == Flow::Stop {
             finish!(EndReason::Stopped);
         }
         if last {

@@ -214,6 +214,8 @@ impl RimlessWheel {
 }
 
 impl HybridSystem<2> for RimlessWheel {
+    type Aux = ();
+
     #[inline]
     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         dy[0] = y[1];

@@ -54,6 +54,15 @@ pub enum Transition {
     Failure(FailureDetail),
 }
 
+/// What [`Rtw::dynamics`] computed at a state on the way that the guards
+/// also need there.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AtState {
+    pub frames: [RodFrame; 3],
+    /// Contact forces λ of the rods (zero when free).
+    pub lambda: [V2; 3],
+}
+
 /// The RTW: its constants and its current contact modes.
 #[derive(Clone, Debug)]
 pub struct Rtw {
@@ -128,12 +137,16 @@ impl Rtw {
         (loads, s.dissipation)
     }
 
-    /// Continuous dynamics: `ẏ = f(y)` in the current modes.
+    /// Continuous dynamics: `ẏ = f(y)` in the current modes. Returns the
+    /// frames and contact forces λ at `y` it computed on the way (λ bit for
+    /// bit that of [`contact_forces`](Self::contact_forces)), so that the
+    /// guards at the same state need not compute them again.
     #[inline]
-    pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) {
+    pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) -> AtState {
         let frames = self.frames(y);
         let (loads, dissipation) = self.loads(&frames);
         let mut friction = 0.0;
+        let mut lambda = [[0.0; 2]; 3];
         for i in 0..3 {
             let a = self
                 .body
@@ -143,15 +156,21 @@ impl Rtw {
                 // Power of friction on the sliding tip (λ_x opposes ẋ_t).
                 friction -= a.lambda[0] * y[6 * i + 3];
             }
+            lambda[i] = a.lambda;
         }
         dy[DISSIPATED] = dissipation;
         dy[FRICTION] = friction;
+        AtState { frames, lambda }
     }
 
     /// Contact forces λ of the rods at `y` (zero when free).
     pub fn contact_forces(&self, y: &[f64; N]) -> [V2; 3] {
-        let frames = self.frames(y);
-        let (loads, _) = self.loads(&frames);
+        self.contact_forces_of(&self.frames(y))
+    }
+
+    /// Contact forces λ of the rods with frames `frames` (zero when free).
+    fn contact_forces_of(&self, frames: &[RodFrame; 3]) -> [V2; 3] {
+        let (loads, _) = self.loads(frames);
         let mut lambda = [[0.0; 2]; 3];
         for i in 0..3 {
             if self.modes[i] != RodMode::Free {
@@ -198,9 +217,19 @@ impl Rtw {
 
     /// Guard values at `y`. All fire on a falling crossing of zero.
     pub fn guards(&self, y: &[f64; N], out: &mut Guards) {
-        out.clear();
         let frames = self.frames(y);
-        let lambda = self.contact_forces(y);
+        let lambda = self.contact_forces_of(&frames);
+        self.guards_of(y, &frames, &lambda, out);
+    }
+
+    /// [`guards`](Self::guards) at `y` from what [`dynamics`](Self::dynamics)
+    /// returned at `y`.
+    pub fn guards_at(&self, y: &[f64; N], at: &AtState, out: &mut Guards) {
+        self.guards_of(y, &at.frames, &at.lambda, out);
+    }
+
+    fn guards_of(&self, y: &[f64; N], frames: &[RodFrame; 3], lambda: &[V2; 3], out: &mut Guards) {
+        out.clear();
         let tip_height =
             |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).0[1];
         self.guard_kinds(|kind| {
@@ -307,7 +336,11 @@ impl Rtw {
     /// normal force exceeds 5 % of a rod's weight (MODEL.md §4's
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
     pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
-        let lambda = self.contact_forces(y);
+        self.friction_ratio_of(&self.contact_forces(y))
+    }
+
+    /// [`friction_ratio`](Self::friction_ratio) from the contact forces.
+    pub fn friction_ratio_of(&self, lambda: &[V2; 3]) -> f64 {
         let floor = 0.05 * self.body.m * (self.gravity[0].hypot(self.gravity[1]));
         (0..3)
             .filter(|&i| matches!(self.modes[i], RodMode::Stick { .. }))

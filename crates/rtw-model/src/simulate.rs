@@ -2,12 +2,13 @@
 //! engine, with the statistics of MODEL.md §5 gathered as it goes.
 
 use crate::gait::{self, GaitStats, Settled};
+use crate::geometry::V2;
 use crate::hybrid::{self, EndReason, EngineOptions, Flow, Guards, HybridSystem};
 use crate::initial::initial_state;
 use crate::integrate::{Dense, Method};
 use crate::options::{MethodChoice, Options};
 use crate::outcome::{Energy, FailureDetail, IntegratorWork, Label, Outcome, TraceSample};
-use crate::rtw::{DISSIPATED, FRICTION, N, Rtw, Transition};
+use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
 use crate::{Params, Physical};
 
 /// Simulates one RTW run.
@@ -95,14 +96,27 @@ impl Run<'_> {
 }
 
 impl HybridSystem<N> for Run<'_> {
+    /// Frames and contact forces λ of the rods.
+    type Aux = AtState;
+
     #[inline]
     fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
         self.rtw.dynamics(y, dy);
     }
 
     #[inline]
+    fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
+        *at = self.rtw.dynamics(y, dy);
+    }
+
+    #[inline]
     fn guards(&self, _t: f64, y: &[f64; N], out: &mut Guards) {
         self.rtw.guards(y, out);
+    }
+
+    #[inline]
+    fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
+        self.rtw.guards_at(y, at, out);
     }
 
     fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Flow {
@@ -146,6 +160,18 @@ impl HybridSystem<N> for Run<'_> {
     }
 
     fn observe(&mut self, dense: &Dense<N>) -> Flow {
+        self.observe_step(dense, None)
+    }
+
+    fn observe_aux(&mut self, dense: &Dense<N>, at: &AtState) -> Flow {
+        self.observe_step(dense, Some(&at.lambda))
+    }
+}
+
+impl Run<'_> {
+    /// Statistics of one step (or of the part of it before an event);
+    /// `lambda_end`: the contact forces at `dense.y1`, if already known.
+    fn observe_step(&mut self, dense: &Dense<N>, lambda_end: Option<&[V2; 3]>) -> Flow {
         let (t0, t1) = (dense.t0, dense.t1);
         self.stats
             .on_interval(t0, t1, self.rtw.contact_state(), self.rtw.sliding());
@@ -158,7 +184,10 @@ impl HybridSystem<N> for Run<'_> {
         // (or, with an early stop, over the settled window).
         let in_window = t1 >= self.stats.window_start;
         if (in_window || self.stop_when_settled) && self.rtw.contact_state() > 0 {
-            let mu = self.rtw.friction_ratio(&dense.y1);
+            let mu = match lambda_end {
+                Some(lambda) => self.rtw.friction_ratio_of(lambda),
+                None => self.rtw.friction_ratio(&dense.y1),
+            };
             if in_window {
                 self.mu_required = self.mu_required.max(mu);
             }

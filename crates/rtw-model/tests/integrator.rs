@@ -155,6 +155,8 @@ struct Oscillator {
 }
 
 impl HybridSystem<2> for Oscillator {
+    type Aux = ();
+
     fn rhs(&self, t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         osc(t, y, dy);
     }
@@ -297,6 +299,8 @@ impl Ball {
 }
 
 impl HybridSystem<2> for Ball {
+    type Aux = ();
+
     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         dy[0] = y[1];
         dy[1] = -self.g;
@@ -443,6 +447,8 @@ struct SineGuard {
 }
 
 impl HybridSystem<2> for SineGuard {
+    type Aux = ();
+
     fn rhs(&self, t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         osc(t, y, dy);
     }
@@ -501,6 +507,8 @@ struct TwoGuards {
 }
 
 impl HybridSystem<1> for TwoGuards {
+    type Aux = ();
+
     fn rhs(&self, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) {
         dy[0] = 1.0;
     }
@@ -542,6 +550,8 @@ fn the_earliest_of_several_crossings_fires() {
 struct Blowup;
 
 impl HybridSystem<1> for Blowup {
+    type Aux = ();
+
     fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) {
         dy[0] = if y[0] > 1.0 { f64::NAN } else { 1.0 };
     }
@@ -587,6 +597,8 @@ fn work_budget_and_observer_stop() {
 
     struct StopAt(f64);
     impl HybridSystem<1> for StopAt {
+        type Aux = ();
+
         fn rhs(&self, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) {
             dy[0] = 1.0;
         }

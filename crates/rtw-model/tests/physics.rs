@@ -14,6 +14,8 @@ use rtw_model::{Label, Params, Physical, simulate};
 struct FixedModes(Rtw);
 
 impl HybridSystem<N> for FixedModes {
+    type Aux = ();
+
     fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
         self.0.dynamics(y, dy);
     }
@@ -502,4 +504,56 @@ fn finite_friction_never_sticks_outside_its_cone() {
         out.energy.friction_loss > 0.0 && out.slide_time > 0.0,
         "{out:?}"
     );
+}
+
+#[test]
+fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
+    // The engine hands the guards (and `mu_required`) the contact forces the
+    // right-hand side computed at the same state instead of solving for them
+    // again: the guard values must be exactly those computed from scratch,
+    // for every contact mode, or runs would change.
+    let mut o = Options::default();
+    o.strings.rest_length_ratio = 0.85;
+    let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
+    let mut sys = Rtw::new(&phys, &o);
+    let y0 = rtw_model::initial::initial_state(&mut sys, &o).unwrap();
+    let grounded: Vec<usize> = (0..3).filter(|&i| sys.modes[i].tip().is_some()).collect();
+    assert!(
+        !grounded.is_empty(),
+        "the static start stands on the ground"
+    );
+    for (case, slide) in [(0, false), (1, true), (2, true)] {
+        let mut s = sys.clone();
+        if slide {
+            let rod = grounded[case % grounded.len()];
+            let tip = s.modes[rod].tip().unwrap();
+            s.modes[rod] = RodMode::Slide { tip, dir: 1.0 };
+        }
+        // Generic velocities, so that every force term is non-zero.
+        let mut y = y0;
+        for i in 0..3 {
+            y[6 * i + 3] += 0.1 * (i as f64 + 1.0);
+            y[6 * i + 5] -= 0.3 * (i as f64 + 0.5);
+        }
+        let mut dy = [0.0; N];
+        let at = s.dynamics(&y, &mut dy);
+        let lambda = at.lambda;
+        assert_eq!(lambda, s.contact_forces(&y), "case {case}");
+        assert!(grounded.iter().all(|&i| lambda[i][1] != 0.0), "{lambda:?}");
+        let (mut a, mut b) = (Guards::default(), Guards::default());
+        s.guards(&y, &mut a);
+        s.guards_at(&y, &at, &mut b);
+        assert_eq!(a.len, b.len);
+        for k in 0..a.len {
+            assert_eq!(
+                a.value[k].to_bits(),
+                b.value[k].to_bits(),
+                "case {case} guard {k}"
+            );
+        }
+        assert_eq!(
+            s.friction_ratio(&y).to_bits(),
+            s.friction_ratio_of(&lambda).to_bits()
+        );
+    }
 }
