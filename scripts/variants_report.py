@@ -33,16 +33,6 @@ MU_REAL = 1.0
 NEAR_PP = 4.0
 
 
-def wilson(k: int, n: int, z: float = 1.959964) -> tuple[float, float]:
-    if n == 0:
-        return (math.nan, math.nan)
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return (100 * (c - h), 100 * (c + h))
-
-
 def cluster_regions(clusters: list[dict]) -> dict:
     """Names each k-means cluster by where its centre sits (Fig. S4's two
     groups): 'collapse region' = small alpha and low f_n, 'barrier region' =
