@@ -21,11 +21,10 @@ import numpy as np
 import polars as pl
 
 sys.path.insert(0, str(Path(__file__).parent))
-from figures import permutation_p, wilson  # noqa: E402
+from figures import DEFAULT_VARIANT, permutation_p, wilson  # noqa: E402
 from variants_report import PAPER, cluster_regions  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-DEFAULT_VARIANT = "prestress-0.85-static-mu0.8-slack"
 STABLE = ["skip", "walk", "crawl"]
 FAILED = ["collapse", "stall"]
 

@@ -14,7 +14,7 @@ from pathlib import Path
 import polars as pl
 
 sys.path.insert(0, str(Path(__file__).parent))
-from variants_report import PAPER, cluster_regions, fmt  # noqa: E402
+from variants_report import PAPER, cluster_regions, distance_pp, fmt  # noqa: E402
 
 OUTCOMES = ["skip", "walk", "crawl", "collapse", "stall", "diverged"]
 
@@ -29,7 +29,7 @@ def row(name: str, desc: str, summ: dict, rows: pl.DataFrame, base_rows: pl.Data
     pct = {o["outcome"]: o["percent"] for o in summ["outcomes"]}
     stable = summ["stable"]["percent"]
     ci = summ["stable"]["ci95"]
-    dist = abs(stable - PAPER["stable"]) + sum(abs(pct[k] - PAPER[k]) for k in ("skip", "walk", "crawl"))
+    dist = distance_pp(stable, pct)
     joined = rows.join(base_rows, on="sample_id", suffix="_base")
     agree = 100 * (joined["outcome"] == joined["outcome_base"]).sum() / joined.height
     both = cluster_regions((summ.get("clusters") or {"clusters": []})["clusters"])["both"]

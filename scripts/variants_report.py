@@ -33,6 +33,12 @@ MU_REAL = 1.0
 NEAR_PP = 4.0
 
 
+def distance_pp(stable: float, percent: dict) -> float:
+    """The distance of a 1000-sample statistic to the paper's: sum of the
+    absolute differences of stable, skip, walk and crawl (percentage points)."""
+    return abs(stable - PAPER["stable"]) + sum(abs(percent[k] - PAPER[k]) for k in ("skip", "walk", "crawl"))
+
+
 def cluster_regions(clusters: list[dict]) -> dict:
     """Names each k-means cluster by where its centre sits (Fig. S4's two
     groups): 'collapse region' = small alpha and low f_n, 'barrier region' =
@@ -68,9 +74,7 @@ def one_variant(d: Path) -> dict:
     pct = {o["outcome"]: o["percent"] for o in summ["outcomes"]}
     cnt = {o["outcome"]: o["count"] for o in summ["outcomes"]}
     stable = summ["stable"]["percent"]
-    distance = abs(stable - PAPER["stable"]) + sum(
-        abs(pct[k] - PAPER[k]) for k in ("skip", "walk", "crawl")
-    )
+    distance = distance_pp(stable, pct)
     stable_rows = scan.filter(pl.col("outcome").is_in(["skip", "walk", "crawl"]))
     mu = stable_rows["mu_required"].drop_nulls()
     cl = summ.get("clusters") or {"clusters": []}

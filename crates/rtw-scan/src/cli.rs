@@ -294,15 +294,7 @@ fn cmd_merge(a: MergeArgs) -> Result<ExitCode> {
 /// The simulation options of `simulate`: the config's [simulation] table, then `--set`.
 fn simulate_options(config_file: Option<&Path>, sets: &[String]) -> Result<Options> {
     let mut table = match config_file {
-        Some(path) => {
-            let mut t = config::parse_table(&config::read_text(path)?)
-                .with_context(|| format!("config {}", path.display()))?;
-            match t.remove("simulation") {
-                None => toml::Table::new(),
-                Some(toml::Value::Table(s)) => s,
-                Some(_) => anyhow::bail!("config {}: `simulation` is not a table", path.display()),
-            }
-        }
+        Some(path) => config::read_split(path)?.1,
         None => toml::Table::new(),
     };
     for s in sets {

@@ -301,13 +301,7 @@ struct RawVariant {
 /// `--set KEY=VALUE` overrides, and validates the result. Errors name the
 /// file and the key.
 pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
-    let mut table =
-        parse_table(&read_text(path)?).with_context(|| format!("config {}", path.display()))?;
-    let mut simulation = match table.remove("simulation") {
-        None => toml::Table::new(),
-        Some(toml::Value::Table(s)) => s,
-        Some(_) => bail!("config {}: `simulation` is not a table", path.display()),
-    };
+    let (mut table, mut simulation) = read_split(path)?;
     let mut suffix = None;
     if let Some(vpath) = variant {
         let vt = parse_table(&read_text(vpath)?)
@@ -337,6 +331,19 @@ pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Res
         "config"
     };
     parse_value(table).with_context(|| format!("{what} {}", path.display()))
+}
+
+/// Reads a config file into its top-level table and, taken out of it, its
+/// `[simulation]` table (empty when absent). Errors name the file.
+pub fn read_split(path: &Path) -> Result<(toml::Table, toml::Table)> {
+    let mut table =
+        parse_table(&read_text(path)?).with_context(|| format!("config {}", path.display()))?;
+    let simulation = match table.remove("simulation") {
+        None => toml::Table::new(),
+        Some(toml::Value::Table(s)) => s,
+        Some(_) => bail!("config {}: `simulation` is not a table", path.display()),
+    };
+    Ok((table, simulation))
 }
 
 /// Deep-merges `over` into `base`: nested tables merge key by key, any other
