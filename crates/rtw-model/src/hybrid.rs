@@ -94,6 +94,19 @@ pub trait HybridSystem<const N: usize> {
     /// on `(t, y)`: the engine compares values of the same index across a step.
     fn guards(&self, t: f64, y: &[f64; N], out: &mut Guards);
 
+    /// Guard `index` alone at `(t, y)`: must equal, bit for bit, the value
+    /// [`guards`](HybridSystem::guards) gives it there. The root finder calls
+    /// it at every iterate, where only the guard being located matters, so a
+    /// system whose guards are cheap one by one (a tip height needs one rod's
+    /// `sin_cos`, not every string force) should override it. The default
+    /// evaluates all guards and keeps one.
+    #[inline]
+    fn guard(&self, t: f64, y: &[f64; N], index: usize) -> f64 {
+        let mut g = Guards::default();
+        self.guards(t, y, &mut g);
+        g.value[index]
+    }
+
     /// [`guards`](HybridSystem::guards) at a state where `rhs_aux` has just
     /// written `aux`; must give the same values, bit for bit. The default
     /// ignores `aux`.
@@ -301,21 +314,17 @@ fn is_crossed(falling: bool, v: f64) -> bool {
 struct Scratch<const N: usize> {
     /// State at a trial time.
     ya: [f64; N],
-    /// Guards at a trial time.
-    ga: Guards,
-    /// State and guards at the crossed end of the current bracket.
+    /// State at the crossed end of the current bracket.
     yc: [f64; N],
-    gc: Guards,
-    /// State and guards at the earliest event found so far.
+    /// State at the earliest event found so far.
     ybest: [f64; N],
-    gbest: Guards,
 }
 
 /// Illinois (modified regula falsi) on guard `idx` along `dense`, from the
 /// bracket `[a, b]` with `ga` not crossed at `a` and `gb` crossed at `b`
-/// (`sc.yc`, `sc.gc` hold the state and guards at `b`). Shrinks the bracket
-/// to `b − a <= tol` and returns `b`, the crossed end; `sc.yc`, `sc.gc` are
-/// then the state and guards there.
+/// (`sc.yc` holds the state at `b`). Shrinks the bracket to `b − a <= tol`
+/// and returns `b`, the crossed end; `sc.yc` is then the state there. Only
+/// guard `idx` is evaluated ([`HybridSystem::guard`]).
 // `!(a < b)` is deliberate throughout the engine: it is true for NaN too.
 #[allow(clippy::too_many_arguments, clippy::neg_cmp_op_on_partial_ord)]
 fn illinois<const N: usize, S: HybridSystem<N>>(
@@ -366,13 +375,11 @@ fn illinois<const N: usize, S: HybridSystem<N>>(
             c = b - half;
         }
         dense.eval(c, &mut sc.ya);
-        sys.guards(c, &sc.ya, &mut sc.ga);
-        let fc = sgn * sc.ga.value[idx];
+        let fc = sgn * sys.guard(c, &sc.ya, idx);
         if fc <= 0.0 {
             b = c;
             fb = fc;
             sc.yc = sc.ya;
-            sc.gc = sc.ga;
             if side < 0 {
                 fa *= 0.5;
             }
@@ -412,16 +419,14 @@ fn locate_earliest<const N: usize, S: HybridSystem<N>>(
         let (b, gb) = match best {
             None => {
                 sc.yc = dense.y1;
-                sc.gc = *gn;
                 (dense.t1, gn.value[i])
             }
             Some((_, t_best)) => {
-                let v = sc.gbest.value[i];
+                let v = sys.guard(t_best, &sc.ybest, i);
                 if !is_crossed(falling, v) {
                     continue;
                 }
                 sc.yc = sc.ybest;
-                sc.gc = sc.gbest;
                 (t_best, v)
             }
         };
@@ -440,7 +445,6 @@ fn locate_earliest<const N: usize, S: HybridSystem<N>>(
         if best.is_none_or(|(_, t_best)| t_i < t_best) {
             best = Some((i, t_i));
             sc.ybest = sc.yc;
-            sc.gbest = sc.gc;
         }
     }
     best
@@ -555,11 +559,8 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
     let mut dense = Dense::<N>::constant(t, y);
     let mut sc = Scratch {
         ya: [0.0; N],
-        ga: Guards::default(),
         yc: [0.0; N],
-        gc: Guards::default(),
         ybest: [0.0; N],
-        gbest: Guards::default(),
     };
     let mut zeno_count = 0u32;
     let mut last_event = f64::NEG_INFINITY;

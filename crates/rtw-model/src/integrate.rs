@@ -553,7 +553,7 @@ pub(crate) fn fill_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])
         Method::Dp54 => {
             dense.terms = 4;
             // `k[6]` holds f(t + h, y_new) (set by the trial).
-            combine(&mut dense.coef[3], &[0.0; N], h, &DENSE5, NZ_ERR5, &st.k);
+            combine(&mut dense.coef[3], &[0.0; N], h, &DENSE5, &NZ_ERR5, &st.k);
             0
         }
         Method::Dop853 => {
@@ -567,22 +567,58 @@ pub(crate) fn fill_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])
 /// `out = base + h · Σ_{j ∈ cols} a[j] · k[j]`: one Runge–Kutta stage
 /// combination over the nonzero columns `cols` of a tableau row `a` (the
 /// tableaux are sparse; their zeros are skipped, not multiplied).
+///
+/// One pass over the components with the sum in a register: the column
+/// count `M` is a constant, so the inner sum unrolls and the component loop
+/// vectorizes, with no copy of `base` and no store per column. Each component
+/// is still summed in column order, `((base + c₀k₀) + c₁k₁) + …` with
+/// `c_j = h·a_j`, so the result is bit for bit that of a column-by-column loop.
 #[inline(always)]
-fn combine<const N: usize, const S: usize>(
+fn combine<const N: usize, const S: usize, const M: usize>(
     out: &mut [f64; N],
     base: &[f64; N],
     h: f64,
     a: &[f64; S],
-    cols: &[usize],
+    cols: &[usize; M],
     k: &[[f64; N]; 16],
 ) {
-    *out = *base;
-    for &j in cols {
-        let c = h * a[j];
-        for i in 0..N {
-            out[i] += c * k[j][i];
+    let c: [f64; M] = core::array::from_fn(|n| h * a[cols[n]]);
+    let ks: [&[f64; N]; M] = core::array::from_fn(|n| &k[cols[n]]);
+    for i in 0..N {
+        let mut acc = base[i];
+        for n in 0..M {
+            acc += c[n] * ks[n][i];
         }
+        out[i] = acc;
     }
+}
+
+/// A nonzero-column list as a fixed-size array (for [`combine`]'s constant
+/// column count); `M` must be the list's length.
+const fn cols<const M: usize>(list: &[usize]) -> [usize; M] {
+    assert!(list.len() == M, "column count");
+    let mut a = [0; M];
+    let mut i = 0;
+    while i < M {
+        a[i] = list[i];
+        i += 1;
+    }
+    a
+}
+
+/// [`combine`] over row `$row` of tableau `$a` with its nonzero columns
+/// `$nz[$row]` (a list of `$m` entries, checked at compile time).
+macro_rules! stage {
+    ($out:expr, $base:expr, $h:expr, $a:ident, $nz:ident, $row:literal, $m:literal, $k:expr) => {
+        combine(
+            $out,
+            $base,
+            $h,
+            &$a[$row],
+            &const { cols::<$m>($nz[$row]) },
+            $k,
+        )
+    };
 }
 
 /// DP5's tableau as rows (row 6 is the 5th-order solution's weights b).
@@ -612,7 +648,7 @@ const NZ5: [&[usize]; 7] = [
     &[0, 2, 3, 4, 5],
 ];
 /// Nonzero columns of [`ERR5`] and [`DENSE5`].
-const NZ_ERR5: &[usize] = &[0, 2, 3, 4, 5, 6];
+const NZ_ERR5: [usize; 6] = [0, 2, 3, 4, 5, 6];
 
 /// Nonzero columns of each row of [`A8`] (row 12 is the 8th-order weights b;
 /// rows 13–15 are the dense output's extra stages, where column 12 stands
@@ -636,9 +672,9 @@ const NZ8: [&[usize]; 16] = [
     &[0, 5, 6, 7, 8, 12, 13, 14],
 ];
 /// Nonzero columns of [`E8`].
-const NZ_E8: &[usize] = &[0, 5, 6, 7, 8, 9, 10, 11];
+const NZ_E8: [usize; 8] = [0, 5, 6, 7, 8, 9, 10, 11];
 /// Nonzero columns of the rows of [`D8`].
-const NZ_D8: &[usize] = &[0, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
+const NZ_D8: [usize; 12] = [0, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
 
 #[inline]
 fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
@@ -650,15 +686,21 @@ fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     rtol: f64,
     st: &mut Stages<N>,
 ) -> f64 {
-    for s in 1..6 {
-        combine(&mut st.yt, y, h, &A5[s], NZ5[s], &st.k);
-        f(t + C5[s] * h, &st.yt, &mut st.k[s]);
-    }
-    combine(&mut st.ynew, y, h, &A5[6], NZ5[6], &st.k);
-    f(t + h, &st.ynew, &mut st.fnew);
-    st.k[6] = st.fnew;
+    stage!(&mut st.yt, y, h, A5, NZ5, 1, 1, &st.k);
+    f(t + C5[1] * h, &st.yt, &mut st.k[1]);
+    stage!(&mut st.yt, y, h, A5, NZ5, 2, 2, &st.k);
+    f(t + C5[2] * h, &st.yt, &mut st.k[2]);
+    stage!(&mut st.yt, y, h, A5, NZ5, 3, 3, &st.k);
+    f(t + C5[3] * h, &st.yt, &mut st.k[3]);
+    stage!(&mut st.yt, y, h, A5, NZ5, 4, 4, &st.k);
+    f(t + C5[4] * h, &st.yt, &mut st.k[4]);
+    stage!(&mut st.yt, y, h, A5, NZ5, 5, 5, &st.k);
+    f(t + C5[5] * h, &st.yt, &mut st.k[5]);
+    stage!(&mut st.ynew, y, h, A5, NZ5, 6, 5, &st.k);
+    f(t + h, &st.ynew, &mut st.k[6]);
+    st.fnew = st.k[6];
     // The error estimate h Σ (b − b̂)_j k_j, into `yt`.
-    combine(&mut st.yt, &[0.0; N], h, &ERR5, NZ_ERR5, &st.k);
+    combine(&mut st.yt, &[0.0; N], h, &ERR5, &NZ_ERR5, &st.k);
     let mut sum = 0.0;
     for i in 0..N {
         let r = st.yt[i] / scale(atol, rtol, y[i], st.ynew[i]);
@@ -677,19 +719,34 @@ fn dop853_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     rtol: f64,
     st: &mut Stages<N>,
 ) -> f64 {
-    for s in 1..12 {
-        combine(&mut st.yt, y, h, &A8[s], NZ8[s], &st.k);
-        f(t + C8[s] * h, &st.yt, &mut st.k[s]);
+    macro_rules! stages {
+        ($(($s:literal, $m:literal)),*) => {$(
+            stage!(&mut st.yt, y, h, A8, NZ8, $s, $m, &st.k);
+            f(t + C8[$s] * h, &st.yt, &mut st.k[$s]);
+        )*};
     }
+    stages!(
+        (1, 1),
+        (2, 2),
+        (3, 2),
+        (4, 3),
+        (5, 3),
+        (6, 4),
+        (7, 5),
+        (8, 6),
+        (9, 7),
+        (10, 8),
+        (11, 9)
+    );
     // 8th-order solution; `yt` keeps Σ b_j k_j for the 3rd-order estimate.
-    combine(&mut st.yt, &[0.0; N], 1.0, &A8[12], NZ8[12], &st.k);
+    stage!(&mut st.yt, &[0.0; N], 1.0, A8, NZ8, 12, 8, &st.k);
     for i in 0..N {
         st.ynew[i] = y[i] + h * st.yt[i];
     }
     f(t + h, &st.ynew, &mut st.fnew);
     // Hairer's estimator: err = h·‖e5‖² / sqrt(‖e5‖² + 0.01‖e3‖²) (RMS).
     let mut e5 = [0.0; N];
-    combine(&mut e5, &[0.0; N], 1.0, &E8, NZ_E8, &st.k);
+    combine(&mut e5, &[0.0; N], 1.0, &E8, &NZ_E8, &st.k);
     let mut err5 = 0.0;
     let mut err3 = 0.0;
     for i in 0..N {
@@ -723,12 +780,14 @@ fn dop853_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     dense: &mut Dense<N>,
 ) {
     st.k[12] = st.fnew;
-    for s in 13..16 {
-        combine(&mut st.yt, y, h, &A8[s], NZ8[s], &st.k);
-        f(t + C8[s] * h, &st.yt, &mut st.k[s]);
-    }
+    stage!(&mut st.yt, y, h, A8, NZ8, 13, 8, &st.k);
+    f(t + C8[13] * h, &st.yt, &mut st.k[13]);
+    stage!(&mut st.yt, y, h, A8, NZ8, 14, 8, &st.k);
+    f(t + C8[14] * h, &st.yt, &mut st.k[14]);
+    stage!(&mut st.yt, y, h, A8, NZ8, 15, 8, &st.k);
+    f(t + C8[15] * h, &st.yt, &mut st.k[15]);
     for (d, row) in D8.iter().enumerate() {
-        combine(&mut dense.coef[3 + d], &[0.0; N], h, row, NZ_D8, &st.k);
+        combine(&mut dense.coef[3 + d], &[0.0; N], h, row, &NZ_D8, &st.k);
     }
     dense.terms = 7;
 }

@@ -230,29 +230,60 @@ impl Rtw {
 
     fn guards_of(&self, y: &[f64; N], frames: &[RodFrame; 3], lambda: &[V2; 3], out: &mut Guards) {
         out.clear();
-        let tip_height =
-            |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).0[1];
         self.guard_kinds(|kind| {
-            let value = match kind {
-                GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
-                GuardKind::LiftOff { rod } => lambda[rod][1],
-                GuardKind::RodDown { rod } => {
-                    let tip = self.modes[rod].tip().expect("grounded rod");
-                    tip_height(rod, tip.other())
-                }
-                GuardKind::Restick { rod } => {
-                    let RodMode::Slide { dir, .. } = self.modes[rod] else {
-                        unreachable!("restick guard on a sliding rod")
-                    };
-                    y[6 * rod + 3] * dir + self.restick_speed
-                }
-                GuardKind::Slip { rod } => self.mu * lambda[rod][1] - lambda[rod][0].abs(),
-                GuardKind::ComLow => {
-                    (frames[0].c[1] + frames[1].c[1] + frames[2].c[1]) / 3.0 - self.collapse_height
-                }
-            };
+            let value = self.guard_value(kind, y, |rod| frames[rod], |rod| lambda[rod]);
             out.push(value, Crossing::Falling);
         });
+    }
+
+    /// Guard `index` alone at `y`, bit for bit its value in
+    /// [`guards`](Self::guards), computing only what it needs: a tip height
+    /// needs one rod's frame (one `sin_cos`), a contact force the string
+    /// loads and that rod's constraint equations.
+    pub fn guard(&self, y: &[f64; N], index: usize) -> f64 {
+        let frame = |rod: usize| self.body.frame(self.modes[rod], &y[6 * rod..6 * rod + 6]);
+        let lambda = |rod: usize| {
+            let (loads, _) = self.loads(&self.frames(y));
+            self.body
+                .accel(self.modes[rod], &frame(rod), &loads[rod], self.mu)
+                .lambda
+        };
+        self.guard_value(self.guard_kind(index), y, frame, lambda)
+    }
+
+    /// The value of guard `kind` at `y`, given each rod's frame and contact
+    /// force λ there (asked for only when this guard needs them).
+    #[inline]
+    fn guard_value(
+        &self,
+        kind: GuardKind,
+        y: &[f64; N],
+        frame: impl Fn(usize) -> RodFrame,
+        lambda: impl Fn(usize) -> V2,
+    ) -> f64 {
+        let tip_height =
+            |rod: usize, tip: Tip| frame(rod).point(tip.sign() * self.body.half_length).0[1];
+        match kind {
+            GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
+            GuardKind::LiftOff { rod } => lambda(rod)[1],
+            GuardKind::RodDown { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                tip_height(rod, tip.other())
+            }
+            GuardKind::Restick { rod } => {
+                let RodMode::Slide { dir, .. } = self.modes[rod] else {
+                    unreachable!("restick guard on a sliding rod")
+                };
+                y[6 * rod + 3] * dir + self.restick_speed
+            }
+            GuardKind::Slip { rod } => {
+                let l = lambda(rod);
+                self.mu * l[1] - l[0].abs()
+            }
+            GuardKind::ComLow => {
+                (frame(0).c[1] + frame(1).c[1] + frame(2).c[1]) / 3.0 - self.collapse_height
+            }
+        }
     }
 
     /// The guard of index `index` in the current modes.

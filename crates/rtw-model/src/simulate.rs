@@ -115,6 +115,11 @@ impl HybridSystem<N> for Run<'_> {
     }
 
     #[inline]
+    fn guard(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
+        self.rtw.guard(y, index)
+    }
+
+    #[inline]
     fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
         self.rtw.guards_at(y, at, out);
     }
