@@ -85,13 +85,7 @@ impl RodBody {
     /// Full coordinates of a rod from its slots.
     #[inline]
     pub fn rod_state(&self, mode: RodMode, s: &[f64]) -> RodState {
-        let f = self.frame(mode, s);
-        RodState {
-            c: f.c,
-            theta: s[2],
-            v: f.v,
-            omega: f.omega,
-        }
+        self.frame(mode, s).state(s[2])
     }
 
     /// Slots of a rod in `mode` from full coordinates. For a contact mode the

@@ -95,6 +95,17 @@ impl RodFrame {
         }
     }
 
+    /// The rod's full coordinates, given the angle `theta` that `e` was made of.
+    #[inline]
+    pub fn state(&self, theta: f64) -> RodState {
+        RodState {
+            c: self.c,
+            theta,
+            v: self.v,
+            omega: self.omega,
+        }
+    }
+
     /// The point at signed distance `a` from the centre along the rod, and its velocity.
     #[inline]
     pub fn point(&self, a: f64) -> (V2, V2) {

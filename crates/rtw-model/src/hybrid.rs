@@ -145,6 +145,16 @@ pub trait HybridSystem<const N: usize> {
     fn observes_interior(&self) -> bool {
         true
     }
+
+    /// [`observes_interior`](HybridSystem::observes_interior) for the step
+    /// `[t0, t1]` just accepted (asked before [`observe`](HybridSystem::observe)
+    /// gets it): a system that reads the interior only at known times (a trace
+    /// sample, the start of a statistics window) says so here, and every other
+    /// step gets the cheap interpolant. The default asks `observes_interior`.
+    #[inline]
+    fn observes_interior_on(&self, _t0: f64, _t1: f64) -> bool {
+        self.observes_interior()
+    }
 }
 
 /// Settings of [`run`].
@@ -639,7 +649,7 @@ pub fn run<const N: usize, S: HybridSystem<N>>(
                 break;
             }
         }
-        let full = crossed || sys.observes_interior();
+        let full = crossed || sys.observes_interior_on(t, t_new);
         work.rhs_evals += fill_dense(
             method,
             &mut |tt, yy, dd| sys.rhs(tt, yy, dd),

@@ -79,11 +79,15 @@ pub struct Rtw {
     pub restick_speed: f64,
     /// Collapse when the centre of mass height falls below this.
     pub collapse_height: f64,
+    /// `mu_required` counts a sticking rod only while its normal force
+    /// exceeds this: 5 % of a rod's weight.
+    pub mu_floor: f64,
 }
 
 impl Rtw {
     pub fn new(phys: &Physical, opts: &Options) -> Self {
         let (sin, cos) = phys.phi.sin_cos();
+        let gravity = [phys.g * sin, -phys.g * cos];
         Self {
             body: RodBody {
                 m: phys.m,
@@ -98,12 +102,13 @@ impl Rtw {
                 slack: opts.strings.slack,
                 damping: opts.strings.damping,
             },
-            gravity: [phys.g * sin, -phys.g * cos],
+            gravity,
             mu: opts.contact.mu,
             modes: [RodMode::Free; 3],
             touchdown_height: -opts.touchdown_offset * phys.length,
             restick_speed: 1e-9 * phys.length,
             collapse_height: opts.collapse_height_ratio * phys.standing_height(),
+            mu_floor: 0.05 * phys.m * gravity[0].hypot(gravity[1]),
         }
     }
 
@@ -116,6 +121,11 @@ impl Rtw {
     /// Full coordinates of the rods.
     pub fn rods(&self, y: &[f64; N]) -> [RodState; 3] {
         std::array::from_fn(|i| self.body.rod_state(self.modes[i], &y[6 * i..6 * i + 6]))
+    }
+
+    /// [`rods`](Self::rods) from the frames of `y` (no trigonometry again).
+    fn rods_of(y: &[f64; N], frames: &[RodFrame; 3]) -> [RodState; 3] {
+        std::array::from_fn(|i| frames[i].state(y[6 * i + 2]))
     }
 
     /// Writes the rods back into `y` in the current modes.
@@ -243,9 +253,10 @@ impl Rtw {
     pub fn guard(&self, y: &[f64; N], index: usize) -> f64 {
         let frame = |rod: usize| self.body.frame(self.modes[rod], &y[6 * rod..6 * rod + 6]);
         let lambda = |rod: usize| {
-            let (loads, _) = self.loads(&self.frames(y));
+            let frames = self.frames(y);
+            let (loads, _) = self.loads(&frames);
             self.body
-                .accel(self.modes[rod], &frame(rod), &loads[rod], self.mu)
+                .accel(self.modes[rod], &frames[rod], &loads[rod], self.mu)
                 .lambda
         };
         self.guard_value(self.guard_kind(index), y, frame, lambda)
@@ -329,8 +340,9 @@ impl Rtw {
 
     /// Re-applies the mode-choice rule to a grounded rod.
     fn rechoose(&mut self, y: &mut [f64; N], rod: usize, tip: Tip, at_rest: bool) {
-        let rods = self.rods(y);
-        let (loads, _) = self.loads(&self.frames(y));
+        let frames = self.frames(y);
+        let rods = Self::rods_of(y, &frames);
+        let (loads, _) = self.loads(&frames);
         self.modes[rod] = self
             .body
             .choose_mode(&rods[rod], tip, at_rest, &loads[rod], self.mu);
@@ -367,12 +379,20 @@ impl Rtw {
     /// normal force exceeds 5 % of a rod's weight (MODEL.md §4's
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
     pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
+        // Only sticking rods count: without one, no contact force is needed.
+        if !self
+            .modes
+            .iter()
+            .any(|m| matches!(m, RodMode::Stick { .. }))
+        {
+            return 0.0;
+        }
         self.friction_ratio_of(&self.contact_forces(y))
     }
 
     /// [`friction_ratio`](Self::friction_ratio) from the contact forces.
     pub fn friction_ratio_of(&self, lambda: &[V2; 3]) -> f64 {
-        let floor = 0.05 * self.body.m * (self.gravity[0].hypot(self.gravity[1]));
+        let floor = self.mu_floor;
         (0..3)
             .filter(|&i| matches!(self.modes[i], RodMode::Stick { .. }))
             .map(|i| lambda[i])
@@ -384,7 +404,7 @@ impl Rtw {
     /// Kinetic, gravitational and elastic energy of state `y`.
     pub fn energy(&self, y: &[f64; N]) -> (f64, f64, f64) {
         let frames = self.frames(y);
-        let rods = self.rods(y);
+        let rods = Self::rods_of(y, &frames);
         let kinetic = rods.iter().map(|r| self.body.kinetic(r)).sum();
         let gravity = -self.body.m
             * rods

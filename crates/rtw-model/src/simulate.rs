@@ -164,6 +164,13 @@ impl HybridSystem<N> for Run<'_> {
         (self.trace.is_some() && self.trace_dt > 0.0) || self.stats.window_com_x.is_none()
     }
 
+    fn observes_interior_on(&self, _t0: f64, t1: f64) -> bool {
+        // The steps on which `observe_step` evaluates `dense` inside: those
+        // that reach the next trace sample or the window's start.
+        (self.trace.is_some() && self.trace_dt > 0.0 && self.next_trace <= t1)
+            || (self.stats.window_com_x.is_none() && t1 >= self.stats.window_start)
+    }
+
     fn observe(&mut self, dense: &Dense<N>) -> Flow {
         self.observe_step(dense, None)
     }
