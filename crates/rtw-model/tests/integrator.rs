@@ -542,6 +542,78 @@ fn the_earliest_of_several_crossings_fires() {
     }
 }
 
+/// [`TwoGuards`] with counters, and optionally its own one-guard evaluation
+/// (`HybridSystem::guard`) instead of the default through `guards`.
+struct CountedGuards {
+    inner: TwoGuards,
+    own_guard: bool,
+    guards_calls: std::cell::Cell<u64>,
+    guard_calls: std::cell::Cell<[u64; 3]>,
+}
+
+impl HybridSystem<1> for CountedGuards {
+    type Aux = ();
+
+    fn rhs(&self, t: f64, y: &[f64; 1], dy: &mut [f64; 1]) {
+        self.inner.rhs(t, y, dy);
+    }
+    fn guards(&self, t: f64, y: &[f64; 1], out: &mut Guards) {
+        self.guards_calls.set(self.guards_calls.get() + 1);
+        self.inner.guards(t, y, out);
+    }
+    fn guard(&self, t: f64, y: &[f64; 1], index: usize) -> f64 {
+        let mut c = self.guard_calls.get();
+        c[index] += 1;
+        self.guard_calls.set(c);
+        if self.own_guard {
+            [y[0] - 0.55, y[0] - 0.52, 0.53 - y[0]][index]
+        } else {
+            let mut g = Guards::default();
+            self.inner.guards(t, y, &mut g);
+            g.value[index]
+        }
+    }
+    fn reset(&mut self, t: f64, y: &mut [f64; 1], index: usize) -> Flow {
+        self.inner.reset(t, y, index)
+    }
+}
+
+#[test]
+fn root_finding_evaluates_one_guard_at_a_time() {
+    // Event location asks only for the guard it locates (and, once, for a
+    // later guard at the earliest event so far); the whole set is evaluated
+    // at step ends only. A system's own one-guard evaluation must give the
+    // same event, bit for bit, as the default through `guards`.
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4 { h: 0.5 }] {
+        let opts = EngineOptions {
+            method,
+            h_max: 1.0,
+            ..EngineOptions::default()
+        };
+        let mut found = Vec::new();
+        for own_guard in [false, true] {
+            let mut sys = CountedGuards {
+                inner: TwoGuards { first: None },
+                own_guard,
+                guards_calls: Default::default(),
+                guard_calls: Default::default(),
+            };
+            let mut y = [0.0];
+            let end = run(&mut sys, 0.0, &mut y, 2.0, &opts);
+            assert_eq!(end.reason, EndReason::Stopped);
+            // One set at the start, one at each accepted step's end.
+            assert_eq!(sys.guards_calls.get(), 1 + end.work.steps, "{method:?}");
+            let calls = sys.guard_calls.get();
+            assert!(calls[1] > 0, "{method:?}: {calls:?}");
+            let (i, t) = sys.inner.first.unwrap();
+            assert_eq!(i, 1, "{method:?}");
+            assert!((t - 0.52).abs() <= 1e-13, "{method:?}: {t}");
+            found.push((i, t.to_bits(), y[0].to_bits(), calls));
+        }
+        assert_eq!(found[0], found[1], "{method:?}");
+    }
+}
+
 // ---------------------------------------------------------------------------
 // Run ends
 // ---------------------------------------------------------------------------

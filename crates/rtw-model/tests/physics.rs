@@ -522,6 +522,7 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
         !grounded.is_empty(),
         "the static start stands on the ground"
     );
+    let mut kinds = std::collections::HashSet::new();
     for (case, slide) in [(0, false), (1, true), (2, true)] {
         let mut s = sys.clone();
         if slide {
@@ -550,10 +551,20 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
                 b.value[k].to_bits(),
                 "case {case} guard {k}"
             );
+            kinds.insert(std::mem::discriminant(&s.guard_kind(k)));
+            // The root finder's one-guard evaluation: the same value.
+            assert_eq!(
+                a.value[k].to_bits(),
+                s.guard(&y, k).to_bits(),
+                "case {case} guard {k} ({:?})",
+                s.guard_kind(k)
+            );
         }
         assert_eq!(
             s.friction_ratio(&y).to_bits(),
             s.friction_ratio_of(&lambda).to_bits()
         );
     }
+    // Every kind was checked: touchdown, lift-off, rod down, slip, re-stick, centre of mass.
+    assert_eq!(kinds.len(), 6, "guard kinds covered");
 }
