@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""Where the instructions of one run go: the README's "Hot path" table.
+
+Usage: scripts/hot_path.py CALLGRIND_OUT [CALLGRIND_OUT ...]
+
+Reads each file with `callgrind_annotate --inclusive=yes --tree=caller` (all
+functions: `--threshold=100`) and
+prints one Markdown column per file. Every share is of the whole program's
+instructions (process start-up and the initial state included). "Inside the
+RHS" is the inclusive cost of `Rtw::dynamics`, the right-hand side (its
+`sin_cos` included); everything else is outside it. Made by
+`scripts/hot_path.sh` (which builds the profile example and runs callgrind).
+"""
+import re
+import subprocess
+import sys
+
+LINE = re.compile(r"^\s*([\d,]+) \([ \d.]+%\)\s+([<*>]?)\s*(.*)$")
+
+
+def blocks(path):
+    """(function, inclusive cost, {caller: cost}) for every function."""
+    out = subprocess.run(
+        ["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100", path],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    total = None
+    callers = {}
+    for line in out.splitlines():
+        m = LINE.match(line)
+        if not m:
+            if not line.strip():
+                callers = {}
+            continue
+        cost, mark, name = int(m.group(1).replace(",", "")), m.group(2), m.group(3)
+        if name.startswith("PROGRAM TOTALS"):
+            total = cost
+        elif mark == "<":
+            callers[name] = callers.get(name, 0) + cost
+        elif mark == "*":
+            yield name, cost, callers
+            callers = {}
+    yield "TOTAL", total, {}
+
+
+def measure(path):
+    fn = {}
+    callers_of = {}
+    for name, cost, callers in blocks(path):
+        fn[name] = fn.get(name, 0) + cost
+        callers_of[name] = callers
+
+    def incl(pattern):
+        return sum(c for n, c in fn.items() if re.search(pattern, n))
+
+    def called_from(callee, caller):
+        return sum(
+            c
+            for n, cs in callers_of.items()
+            if re.search(callee, n)
+            for k, c in cs.items()
+            if re.search(caller, k)
+        )
+
+    total = fn["TOTAL"]
+    rhs = incl(r"rtw::Rtw::dynamics \[")
+    # Root finding: the guard evaluations at the iterates (`Rtw::guards`,
+    # all of them, before; `Rtw::guard`, the located one, after).
+    root = incl(r"rtw::Rtw::guards \[") + incl(r"rtw::Rtw::guard \[")
+    # Step ends: the guard set from the RHS's by-products (`guards_of` called
+    # from the engine, not from `Rtw::guards`).
+    step_end = incl(r"rtw::Rtw::guards_of \[") - called_from(
+        r"rtw::Rtw::guards_of \[", r"rtw::Rtw::guards \("
+    )
+    # Runge–Kutta arithmetic: the tableau code inlined into the engine, and
+    # the dense output.
+    stages = incl(r"integrate\.rs:rtw_model::hybrid::run$") + incl(
+        r"integrate::fill_dense \["
+    )
+    resets = incl(r"HybridSystem<20_usize>>::reset \[")
+    observe = incl(r"Run::observe_step \[")
+    sincos = incl(r"__sincos_fma \[")
+    return {
+        "instructions per run": f"{total / 1e6:.1f} M",
+        "inside the RHS": pct(rhs, total),
+        "outside the RHS": pct(total - rhs, total),
+        "guards (step ends + root finding)": pct(step_end + root, total),
+        "of which root finding": pct(root, total),
+        "Runge–Kutta stage arithmetic + dense output": pct(stages, total),
+        "resets (events, energy bookkeeping)": pct(resets, total),
+        "observe (statistics, mu_required)": pct(observe, total),
+        "sincos (all callers)": pct(sincos, total),
+    }
+
+
+def pct(x, total):
+    return f"{100.0 * x / total:.1f} %"
+
+
+def main():
+    cols = [measure(p) for p in sys.argv[1:]]
+    print("| | " + " | ".join(sys.argv[1:]) + " |")
+    print("|---|" + "---:|" * len(cols))
+    for key in cols[0]:
+        print(f"| {key} | " + " | ".join(c[key] for c in cols) + " |")
+
+
+if __name__ == "__main__":
+    main()
