@@ -46,6 +46,6 @@ pub mod strings;
 pub mod variational;
 
 pub use options::Options;
-pub use outcome::{Label, Outcome, TraceSample};
+pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
 pub use params::{Normalization, ParamError, Params, Physical};
 pub use simulate::{simulate, simulate_traced};

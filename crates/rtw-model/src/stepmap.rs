@@ -214,13 +214,7 @@ impl HybridSystem<N> for StepRun {
         }
     }
 
-    fn reset_replaying(
-        &mut self,
-        t: f64,
-        y: &mut [f64; N],
-        index: usize,
-        nominal: &Self,
-    ) -> Flow {
+    fn reset_replaying(&mut self, t: f64, y: &mut [f64; N], index: usize, nominal: &Self) -> Flow {
         self.rtw.replay = nominal.rtw.last_choice;
         let flow = self.reset(t, y, index);
         self.rtw.replay = None;
@@ -306,6 +300,104 @@ fn canonical_jacobian(j: usize) -> [[f64; N]; N] {
     c
 }
 
+impl SectionPoint {
+    /// The canonical section point just after `tip` of `rod` landed, the
+    /// state `y` in modes `modes` (the run's labels); `None` if the rod did
+    /// not stay on the ground.
+    pub fn after_touchdown(
+        modes: &[RodMode; 3],
+        y: &[f64; N],
+        rod: usize,
+        tip: Tip,
+    ) -> Option<SectionPoint> {
+        let j = SPOKES.iter().position(|&s| s == (rod, tip))?;
+        canonical(modes, y, j)
+    }
+}
+
+/// Longest history a [`SectionLog`] keeps: two of the longest periods, and one.
+const LOG_LEN: usize = 2 * crate::gait::MAX_PERIOD + 1;
+
+/// The latest section crossings of a simulation, in a fixed ring (no
+/// allocation in the run): where the limit-cycle analysis of a run starts.
+#[derive(Clone, Debug)]
+pub struct SectionLog {
+    ring: [SectionPoint; LOG_LEN],
+    len: usize,
+    /// Spoke of the stance foot, in the run's labels (a+ at the start).
+    stance: usize,
+}
+
+impl Default for SectionLog {
+    fn default() -> Self {
+        Self {
+            ring: [SectionPoint {
+                modes: [RodMode::Free; 3],
+                y: [0.0; N],
+            }; LOG_LEN],
+            len: 0,
+            stance: STANCE_SPOKE,
+        }
+    }
+}
+
+impl SectionLog {
+    /// Records the touchdown of `tip` of `rod` (state `y` just after it, in
+    /// `modes`) if it crosses the section: a new foot that stays down.
+    pub fn on_touchdown(&mut self, modes: &[RodMode; 3], y: &[f64; N], rod: usize, tip: Tip) {
+        let Some(j) = SPOKES.iter().position(|&s| s == (rod, tip)) else {
+            return;
+        };
+        let behind = (self.stance + BEHIND_SPOKE) % 6;
+        if j == self.stance || j == behind {
+            return;
+        }
+        if let Some(p) = canonical(modes, y, j) {
+            self.ring[self.len % LOG_LEN] = p;
+            self.len += 1;
+            self.stance = j;
+        }
+    }
+
+    /// The recorded crossings, oldest first (at most the ring's length).
+    pub fn latest(&self) -> Vec<SectionPoint> {
+        let n = self.len.min(LOG_LEN);
+        (self.len - n..self.len)
+            .map(|k| self.ring[k % LOG_LEN])
+            .collect()
+    }
+}
+
+/// Scaled distance under which a simulation's section points count as a
+/// period (a scan's run is integrated at a loose tolerance; Newton then
+/// refines the point at [`CycleOptions`]' tolerance).
+pub const RUN_PERIOD_TOL: f64 = 1e-3;
+
+/// The limit cycle a finished run settled into: its period recognised on the
+/// run's latest section crossings, then Newton on `Pⁿ(z) = z` from the last
+/// one. `None` when no period shows or Newton fails.
+pub fn cycle_of_run(
+    params: &Params,
+    options: &Options,
+    log: &SectionLog,
+) -> Option<crate::outcome::CycleSummary> {
+    // Differences: 4× cheaper than the variational equations here, and as
+    // good for a scan column (the tests check the two against each other).
+    let cycle = CycleOptions {
+        jacobian: Jacobian::Differences { rel: 1e-6 },
+        ..CycleOptions::default()
+    };
+    let map = StepMap::new(params, options, &cycle);
+    let hist = log.latest();
+    let n = map.period_of(&hist, cycle.max_period, RUN_PERIOD_TOL)?;
+    let lc = map.solve(hist.last()?, n, &cycle).ok()?;
+    Some(crate::outcome::CycleSummary {
+        period: n as u32,
+        floquet_max: lc.floquet_max(),
+        residual: lc.fixed_point.residual,
+    })
+}
+
 /// Settings of the limit-cycle analysis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleOptions {
@@ -325,6 +417,20 @@ pub struct CycleOptions {
     pub newton_max_iter: u32,
     /// Longest step (s) before the map gives up ([`StepError::NoNewFoot`]).
     pub step_horizon: f64,
+    /// How Newton gets the map's Jacobian.
+    pub jacobian: Jacobian,
+}
+
+/// How the step map's Jacobian is computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Jacobian {
+    /// The variational equations with saltation (about 110 steps' work per
+    /// step at Fig. 7(a): the sensitivities share the state's error control).
+    Variational,
+    /// Central differences of the map with steps `rel · scale` (2 steps per
+    /// coordinate: about 25 steps' work at Fig. 7(a)). The tests check it
+    /// against the variational Jacobian to 6 digits at `rel` = 1e-5 and 1e-6.
+    Differences { rel: f64 },
 }
 
 impl Default for CycleOptions {
@@ -339,6 +445,7 @@ impl Default for CycleOptions {
             newton_tol: 1e-9,
             newton_max_iter: 12,
             step_horizon: 5.0,
+            jacobian: Jacobian::Variational,
         }
     }
 }
@@ -537,20 +644,32 @@ impl StepMap {
     }
 
     /// `Pⁿ` at `p` and its Jacobian (the chain rule over the `n` steps, each
-    /// by the variational equations); `None` if a step fails or the orbit
-    /// does not come back to `p`'s mode pattern.
+    /// by `method`); `None` if a step fails or the orbit does not come back to
+    /// `p`'s mode pattern.
     pub fn power_with_jacobian(
         &self,
         p: &SectionPoint,
         n: usize,
+        method: Jacobian,
     ) -> Option<(SectionPoint, DMatrix<f64>)> {
         let mut q = *p;
         let d = p.coordinate_slots().len();
         let mut jac = DMatrix::<f64>::identity(d, d);
         for _ in 0..n {
-            let (s, j) = self.step_with_jacobian(&q).ok()?;
+            let (to, j) = match method {
+                Jacobian::Variational => {
+                    let (s, j) = self.step_with_jacobian(&q).ok()?;
+                    (s.to, j)
+                }
+                Jacobian::Differences { rel } => {
+                    (self.step(&q).ok()?.to, self.fd_jacobian(&q, rel)?)
+                }
+            };
+            if j.ncols() != jac.nrows() {
+                return None;
+            }
             jac = j * jac;
-            q = s.to;
+            q = to;
         }
         (q.modes == p.modes).then_some((q, jac))
     }
@@ -563,7 +682,8 @@ impl StepMap {
         let last = hist.len().checked_sub(1)?;
         (1..=max_period).find(|&n| {
             (0..n).all(|back| {
-                let (Some(a), Some(b)) = (last.checked_sub(back), last.checked_sub(back + n)) else {
+                let (Some(a), Some(b)) = (last.checked_sub(back), last.checked_sub(back + n))
+                else {
                     return false;
                 };
                 let (p, q) = (&hist[a], &hist[b]);
@@ -584,7 +704,11 @@ impl StepMap {
     ) -> Result<LimitCycle, CycleError> {
         let first = self.first(options)?;
         let mut hist = vec![first.to];
-        hist.extend(self.iterate(&first.to, cycle.settle_steps)?.iter().map(|s| s.to));
+        hist.extend(
+            self.iterate(&first.to, cycle.settle_steps)?
+                .iter()
+                .map(|s| s.to),
+        );
         let n = self
             .period_of(&hist, cycle.max_period, cycle.period_tol)
             .ok_or(CycleError::NoPeriod(cycle.max_period))?;
@@ -605,7 +729,7 @@ impl StepMap {
             cycle.newton_tol,
             cycle.newton_max_iter,
             |z| {
-                let (q, j) = self.power_with_jacobian(&start.with_coords(z), n)?;
+                let (q, j) = self.power_with_jacobian(&start.with_coords(z), n, cycle.jacobian)?;
                 Some((q.coords(), j))
             },
         )?;

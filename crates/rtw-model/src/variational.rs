@@ -31,7 +31,10 @@
 //! `Φ⁺ = R_y (I − f⁻ g_y / (g_y f⁻)) Φ⁻`,
 //!
 //! which is the Jacobian of the map "initial state ↦ state just after the
-//! terminal event".
+//! terminal event". (The `f⁺ w` terms of earlier events are shifts along the
+//! flow; the flow and every later saltation carry the vector field into the
+//! vector field, and this projection removes it: a Poincaré map's Jacobian
+//! does not depend on them, only on the `R_y f⁻ w` part.)
 //!
 //! The wrapped system must be autonomous (`f`, guards and resets not
 //! depending on `t`): true of the RTW and the rimless wheel. Its `observe` is
@@ -182,9 +185,8 @@ impl<S: HybridSystem<N> + Clone, const N: usize, const M: usize> HybridSystem<M>
 
         // dτ = −(g_y Φ⁻ δ)/(g_y f⁻): the row vector w = g_y Φ⁻ / (g_y f⁻).
         let g_f: f64 = (0..N).map(|k| g_y[k] * f_minus[k]).sum();
-        let w: [f64; N] = std::array::from_fn(|j| {
-            (0..N).map(|k| g_y[k] * z[N + k * N + j]).sum::<f64>() / g_f
-        });
+        let w: [f64; N] =
+            std::array::from_fn(|j| (0..N).map(|k| g_y[k] * z[N + k * N + j]).sum::<f64>() / g_f);
         // Φ⁻ − f⁻ w: the sensitivity at the moving event time, before the reset.
         let mut phi: [[f64; N]; N] =
             std::array::from_fn(|i| std::array::from_fn(|j| z[N + i * N + j] - f_minus[i] * w[j]));

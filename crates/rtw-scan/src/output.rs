@@ -210,8 +210,15 @@ pub static COLUMNS: &[Column] = &[
     metric("energy_balance_error", |r| {
         r.outcome.map(|o| o.energy.balance_error)
     }),
+    // From the step map's Newton solution when the run asked for its limit
+    // cycle (`limit_cycle = true`) and one was found, else from the
+    // touchdown return times.
     count("period", "metric", |r| {
-        r.outcome.map(|o| i64::from(o.period))
+        r.outcome
+            .map(|o| i64::from(o.cycle.map_or(o.period, |c| c.period)))
+    }),
+    metric("floquet_max", |r| {
+        r.outcome.and_then(|o| o.cycle).map(|c| c.floquet_max)
     }),
     count("steps", "work", |r| r.outcome.map(|o| o.work.steps as i64)),
     count("rejected", "work", |r| {
@@ -714,6 +721,7 @@ pub(crate) mod tests {
             slide_time: 0.01,
             energy: Energy::default(),
             period: 1,
+            cycle: None,
             work: IntegratorWork {
                 steps: 100,
                 rejected: 3,
