@@ -227,39 +227,53 @@ impl RodBody {
     /// no tangential impulse); with finite `mu`, if the sticking impulse leaves
     /// the friction cone the impact slides with `|Π_x| = μ Π_y`.
     pub fn touchdown(&self, r: &RodState, tip: Tip, mu: f64) -> Impact {
-        let (sin, cos) = r.theta.sin_cos();
-        let d = self.arm([cos, sin], tip);
-        let i_p = self.inertia + self.m * self.half_length * self.half_length;
-        // Angular momentum about P = c + d: I ω + m (−d) × v.
-        let omega = (self.inertia * r.omega - self.m * cross(d, r.v)) / i_p;
-        let v = scale(-omega, perp(d));
-        let impulse = scale(self.m, sub(v, r.v));
+        let stick = self.impact(r, tip, ImpactKind::Stick);
+        let impulse = stick.impulse;
         let in_cone = mu.is_infinite() || impulse[0].abs() <= mu * impulse[1];
         if impulse[1] >= 0.0 && in_cone {
-            return Impact {
-                after: RodState { v, omega, ..*r },
-                impulse,
-                sticks: true,
-            };
+            return stick;
         }
-        // Frictionless (pulling) or sliding (outside the cone) impact:
-        // Π = (κ Π_y, Π_y) with the tip's normal velocity brought to zero.
+        // Frictionless (pulling) or sliding (outside the cone) impact.
         let kappa = if impulse[1] >= 0.0 {
             mu * impulse[0].signum()
         } else {
             0.0
         };
-        let v_tip_y = r.v[1] + r.omega * d[0];
-        let p_y = -v_tip_y / (1.0 / self.m + d[0] * (d[0] - kappa * d[1]) / self.inertia);
-        let impulse = [kappa * p_y, p_y];
-        Impact {
-            after: RodState {
-                v: add(r.v, scale(1.0 / self.m, impulse)),
-                omega: r.omega + cross(d, impulse) / self.inertia,
-                ..*r
-            },
-            impulse,
-            sticks: false,
+        self.impact(r, tip, ImpactKind::Slide { kappa })
+    }
+
+    /// The impact of `kind` on `tip` (the choice among the kinds is
+    /// [`touchdown`](Self::touchdown)'s).
+    pub fn impact(&self, r: &RodState, tip: Tip, kind: ImpactKind) -> Impact {
+        let (sin, cos) = r.theta.sin_cos();
+        let d = self.arm([cos, sin], tip);
+        match kind {
+            ImpactKind::Stick => {
+                let i_p = self.inertia + self.m * self.half_length * self.half_length;
+                // Angular momentum about P = c + d: I ω + m (−d) × v.
+                let omega = (self.inertia * r.omega - self.m * cross(d, r.v)) / i_p;
+                let v = scale(-omega, perp(d));
+                Impact {
+                    after: RodState { v, omega, ..*r },
+                    impulse: scale(self.m, sub(v, r.v)),
+                    kind,
+                }
+            }
+            ImpactKind::Slide { kappa } => {
+                // Π = (κ Π_y, Π_y) with the tip's normal velocity brought to zero.
+                let v_tip_y = r.v[1] + r.omega * d[0];
+                let p_y = -v_tip_y / (1.0 / self.m + d[0] * (d[0] - kappa * d[1]) / self.inertia);
+                let impulse = [kappa * p_y, p_y];
+                Impact {
+                    after: RodState {
+                        v: add(r.v, scale(1.0 / self.m, impulse)),
+                        omega: r.omega + cross(d, impulse) / self.inertia,
+                        ..*r
+                    },
+                    impulse,
+                    kind,
+                }
+            }
         }
     }
 
@@ -280,11 +294,48 @@ impl RodBody {
         load: &Load,
         mu: f64,
     ) -> RodMode {
+        self.choose(r, tip, at_rest, true, load, mu)
+    }
+
+    /// [`choose_mode`](Self::choose_mode) when a guard has just found the
+    /// condition of the rod's mode `leaving` violated (a lift-off: λ_y ≤ 0; a
+    /// slip: |λ_x| ≥ μ λ_y). The rule's own evaluation of that condition, at
+    /// the same state by another rounding path, can still pass; the rod would
+    /// then stay in a mode whose guard, now on its crossed side, never fires
+    /// again (a stick outside the friction cone). So the mode it leaves is
+    /// excluded: stick first, then free.
+    pub fn choose_mode_leaving(
+        &self,
+        r: &RodState,
+        tip: Tip,
+        at_rest: bool,
+        load: &Load,
+        mu: f64,
+        leaving: RodMode,
+    ) -> RodMode {
+        let mode = self.choose(r, tip, at_rest, true, load, mu);
+        if mode != leaving {
+            return mode;
+        }
+        let mode = self.choose(r, tip, at_rest, false, load, mu);
+        if mode != leaving { mode } else { RodMode::Free }
+    }
+
+    fn choose(
+        &self,
+        r: &RodState,
+        tip: Tip,
+        at_rest: bool,
+        may_stick: bool,
+        load: &Load,
+        mu: f64,
+    ) -> RodMode {
         let (_, v_tip) = self.tip_point(r, tip);
         let frame = RodFrame::new(r);
         let stick = RodMode::Stick { tip };
         let lam = self.accel(stick, &frame, load, mu).lambda;
-        if at_rest && lam[1] > 0.0 && (mu.is_infinite() || lam[0].abs() <= mu * lam[1]) {
+        if may_stick && at_rest && lam[1] > 0.0 && (mu.is_infinite() || lam[0].abs() <= mu * lam[1])
+        {
             return stick;
         }
         if self.free_tip_accel(r, tip, load)[1] >= 0.0 {
@@ -314,6 +365,16 @@ impl RodBody {
     }
 }
 
+/// Which impact a touchdown is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ImpactKind {
+    /// The tip stops (it is at rest afterwards).
+    Stick,
+    /// The tip's normal velocity stops; the tangential impulse is `κ` times
+    /// the normal one (`κ = ±μ` sliding, 0 frictionless).
+    Slide { kappa: f64 },
+}
+
 /// Result of a touchdown impact.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Impact {
@@ -321,8 +382,15 @@ pub struct Impact {
     pub after: RodState,
     /// Impulse of the ground on the tip.
     pub impulse: V2,
-    /// True for a sticking impact (the tip is at rest afterwards).
-    pub sticks: bool,
+    pub kind: ImpactKind,
+}
+
+impl Impact {
+    /// A sticking impact: the tip is at rest afterwards.
+    #[inline]
+    pub fn sticks(&self) -> bool {
+        self.kind == ImpactKind::Stick
+    }
 }
 
 #[cfg(test)]
@@ -392,7 +460,7 @@ mod tests {
             assert!(b.kinetic(&imp.after) <= b.kinetic(&r) + 1e-15);
             let (_, vt) = b.tip_point(&imp.after, Tip::Plus);
             assert!(vt[1].abs() < 1e-13);
-            if imp.sticks {
+            if imp.sticks() {
                 assert!(vt[0].abs() < 1e-13);
                 assert!(imp.impulse[1] >= 0.0);
             }
@@ -410,7 +478,7 @@ mod tests {
         let (_, vt) = b.tip_point(&r, Tip::Plus);
         assert!(vt[1] < 0.0);
         let imp = b.touchdown(&r, Tip::Plus, f64::INFINITY);
-        assert!(!imp.sticks);
+        assert!(!imp.sticks());
         assert_eq!(imp.impulse[0], 0.0);
         assert!(imp.impulse[1] > 0.0);
         let (_, vt2) = b.tip_point(&imp.after, Tip::Plus);

@@ -119,6 +119,19 @@ pub trait HybridSystem<const N: usize> {
     /// `y` the state there: may change the mode and jump `y`.
     fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Flow;
 
+    /// The reset of guard `index` at `y`, making every discrete choice (a new
+    /// mode, a kind of impact) as `nominal` made it in its latest reset.
+    /// Differentiating a reset needs its choices fixed: at an event the state
+    /// sits on the boundary between them (a lift-off at zero normal force).
+    /// The default is [`reset`](HybridSystem::reset), right for systems
+    /// whose resets make no choice.
+    fn reset_replaying(&mut self, t: f64, y: &mut [f64; N], index: usize, _nominal: &Self) -> Flow
+    where
+        Self: Sized,
+    {
+        self.reset(t, y, index)
+    }
+
     /// Called after every accepted step `[dense.t0, dense.t1]` (and after the
     /// part of a step that ends at an event, before its reset), with the dense
     /// output of that step. Statistics, recording and run-level failure checks

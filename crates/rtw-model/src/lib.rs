@@ -20,6 +20,9 @@
 //! | [`simulate`](mod@simulate) | `simulate(params, options) -> Outcome` |
 //! | [`integrate`], [`hybrid`] | Runge–Kutta with dense output; the generic event-driven engine |
 //! | [`rimless`] | McGeer's rimless wheel on the same engine (a closed-form check) |
+//! | [`variational`] | sensitivities `∂y/∂y₀` through flows, impacts and mode switches |
+//! | [`stepmap`] | the step map at each new foot's touchdown, reduced by the 60° symmetry |
+//! | [`limit`] | fixed points by Newton, Floquet multipliers (any return map) |
 //! | [`modal`] | eigen-frequencies of the approximate and of the full model |
 //!
 //! The crate does no I/O.
@@ -30,6 +33,7 @@ pub mod geometry;
 pub mod hybrid;
 pub mod initial;
 pub mod integrate;
+pub mod limit;
 pub mod modal;
 pub mod options;
 pub mod outcome;
@@ -37,9 +41,11 @@ pub mod params;
 pub mod rimless;
 pub mod rtw;
 pub mod simulate;
+pub mod stepmap;
 pub mod strings;
+pub mod variational;
 
 pub use options::Options;
-pub use outcome::{Label, Outcome, TraceSample};
+pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
 pub use params::{Normalization, ParamError, Params, Physical};
 pub use simulate::{simulate, simulate_traced};

@@ -157,6 +157,11 @@ pub struct Options {
     /// chaotic gaits; `cargo run --release -p rtw-bench`).
     /// A chaotic gait never settles and runs to `t_max`.
     pub stop_when_settled: bool,
+    /// After a stable run, find its gait's limit cycle on the step map
+    /// ([`crate::stepmap`]): the period from the map and the largest Floquet
+    /// multiplier ([`Outcome::cycle`](crate::Outcome::cycle)). Costs a Newton
+    /// solve with variational Jacobians at tight tolerance per periodic run.
+    pub limit_cycle: bool,
     pub initial: InitialOptions,
     pub strings: StringOptions,
     pub contact: ContactOptions,
@@ -181,6 +186,7 @@ impl Default for Options {
             touchdown_offset: 1e-10,
             trace_dt: 0.0,
             stop_when_settled: true,
+            limit_cycle: false,
             initial: InitialOptions::default(),
             strings: StringOptions::default(),
             contact: ContactOptions::default(),

@@ -171,7 +171,21 @@ pub struct Outcome {
     pub energy: Energy,
     /// Period of the gait on the touchdown return map (0: none found).
     pub period: u32,
+    /// The gait's limit cycle on the step map, if `Options::limit_cycle`
+    /// asked for it and Newton found one.
+    pub cycle: Option<CycleSummary>,
     pub work: IntegratorWork,
+}
+
+/// A run's limit cycle on the step map ([`crate::stepmap`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CycleSummary {
+    /// Period in steps (new-foot touchdowns).
+    pub period: u32,
+    /// Largest Floquet multiplier modulus (< 1: stable).
+    pub floquet_max: f64,
+    /// Scaled residual `|Pⁿ(z) − z|` of the fixed point.
+    pub residual: f64,
 }
 
 /// One sample of a recorded trajectory, in full coordinates.

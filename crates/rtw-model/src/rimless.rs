@@ -47,6 +47,7 @@
 //! through [`hybrid::run`](crate::hybrid::run).
 
 use crate::hybrid::{Crossing, EndReason, EngineOptions, Flow, Guards, HybridSystem, RunEnd, run};
+use crate::variational::Variational;
 
 /// Index of the touchdown guard `θ − (γ + α)` (rising).
 pub const GUARD_TOUCHDOWN: usize = 0;
@@ -193,6 +194,24 @@ impl RimlessWheel {
         let mut y = w.initial_state(omega);
         let end = run(&mut w, 0.0, &mut y, self.stance_horizon(), opts);
         (end.reason == EndReason::Stopped && w.impacts == 1).then_some(y[1])
+    }
+
+    /// [`step_map`](Self::step_map) and its derivative `dP/dω`, by the
+    /// variational equations integrated through the stance and the touchdown's
+    /// saltation ([`Variational`]): the same machinery as the RTW's step map.
+    pub fn step_map_with_slope(&self, omega: f64, opts: &EngineOptions) -> Option<(f64, f64)> {
+        let w = Self {
+            stop_after: 1,
+            ..Self::new(self.l, self.alpha, self.gamma, self.g)
+        };
+        let rate = (self.g / self.l).sqrt();
+        let mut var = Variational::new(w, [1.0, rate]);
+        let mut z: [f64; 6] = Variational::<Self, 2>::initial(&w.initial_state(omega));
+        let end = run(&mut var, 0.0, &mut z, self.stance_horizon(), opts);
+        // Column 1 of Φ: the response to the post-impact rate (θ is fixed
+        // by the section).
+        (end.reason == EndReason::Stopped && var.sys.impacts == 1)
+            .then(|| (z[1], Variational::<Self, 2>::sensitivity(&z, 1, 1)))
     }
 
     /// Runs the wheel from `θ = γ − α`, `θ̇ = omega` at `t = 0` for `steps`

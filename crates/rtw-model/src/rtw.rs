@@ -7,7 +7,7 @@
 //! dampers and sliding friction have dissipated, integrated alongside the
 //! motion for the energy balance.
 
-use crate::contact::{Load, RodBody, RodMode};
+use crate::contact::{ImpactKind, Load, RodBody, RodMode};
 use crate::geometry::{RodFrame, RodState, Tip, V2, add, scale};
 use crate::hybrid::{Crossing, Guards};
 use crate::options::Options;
@@ -63,6 +63,14 @@ pub struct AtState {
     pub lambda: [V2; 3],
 }
 
+/// The discrete choices a reset made: the rod's new mode and, at a
+/// touchdown, the kind of impact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Choice {
+    pub mode: RodMode,
+    pub impact: Option<ImpactKind>,
+}
+
 /// The RTW: its constants and its current contact modes.
 #[derive(Clone, Debug)]
 pub struct Rtw {
@@ -82,6 +90,12 @@ pub struct Rtw {
     /// `mu_required` counts a sticking rod only while its normal force
     /// exceeds this: 5 % of a rod's weight.
     pub mu_floor: f64,
+    /// The choices of the last reset that made any.
+    pub last_choice: Option<Choice>,
+    /// When set, resets replay these choices instead of making their own: the
+    /// derivative of a reset (the variational equations' saltation) is taken
+    /// with its discrete choices fixed, as they are at the event itself.
+    pub replay: Option<Choice>,
 }
 
 impl Rtw {
@@ -109,6 +123,8 @@ impl Rtw {
             restick_speed: 1e-9 * phys.length,
             collapse_height: opts.collapse_height_ratio * phys.standing_height(),
             mu_floor: 0.05 * phys.m * gravity[0].hypot(gravity[1]),
+            last_choice: None,
+            replay: None,
         }
     }
 
@@ -317,7 +333,7 @@ impl Rtw {
             GuardKind::LiftOff { rod } => {
                 let tip = self.modes[rod].tip().expect("grounded rod");
                 let at_rest = matches!(self.modes[rod], RodMode::Stick { .. });
-                self.rechoose(y, rod, tip, at_rest);
+                self.rechoose(y, rod, tip, at_rest, Some(self.modes[rod]));
                 Transition::ModeChange { rod }
             }
             GuardKind::Restick { rod } => {
@@ -325,12 +341,12 @@ impl Rtw {
                 // The tip's velocity has just reversed: it is at rest up to
                 // `restick_speed`, which the reset drops.
                 y[6 * rod + 3] = 0.0;
-                self.rechoose(y, rod, tip, true);
+                self.rechoose(y, rod, tip, true, None);
                 Transition::ModeChange { rod }
             }
             GuardKind::Slip { rod } => {
                 let tip = self.modes[rod].tip().expect("grounded rod");
-                self.rechoose(y, rod, tip, true);
+                self.rechoose(y, rod, tip, true, Some(self.modes[rod]));
                 Transition::ModeChange { rod }
             }
             GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
@@ -338,14 +354,35 @@ impl Rtw {
         }
     }
 
-    /// Re-applies the mode-choice rule to a grounded rod.
-    fn rechoose(&mut self, y: &mut [f64; N], rod: usize, tip: Tip, at_rest: bool) {
+    /// Re-applies the mode-choice rule to a grounded rod; `leaving`: the mode
+    /// whose condition the event found violated, which the rod must leave.
+    fn rechoose(
+        &mut self,
+        y: &mut [f64; N],
+        rod: usize,
+        tip: Tip,
+        at_rest: bool,
+        leaving: Option<RodMode>,
+    ) {
         let frames = self.frames(y);
         let rods = Self::rods_of(y, &frames);
-        let (loads, _) = self.loads(&frames);
-        self.modes[rod] = self
-            .body
-            .choose_mode(&rods[rod], tip, at_rest, &loads[rod], self.mu);
+        self.modes[rod] = match self.replay {
+            Some(choice) => choice.mode,
+            None => {
+                let (loads, _) = self.loads(&frames);
+                let (r, load) = (&rods[rod], &loads[rod]);
+                match leaving {
+                    Some(mode) => self
+                        .body
+                        .choose_mode_leaving(r, tip, at_rest, load, self.mu, mode),
+                    None => self.body.choose_mode(r, tip, at_rest, load, self.mu),
+                }
+            }
+        };
+        self.last_choice = Some(Choice {
+            mode: self.modes[rod],
+            impact: None,
+        });
         self.body
             .slots(self.modes[rod], &rods[rod], &mut y[6 * rod..6 * rod + 6]);
     }
@@ -353,7 +390,10 @@ impl Rtw {
     /// Touchdown of a free rod's tip: the impact, then the mode choice.
     pub fn touchdown(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
         let rods = self.rods(y);
-        let impact = self.body.touchdown(&rods[rod], tip, self.mu);
+        let impact = match self.replay.and_then(|c| c.impact) {
+            Some(kind) => self.body.impact(&rods[rod], tip, kind),
+            None => self.body.touchdown(&rods[rod], tip, self.mu),
+        };
         let mut after = impact.after;
         // Put the tip exactly on the ground (it was declared a hair below).
         let (p, _) = self.body.tip_point(&after, tip);
@@ -362,10 +402,18 @@ impl Rtw {
         rods[rod] = after;
         // Mode choice needs the loads with the rod in its new place.
         let frames: [RodFrame; 3] = std::array::from_fn(|i| RodFrame::new(&rods[i]));
-        let (loads, _) = self.loads(&frames);
-        self.modes[rod] = self
-            .body
-            .choose_mode(&after, tip, impact.sticks, &loads[rod], self.mu);
+        self.modes[rod] = match self.replay {
+            Some(choice) => choice.mode,
+            None => {
+                let (loads, _) = self.loads(&frames);
+                self.body
+                    .choose_mode(&after, tip, impact.sticks(), &loads[rod], self.mu)
+            }
+        };
+        self.last_choice = Some(Choice {
+            mode: self.modes[rod],
+            impact: Some(impact.kind),
+        });
         self.body
             .slots(self.modes[rod], &after, &mut y[6 * rod..6 * rod + 6]);
         Transition::Touchdown {

@@ -9,6 +9,7 @@ use crate::integrate::{Dense, Method};
 use crate::options::{MethodChoice, Options};
 use crate::outcome::{Energy, FailureDetail, IntegratorWork, Label, Outcome, TraceSample};
 use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
+use crate::stepmap::{SectionLog, cycle_of_run};
 use crate::{Params, Physical};
 
 /// Simulates one RTW run.
@@ -66,6 +67,8 @@ struct Run<'a> {
     mu_since_touchdown: f64,
     /// The settled gait, when the run stopped early for it.
     settled: Option<Settled>,
+    /// The latest section crossings (`Options::limit_cycle` only).
+    sections: Option<Box<SectionLog>>,
 }
 
 impl Run<'_> {
@@ -136,6 +139,9 @@ impl HybridSystem<N> for Run<'_> {
                 omega_after,
             } => {
                 self.stats.on_touchdown(t, rod, tip, omega_after);
+                if let Some(log) = self.sections.as_mut() {
+                    log.on_touchdown(&self.rtw.modes, y, rod, tip);
+                }
                 if self.stop_when_settled {
                     let mu = std::mem::take(&mut self.mu_since_touchdown);
                     self.settled = self.stats.mark(t, omega_after, com_x, mu);
@@ -255,6 +261,7 @@ fn simulate_inner(
         stop_when_settled: options.stop_when_settled,
         mu_since_touchdown: 0.0,
         settled: None,
+        sections: options.limit_cycle.then(Box::default),
     };
     let e0 = run.rtw.total_energy(&y);
     let g0 = run.rtw.energy(&y).1;
@@ -327,6 +334,10 @@ fn simulate_inner(
         Some(FailureDetail::NoTouchdown | FailureDetail::NoProgress) => Label::Stall,
         Some(_) => Label::Diverged,
     };
+    let cycle = match &run.sections {
+        Some(log) if label.is_stable() => cycle_of_run(params, options, log),
+        _ => None,
+    };
     Outcome {
         label,
         failure,
@@ -340,6 +351,7 @@ fn simulate_inner(
         slide_time: stats.slide_time,
         energy,
         period: if label.is_stable() { period } else { 0 },
+        cycle,
         work: IntegratorWork {
             steps: end.work.steps,
             rejected: end.work.rejected,
@@ -364,6 +376,7 @@ fn failed_at_start(detail: FailureDetail) -> Outcome {
         slide_time: 0.0,
         energy: Energy::default(),
         period: 0,
+        cycle: None,
         work: IntegratorWork::default(),
     }
 }

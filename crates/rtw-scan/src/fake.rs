@@ -66,6 +66,7 @@ pub fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
             ..Default::default()
         },
         period: 1,
+        cycle: None,
         work: IntegratorWork {
             steps: 1000,
             rejected: 10,

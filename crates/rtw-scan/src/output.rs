@@ -210,8 +210,18 @@ pub static COLUMNS: &[Column] = &[
     metric("energy_balance_error", |r| {
         r.outcome.map(|o| o.energy.balance_error)
     }),
+    // From the step map's Newton solution when the run asked for its limit
+    // cycle (`limit_cycle = true`) and one was found, else from the
+    // touchdown return times.
     count("period", "metric", |r| {
-        r.outcome.map(|o| i64::from(o.period))
+        r.outcome
+            .map(|o| i64::from(o.cycle.map_or(o.period, |c| c.period)))
+    }),
+    metric("floquet_max", |r| {
+        r.outcome.and_then(|o| o.cycle).map(|c| c.floquet_max)
+    }),
+    metric("cycle_residual", |r| {
+        r.outcome.and_then(|o| o.cycle).map(|c| c.residual)
     }),
     count("steps", "work", |r| r.outcome.map(|o| o.work.steps as i64)),
     count("rejected", "work", |r| {
@@ -714,6 +724,11 @@ pub(crate) mod tests {
             slide_time: 0.01,
             energy: Energy::default(),
             period: 1,
+            cycle: Some(rtw_model::CycleSummary {
+                period: 1,
+                floquet_max: 0.8,
+                residual: 1e-10,
+            }),
             work: IntegratorWork {
                 steps: 100,
                 rejected: 3,
@@ -807,6 +822,13 @@ pub(crate) mod tests {
                 Some(inner) if k == "energy" => {
                     inner.keys().map(|f| format!("energy_{f}")).collect()
                 }
+                Some(inner) if k == "cycle" => inner
+                    .keys()
+                    .map(|f| match f.as_str() {
+                        "residual" => "cycle_residual".into(),
+                        _ => f.clone(),
+                    })
+                    .collect(),
                 Some(inner) => inner.keys().cloned().collect(),
                 None if k == "label" => vec!["outcome".into()],
                 None => vec![k.clone()],
