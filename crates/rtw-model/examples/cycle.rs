@@ -16,7 +16,12 @@ fn main() {
     let it = map.iterate(&first.to, steps).unwrap();
     for (k, s) in it.iter().enumerate() {
         if k % 10 == 0 || k + 5 > steps {
-            println!("{k:4} t {:.9} omega {:.9} modes {:?}", s.time, s.to.omega(), s.to.modes);
+            println!(
+                "{k:4} t {:.9} omega {:.9} modes {:?}",
+                s.time,
+                s.to.omega(),
+                s.to.modes
+            );
         }
     }
     let last = it.last().unwrap().to;
@@ -25,18 +30,33 @@ fn main() {
     println!("{:?}", t.elapsed());
     match lc {
         Ok(lc) => {
-            println!("period {} label {:?} residual {:.2e} iters {}", lc.period, lc.label(options.eps), lc.fixed_point.residual, lc.fixed_point.iterations);
+            println!(
+                "period {} label {:?} residual {:.2e} iters {}",
+                lc.period,
+                lc.label(options.eps),
+                lc.fixed_point.residual,
+                lc.fixed_point.iterations
+            );
             println!("z {:?}", lc.fixed_point.z);
-            for m in &lc.multipliers { println!("  {:.9} {:+.9}i |{:.9}|", m.re, m.im, m.norm()); }
+            for m in &lc.multipliers {
+                println!("  {:.9} {:+.9}i |{:.9}|", m.re, m.im, m.norm());
+            }
             let p = lc.orbit[0];
             for rel in [1e-4, 1e-5, 1e-6] {
                 let j = map.fd_jacobian(&p, rel).unwrap();
                 let mu = rtw_model::limit::multipliers(&j);
-                println!("fd {rel:e}: {:?}", mu.iter().map(|m| format!("{:.9}{:+.9}i", m.re, m.im)).collect::<Vec<_>>());
-                println!("   max |J_fd - J_var| = {:.3e}", (&j - &lc.fixed_point.jacobian).abs().max());
+                println!(
+                    "fd {rel:e}: {:?}",
+                    mu.iter()
+                        .map(|m| format!("{:.9}{:+.9}i", m.re, m.im))
+                        .collect::<Vec<_>>()
+                );
+                println!(
+                    "   max |J_fd - J_var| = {:.3e}",
+                    (&j - &lc.fixed_point.jacobian).abs().max()
+                );
             }
         }
         Err(e) => println!("error: {e}"),
     }
 }
-

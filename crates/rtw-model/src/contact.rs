@@ -340,7 +340,8 @@ impl RodBody {
         let frame = RodFrame::new(r);
         let stick = RodMode::Stick { tip };
         let lam = self.accel(stick, &frame, load, mu).lambda;
-        if may_stick && at_rest && lam[1] > 0.0 && (mu.is_infinite() || lam[0].abs() <= mu * lam[1]) {
+        if may_stick && at_rest && lam[1] > 0.0 && (mu.is_infinite() || lam[0].abs() <= mu * lam[1])
+        {
             return stick;
         }
         if self.free_tip_accel(r, tip, load)[1] >= 0.0 {

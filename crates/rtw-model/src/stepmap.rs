@@ -214,13 +214,7 @@ impl HybridSystem<N> for StepRun {
         }
     }
 
-    fn reset_replaying(
-        &mut self,
-        t: f64,
-        y: &mut [f64; N],
-        index: usize,
-        nominal: &Self,
-    ) -> Flow {
+    fn reset_replaying(&mut self, t: f64, y: &mut [f64; N], index: usize, nominal: &Self) -> Flow {
         self.rtw.replay = nominal.rtw.last_choice;
         let flow = self.reset(t, y, index);
         self.rtw.replay = None;
@@ -563,7 +557,8 @@ impl StepMap {
         let last = hist.len().checked_sub(1)?;
         (1..=max_period).find(|&n| {
             (0..n).all(|back| {
-                let (Some(a), Some(b)) = (last.checked_sub(back), last.checked_sub(back + n)) else {
+                let (Some(a), Some(b)) = (last.checked_sub(back), last.checked_sub(back + n))
+                else {
                     return false;
                 };
                 let (p, q) = (&hist[a], &hist[b]);
@@ -584,7 +579,11 @@ impl StepMap {
     ) -> Result<LimitCycle, CycleError> {
         let first = self.first(options)?;
         let mut hist = vec![first.to];
-        hist.extend(self.iterate(&first.to, cycle.settle_steps)?.iter().map(|s| s.to));
+        hist.extend(
+            self.iterate(&first.to, cycle.settle_steps)?
+                .iter()
+                .map(|s| s.to),
+        );
         let n = self
             .period_of(&hist, cycle.max_period, cycle.period_tol)
             .ok_or(CycleError::NoPeriod(cycle.max_period))?;

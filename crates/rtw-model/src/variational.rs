@@ -182,9 +182,8 @@ impl<S: HybridSystem<N> + Clone, const N: usize, const M: usize> HybridSystem<M>
 
         // dτ = −(g_y Φ⁻ δ)/(g_y f⁻): the row vector w = g_y Φ⁻ / (g_y f⁻).
         let g_f: f64 = (0..N).map(|k| g_y[k] * f_minus[k]).sum();
-        let w: [f64; N] = std::array::from_fn(|j| {
-            (0..N).map(|k| g_y[k] * z[N + k * N + j]).sum::<f64>() / g_f
-        });
+        let w: [f64; N] =
+            std::array::from_fn(|j| (0..N).map(|k| g_y[k] * z[N + k * N + j]).sum::<f64>() / g_f);
         // Φ⁻ − f⁻ w: the sensitivity at the moving event time, before the reset.
         let mut phi: [[f64; N]; N] =
             std::array::from_fn(|i| std::array::from_fn(|j| z[N + i * N + j] - f_minus[i] * w[j]));
