@@ -310,10 +310,7 @@ fn simulate_inner(
     });
     let label = match failure {
         None => gait::label(&fractions, options.eps),
-        Some(FailureDetail::RodDown | FailureDetail::CentreOfMassLow) => Label::Collapse,
-        Some(FailureDetail::NoStandingEquilibrium) => Label::Collapse,
-        Some(FailureDetail::NoTouchdown | FailureDetail::NoProgress) => Label::Stall,
-        Some(_) => Label::Diverged,
+        Some(detail) => detail.label(),
     };
     Outcome {
         label,
