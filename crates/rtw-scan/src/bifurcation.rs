@@ -189,6 +189,27 @@ pub struct PointRow {
     pub wall_time_s: f64,
 }
 
+impl PointRow {
+    /// A row with its label only (no period, cycle or failure yet).
+    fn new(value: f64, label: PointLabel) -> Self {
+        Self {
+            value,
+            label,
+            period: None,
+            floquet_max: None,
+            mu_re: None,
+            mu_im: None,
+            stable: None,
+            restarted: false,
+            residual: None,
+            newton_iterations: None,
+            newton_error: None,
+            failure: None,
+            wall_time_s: 0.0,
+        }
+    }
+}
+
 /// One recorded step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepRow {
@@ -302,20 +323,10 @@ fn analyse(
     let hist: Vec<SectionPoint> = steps.iter().map(|s| s.to).collect();
     let max_period = sweep.cycle.max_period.min(hist.len() / 2);
     let period = map.period_of(&hist, max_period, sweep.cycle.period_tol);
+    let label = gait::label(&Step::fractions(steps), options.eps);
     let mut row = PointRow {
-        value,
-        label: PointLabel::Outcome(gait::label(&Step::fractions(steps), options.eps)),
         period,
-        floquet_max: None,
-        mu_re: None,
-        mu_im: None,
-        stable: None,
-        restarted: false,
-        residual: None,
-        newton_iterations: None,
-        newton_error: None,
-        failure: None,
-        wall_time_s: 0.0,
+        ..PointRow::new(value, PointLabel::Outcome(label))
     };
     if let Some(n) = period {
         match solve_minimal(map, hist.last().expect("record >= 2"), n, &sweep.cycle) {
@@ -370,19 +381,8 @@ fn sweep_point(sweep: &Sweep, value: f64, from: Option<SectionPoint>) -> PointRe
         }
         Err(e) => {
             let row = PointRow {
-                value,
-                label: failure_label(&e),
-                period: None,
-                floquet_max: None,
-                mu_re: None,
-                mu_im: None,
-                stable: None,
-                restarted: false,
-                residual: None,
-                newton_iterations: None,
-                newton_error: None,
                 failure: Some(e.to_string()),
-                wall_time_s: 0.0,
+                ..PointRow::new(value, failure_label(&e))
             };
             (row, Vec::new(), None)
         }
