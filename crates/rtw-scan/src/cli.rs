@@ -69,7 +69,8 @@ enum Command {
     Simulate(SimulateArgs),
     /// Sweep one parameter with continuation on the step map: recorded steps, period, Floquet multipliers.
     #[command(
-        long_about = "Sweep one parameter with continuation on the step map (a bifurcation diagram).\n\n        At each value, in order, the map starts from the previous value's last section point (the first value, \
+        long_about = "Sweep one parameter with continuation on the step map (a bifurcation diagram).\n\n\
+        At each value, in order, the map starts from the previous value's last section point (the first value, \
         and a value where that fails, from the initial state: column `restarted`), runs --transient steps, records \
         --record steps (post-impact angular velocity of the new stance rod, step time), detects the period, and \
         solves a periodic gait by Newton for its Floquet multipliers (DOP853, rtol 1e-11). Writes FILE.parquet \
