@@ -93,6 +93,21 @@ pub enum FailureDetail {
 }
 
 impl FailureDetail {
+    /// The outcome label of a run that failed this way (MODEL.md §5):
+    /// collapse, stall, or diverged for a numerical failure.
+    pub fn label(self) -> Label {
+        match self {
+            FailureDetail::RodDown
+            | FailureDetail::CentreOfMassLow
+            | FailureDetail::NoStandingEquilibrium => Label::Collapse,
+            FailureDetail::NoTouchdown | FailureDetail::NoProgress => Label::Stall,
+            FailureDetail::NonFinite
+            | FailureDetail::StepUnderflow
+            | FailureDetail::WorkBudget
+            | FailureDetail::Zeno => Label::Diverged,
+        }
+    }
+
     pub fn as_str(self) -> &'static str {
         match self {
             FailureDetail::RodDown => "rod_down",

@@ -329,10 +329,7 @@ fn simulate_inner(
     });
     let label = match failure {
         None => gait::label(&fractions, options.eps),
-        Some(FailureDetail::RodDown | FailureDetail::CentreOfMassLow) => Label::Collapse,
-        Some(FailureDetail::NoStandingEquilibrium) => Label::Collapse,
-        Some(FailureDetail::NoTouchdown | FailureDetail::NoProgress) => Label::Stall,
-        Some(_) => Label::Diverged,
+        Some(detail) => detail.label(),
     };
     let cycle = match &run.sections {
         Some(log) if label.is_stable() => cycle_of_run(params, options, log),

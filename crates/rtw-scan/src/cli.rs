@@ -1,5 +1,6 @@
 //! The command line: `run`, `merge`, `simulate`, `cluster`, `summary`.
 
+use crate::bifurcation;
 use crate::config;
 use crate::fake;
 use crate::output::{self, JsonRow, TraceWriter, kv};
@@ -66,6 +67,17 @@ enum Command {
         as a string."
     )]
     Simulate(SimulateArgs),
+    /// Sweep one parameter with continuation on the step map: recorded steps, period, Floquet multipliers.
+    #[command(
+        long_about = "Sweep one parameter with continuation on the step map (a bifurcation diagram).\n\n\
+        At each value, in order, the map starts from the previous value's last section point (the first value, \
+        and a value where that fails, from the initial state: column `restarted`), runs --transient steps, records \
+        --record steps (post-impact angular velocity of the new stance rod, step time), detects the period, and \
+        solves a periodic gait by Newton for its Floquet multipliers (DOP853, rtol 1e-11). Writes FILE.parquet \
+        (one row per value) and FILE.steps.parquet (one row per recorded step), and prints a summary. The base \
+        point is Fig. 7(a); the simulation options are taken as by `simulate` (--config, --variant, --set)."
+    )]
+    Bifurcation(BifurcationArgs),
     /// Cluster the failed samples of a finished scan (k-means on standardized α, f_n, φ).
     Cluster(ClusterArgs),
     /// Recompute a finished scan's summary: prints it and rewrites summary.json and summary.md beside the file.
@@ -147,6 +159,58 @@ struct SimulateArgs {
 }
 
 #[derive(Args, Debug)]
+struct BifurcationArgs {
+    /// The swept parameter: length, rho, alpha, fn, zeta, phi or s (strings.rest_length_ratio).
+    #[arg(long, default_value = "phi")]
+    param: String,
+    /// First value of the sweep.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02)]
+    from: f64,
+    /// Last value of the sweep (from > to sweeps downwards).
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35)]
+    to: f64,
+    /// Number of values, from and to included.
+    #[arg(long, default_value_t = 121)]
+    points: usize,
+    /// Base point: rod length L [m] (default: Fig. 7(a)).
+    #[arg(long)]
+    length: Option<f64>,
+    /// Base point: mass per length ρ [kg/m].
+    #[arg(long)]
+    rho: Option<f64>,
+    /// Base point: connection ratio α.
+    #[arg(long)]
+    alpha: Option<f64>,
+    /// Base point: eigen-frequency f_n [Hz].
+    #[arg(long = "fn", value_name = "FN")]
+    f_n: Option<f64>,
+    /// Base point: damping ratio ζ.
+    #[arg(long)]
+    zeta: Option<f64>,
+    /// Base point: slope φ [rad].
+    #[arg(long, allow_negative_numbers = true)]
+    phi: Option<f64>,
+    /// Take the [simulation] options of this config file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Layer a model variant file (configs/variants/*.toml) over them.
+    #[arg(long, value_name = "FILE")]
+    variant: Option<PathBuf>,
+    /// Override one simulation option (repeatable), e.g. strings.rest_length_ratio=0.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Steps iterated at each value before recording.
+    #[arg(long, default_value_t = 200)]
+    transient: usize,
+    /// Steps recorded at each value (periods up to record/2, at most 12, are detected).
+    #[arg(long, default_value_t = 48)]
+    record: usize,
+    /// Per-value output (FILE.steps.parquet is written beside it) [default: results/bifurcation/PARAM.parquet].
+    #[arg(long, value_name = "FILE.parquet")]
+    out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
 struct ClusterArgs {
     /// A samples.parquet written by `rtw-scan run`.
     samples: PathBuf,
@@ -179,6 +243,7 @@ pub fn main() -> ExitCode {
         Command::Run(a) => cmd_run(a),
         Command::Merge(a) => cmd_merge(a),
         Command::Simulate(a) => cmd_simulate(a),
+        Command::Bifurcation(a) => cmd_bifurcation(a),
         Command::Cluster(a) => cmd_cluster(a),
         Command::Summary(a) => cmd_summary(a),
     };
@@ -293,14 +358,7 @@ fn cmd_merge(a: MergeArgs) -> Result<ExitCode> {
 
 /// The simulation options of `simulate`: the config's [simulation] table, then `--set`.
 fn simulate_options(config_file: Option<&Path>, sets: &[String]) -> Result<Options> {
-    let mut table = match config_file {
-        Some(path) => config::read_split(path)?.1,
-        None => toml::Table::new(),
-    };
-    for s in sets {
-        config::apply_set(&mut table, s)?;
-    }
-    config::options_from_table(table, "simulation")
+    config::simulation_options(config_file, None, sets)
 }
 
 fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
@@ -357,6 +415,34 @@ fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
         }
         None => Ok(ExitCode::SUCCESS),
     }
+}
+
+fn cmd_bifurcation(a: BifurcationArgs) -> Result<ExitCode> {
+    let d = Params::fig7a();
+    let base = Params {
+        length: a.length.unwrap_or(d.length),
+        rho: a.rho.unwrap_or(d.rho),
+        alpha: a.alpha.unwrap_or(d.alpha),
+        f_n: a.f_n.unwrap_or(d.f_n),
+        zeta: a.zeta.unwrap_or(d.zeta),
+        phi: a.phi.unwrap_or(d.phi),
+    };
+    let options = config::simulation_options(a.config.as_deref(), a.variant.as_deref(), &a.set)?;
+    let param = bifurcation::SweepParam::parse(&a.param)?;
+    let sweep = bifurcation::Sweep::new(
+        param,
+        a.from,
+        a.to,
+        a.points,
+        base,
+        options,
+        a.transient,
+        a.record,
+    )?;
+    let out = a.out.unwrap_or_else(|| {
+        Path::new("results/bifurcation").join(format!("{}.parquet", param.name()))
+    });
+    bifurcation::cmd(&sweep, &out)
 }
 
 fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {

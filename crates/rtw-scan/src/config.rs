@@ -302,18 +302,7 @@ struct RawVariant {
 /// file and the key.
 pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
     let (mut table, mut simulation) = read_split(path)?;
-    let mut suffix = None;
-    if let Some(vpath) = variant {
-        let vt = parse_table(&read_text(vpath)?)
-            .with_context(|| format!("variant {}", vpath.display()))?;
-        let v: RawVariant = from_value(toml::Value::Table(vt), "")
-            .with_context(|| format!("variant {}", vpath.display()))?;
-        merge_tables(&mut simulation, v.simulation);
-        suffix = Some(v.name);
-    }
-    for s in sets {
-        apply_set(&mut simulation, s)?;
-    }
+    let suffix = layer_variant_and_sets(&mut simulation, variant, sets)?;
     table.insert("simulation".into(), simulation.into());
     if let Some(suffix) = suffix {
         let base = match table.get("name") {
@@ -331,6 +320,45 @@ pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Res
         "config"
     };
     parse_value(table).with_context(|| format!("{what} {}", path.display()))
+}
+
+/// Layers a variant file's `[simulation]` keys (the variant wins), then the
+/// `--set KEY=VALUE` overrides, over the `[simulation]` table `simulation`;
+/// returns the variant's name. Errors name the file and the key.
+fn layer_variant_and_sets(
+    simulation: &mut toml::Table,
+    variant: Option<&Path>,
+    sets: &[String],
+) -> Result<Option<String>> {
+    let mut name = None;
+    if let Some(vpath) = variant {
+        let vt = parse_table(&read_text(vpath)?)
+            .with_context(|| format!("variant {}", vpath.display()))?;
+        let v: RawVariant = from_value(toml::Value::Table(vt), "")
+            .with_context(|| format!("variant {}", vpath.display()))?;
+        merge_tables(simulation, v.simulation);
+        name = Some(v.name);
+    }
+    for s in sets {
+        apply_set(simulation, s)?;
+    }
+    Ok(name)
+}
+
+/// The simulation options of a single model (`simulate`, `bifurcation`):
+/// the `[simulation]` table of `config_file` (default: MODEL.md's defaults),
+/// then a variant file, then the `--set` overrides, validated.
+pub fn simulation_options(
+    config_file: Option<&Path>,
+    variant: Option<&Path>,
+    sets: &[String],
+) -> Result<Options> {
+    let mut table = match config_file {
+        Some(path) => read_split(path)?.1,
+        None => toml::Table::new(),
+    };
+    layer_variant_and_sets(&mut table, variant, sets)?;
+    options_from_table(table, "simulation")
 }
 
 /// Reads a config file into its top-level table and, taken out of it, its

@@ -15,7 +15,8 @@
 //! | [`output`] | the row schema; Parquet, JSON and text forms; trace files |
 //! | [`cluster`] | k-means++ of the failures, silhouette, naming by kind |
 //! | [`report`] | shares with Wilson intervals, paper numbers, summary files |
-//! | [`cli`] | the `run`, `merge`, `simulate`, `cluster`, `summary` subcommands |
+//! | [`bifurcation`] | one parameter swept with continuation on the step map: `bifurcation` |
+//! | [`cli`] | the `run`, `merge`, `simulate`, `bifurcation`, `cluster`, `summary` subcommands |
 //! | [`fake`] | a deterministic stand-in simulator for testing the machinery |
 //!
 //! ## Usage
@@ -34,6 +35,7 @@
 //! Parquet file is checked from Python (pandas, polars, pyarrow) by
 //! `scripts/check_parquet.py`.
 
+pub mod bifurcation;
 pub mod cli;
 pub mod cluster;
 pub mod config;

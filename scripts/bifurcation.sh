@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# The bifurcation diagrams of results/bifurcation/ (issue 7): φ swept over
+# [0.02, 0.35] (121 values) at the Fig. 7(a) point with continuation on the
+# step map, for the default model (s = 0.85) and for s = 0 (every other option
+# the default's), run side by side, then the plots and summary.md.
+# Sets up the Python venv (.venv, scripts/requirements.txt) and builds rtw-scan.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+./scripts/venv.sh
+cargo build --release -q -p rtw-scan
+bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+out=results/bifurcation
+mkdir -p "$out"
+
+sweep=(bifurcation --param phi --from 0.02 --to 0.35 --points 121 --transient 200 --record 48)
+# The two sweeps are independent (continuation is sequential within each).
+"$bin" "${sweep[@]}" --out "$out/phi-fig7a.parquet" >/dev/null 2>"$out/phi-fig7a.log" &
+a=$!
+"$bin" "${sweep[@]}" --set strings.rest_length_ratio=0 --out "$out/phi-fig7a-s0.parquet" >/dev/null 2>"$out/phi-fig7a-s0.log" &
+b=$!
+wait "$a"
+wait "$b"
+
+py=.venv/bin/python
+$py scripts/bifurcation.py "$out/phi-fig7a.parquet" \
+  --title "φ sweep at Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514), default model (s = 0.85)"
+$py scripts/bifurcation.py "$out/phi-fig7a-s0.parquet" \
+  --title "φ sweep at Fig. 7(a), s = 0 (zero-rest-length strings, every other option the default's)"
+
+{
+  echo "# Bifurcation diagrams in φ at the Fig. 7(a) point"
+  echo
+  echo "Made by \`./scripts/bifurcation.sh\`: \`rtw-scan ${sweep[*]} [--set strings.rest_length_ratio=0] --out results/bifurcation/NAME.parquet\`,"
+  echo "then \`scripts/bifurcation.py\` for the PNGs. Per value: NAME.parquet; per recorded step: NAME.steps.parquet."
+  echo
+  echo "## Default model (s = 0.85): phi-fig7a.png"
+  echo
+  cat "$out/phi-fig7a.md"
+  echo
+  echo "## s = 0: phi-fig7a-s0.png"
+  echo
+  cat "$out/phi-fig7a-s0.md"
+} >"$out/summary.md"
+rm -f "$out/phi-fig7a.log" "$out/phi-fig7a-s0.log"
+echo "bifurcation: wrote $out/{phi-fig7a,phi-fig7a-s0}.{parquet,steps.parquet,md,png} and $out/summary.md"
