@@ -449,12 +449,12 @@ fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
     let data = report::read_scan(&a.samples)?;
     let k =
         a.k.map_or(data.config.cluster.k as usize, NonZeroUsize::get);
-    let clusters = data.clusters(Some(k));
+    let clusters = data.clusters(Some(k))?;
+    let failures = data.failures.seen();
     if let Some(path) = &a.assignments {
         let fc = clusters.as_ref().ok_or_else(|| {
             anyhow!(
-                "--assignments: {} failed samples (collapse or stall) in {}, fewer than k = {k}: nothing to cluster",
-                data.failures.len(),
+                "--assignments: {failures} failed samples (collapse or stall) in {}, fewer than k = {k}: nothing to cluster",
                 a.samples.display()
             )
         })?;
@@ -462,16 +462,17 @@ fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
             kv(output::META_VERSION, env!("CARGO_PKG_VERSION").into()),
             kv(output::META_SEED, data.config.seed.to_string()),
         ];
-        output::write_assignments(path, &data.failures, fc, meta)
-            .with_context(|| format!("--assignments {}", path.display()))?;
+        let written = || -> Result<()> {
+            let mut w = output::AssignmentsWriter::create(path, fc, meta)?;
+            data.for_each_assigned(fc, |f, c| w.write(f, c))?;
+            w.finish()
+        };
+        written().with_context(|| format!("--assignments {}", path.display()))?;
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&clusters)?);
     } else {
-        print!(
-            "{}",
-            clusters_markdown(k, clusters.as_ref(), data.failures.len())
-        );
+        print!("{}", clusters_markdown(k, clusters.as_ref(), failures));
     }
     Ok(ExitCode::SUCCESS)
 }

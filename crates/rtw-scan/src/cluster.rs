@@ -8,11 +8,21 @@
 //! by size, with the silhouette score and the cross-table against the
 //! mechanistic kind; a cluster is named by its dominant kind: "stiffness
 //! collapse" (collapse) or "energy barrier" (stall).
+//!
+//! So that memory does not grow with the scan, k-means sees at most
+//! [`CLUSTER_MAX_POINTS`] failures: a [`FailureSample`] keeps a seeded,
+//! deterministic random subset of them while the rows stream past. When
+//! there are more, every failure is then counted in the cluster of its
+//! nearest centre ([`FailureClusters::cluster_of`], [`ClusterTally`]), so
+//! sizes and cross-table stay exact counts over all failures. With fewer
+//! failures than the cap the sample is all of them and nothing changes.
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::Label;
 use serde::Serialize;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
 
 /// A k-means partition.
 #[derive(Clone, Debug, PartialEq)]
@@ -221,6 +231,103 @@ pub struct Failure {
     pub label: Label,
 }
 
+/// Most failures k-means (and the silhouette's subsample) is run on. 20k
+/// points in three dimensions pin two or three centres down far more finely
+/// than the printed three decimals, and keep the clustering's memory (and
+/// time) bounded whatever the scan size.
+pub const CLUSTER_MAX_POINTS: usize = 20_000;
+
+/// SplitMix64's finalizer: a bijection of `u64` that scrambles every bit.
+fn mix(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    x ^ (x >> 31)
+}
+
+/// A failure with its sampling key; ordered by key.
+#[derive(Clone, Copy, Debug)]
+struct Keyed {
+    key: u64,
+    failure: Failure,
+}
+
+impl PartialEq for Keyed {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Keyed {}
+impl PartialOrd for Keyed {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Keyed {
+    fn cmp(&self, other: &Self) -> Ordering {
+        (self.key, self.failure.sample_id).cmp(&(other.key, other.failure.sample_id))
+    }
+}
+
+/// A bounded random sample of a scan's failures, built while its rows
+/// stream past (bottom-k sampling): each failure gets a pseudo-random key
+/// that depends only on (seed, sample_id), and the `cap` failures with the
+/// smallest keys are kept. The sample is thus uniform, deterministic for a
+/// seed, and the same whatever order the rows come in; memory is `cap`
+/// failures however many there are.
+#[derive(Clone, Debug)]
+pub struct FailureSample {
+    cap: usize,
+    seed_key: u64,
+    seen: usize,
+    /// Max-heap on the key: the top is the first to go.
+    kept: BinaryHeap<Keyed>,
+}
+
+impl FailureSample {
+    /// An empty sample of at most `cap` failures (at least one).
+    pub fn new(cap: usize, seed: u64) -> Self {
+        let cap = cap.max(1);
+        Self {
+            cap,
+            seed_key: mix(seed),
+            seen: 0,
+            kept: BinaryHeap::with_capacity(cap.min(4096)),
+        }
+    }
+
+    /// Offers one failure.
+    pub fn push(&mut self, failure: Failure) {
+        self.seen += 1;
+        // mix is a bijection, so distinct sample_ids get distinct keys.
+        let key = mix(self.seed_key ^ mix(failure.sample_id));
+        let keyed = Keyed { key, failure };
+        if self.kept.len() < self.cap {
+            self.kept.push(keyed);
+        } else if self.kept.peek().is_some_and(|top| keyed < *top) {
+            self.kept.pop();
+            self.kept.push(keyed);
+        }
+    }
+
+    /// Failures offered so far (all of the scan's once it has been read).
+    pub fn seen(&self) -> usize {
+        self.seen
+    }
+
+    /// Whether some failures were left out (more were offered than fit).
+    pub fn is_subset(&self) -> bool {
+        self.seen > self.kept.len()
+    }
+
+    /// The kept failures in `sample_id` order (all of them when they fit).
+    pub fn points(&self) -> Vec<Failure> {
+        let mut v: Vec<Failure> = self.kept.iter().map(|k| k.failure).collect();
+        v.sort_by_key(|f| f.sample_id);
+        v
+    }
+}
+
 /// One cluster of failures, in original units.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FailureCluster {
@@ -236,21 +343,110 @@ pub struct FailureCluster {
     pub stall: usize,
 }
 
+/// Members per cluster and kind: what sizes, cross-table and names are made of.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClusterTally {
+    collapse: Vec<usize>,
+    stall: Vec<usize>,
+}
+
+impl ClusterTally {
+    pub fn new(k: usize) -> Self {
+        Self {
+            collapse: vec![0; k],
+            stall: vec![0; k],
+        }
+    }
+
+    /// Counts one failure (`collapse` or `stall`) in `cluster`.
+    pub fn add(&mut self, cluster: usize, label: Label) {
+        match label {
+            Label::Collapse => self.collapse[cluster] += 1,
+            Label::Stall => self.stall[cluster] += 1,
+            _ => {}
+        }
+    }
+}
+
+/// The standardization of (α, f_n, φ) a clustering was made in.
+#[derive(Clone, Debug, PartialEq)]
+struct Standardization {
+    mean: [f64; 3],
+    sd: [f64; 3],
+}
+
+impl Standardization {
+    fn of(raw: &[[f64; 3]]) -> Self {
+        let n = raw.len() as f64;
+        let mean: [f64; 3] = std::array::from_fn(|d| raw.iter().map(|p| p[d]).sum::<f64>() / n);
+        let sd: [f64; 3] = std::array::from_fn(|d| {
+            let v = raw.iter().map(|p| (p[d] - mean[d]).powi(2)).sum::<f64>() / n;
+            if v > 0.0 { v.sqrt() } else { 1.0 }
+        });
+        Self { mean, sd }
+    }
+
+    fn z(&self, f: &Failure) -> [f64; 3] {
+        let p = [f.alpha, f.f_n, f.phi];
+        std::array::from_fn(|d| (p[d] - self.mean[d]) / self.sd[d])
+    }
+}
+
 /// The clustering of a scan's failures.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FailureClusters {
     pub k: usize,
+    /// Every failure of the scan; sizes and cross-table count them all.
     pub failures: usize,
+    /// How many failures k-means ran on, when that is a random sample
+    /// ([`FailureSample`]) rather than all of them; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub clustered: Option<usize>,
     pub clusters: Vec<FailureCluster>,
     /// Mean silhouette in the standardized space (`None`: fewer than 2 clusters).
     pub silhouette: Option<f64>,
-    /// Inertia in the standardized space.
+    /// Inertia in the standardized space (of the clustered failures).
     pub inertia: f64,
-    /// Cluster (index into `clusters`) of each failure, in the order given to
-    /// [`cluster_failures`]; written by `cluster --assignments`, kept out of
-    /// the summary JSON (one entry per failure).
+    /// Cluster (index into `clusters`) of each clustered failure, in the
+    /// order given to [`cluster_failures`]; written by `cluster
+    /// --assignments`, kept out of the summary JSON (one entry per failure).
     #[serde(skip)]
     pub assignment: Vec<usize>,
+    #[serde(skip)]
+    scale: Standardization,
+    /// The centres in standardized units, in `clusters` order.
+    #[serde(skip)]
+    centres_z: Vec<[f64; 3]>,
+}
+
+impl FailureClusters {
+    /// The cluster of any failure: the nearest centre in the standardized
+    /// space k-means worked in. For a clustered failure this is its
+    /// assignment whenever Lloyd's iterations converged (they stop when no
+    /// point changes cluster), which is why a scan whose failures all fit in
+    /// the sample keeps k-means' own assignment instead.
+    pub fn cluster_of(&self, f: &Failure) -> usize {
+        nearest(&self.scale.z(f), &self.centres_z).0
+    }
+
+    /// Sets sizes, cross-table and names from `tally`, the members of every
+    /// one of the scan's `failures` (of which `clustered` went into k-means).
+    pub fn set_counts(&mut self, tally: &ClusterTally, failures: usize, clustered: usize) {
+        for (j, c) in self.clusters.iter_mut().enumerate() {
+            let (collapse, stall) = (tally.collapse[j], tally.stall[j]);
+            c.name = match collapse.cmp(&stall) {
+                Ordering::Greater => "stiffness collapse",
+                Ordering::Less => "energy barrier",
+                Ordering::Equal => "mixed",
+            }
+            .into();
+            c.size = collapse + stall;
+            c.collapse = collapse;
+            c.stall = stall;
+        }
+        self.failures = failures;
+        self.clustered = (clustered < failures).then_some(clustered);
+    }
 }
 
 /// Clusters the failures on standardized (α, f_n, φ). `None` when there are
@@ -262,16 +458,8 @@ pub fn cluster_failures(
     restarts: usize,
 ) -> Option<FailureClusters> {
     let raw: Vec<[f64; 3]> = failures.iter().map(|f| [f.alpha, f.f_n, f.phi]).collect();
-    let n = raw.len() as f64;
-    let mean: [f64; 3] = std::array::from_fn(|d| raw.iter().map(|p| p[d]).sum::<f64>() / n);
-    let sd: [f64; 3] = std::array::from_fn(|d| {
-        let v = raw.iter().map(|p| (p[d] - mean[d]).powi(2)).sum::<f64>() / n;
-        if v > 0.0 { v.sqrt() } else { 1.0 }
-    });
-    let z: Vec<[f64; 3]> = raw
-        .iter()
-        .map(|p| std::array::from_fn(|d| (p[d] - mean[d]) / sd[d]))
-        .collect();
+    let scale = Standardization::of(&raw);
+    let z: Vec<[f64; 3]> = failures.iter().map(|f| scale.z(f)).collect();
     let km = kmeans(&z, k, seed, restarts)?;
     let stride = z.len().div_ceil(SILHOUETTE_MAX_POINTS).max(1);
     let (zs, az): (Vec<[f64; 3]>, Vec<usize>) = z
@@ -284,43 +472,36 @@ pub fn cluster_failures(
     let clusters = km
         .centres
         .iter()
-        .enumerate()
-        .map(|(j, c)| {
-            let members = || {
-                failures
-                    .iter()
-                    .zip(&km.assignment)
-                    .filter(move |(_, a)| **a == j)
-            };
-            let collapse = members()
-                .filter(|(f, _)| f.label == Label::Collapse)
-                .count();
-            let stall = members().filter(|(f, _)| f.label == Label::Stall).count();
-            let name = match collapse.cmp(&stall) {
-                std::cmp::Ordering::Greater => "stiffness collapse",
-                std::cmp::Ordering::Less => "energy barrier",
-                std::cmp::Ordering::Equal => "mixed",
-            };
-            let orig: [f64; 3] = std::array::from_fn(|d| c[d] * sd[d] + mean[d]);
+        .map(|c| {
+            let orig: [f64; 3] = std::array::from_fn(|d| c[d] * scale.sd[d] + scale.mean[d]);
             FailureCluster {
-                name: name.into(),
-                size: members().count(),
+                name: String::new(),
+                size: 0,
                 alpha: orig[0],
                 f_n: orig[1],
                 phi: orig[2],
-                collapse,
-                stall,
+                collapse: 0,
+                stall: 0,
             }
         })
         .collect();
-    Some(FailureClusters {
+    let mut tally = ClusterTally::new(k);
+    for (f, a) in failures.iter().zip(&km.assignment) {
+        tally.add(*a, f.label);
+    }
+    let mut fc = FailureClusters {
         k,
         failures: failures.len(),
+        clustered: None,
         clusters,
         silhouette,
         inertia: km.inertia,
         assignment: km.assignment,
-    })
+        scale,
+        centres_z: km.centres,
+    };
+    fc.set_counts(&tally, failures.len(), failures.len());
+    Some(fc)
 }
 
 #[cfg(test)]
@@ -438,5 +619,124 @@ mod tests {
         assert!(fc.assignment[..30].iter().all(|a| *a == 0));
         assert!(fc.assignment[30..].iter().all(|a| *a == 1));
         assert!(cluster_failures(&failures[..1], 2, 1, 10).is_none());
+    }
+
+    fn failure(sample_id: u64, label: Label, alpha: f64, f_n: f64, phi: f64) -> Failure {
+        Failure {
+            sample_id,
+            alpha,
+            f_n,
+            phi,
+            label,
+        }
+    }
+
+    #[test]
+    fn failure_sample_is_capped_deterministic_order_free_and_uniform() {
+        let n = 10_000u64;
+        let cap = 500;
+        let all: Vec<Failure> = (0..n)
+            .map(|i| failure(i, Label::Stall, 0.1, 2.0, 0.1))
+            .collect();
+        let sample = |seed: u64, order: &mut dyn Iterator<Item = &Failure>| {
+            let mut s = FailureSample::new(cap, seed);
+            order.for_each(|f| s.push(*f));
+            s
+        };
+        let a = sample(7, &mut all.iter());
+        assert_eq!(
+            (a.seen(), a.points().len(), a.is_subset()),
+            (10_000, cap, true)
+        );
+        let ids: Vec<u64> = a.points().iter().map(|f| f.sample_id).collect();
+        assert!(ids.windows(2).all(|w| w[0] < w[1]), "sorted, no repeats");
+        // The same failures whatever order they come in (shards, threads).
+        let b = sample(7, &mut all.iter().rev());
+        assert_eq!(a.points(), b.points());
+        // Another seed, another sample (most of it).
+        let c = sample(8, &mut all.iter());
+        let common = c
+            .points()
+            .iter()
+            .filter(|f| ids.binary_search(&f.sample_id).is_ok())
+            .count();
+        assert!(common < cap / 4, "{common} of {cap} in common");
+        // Uniform: 500 of 0..9999 drawn without replacement have a mean id
+        // of 4999.5 with standard deviation 2886.8 / √500 · √(1 − 500/10000)
+        // = 125.8; allow 4σ.
+        let mean = ids.iter().sum::<u64>() as f64 / cap as f64;
+        assert!((mean - 4999.5).abs() < 4.0 * 125.8, "mean id {mean}");
+        // When everything fits, the sample is every failure, in id order.
+        let d = sample(7, &mut all[..300].iter().rev());
+        assert!(!d.is_subset());
+        assert_eq!(d.points(), all[..300].to_vec());
+    }
+
+    #[test]
+    fn clustering_a_sample_counts_every_failure_exactly() {
+        // Two separated blobs: 3000 collapses at small (α, f_n), 2000 stalls
+        // (20 of them collapses) at large f_n and small φ. Interleaved ids.
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut all = Vec::new();
+        for i in 0..5000u64 {
+            let u: [f64; 3] = std::array::from_fn(|_| rng.random::<f64>());
+            all.push(if i % 5 < 3 {
+                failure(
+                    i,
+                    Label::Collapse,
+                    0.02 + 0.05 * u[0],
+                    1.6 + 0.5 * u[1],
+                    0.1 + 0.15 * u[2],
+                )
+            } else {
+                let label = if i % 250 == 4 {
+                    Label::Collapse
+                } else {
+                    Label::Stall
+                };
+                failure(i, label, 0.4 * u[0], 3.5 + 1.5 * u[1], 0.05 + 0.02 * u[2])
+            });
+        }
+        let mut sample = FailureSample::new(400, 3);
+        all.iter().for_each(|f| sample.push(*f));
+        let points = sample.points();
+        let mut fc = cluster_failures(&points, 2, 3, 10).unwrap();
+        assert_eq!((fc.failures, fc.clustered), (400, None));
+        // Every clustered point's nearest centre is its k-means cluster.
+        for (f, a) in points.iter().zip(&fc.assignment) {
+            assert_eq!(fc.cluster_of(f), *a);
+        }
+        let mut tally = ClusterTally::new(2);
+        all.iter()
+            .for_each(|f| tally.add(fc.cluster_of(f), f.label));
+        fc.set_counts(&tally, all.len(), points.len());
+        assert_eq!((fc.failures, fc.clustered), (5000, Some(400)));
+        let c = &fc.clusters;
+        assert_eq!(
+            (c[0].name.as_str(), c[0].size, c[0].collapse, c[0].stall),
+            ("stiffness collapse", 3000, 3000, 0)
+        );
+        assert_eq!(
+            (c[1].name.as_str(), c[1].size, c[1].collapse, c[1].stall),
+            ("energy barrier", 2000, 20, 1980)
+        );
+        // The same counts as k-means on every failure.
+        let full = cluster_failures(&all, 2, 3, 10).unwrap();
+        let sizes = |fc: &FailureClusters| -> Vec<(usize, usize, usize)> {
+            fc.clusters
+                .iter()
+                .map(|c| (c.size, c.collapse, c.stall))
+                .collect()
+        };
+        assert_eq!(sizes(&fc), sizes(&full));
+        // "clustered" is in the JSON only when k-means saw a sample.
+        let json = serde_json::to_value(&fc).unwrap();
+        assert_eq!(json["clustered"], 400);
+        assert!(
+            serde_json::to_value(&full)
+                .unwrap()
+                .get("clustered")
+                .is_none()
+        );
     }
 }

@@ -13,7 +13,7 @@
 //! | [`run`] | parallel chunks, durable parts, resume, panics → `diverged` rows |
 //! | [`shard`] | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | [`output`] | the row schema; Parquet, JSON and text forms; trace files |
-//! | [`cluster`] | k-means++ of the failures, silhouette, naming by kind |
+//! | [`cluster`] | k-means++ of (a bounded sample of) the failures, silhouette, naming by kind |
 //! | [`report`] | shares with Wilson intervals, paper numbers, summary files |
 //! | [`bifurcation`] | one parameter swept with continuation on the step map: `bifurcation` |
 //! | [`cli`] | the `run`, `merge`, `simulate`, `bifurcation`, `cluster`, `summary` subcommands |

@@ -25,6 +25,7 @@ use parquet::arrow::arrow_reader::{ParquetRecordBatchReader, ParquetRecordBatchR
 use parquet::basic::{Compression, ZstdLevel};
 use parquet::file::metadata::KeyValue;
 use parquet::file::properties::WriterProperties;
+use parquet::schema::types::ColumnPath;
 use rtw_model::{Label, Outcome, Params, Physical, TraceSample};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 use std::collections::BTreeMap;
@@ -53,6 +54,20 @@ pub const META_SHARD: &str = "rtw.shard";
 pub const META_TOTAL_ROWS: &str = "rtw.total_rows";
 /// Metadata key: how many shards a merged file was made of.
 pub const META_SHARDS: &str = "rtw.shards";
+
+/// Most rows per row group of a file rtw-scan writes whole (samples, part
+/// and assignments files). One row group per 256-row chunk made the footer
+/// grow with N (391 row groups at 100k rows, held in memory by the writer
+/// and again by every reader); with this cap a 100k-row file has 13. The
+/// writer buffers at most one row group, and since a column's 8192 numbers
+/// (64 kB) fit in one page, a reader decompresses at most one row group's
+/// worth of each column at a time: larger groups (16384 was measured) cost
+/// a few MB more peak memory in `run` and `summary` for nothing.
+pub const MAX_ROW_GROUP_ROWS: usize = 8192;
+
+/// Rows per batch when a scan file is read back (merge, checks, summary,
+/// clustering): bounds the decoded rows in memory whatever the row groups.
+pub const READ_BATCH_ROWS: usize = 4096;
 
 /// A key-value metadata entry.
 pub fn kv(key: &str, value: String) -> KeyValue {
@@ -341,10 +356,27 @@ pub fn to_text(r: &Row) -> String {
     out
 }
 
-/// Writer properties: zstd, row groups of at most `max_rows`, the given
-/// key-value metadata.
-pub fn writer_properties(max_rows: usize, metadata: Vec<KeyValue>) -> WriterProperties {
-    WriterProperties::builder()
+/// Writer properties for files of `schema`: zstd, row groups of at most
+/// `max_rows`, the given key-value metadata, and dictionary encoding only for
+/// the string and label columns. Numbers are plain-encoded: a scan's floats
+/// are all distinct, so a dictionary would not shrink them, yet each
+/// column's dictionary builder holds every value of the row group in memory
+/// (about 10 MB more at 16k-row groups of scan rows). Pages keep their
+/// default size limit: with smaller pages a column's page is compressed
+/// before the row group ends, and every column then holds its own zstd
+/// context (about 0.5 MB each) at once (measured: 12 MB more at 10k rows).
+pub fn writer_properties(
+    schema: &Schema,
+    max_rows: usize,
+    metadata: Vec<KeyValue>,
+) -> WriterProperties {
+    schema
+        .fields()
+        .iter()
+        .filter(|f| f.data_type().is_numeric())
+        .fold(WriterProperties::builder(), |b, f| {
+            b.set_column_dictionary_enabled(ColumnPath::from(f.name().as_str()), false)
+        })
         .set_compression(Compression::ZSTD(
             ZstdLevel::try_new(3).expect("valid zstd level"),
         ))
@@ -412,11 +444,6 @@ impl ParquetFile {
             .with_context(|| format!("writing {}", self.dest.display()))
     }
 
-    /// Ends the current row group.
-    pub fn end_row_group(&mut self) -> Result<()> {
-        Ok(self.writer.flush()?)
-    }
-
     pub fn append_metadata(&mut self, key: &str, value: String) {
         self.writer
             .append_key_value_metadata(KeyValue::new(key.to_string(), value));
@@ -437,7 +464,7 @@ impl ParquetFile {
 
 /// Writes `batch` as one complete Parquet file at `dest` (atomically).
 pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> Result<()> {
-    let props = writer_properties(batch.num_rows(), metadata);
+    let props = writer_properties(&batch.schema(), batch.num_rows(), metadata);
     let mut f = ParquetFile::create(dest, batch.schema(), props)?;
     f.write(batch)?;
     f.finish()
@@ -497,57 +524,78 @@ pub const META_CLUSTERS: &str = "rtw.clusters";
 /// row per failure with `sample_id`, `cluster` (1-based, the row of the
 /// cluster table), `cluster_name`, `outcome` (collapse or stall) and the
 /// clustered coordinates `alpha`, `fn`, `phi`; the clustering itself goes in
-/// the file's metadata under [`META_CLUSTERS`].
-pub fn write_assignments(
-    dest: &Path,
-    failures: &[Failure],
-    clusters: &FailureClusters,
-    mut metadata: Vec<KeyValue>,
-) -> Result<()> {
-    let f64s = |g: fn(&Failure) -> f64| -> ArrayRef {
-        Arc::new(failures.iter().map(g).collect::<Float64Array>())
-    };
-    let batch = RecordBatch::try_from_iter([
-        (
-            "sample_id",
+/// the file's metadata under [`META_CLUSTERS`]. Written batch by batch, in
+/// row groups of at most [`MAX_ROW_GROUP_ROWS`].
+pub struct AssignmentsWriter<'a> {
+    file: ParquetFile,
+    clusters: &'a FailureClusters,
+}
+
+impl<'a> AssignmentsWriter<'a> {
+    pub fn create(
+        dest: &Path,
+        clusters: &'a FailureClusters,
+        mut metadata: Vec<KeyValue>,
+    ) -> Result<Self> {
+        metadata.push(kv(META_CLUSTERS, serde_json::to_string(clusters)?));
+        let schema = assignments_schema();
+        let props = writer_properties(&schema, MAX_ROW_GROUP_ROWS, metadata);
+        Ok(Self {
+            file: ParquetFile::create(dest, schema, props)?,
+            clusters,
+        })
+    }
+
+    /// Writes `failures` with their clusters (indices into `clusters.clusters`).
+    pub fn write(&mut self, failures: &[Failure], cluster: &[usize]) -> Result<()> {
+        let f64s = |g: fn(&Failure) -> f64| -> ArrayRef {
+            Arc::new(failures.iter().map(g).collect::<Float64Array>())
+        };
+        let columns: Vec<ArrayRef> = vec![
             Arc::new(
                 failures
                     .iter()
                     .map(|f| f.sample_id as i64)
                     .collect::<Int64Array>(),
-            ) as ArrayRef,
-        ),
-        (
-            "cluster",
+            ),
             Arc::new(
-                clusters
-                    .assignment
+                cluster
                     .iter()
                     .map(|a| *a as i64 + 1)
                     .collect::<Int64Array>(),
             ),
-        ),
-        (
-            "cluster_name",
             Arc::new(StringArray::from_iter_values(
-                clusters
-                    .assignment
+                cluster
                     .iter()
-                    .map(|a| clusters.clusters[*a].name.as_str()),
+                    .map(|a| self.clusters.clusters[*a].name.as_str()),
             )),
-        ),
-        (
-            "outcome",
             Arc::new(StringArray::from_iter_values(
                 failures.iter().map(|f| f.label.as_str()),
             )),
-        ),
-        ("alpha", f64s(|f| f.alpha)),
-        ("fn", f64s(|f| f.f_n)),
-        ("phi", f64s(|f| f.phi)),
-    ])?;
-    metadata.push(kv(META_CLUSTERS, serde_json::to_string(clusters)?));
-    write_file(dest, &batch, metadata)
+            f64s(|f| f.alpha),
+            f64s(|f| f.f_n),
+            f64s(|f| f.phi),
+        ];
+        self.file
+            .write(&RecordBatch::try_new(assignments_schema(), columns)?)
+    }
+
+    pub fn finish(self) -> Result<()> {
+        self.file.finish()
+    }
+}
+
+fn assignments_schema() -> SchemaRef {
+    let f = |name, ty| Field::new(name, ty, false);
+    Arc::new(Schema::new(vec![
+        f("sample_id", DataType::Int64),
+        f("cluster", DataType::Int64),
+        f("cluster_name", DataType::Utf8),
+        f("outcome", DataType::Utf8),
+        f("alpha", DataType::Float64),
+        f("fn", DataType::Float64),
+        f("phi", DataType::Float64),
+    ]))
 }
 
 /// The `outcome` column of a scan batch, decoded to labels.
@@ -652,7 +700,7 @@ impl TraceWriter {
             })
             .collect();
         let schema = Arc::new(Schema::new(fields));
-        let props = writer_properties(Self::BATCH, metadata);
+        let props = writer_properties(&schema, Self::BATCH, metadata);
         let file = ParquetFile::create(dest, schema.clone(), props)?;
         Ok(Self {
             file,

@@ -7,14 +7,19 @@
 //! config stored in its metadata), so `rtw-scan summary FILE` and the end of
 //! `rtw-scan run` are the same code.
 
-use crate::cluster::{Failure, FailureClusters, cluster_failures};
+use crate::cluster::{
+    CLUSTER_MAX_POINTS, ClusterTally, Failure, FailureClusters, FailureSample, cluster_failures,
+};
 use crate::config::{self, ScanConfig, Variant};
-use crate::output::{self, META_CONFIG, META_VERSION, META_WALL_TIME, write_atomic};
-use anyhow::{Context, Result, anyhow};
+use crate::output::{
+    self, META_CONFIG, META_VERSION, META_WALL_TIME, READ_BATCH_ROWS, write_atomic,
+};
+use anyhow::{Context, Result, anyhow, bail};
+use arrow::array::RecordBatch;
 use rtw_model::Label;
 use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// z for a two-sided 95 % interval.
 const Z95: f64 = 1.959_963_984_540_054;
@@ -66,23 +71,50 @@ impl Share {
     }
 }
 
-/// What a summary is made from: the stored config and one pass over the rows.
+/// What a summary is made from: the stored config and one pass over the
+/// rows. Its size does not grow with the scan: the failures are kept as a
+/// bounded sample ([`FailureSample`], at most [`CLUSTER_MAX_POINTS`]), and a
+/// clustering of a sample counts every failure in a second pass over the file.
 pub struct ScanData {
+    pub path: PathBuf,
     pub config: ScanConfig,
     pub version: String,
     pub rows: u64,
     /// Rows per label, in [`Label::ALL`] order.
     pub counts: [u64; 6],
-    pub failures: Vec<Failure>,
+    /// The failures k-means runs on: all of them when they fit, else a
+    /// seeded random sample (seeded with the scan seed).
+    pub failures: FailureSample,
     /// Sum of the per-sample wall times.
     pub sample_time_s: f64,
     /// Elapsed time of the run (summed over resumed sessions), when recorded.
     pub wall_time_s: Option<f64>,
 }
 
+/// The failures (collapse, stall) among a batch's rows; `labels` is its
+/// decoded `outcome` column.
+fn batch_failures(batch: &RecordBatch, labels: &[Label]) -> Result<Vec<Failure>> {
+    let sample_id = output::i64_column(batch, "sample_id")?;
+    let alpha = output::f64_column(batch, "alpha")?;
+    let f_n = output::f64_column(batch, "fn")?;
+    let phi = output::f64_column(batch, "phi")?;
+    Ok(labels
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.is_failure())
+        .map(|(i, label)| Failure {
+            sample_id: sample_id.value(i) as u64,
+            alpha: alpha.value(i),
+            f_n: f_n.value(i),
+            phi: phi.value(i),
+            label: *label,
+        })
+        .collect())
+}
+
 /// Reads a scan's Parquet file: stored config, label counts, failures.
 pub fn read_scan(path: &Path) -> Result<ScanData> {
-    let input = output::open(path, 4096)?;
+    let input = output::open(path, READ_BATCH_ROWS)?;
     let text = input.metadata.get(META_CONFIG).ok_or_else(|| {
         anyhow!(
             "{} has no `{META_CONFIG}` metadata: not written by rtw-scan run",
@@ -92,6 +124,8 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
     let config =
         config::parse(text).with_context(|| format!("the config stored in {}", path.display()))?;
     let mut data = ScanData {
+        path: path.to_path_buf(),
+        failures: FailureSample::new(CLUSTER_MAX_POINTS, config.seed),
         config,
         version: input
             .metadata
@@ -100,7 +134,6 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
             .unwrap_or_default(),
         rows: 0,
         counts: [0; 6],
-        failures: Vec::new(),
         sample_time_s: 0.0,
         wall_time_s: input
             .metadata
@@ -111,24 +144,13 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
         let batch = batch.with_context(|| format!("reading {}", path.display()))?;
         let ctx = || format!("{}", path.display());
         let labels = output::label_column(&batch).with_context(ctx)?;
-        let sample_id = output::i64_column(&batch, "sample_id").with_context(ctx)?;
-        let alpha = output::f64_column(&batch, "alpha").with_context(ctx)?;
-        let f_n = output::f64_column(&batch, "fn").with_context(ctx)?;
-        let phi = output::f64_column(&batch, "phi").with_context(ctx)?;
         let wall = output::f64_column(&batch, "wall_time_s").with_context(ctx)?;
-        for (i, label) in labels.into_iter().enumerate() {
-            let li = output::label_index(label);
-            data.counts[li] += 1;
-            if label.is_failure() {
-                data.failures.push(Failure {
-                    sample_id: sample_id.value(i) as u64,
-                    alpha: alpha.value(i),
-                    f_n: f_n.value(i),
-                    phi: phi.value(i),
-                    label,
-                });
-            }
+        for (i, label) in labels.iter().enumerate() {
+            data.counts[output::label_index(*label)] += 1;
             data.sample_time_s += wall.value(i);
+        }
+        for f in batch_failures(&batch, &labels).with_context(ctx)? {
+            data.failures.push(f);
         }
         data.rows += batch.num_rows() as u64;
     }
@@ -136,15 +158,63 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
 }
 
 impl ScanData {
-    /// k-means of the failures with `k` (default: the config's).
-    pub fn clusters(&self, k: Option<usize>) -> Option<FailureClusters> {
+    /// k-means of the failures with `k` (default: the config's); sizes and
+    /// cross-table count every failure, also when k-means ran on a sample.
+    pub fn clusters(&self, k: Option<usize>) -> Result<Option<FailureClusters>> {
         let k = k.unwrap_or(self.config.cluster.k as usize);
-        cluster_failures(
-            &self.failures,
+        let points = self.failures.points();
+        if self.failures.is_subset() && k > points.len() {
+            bail!(
+                "k = {k} clusters is more than the {} failures k-means is run on (a random sample of the {}); \
+                 use k <= {}",
+                points.len(),
+                self.failures.seen(),
+                points.len()
+            );
+        }
+        let Some(mut fc) = cluster_failures(
+            &points,
             k,
             self.config.seed,
             self.config.cluster.restarts as usize,
-        )
+        ) else {
+            return Ok(None);
+        };
+        if self.failures.is_subset() {
+            let mut tally = ClusterTally::new(k);
+            self.for_each_assigned(&fc, |failures, clusters| {
+                for (f, c) in failures.iter().zip(clusters) {
+                    tally.add(*c, f.label);
+                }
+                Ok(())
+            })?;
+            fc.set_counts(&tally, self.failures.seen(), points.len());
+        }
+        Ok(Some(fc))
+    }
+
+    /// Calls `visit` with every failure of the scan and its cluster in `fc`
+    /// (made by [`ScanData::clusters`]), batch by batch in `sample_id`
+    /// order: k-means' own assignment when it saw every failure, else each
+    /// failure's nearest centre, in a second pass over the file.
+    pub fn for_each_assigned(
+        &self,
+        fc: &FailureClusters,
+        mut visit: impl FnMut(&[Failure], &[usize]) -> Result<()>,
+    ) -> Result<()> {
+        if !self.failures.is_subset() {
+            return visit(&self.failures.points(), &fc.assignment);
+        }
+        let input = output::open(&self.path, READ_BATCH_ROWS)?;
+        for batch in input.reader {
+            let ctx = || format!("{}", self.path.display());
+            let batch = batch.with_context(ctx)?;
+            let labels = output::label_column(&batch).with_context(ctx)?;
+            let failures = batch_failures(&batch, &labels).with_context(ctx)?;
+            let clusters: Vec<usize> = failures.iter().map(|f| fc.cluster_of(f)).collect();
+            visit(&failures, &clusters)?;
+        }
+        Ok(())
     }
 }
 
@@ -225,7 +295,7 @@ pub fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
         stable,
         failed,
         cluster_k,
-        clusters: data.clusters(Some(cluster_k)),
+        clusters: data.clusters(Some(cluster_k))?,
         wall_time_s: data.wall_time_s,
         samples_per_s: data.wall_time_s.filter(|w| *w > 0.0).map(|w| n as f64 / w),
         sample_time_s: data.sample_time_s,
@@ -268,10 +338,18 @@ pub fn clusters_markdown(k: usize, clusters: Option<&FailureClusters>, failures:
         );
     };
     let sil = fc.silhouette.map_or("–".into(), |s| format!("{s:.3}"));
+    let of = match fc.clustered {
+        None => format!("the {} failed samples", fc.failures),
+        Some(n) => format!(
+            "a seeded random sample of {n} of the {} failed samples (sizes and kinds count every \
+             failure, in the cluster of its nearest centre)",
+            fc.failures
+        ),
+    };
     let mut md = format!(
-        "## Failure clusters\n\nk-means (k = {}) on standardized (α, f_n, φ) of the {} failed samples; silhouette {sil}.\n\n\
+        "## Failure clusters\n\nk-means (k = {}) on standardized (α, f_n, φ) of {of}; silhouette {sil}.\n\n\
          | cluster | name | size | α | f_n [Hz] | φ [rad] | collapse | stall |\n|---:|---|---:|---:|---:|---:|---:|---:|\n",
-        fc.k, fc.failures
+        fc.k
     );
     for (i, c) in fc.clusters.iter().enumerate() {
         writeln!(
@@ -374,6 +452,98 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::run::{ProgressMode, RunSettings, run_scan};
+    use std::num::NonZeroUsize;
+    use std::sync::atomic::AtomicBool;
+
+    #[test]
+    fn more_failures_than_the_cap_are_clustered_from_a_sample_and_counted_exactly() {
+        // The fake simulator fails (stall) every φ < 0.1 and collapses small
+        // α with low f_n: about 3/4 of these 32000 samples fail, more than
+        // the CLUSTER_MAX_POINTS that k-means sees.
+        let cfg = config::parse(
+            r#"
+seed = 3
+samples = 32000
+[params]
+length = 0.8
+rho = { uniform = [1.2, 4.5] }
+alpha = { uniform = [0, 0.4] }
+fn = { uniform = [1.5, 5] }
+zeta = 0.05
+phi = { uniform = [0.05, 0.12] }
+"#,
+        )
+        .unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let settings = RunSettings {
+            out_dir: dir.path().to_path_buf(),
+            threads: NonZeroUsize::new(2),
+            resume: false,
+            chunk_size: NonZeroUsize::new(4000).unwrap(),
+            progress: ProgressMode::Quiet,
+            shard: None,
+        };
+        let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
+            crate::fake::simulate(p, o, std::time::Duration::ZERO)
+        };
+        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false)).unwrap();
+        let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
+        let collapses = data.counts[output::label_index(Label::Collapse)] as usize;
+        let stalls = data.counts[output::label_index(Label::Stall)] as usize;
+        assert_eq!(data.failures.seen(), collapses + stalls);
+        assert!(
+            data.failures.seen() > CLUSTER_MAX_POINTS,
+            "{}",
+            data.failures.seen()
+        );
+        assert_eq!(data.failures.points().len(), CLUSTER_MAX_POINTS);
+
+        let fc = data.clusters(None).unwrap().unwrap();
+        assert_eq!(data.clusters(None).unwrap().unwrap(), fc, "deterministic");
+        assert_eq!(
+            (fc.failures, fc.clustered),
+            (collapses + stalls, Some(CLUSTER_MAX_POINTS))
+        );
+        // The cross-table adds up to the label counts: every failure is
+        // counted once, not only the clustered ones.
+        let sum = |g: fn(&crate::cluster::FailureCluster) -> usize| -> usize {
+            fc.clusters.iter().map(g).sum()
+        };
+        assert_eq!((sum(|c| c.collapse), sum(|c| c.stall)), (collapses, stalls));
+        assert_eq!(sum(|c| c.size), collapses + stalls);
+        // The assignments (what `cluster --assignments` writes) visit every
+        // failure once, in id order, and agree with the cluster sizes.
+        let mut sizes = vec![0; fc.k];
+        let (mut visited, mut last) = (0, None);
+        data.for_each_assigned(&fc, |failures, clusters| {
+            for (f, c) in failures.iter().zip(clusters) {
+                assert!(f.label.is_failure());
+                assert!(last < Some(f.sample_id));
+                last = Some(f.sample_id);
+                sizes[*c] += 1;
+                visited += 1;
+            }
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(visited, collapses + stalls);
+        assert_eq!(
+            sizes,
+            fc.clusters.iter().map(|c| c.size).collect::<Vec<_>>()
+        );
+        let md = clusters_markdown(fc.k, Some(&fc), fc.failures);
+        assert!(
+            md.contains(&format!(
+                "a seeded random sample of {CLUSTER_MAX_POINTS} of the {} failed samples",
+                fc.failures
+            )),
+            "{md}"
+        );
+        // k-means cannot make more clusters than it has points.
+        let e = data.clusters(Some(CLUSTER_MAX_POINTS + 1)).unwrap_err();
+        assert!(e.to_string().contains("use k <= 20000"), "{e}");
+    }
 
     #[test]
     fn wilson_known_values() {

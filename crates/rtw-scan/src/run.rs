@@ -4,9 +4,12 @@
 //! is computed in parallel on a local rayon pool, collected in `sample_id`
 //! order and written as one complete, closed Parquet file
 //! `DIR/.partial/chunk-NNNNN.parquet` (temporary name, then rename). When all
-//! chunks exist they are merged, in order and one chunk at a time (so memory
-//! stays flat in N), into `DIR/samples.parquet` (again through a temporary
-//! file), and `.partial` is removed.
+//! chunks exist they are merged, in order and one batch at a time, into
+//! `DIR/samples.parquet` (again through a temporary file), and `.partial` is
+//! removed. The merged file has row groups of [`MAX_ROW_GROUP_ROWS`] rows
+//! whatever the chunk size, so its footer (held by every writer and reader)
+//! stays small and memory stays flat in N: the writer buffers at most one row
+//! group.
 //!
 //! An interrupted run (Ctrl-C sets the `stop` flag; `kill -9` just stops)
 //! keeps every finished chunk. `--resume` checks `.partial/manifest.json`
@@ -26,8 +29,8 @@
 
 use crate::config::ScanConfig;
 use crate::output::{
-    self, META_CHUNK_WALL_TIME, META_CONFIG, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME,
-    ParquetFile, Row, schema,
+    self, MAX_ROW_GROUP_ROWS, META_CHUNK_WALL_TIME, META_CONFIG, META_SHARD, META_TOTAL_ROWS,
+    META_WALL_TIME, ParquetFile, READ_BATCH_ROWS, Row, schema,
 };
 use crate::sample::Sampler;
 use crate::shard::Shard;
@@ -47,7 +50,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, Once};
 use std::time::{Duration, Instant};
 
-/// Rows per chunk (and per row group) unless told otherwise.
+/// Rows per chunk unless told otherwise.
 pub const DEFAULT_CHUNK_SIZE: usize = 256;
 
 /// A simulator: `rtw_model::simulate` or a test double.
@@ -280,7 +283,7 @@ pub fn run_scan(
         &chunk_files,
         ids,
         &layout.samples,
-        chunk_size,
+        MAX_ROW_GROUP_ROWS,
         metadata,
         META_CHUNK_WALL_TIME,
     )?;
@@ -295,9 +298,13 @@ pub fn run_scan(
 
 /// Concatenates scan files (a run's chunks, or a scan's shard parts), in
 /// order, into `dest` with `metadata` and [`META_WALL_TIME`] = the sum of the
-/// inputs' `wall_key` values. Streams one row group at a time (memory stays
-/// flat in the row count) and checks on the way that the `sample_id`s run
-/// through `ids` exactly once, in order; on any error `dest` is left as it was.
+/// inputs' `wall_key` values. The rows are cut into row groups of
+/// `row_group_rows` regardless of where one input ends and the next begins,
+/// so the result does not depend on the chunk size or the shard count.
+/// Streams [`READ_BATCH_ROWS`] rows at a time (memory stays flat in the row
+/// count: at most one row group is buffered) and checks on the way that the
+/// `sample_id`s run through `ids` exactly once, in order; on any error `dest`
+/// is left as it was.
 pub fn concat_scan_files(
     inputs: &[PathBuf],
     ids: std::ops::Range<u64>,
@@ -306,12 +313,12 @@ pub fn concat_scan_files(
     metadata: Vec<parquet::file::metadata::KeyValue>,
     wall_key: &str,
 ) -> Result<()> {
-    let props = output::writer_properties(row_group_rows, metadata);
+    let props = output::writer_properties(&schema(), row_group_rows, metadata);
     let mut file = ParquetFile::create(dest, schema(), props)?;
     let mut wall = 0.0;
     let mut next = ids.start;
     for path in inputs {
-        let input = output::open(path, row_group_rows)?;
+        let input = output::open(path, READ_BATCH_ROWS)?;
         wall += input
             .metadata
             .get(wall_key)
@@ -351,7 +358,6 @@ pub fn concat_scan_files(
             }
             file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
         }
-        file.end_row_group()?;
     }
     if next != ids.end {
         bail!(
@@ -717,17 +723,59 @@ t_max = 2.0
         assert_eq!(ra.num_rows(), 37);
         assert_eq!(ra, rb);
         assert!(!a.path().join(".partial").exists());
-        // Row groups are the chunks.
-        let f = std::fs::File::open(a.path().join("samples.parquet")).unwrap();
+        // The row groups are not the chunks: 37 rows fit in one.
+        assert_eq!(row_groups(&a.path().join("samples.parquet")), vec![37]);
+        assert_eq!(row_groups(&b.path().join("samples.parquet")), vec![37]);
+    }
+
+    /// Rows of each row group of a Parquet file.
+    fn row_groups(path: &Path) -> Vec<i64> {
+        let f = std::fs::File::open(path).unwrap();
         let meta =
             parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(f).unwrap();
-        let groups: Vec<i64> = meta
-            .metadata()
+        meta.metadata()
             .row_groups()
             .iter()
             .map(|g| g.num_rows())
-            .collect();
-        assert_eq!(groups, vec![5, 5, 5, 5, 5, 5, 5, 2]);
+            .collect()
+    }
+
+    #[test]
+    fn finished_file_has_capped_row_groups_whatever_the_chunks() {
+        // Two full row groups and a remainder, from chunks (1000 and 999
+        // rows) and shards that do not divide the cap: the row groups are
+        // cut at multiples of the cap, not at chunk or part ends, so the
+        // footer has ⌈N / cap⌉ entries instead of ⌈N / chunk⌉.
+        let n = 2 * MAX_ROW_GROUP_ROWS + 5;
+        let cfg = parse(&CFG.replace("samples = 37", &format!("samples = {n}"))).unwrap();
+        let stop = AtomicBool::new(false);
+        let a = tempfile::tempdir().unwrap();
+        let b = tempfile::tempdir().unwrap();
+        run_scan(&cfg, &settings(a.path(), 2, 1000), &fake_sim, &stop).unwrap();
+        run_scan(&cfg, &settings(b.path(), 1, 999), &fake_sim, &stop).unwrap();
+        // Three shards (parts of 5463 rows, cut into 1000-row chunks), merged.
+        let c = tempfile::tempdir().unwrap();
+        for index in 0..3 {
+            let mut s = settings(c.path(), 2, 1000);
+            s.shard = Some(Shard { index, count: 3 });
+            run_scan(&cfg, &s, &fake_sim, &stop).unwrap();
+        }
+        crate::shard::merge_parts(c.path()).unwrap();
+        let cap = MAX_ROW_GROUP_ROWS as i64;
+        for dir in [&a, &b, &c] {
+            assert_eq!(
+                row_groups(&dir.path().join("samples.parquet")),
+                vec![cap, cap, 5]
+            );
+        }
+        let rows = rows_without_wall_time(&a.path().join("samples.parquet"));
+        assert_eq!(rows.num_rows(), n);
+        for dir in [&b, &c] {
+            assert_eq!(
+                rows_without_wall_time(&dir.path().join("samples.parquet")),
+                rows
+            );
+        }
     }
 
     #[test]

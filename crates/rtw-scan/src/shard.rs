@@ -15,7 +15,7 @@ use crate::output::{
     self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_SHARDS, META_TOTAL_ROWS, META_VERSION,
     META_WALL_TIME,
 };
-use crate::run::{self, concat_scan_files};
+use crate::run::concat_scan_files;
 use anyhow::{Context, Result, anyhow, bail};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -295,7 +295,7 @@ pub fn merge_parts(dir: &Path) -> Result<Merged> {
         &paths,
         0..total,
         &samples,
-        run::DEFAULT_CHUNK_SIZE,
+        output::MAX_ROW_GROUP_ROWS,
         metadata,
         META_WALL_TIME,
     )
