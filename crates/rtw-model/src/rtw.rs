@@ -22,6 +22,39 @@ pub const DISSIPATED: usize = 18;
 /// Slot of the energy dissipated by sliding friction (finite μ).
 pub const FRICTION: usize = 19;
 
+/// The continuous dynamics and guards of a `HybridSystem<N>` that wraps an
+/// [`Rtw`] in a field `rtw` with `type Aux = AtState` (a simulation run, a
+/// step of the step map): every one forwards to the RTW.
+macro_rules! delegate_rtw_flow {
+    () => {
+        #[inline]
+        fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
+            self.rtw.dynamics(y, dy);
+        }
+
+        #[inline]
+        fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
+            *at = self.rtw.dynamics(y, dy);
+        }
+
+        #[inline]
+        fn guards(&self, _t: f64, y: &[f64; N], out: &mut Guards) {
+            self.rtw.guards(y, out);
+        }
+
+        #[inline]
+        fn guard(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
+            self.rtw.guard(y, index)
+        }
+
+        #[inline]
+        fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
+            self.rtw.guards_at(y, at, out);
+        }
+    };
+}
+pub(crate) use delegate_rtw_flow;
+
 /// What a guard watches.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GuardKind {

@@ -171,30 +171,7 @@ impl StepRun {
 impl HybridSystem<N> for StepRun {
     type Aux = AtState;
 
-    #[inline]
-    fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
-        self.rtw.dynamics(y, dy);
-    }
-
-    #[inline]
-    fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
-        *at = self.rtw.dynamics(y, dy);
-    }
-
-    #[inline]
-    fn guards(&self, _t: f64, y: &[f64; N], out: &mut Guards) {
-        self.rtw.guards(y, out);
-    }
-
-    #[inline]
-    fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
-        self.rtw.guards_at(y, at, out);
-    }
-
-    #[inline]
-    fn guard(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
-        self.rtw.guard(y, index)
-    }
+    crate::rtw::delegate_rtw_flow!();
 
     fn reset(&mut self, _t: f64, y: &mut [f64; N], index: usize) -> Flow {
         match self.rtw.reset(y, index) {
