@@ -14,7 +14,8 @@ fn hot_path(c: &mut Criterion) {
     let o = Options::default();
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
     let mut rtw = Rtw::new(&phys, &o);
-    let y = rtw_model::initial::initial_state(&mut rtw, &o).expect("standing start");
+    let (y, _) = rtw_model::initial::initial_state(&mut rtw, &o, &mut Default::default())
+        .expect("standing start");
     let mut dy = [0.0; N];
     c.bench_function("rhs", |b| {
         b.iter(|| rtw.dynamics(black_box(&y), &mut dy));

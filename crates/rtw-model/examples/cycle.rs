@@ -39,7 +39,7 @@ fn main() {
             println!(
                 "period {} label {:?} residual {:.2e} iters {}",
                 lc.period,
-                lc.label(options.eps),
+                lc.label(&options.labels),
                 lc.fixed_point.residual,
                 lc.fixed_point.iterations
             );

@@ -1,7 +1,8 @@
 //! Run statistics over the analysis window and the gait label (MODEL.md §5).
 
 use crate::geometry::Tip;
-use crate::outcome::{ContactFractions, Label};
+use crate::options::LabelOptions;
+use crate::outcome::{ContactFractions, Label, StepShares};
 
 /// How many touchdowns the return map keeps (a fixed ring: no allocation).
 const RETURN_MAP_LEN: usize = 64;
@@ -22,6 +23,8 @@ struct Mark {
     state_time: [f64; 4],
     /// Whole-run count of new-foot touchdowns up to `t`.
     newfoot: u64,
+    /// Whole-run counts of steps, and of steps with flight and with triple support.
+    steps: StepCounts,
     /// Downhill position of the centre of mass at `t`.
     com_x: f64,
     /// Largest friction ratio needed since the previous touchdown.
@@ -45,6 +48,41 @@ pub struct Settled {
     pub f_w_newfoot: f64,
     pub speed: f64,
     pub mu_required: f64,
+    pub step_shares: StepShares,
+}
+
+/// Counts of steps, of steps with flight and of steps with triple support.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct StepCounts {
+    steps: u64,
+    flight: u64,
+    triple: u64,
+}
+
+impl StepCounts {
+    fn shares(self) -> StepShares {
+        let n = self.steps.max(1) as f64;
+        StepShares {
+            steps: self.steps,
+            flight: self.flight as f64 / n,
+            triple: self.triple as f64 / n,
+        }
+    }
+
+    /// Counts one more step, with flight and triple support as `kind` says.
+    fn add(&mut self, (flight, triple): (bool, bool)) {
+        self.steps += 1;
+        self.flight += flight as u64;
+        self.triple += triple as u64;
+    }
+
+    fn since(self, earlier: StepCounts) -> StepCounts {
+        StepCounts {
+            steps: self.steps - earlier.steps,
+            flight: self.flight - earlier.flight,
+            triple: self.triple - earlier.triple,
+        }
+    }
 }
 
 /// Statistics gathered as a run goes.
@@ -77,10 +115,19 @@ pub struct GaitStats {
     /// Ring of the latest `SETTLE_RETURNS + 1` touchdown marks.
     marks: [Mark; SETTLE_RETURNS + 1],
     marks_len: usize,
+    /// What makes a step one with flight or triple support.
+    labels: LabelOptions,
+    /// Seconds per contact state since the latest new foot's touchdown, and its time.
+    step_time: [f64; 4],
+    step_start: Option<f64>,
+    /// Steps so far (whole run), and those wholly inside the window.
+    run_steps: StepCounts,
+    window_steps: StepCounts,
 }
 
 impl GaitStats {
-    pub fn new(window_start: f64) -> Self {
+    /// Statistics over the window from `window_start` on, judging steps by `labels`.
+    pub fn new(window_start: f64, labels: LabelOptions) -> Self {
         Self {
             window_start,
             state_time: [0.0; 4],
@@ -98,6 +145,11 @@ impl GaitStats {
             run_newfoot: 0,
             marks: [Mark::default(); SETTLE_RETURNS + 1],
             marks_len: 0,
+            labels,
+            step_time: [0.0; 4],
+            step_start: None,
+            run_steps: StepCounts::default(),
+            window_steps: StepCounts::default(),
         }
     }
 
@@ -105,6 +157,7 @@ impl GaitStats {
     pub fn on_interval(&mut self, t0: f64, t1: f64, contact_state: usize, sliding: usize) {
         self.slide_time += sliding as f64 * (t1 - t0);
         self.run_state_time[contact_state] += t1 - t0;
+        self.step_time[contact_state] += t1 - t0;
         let lo = t0.max(self.window_start);
         if t1 > lo {
             self.state_time[contact_state] += t1 - lo;
@@ -115,6 +168,19 @@ impl GaitStats {
         self.touchdowns += 1;
         self.last_touchdown = t;
         let newfoot = self.last_tip[rod] != Some(tip);
+        if newfoot {
+            // A step of the wheel ends here: from the previous new foot's
+            // touchdown (none before the first) to this one.
+            if let Some(start) = self.step_start {
+                let kind = step_kind(&self.step_time, &self.labels);
+                self.run_steps.add(kind);
+                if start >= self.window_start {
+                    self.window_steps.add(kind);
+                }
+            }
+            self.step_time = [0.0; 4];
+            self.step_start = Some(t);
+        }
         self.last_tip[rod] = Some(tip);
         self.run_newfoot += newfoot as u64;
         if t < self.window_start {
@@ -127,6 +193,11 @@ impl GaitStats {
             self.returns_len += 1;
         }
         self.prev_window_touchdown = Some(t);
+    }
+
+    /// Shares of the window's whole steps with flight and with triple support.
+    pub fn step_shares(&self) -> StepShares {
+        self.window_steps.shares()
     }
 
     /// Contact-state fractions over the window.
@@ -168,6 +239,7 @@ impl GaitStats {
             t,
             state_time: self.run_state_time,
             newfoot: self.run_newfoot,
+            steps: self.run_steps,
             com_x,
             mu,
             omega_after,
@@ -204,6 +276,7 @@ impl GaitStats {
             f_w_newfoot: (b.newfoot - a.newfoot) as f64 / duration,
             speed: (b.com_x - a.com_x) / duration,
             mu_required: (M - returns..M).map(|j| mark(j).mu).fold(0.0, f64::max),
+            step_shares: b.steps.since(a.steps).shares(),
         })
     }
 }
@@ -226,11 +299,36 @@ fn find_period(len: usize, at: impl Fn(usize) -> (f64, f64)) -> u32 {
         .map_or(0, |n| n as u32)
 }
 
-/// Table S1's row for the RTW: flight → skip, else triple support → crawl, else walk.
-pub fn label(f: &ContactFractions, eps: f64) -> Label {
-    if f.nlsp > eps {
+/// Whether a step with `state_time` seconds per contact state has flight
+/// and whether it has triple support.
+fn step_kind(state_time: &[f64; 4], labels: &LabelOptions) -> (bool, bool) {
+    let total: f64 = state_time.iter().sum();
+    (
+        state_time[0] > labels.flight * total,
+        state_time[3] > labels.triple * total,
+    )
+}
+
+/// The step shares of steps given by their seconds per contact state.
+pub fn step_shares<'a>(
+    steps: impl IntoIterator<Item = &'a [f64; 4]>,
+    labels: &LabelOptions,
+) -> StepShares {
+    let mut c = StepCounts::default();
+    for st in steps {
+        c.add(step_kind(st, labels));
+    }
+    c.shares()
+}
+
+/// Table S1's row for the RTW: flight → skip, else triple support → crawl,
+/// else walk. Flight counts when the window's NLSP fraction exceeds
+/// `labels.flight` and at least `labels.flight_steps` of the steps have
+/// flight; triple support likewise.
+pub fn label(f: &ContactFractions, steps: &StepShares, labels: &LabelOptions) -> Label {
+    if f.nlsp > labels.flight && steps.flight >= labels.flight_steps {
         Label::Skip
-    } else if f.tlsp > eps {
+    } else if f.tlsp > labels.triple && steps.triple >= labels.triple_steps {
         Label::Crawl
     } else {
         Label::Walk
@@ -249,16 +347,127 @@ mod tests {
             dlsp: d,
             tlsp: t,
         };
-        assert_eq!(label(&f(0.3, 0.7, 0.0, 0.0), 0.01), Label::Skip);
-        assert_eq!(label(&f(0.005, 0.5, 0.495, 0.0), 0.01), Label::Walk);
-        assert_eq!(label(&f(0.0, 0.4, 0.5, 0.1), 0.01), Label::Crawl);
+        let any = LabelOptions::any();
+        let every = StepShares {
+            steps: 10,
+            flight: 1.0,
+            triple: 1.0,
+        };
+        assert_eq!(label(&f(0.3, 0.7, 0.0, 0.0), &every, &any), Label::Skip);
+        assert_eq!(label(&f(0.005, 0.5, 0.495, 0.0), &every, &any), Label::Walk);
+        assert_eq!(label(&f(0.0, 0.4, 0.5, 0.1), &every, &any), Label::Crawl);
         // Flight wins over triple support.
-        assert_eq!(label(&f(0.05, 0.4, 0.45, 0.1), 0.01), Label::Skip);
+        assert_eq!(label(&f(0.05, 0.4, 0.45, 0.1), &every, &any), Label::Skip);
+        // Separate thresholds: 5 % triple support is a crawl at 0.04, not at 0.06.
+        let t = |triple| LabelOptions { triple, ..any };
+        assert_eq!(
+            label(&f(0.0, 0.5, 0.45, 0.05), &every, &t(0.04)),
+            Label::Crawl
+        );
+        assert_eq!(
+            label(&f(0.0, 0.5, 0.45, 0.05), &every, &t(0.06)),
+            Label::Walk
+        );
+    }
+
+    /// Runs a constructed timeline: each entry is (seconds per contact state
+    /// in order, whether the touchdown that ends it is a bounce). Touchdowns
+    /// land rods 0, 1, 2 in turn, each time on the rod's other tip (a new
+    /// foot); a bounce lands the last tip again.
+    fn timeline(
+        steps: &[(&[(usize, f64)], bool)],
+        labels: LabelOptions,
+    ) -> (ContactFractions, StepShares) {
+        let mut s = GaitStats::new(0.0, labels);
+        let mut t = 0.0;
+        let mut rod = 0;
+        // The first touchdown opens the first step.
+        s.on_touchdown(t, 2, Tip::Minus, -2.0);
+        let mut tips = [Tip::Plus; 3];
+        for (phases, bounce) in steps {
+            for &(state, dt) in phases.iter() {
+                s.on_interval(t, t + dt, state, 0);
+                t += dt;
+            }
+            if *bounce {
+                // The rod that landed last lands the same tip again.
+                let last = (rod + 2) % 3;
+                s.on_touchdown(t, last, tips[last].other(), -2.0);
+            } else {
+                s.on_touchdown(t, rod, tips[rod], -2.0);
+                tips[rod] = tips[rod].other();
+                rod = (rod + 1) % 3;
+            }
+        }
+        (s.fractions(), s.step_shares())
+    }
+
+    #[test]
+    fn a_walk_with_an_occasional_hop_is_a_walk_by_its_typical_step() {
+        // Eight steps of 0.2 s single + 0.2 s double support; two of them
+        // also hop for 0.05 s: 3 % flight over the window, in 1/4 of the steps.
+        let walk: &[(usize, f64)] = &[(1, 0.2), (2, 0.2)];
+        let hop: &[(usize, f64)] = &[(1, 0.2), (0, 0.05), (2, 0.2)];
+        let steps = [walk, hop, walk, walk, walk, hop, walk, walk].map(|p| (p, false));
+        let (f, shares) = timeline(&steps, LabelOptions::default());
+        assert!((f.nlsp - 0.1 / 3.3).abs() < 1e-12, "{f:?}");
+        assert_eq!(shares.steps, 8);
+        assert!((shares.flight - 0.25).abs() < 1e-15);
+        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Walk);
+        assert_eq!(label(&f, &shares, &LabelOptions::any()), Label::Skip);
+        // Flight in every step is a skip under both rules.
+        let steps = [hop; 8].map(|p| (p, false));
+        let (f, shares) = timeline(&steps, LabelOptions::default());
+        assert_eq!(shares.flight, 1.0);
+        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Skip);
+    }
+
+    #[test]
+    fn a_step_runs_from_one_new_foot_to_the_next_and_is_judged_by_its_own_fractions() {
+        // A skip lands a foot, bounces on it (no new step), flies, lands the
+        // next: each of the 4 steps has its flight, so all have flight.
+        let fly: &[(usize, f64)] = &[(0, 0.1), (1, 0.1)];
+        let bounce: &[(usize, f64)] = &[(1, 0.1)];
+        let steps = [
+            (fly, false),
+            (bounce, true),
+            (fly, false),
+            (fly, false),
+            (bounce, true),
+            (fly, false),
+        ];
+        let (_, shares) = timeline(&steps, LabelOptions::default());
+        assert_eq!(shares.steps, 4);
+        assert_eq!(shares.flight, 1.0);
+        // A step's flight must exceed labels.flight of that step: 0.001 s
+        // in 0.4 s (0.25 %) does not count at 1 %, does at 0.1 %.
+        let blip: &[(usize, f64)] = &[(1, 0.199), (0, 0.001), (2, 0.2)];
+        let steps = [(blip, false); 4];
+        assert_eq!(timeline(&steps, LabelOptions::default()).1.flight, 0.0);
+        let fine = LabelOptions {
+            flight: 0.001,
+            ..LabelOptions::default()
+        };
+        assert_eq!(timeline(&steps, fine).1.flight, 1.0);
+    }
+
+    #[test]
+    fn a_crawl_needs_triple_support_in_its_typical_step() {
+        let crawl: &[(usize, f64)] = &[(2, 0.2), (3, 0.1), (1, 0.1)];
+        let walk: &[(usize, f64)] = &[(2, 0.2), (1, 0.2)];
+        let mostly = [crawl, crawl, walk, crawl].map(|p| (p, false));
+        let (f, shares) = timeline(&mostly, LabelOptions::default());
+        assert!((shares.triple - 0.75).abs() < 1e-15);
+        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Crawl);
+        let rarely = [walk, crawl, walk, walk].map(|p| (p, false));
+        let (f, shares) = timeline(&rarely, LabelOptions::default());
+        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Walk);
+        assert_eq!(label(&f, &shares, &LabelOptions::any()), Label::Crawl);
     }
 
     #[test]
     fn fractions_count_only_the_window() {
-        let mut s = GaitStats::new(10.0);
+        let mut s = GaitStats::new(10.0, LabelOptions::default());
         s.on_interval(9.0, 11.0, 1, 0);
         s.on_interval(11.0, 14.0, 2, 1);
         let f = s.fractions();
@@ -269,7 +478,7 @@ mod tests {
     #[test]
     fn period_of_a_synthetic_return_sequence() {
         for n in [1usize, 2, 3, 5] {
-            let mut s = GaitStats::new(0.0);
+            let mut s = GaitStats::new(0.0, LabelOptions::default());
             let mut t = 0.0;
             for k in 0..60 {
                 let phase = (k % n) as f64;
@@ -279,7 +488,7 @@ mod tests {
             assert_eq!(s.period(), n as u32);
         }
         // An aperiodic (chaotic-looking) sequence has none.
-        let mut s = GaitStats::new(0.0);
+        let mut s = GaitStats::new(0.0, LabelOptions::default());
         let (mut t, mut x) = (0.0, 0.3);
         for k in 0..60 {
             x = 3.9 * x * (1.0 - x);
@@ -293,7 +502,7 @@ mod tests {
     fn settles_on_a_periodic_sequence_over_whole_periods() {
         // Period 2: 0.2 s in single support, then 0.3 s in double support,
         // touchdowns at the end of each, moving 0.1 m per touchdown.
-        let mut s = GaitStats::new(10.0);
+        let mut s = GaitStats::new(10.0, LabelOptions::default());
         let (mut t, mut settled, mut k) = (0.0, None, 0);
         while settled.is_none() {
             let (dt, state, omega) = if k % 2 == 0 {
@@ -329,7 +538,7 @@ mod tests {
 
     #[test]
     fn an_aperiodic_sequence_never_settles() {
-        let mut s = GaitStats::new(0.0);
+        let mut s = GaitStats::new(0.0, LabelOptions::default());
         let (mut t, mut x) = (0.0, 0.3);
         for k in 0..500 {
             x = 3.9 * x * (1.0 - x);
@@ -341,7 +550,7 @@ mod tests {
 
     #[test]
     fn new_foot_counts_only_changes_of_tip() {
-        let mut s = GaitStats::new(0.0);
+        let mut s = GaitStats::new(0.0, LabelOptions::default());
         s.on_touchdown(1.0, 0, Tip::Plus, -1.0);
         s.on_touchdown(1.1, 0, Tip::Plus, -1.0); // a bounce on the same foot
         s.on_touchdown(1.5, 0, Tip::Minus, -1.0);

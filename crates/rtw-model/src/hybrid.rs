@@ -217,6 +217,15 @@ pub struct Work {
     pub events: u64,
 }
 
+impl std::ops::AddAssign for Work {
+    fn add_assign(&mut self, other: Work) {
+        self.steps += other.steps;
+        self.rejected += other.rejected;
+        self.rhs_evals += other.rhs_evals;
+        self.events += other.events;
+    }
+}
+
 /// Why [`run`] returned.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EndReason {

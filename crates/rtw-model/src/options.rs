@@ -2,23 +2,30 @@
 //!
 //! Two named sets of modelling choices (MODEL.md §9):
 //!
-//! * [`Options::default`], **the adopted model**: strings with natural length
-//!   ℓ₀ = 0.85 r that go slack rather than push, Coulomb friction μ = 0.8, and
-//!   a start from the standing equilibrium. It was chosen by the variant study
-//!   of issue 4 (`./scripts/variants.sh` → `results/variants/summary.md`): of
-//!   the variants that walk at the article's Fig. 7(a) point on a floor a real
-//!   robot can have (μ ≤ 1) and show both failure clusters of Fig. S4, it is
-//!   the closest to the article's 1000-sample statistic within sampling error
-//!   whose strings cannot push. The natural length is fitted, not published.
+//! * [`Options::default`], **the adopted model**
+//!   (`prestress-0.85-settled-mu0.8-slack-steps`): strings with natural length
+//!   ℓ₀ = 0.85 r that go slack rather than push, Coulomb friction μ = 0.8, a
+//!   start set down and settled on the slope (on two or three feet; a star
+//!   that cannot stand still fails, the article's "cannot maintain standing
+//!   position"), and gaits labelled by their typical step. It was chosen by
+//!   the variant study (`./scripts/variants.sh` →
+//!   `results/variants/summary.md`): of the variants that walk at the
+//!   article's Fig. 7(a) point on a floor a real robot can have (μ ≤ 1) and
+//!   show both failure clusters of Fig. S4, it is the closest to the
+//!   article's 1000-sample statistic within sampling error whose strings
+//!   cannot push. The natural length is fitted, not published.
 //! * [`Options::literal`]: MODEL.md §1–§6 as written, the supplementary's
-//!   S5–S6 taken literally (zero rest length, no slip, a rigid start). It is
-//!   the paper-faithful reconstruction; it skips where the article walks.
+//!   S5–S6 taken literally (zero rest length, no slip, a rigid start, any
+//!   flight makes a skip). It is the paper-faithful reconstruction; it skips
+//!   where the article walks.
 //!
 //! Everything else (integrator, thresholds of §5) is the same in both.
 //!
 //! The field names are the keys of a scan config's `[simulation]` table
 //! (`initial.omega`, `strings.slack`, `contact.mu`, …); unknown keys are refused.
 
+use crate::hybrid::EngineOptions;
+use crate::integrate::Method;
 use crate::params::{Normalization, ParamError, check};
 use serde::{Deserialize, Serialize};
 
@@ -45,9 +52,31 @@ pub enum MethodChoice {
 pub enum InitialShape {
     /// The rest shape, a regular six-spoked star, on two feet.
     RigidStar,
-    /// The static equilibrium standing on the same two feet.
-    #[default]
+    /// The static equilibrium standing on the same two feet: front foot
+    /// pinned, rear foot frictionless, rod b free (Newton). A star that
+    /// would need a third foot has none: `no_standing_equilibrium`.
     Static,
+    /// Set down and let settle: the rest star placed at rest on its two
+    /// feet, then relaxed to a static equilibrium under gravity with the
+    /// run's own contact law (friction, slip, a third foot landing), as a
+    /// robot is stood on the slope by hand before the push. A star that
+    /// cannot stand falls while settling (a rod lies down, the centre of
+    /// mass sinks) or never comes to rest: a `collapse` that says which.
+    #[default]
+    Settled,
+}
+
+/// What a `settled` start does with a star that cannot stand still: set
+/// down, it rolls or slides away along the slope while keeping its shape.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CannotStand {
+    /// A failure, `collapse` (`standing_rolls_away`): the article's "cannot
+    /// maintain standing position" (Fig. S4), read literally.
+    #[default]
+    Collapse,
+    /// Pushed as it is set down, from its rest shape (as `rigid_star`).
+    Push,
 }
 
 /// How the string damper acts (MODEL.md §9, `strings.damping`).
@@ -65,15 +94,19 @@ pub enum Damping {
 #[serde(default, deny_unknown_fields)]
 pub struct InitialOptions {
     pub shape: InitialShape,
+    /// `settled` only: a star that rolls away as it is set down.
+    pub cannot_stand: CannotStand,
     /// Rigid angular velocity about the front foot [rad/s]; negative rolls downhill.
     pub omega: f64,
 }
 
 impl Default for InitialOptions {
-    /// The adopted model's start: standing, pushed downhill.
+    /// The adopted model's start: set down and settled on the slope (a star
+    /// that cannot stand still fails), pushed downhill.
     fn default() -> Self {
         Self {
-            shape: InitialShape::Static,
+            shape: InitialShape::Settled,
+            cannot_stand: CannotStand::Collapse,
             omega: -2.0,
         }
     }
@@ -115,6 +148,72 @@ impl Default for ContactOptions {
     }
 }
 
+/// How a stable gait is labelled (MODEL.md §5, Table S1's row for the RTW:
+/// skipping has flight, crawling has triple support, walking neither), as
+/// config keys `labels.*`. A *step* is the time from one touchdown to the
+/// next; the per-step shares count the window's whole steps.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LabelOptions {
+    /// A gait has flight when its NLSP fraction over the window exceeds this;
+    /// a step has flight when its own NLSP fraction does.
+    pub flight: f64,
+    /// The same for triple support (TLSP).
+    pub triple: f64,
+    /// A skip also needs at least this share of its steps to have flight
+    /// (0: any flight over the window makes a skip).
+    pub flight_steps: f64,
+    /// A crawl also needs at least this share of its steps to have triple
+    /// support (0: any).
+    pub triple_steps: f64,
+}
+
+impl Default for LabelOptions {
+    /// The adopted rule: a gait is labelled by its typical step. Table S1
+    /// names each gait by the contact states of its step cycle, so a gait
+    /// skips when at least half of its steps have flight (over 1 % of the
+    /// step), and crawls when at least half have triple support. On the
+    /// paper scan, the skips' shares of steps with flight are bimodal (most
+    /// fly in every step); the rule separates those from walks with an
+    /// occasional hop (`results/fidelity.md`).
+    fn default() -> Self {
+        Self {
+            flight: 0.01,
+            triple: 0.01,
+            flight_steps: 0.5,
+            triple_steps: 0.5,
+        }
+    }
+}
+
+impl LabelOptions {
+    /// MODEL.md §5 as written: any flight (then any triple support) above
+    /// 1 % of the window makes the label.
+    pub fn any() -> Self {
+        Self {
+            flight_steps: 0.0,
+            triple_steps: 0.0,
+            ..Self::default()
+        }
+    }
+
+    /// Checks every threshold, naming its key and range.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check("labels.flight", self.flight, "in [0, 1)", |v| {
+            (0.0..1.0).contains(&v)
+        })?;
+        check("labels.triple", self.triple, "in [0, 1)", |v| {
+            (0.0..1.0).contains(&v)
+        })?;
+        check("labels.flight_steps", self.flight_steps, "in [0, 1]", |v| {
+            (0.0..=1.0).contains(&v)
+        })?;
+        check("labels.triple_steps", self.triple_steps, "in [0, 1]", |v| {
+            (0.0..=1.0).contains(&v)
+        })
+    }
+}
+
 /// All simulation options (MODEL.md §4–§6, §9). The default is the adopted
 /// model, [`Options::literal`] the paper-faithful one (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -136,8 +235,6 @@ pub struct Options {
     pub normalization: Normalization,
     /// The analysis window is the last `analysis_window` fraction of the run.
     pub analysis_window: f64,
-    /// Contact-state fraction above which flight (or triple support) counts.
-    pub eps: f64,
     /// Collapse when the centre of mass falls below this × h₀.
     pub collapse_height_ratio: f64,
     /// Stall when no touchdown happens for this long [s].
@@ -165,6 +262,7 @@ pub struct Options {
     pub initial: InitialOptions,
     pub strings: StringOptions,
     pub contact: ContactOptions,
+    pub labels: LabelOptions,
 }
 
 impl Default for Options {
@@ -180,7 +278,6 @@ impl Default for Options {
             g: 9.81,
             normalization: Normalization::Supplementary,
             analysis_window: 0.5,
-            eps: 0.01,
             collapse_height_ratio: 0.5,
             stall_time: 3.0,
             touchdown_offset: 1e-10,
@@ -190,6 +287,7 @@ impl Default for Options {
             initial: InitialOptions::default(),
             strings: StringOptions::default(),
             contact: ContactOptions::default(),
+            labels: LabelOptions::default(),
         }
     }
 }
@@ -207,6 +305,7 @@ impl Options {
             initial: InitialOptions {
                 shape: InitialShape::RigidStar,
                 omega: -2.0,
+                ..InitialOptions::default()
             },
             strings: StringOptions {
                 rest_length_ratio: 0.0,
@@ -214,7 +313,24 @@ impl Options {
                 damping: Damping::Along,
             },
             contact: ContactOptions { mu: f64::INFINITY },
+            labels: LabelOptions::any(),
             ..Self::default()
+        }
+    }
+
+    /// The hybrid engine's settings for a run with these options.
+    pub fn engine(&self) -> EngineOptions {
+        EngineOptions {
+            method: match self.method {
+                MethodChoice::Dp54 => Method::Dp54,
+                MethodChoice::Dop853 => Method::Dop853,
+                MethodChoice::Rk4 => Method::Rk4 { h: self.rk4_step },
+            },
+            rtol: self.rtol,
+            atol: self.atol,
+            h_max: self.h_max,
+            max_steps: self.max_steps,
+            ..EngineOptions::default()
         }
     }
 
@@ -230,7 +346,7 @@ impl Options {
         check("analysis_window", self.analysis_window, "in (0, 1]", |v| {
             v > 0.0 && v <= 1.0
         })?;
-        check("eps", self.eps, "in [0, 1)", |v| (0.0..1.0).contains(&v))?;
+        self.labels.validate()?;
         check(
             "collapse_height_ratio",
             self.collapse_height_ratio,
@@ -286,7 +402,9 @@ mod tests {
         assert_eq!(o.initial.shape, InitialShape::RigidStar);
         assert_eq!(o.collapse_height_ratio, 0.5);
         assert_eq!(o.stall_time, 3.0);
-        assert_eq!(o.eps, 0.01);
+        assert_eq!(o.labels, LabelOptions::any());
+        assert_eq!((o.labels.flight, o.labels.triple), (0.01, 0.01));
+        assert_eq!((o.labels.flight_steps, o.labels.triple_steps), (0.0, 0.0));
         assert!(o.contact.mu.is_infinite());
         assert_eq!(o.strings.rest_length_ratio, 0.0);
         assert!(!o.strings.slack);
@@ -297,7 +415,8 @@ mod tests {
         d.validate().unwrap();
         let adopted = Options {
             initial: InitialOptions {
-                shape: InitialShape::Static,
+                shape: InitialShape::Settled,
+                cannot_stand: CannotStand::Collapse,
                 omega: -2.0,
             },
             strings: StringOptions {
@@ -306,6 +425,11 @@ mod tests {
                 damping: Damping::Along,
             },
             contact: ContactOptions { mu: 0.8 },
+            labels: LabelOptions {
+                flight_steps: 0.5,
+                triple_steps: 0.5,
+                ..o.labels
+            },
             ..o
         };
         assert_eq!(d, adopted);

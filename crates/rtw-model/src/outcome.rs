@@ -76,8 +76,19 @@ pub enum FailureDetail {
     RodDown,
     /// The centre of mass fell below `collapse_height_ratio × h₀`.
     CentreOfMassLow,
-    /// `initial.shape = "static"` found no standing equilibrium.
+    /// No standing equilibrium: `initial.shape = "static"` found none on two
+    /// feet, or a star being set down (`"settled"`) never came to rest.
     NoStandingEquilibrium,
+    /// A star being set down (`initial.shape = "settled"`) fell until a rod
+    /// had both tips on the ground.
+    StandingRodDown,
+    /// A star being set down sank until its centre of mass was below
+    /// `collapse_height_ratio × h₀`.
+    StandingComLow,
+    /// A star being set down rolled or slid away along the slope: it keeps
+    /// its shape but has no static equilibrium there
+    /// (`initial.cannot_stand = "collapse"`).
+    StandingRollsAway,
     /// No touchdown for `stall_time`.
     NoTouchdown,
     /// The centre of mass moved less than L/2 downhill over the window.
@@ -93,13 +104,32 @@ pub enum FailureDetail {
 }
 
 impl FailureDetail {
+    /// Every failure detail.
+    pub const ALL: [FailureDetail; 12] = [
+        FailureDetail::RodDown,
+        FailureDetail::CentreOfMassLow,
+        FailureDetail::NoStandingEquilibrium,
+        FailureDetail::StandingRodDown,
+        FailureDetail::StandingComLow,
+        FailureDetail::StandingRollsAway,
+        FailureDetail::NoTouchdown,
+        FailureDetail::NoProgress,
+        FailureDetail::NonFinite,
+        FailureDetail::StepUnderflow,
+        FailureDetail::WorkBudget,
+        FailureDetail::Zeno,
+    ];
+
     /// The outcome label of a run that failed this way (MODEL.md §5):
     /// collapse, stall, or diverged for a numerical failure.
     pub fn label(self) -> Label {
         match self {
             FailureDetail::RodDown
             | FailureDetail::CentreOfMassLow
-            | FailureDetail::NoStandingEquilibrium => Label::Collapse,
+            | FailureDetail::NoStandingEquilibrium
+            | FailureDetail::StandingRodDown
+            | FailureDetail::StandingComLow
+            | FailureDetail::StandingRollsAway => Label::Collapse,
             FailureDetail::NoTouchdown | FailureDetail::NoProgress => Label::Stall,
             FailureDetail::NonFinite
             | FailureDetail::StepUnderflow
@@ -113,12 +143,49 @@ impl FailureDetail {
             FailureDetail::RodDown => "rod_down",
             FailureDetail::CentreOfMassLow => "com_low",
             FailureDetail::NoStandingEquilibrium => "no_standing_equilibrium",
+            FailureDetail::StandingRodDown => "standing_rod_down",
+            FailureDetail::StandingComLow => "standing_com_low",
+            FailureDetail::StandingRollsAway => "standing_rolls_away",
             FailureDetail::NoTouchdown => "no_touchdown",
             FailureDetail::NoProgress => "no_progress",
             FailureDetail::NonFinite => "non_finite",
             FailureDetail::StepUnderflow => "step_underflow",
             FailureDetail::WorkBudget => "work_budget",
             FailureDetail::Zeno => "zeno",
+        }
+    }
+
+    /// One sentence a reader can act on: what happened, in the model's terms.
+    pub fn describe(self) -> &'static str {
+        match self {
+            FailureDetail::RodDown => "a rod lay down: both of its tips reached the ground",
+            FailureDetail::CentreOfMassLow => {
+                "the centre of mass sank below collapse_height_ratio x the standing height"
+            }
+            FailureDetail::NoStandingEquilibrium => {
+                "cannot stand: no static equilibrium found (no two-foot solution, \
+                 or set down it never came to rest)"
+            }
+            FailureDetail::StandingRodDown => {
+                "cannot stand: set down on the slope, it sagged until a rod lay on the ground"
+            }
+            FailureDetail::StandingComLow => {
+                "cannot stand: set down on the slope, its centre of mass sank below \
+                 collapse_height_ratio x the standing height"
+            }
+            FailureDetail::StandingRollsAway => {
+                "cannot stand still: set down on the slope, it rolls or slides away from its feet"
+            }
+            FailureDetail::NoTouchdown => "stalled: no touchdown for stall_time",
+            FailureDetail::NoProgress => {
+                "stalled: the centre of mass moved less than L/2 downhill over the window"
+            }
+            FailureDetail::NonFinite => "numerical failure: the state became NaN or infinite",
+            FailureDetail::StepUnderflow => "numerical failure: the step size underflowed",
+            FailureDetail::WorkBudget => "numerical failure: the work budget max_steps ran out",
+            FailureDetail::Zeno => {
+                "numerical failure: many transitions within a microsecond (Zeno)"
+            }
         }
     }
 }
@@ -134,6 +201,45 @@ pub struct ContactFractions {
     pub dlsp: f64,
     /// Three rods.
     pub tlsp: f64,
+}
+
+/// How the star stood before the push (`initial.shape`, MODEL.md §6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stance {
+    /// In its rest shape on two feet, not in equilibrium: `rigid_star`, or a
+    /// `settled` star that cannot stand still (set down, it rolls or slides
+    /// away along the slope, keeping its shape) pushed as it is set down
+    /// (`initial.cannot_stand = "push"`).
+    #[default]
+    RestShape,
+    /// In static equilibrium on two feet.
+    TwoFeet,
+    /// In static equilibrium on three feet (a tip of rod b down too).
+    ThreeFeet,
+}
+
+impl Stance {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Stance::RestShape => "rest_shape",
+            Stance::TwoFeet => "two_feet",
+            Stance::ThreeFeet => "three_feet",
+        }
+    }
+}
+
+/// Shares of the window's steps (one new foot's touchdown to the next) with flight and
+/// with triple support, each step judged by its own contact fractions
+/// against `labels.flight` and `labels.triple`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StepShares {
+    /// Number of whole steps in the window.
+    pub steps: u64,
+    /// Share of them with flight.
+    pub flight: f64,
+    /// Share of them with triple support.
+    pub triple: f64,
 }
 
 /// Energy bookkeeping of a run (J). `balance_error` =
@@ -162,15 +268,30 @@ pub struct IntegratorWork {
     pub events: u64,
 }
 
+impl From<crate::hybrid::Work> for IntegratorWork {
+    fn from(w: crate::hybrid::Work) -> Self {
+        Self {
+            steps: w.steps,
+            rejected: w.rejected,
+            rhs_evals: w.rhs_evals,
+            events: w.events,
+        }
+    }
+}
+
 /// Everything one run measures (MODEL.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     pub label: Label,
     pub failure: Option<FailureDetail>,
+    /// How the star stood before the push.
+    pub start: Stance,
     /// Time at which the run ended (t_max unless it failed).
     pub t_end: f64,
     /// Contact-state fractions over the analysis window.
     pub fractions: ContactFractions,
+    /// Shares of the window's steps with flight and with triple support.
+    pub step_shares: StepShares,
     /// All touchdowns of the run.
     pub touchdowns: u64,
     /// Touchdowns per second in the window.

@@ -129,6 +129,11 @@ pub struct Rtw {
     /// derivative of a reset (the variational equations' saltation) is taken
     /// with its discrete choices fixed, as they are at the event itself.
     pub replay: Option<Choice>,
+    /// Rate γ [1/s] of a velocity damping `−γ m v`, `−γ I ω` on every rod,
+    /// used only while the star is being set down ([`crate::initial`]'s
+    /// dynamic relaxation). It vanishes at rest, so the state it settles to
+    /// is a static equilibrium of the real forces. Zero in every run.
+    pub relax: f64,
 }
 
 impl Rtw {
@@ -158,6 +163,7 @@ impl Rtw {
             mu_floor: 0.05 * phys.m * gravity[0].hypot(gravity[1]),
             last_choice: None,
             replay: None,
+            relax: 0.0,
         }
     }
 
@@ -189,10 +195,16 @@ impl Rtw {
     pub fn loads(&self, frames: &[RodFrame; 3]) -> ([Load; 3], f64) {
         let s = self.strings.loads(frames);
         let weight = scale(self.body.m, self.gravity);
-        let loads = std::array::from_fn(|i| Load {
+        let mut loads: [Load; 3] = std::array::from_fn(|i| Load {
             force: add(s.force[i], weight),
             torque: s.torque[i],
         });
+        if self.relax > 0.0 {
+            for (load, f) in loads.iter_mut().zip(frames) {
+                load.force = add(load.force, scale(-self.relax * self.body.m, f.v));
+                load.torque -= self.relax * self.body.inertia * f.omega;
+            }
+        }
         (loads, s.dissipation)
     }
 

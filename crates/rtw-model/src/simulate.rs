@@ -3,11 +3,11 @@
 
 use crate::gait::{self, GaitStats, Settled};
 use crate::geometry::V2;
-use crate::hybrid::{self, EndReason, EngineOptions, Flow, Guards, HybridSystem};
+use crate::hybrid::{self, EndReason, Flow, Guards, HybridSystem, Work};
 use crate::initial::initial_state;
-use crate::integrate::{Dense, Method};
-use crate::options::{MethodChoice, Options};
-use crate::outcome::{Energy, FailureDetail, IntegratorWork, Label, Outcome, TraceSample};
+use crate::integrate::Dense;
+use crate::options::Options;
+use crate::outcome::{Energy, FailureDetail, Label, Outcome, Stance, TraceSample};
 use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
 use crate::stepmap::{SectionLog, cycle_of_run};
 use crate::{Params, Physical};
@@ -28,22 +28,6 @@ pub fn simulate_traced(
     trace: &mut dyn FnMut(&TraceSample),
 ) -> Outcome {
     simulate_inner(params, options, Some(trace))
-}
-
-/// The engine options a run uses.
-pub fn engine_options(o: &Options) -> EngineOptions {
-    EngineOptions {
-        method: match o.method {
-            MethodChoice::Dp54 => Method::Dp54,
-            MethodChoice::Dop853 => Method::Dop853,
-            MethodChoice::Rk4 => Method::Rk4 { h: o.rk4_step },
-        },
-        rtol: o.rtol,
-        atol: o.atol,
-        h_max: o.h_max,
-        max_steps: o.max_steps,
-        ..EngineOptions::default()
-    }
 }
 
 /// One run: the RTW, its statistics, and what ends it.
@@ -220,14 +204,16 @@ fn simulate_inner(
     }
     let phys = Physical::new(params, options.normalization, options.g);
     let mut rtw = Rtw::new(&phys, options);
-    let mut y = match initial_state(&mut rtw, options) {
-        Ok(y) => y,
-        Err(detail) => return failed_at_start(detail),
+    // The work of standing the star up counts as the run's.
+    let mut standing = Work::default();
+    let (mut y, start) = match initial_state(&mut rtw, options, &mut standing) {
+        Ok(started) => started,
+        Err(detail) => return failed_at_start(detail, standing),
     };
     let window_start = options.t_max * (1.0 - options.analysis_window);
     let mut run = Run {
         rtw,
-        stats: GaitStats::new(window_start),
+        stats: GaitStats::new(window_start, options.labels),
         stall_time: options.stall_time,
         failure: None,
         mu_required: 0.0,
@@ -246,13 +232,7 @@ fn simulate_inner(
         run.emit(0.0, &y);
         run.next_trace = options.trace_dt;
     }
-    let end = hybrid::run(
-        &mut run,
-        0.0,
-        &mut y,
-        options.t_max,
-        &engine_options(options),
-    );
+    let end = hybrid::run(&mut run, 0.0, &mut y, options.t_max, &options.engine());
 
     let (_, g1, _) = run.rtw.energy(&y);
     let e1 = run.rtw.total_energy(&y);
@@ -276,9 +256,10 @@ fn simulate_inner(
     let stats = &run.stats;
     // What the analysis window measures: over the last `analysis_window` of
     // the run, or over the settled gait's whole periods after an early stop.
-    let (fractions, f_w, f_w_newfoot, speed, mu_required, period) = match run.settled {
+    let (fractions, step_shares, f_w, f_w_newfoot, speed, mu_required, period) = match run.settled {
         Some(s) => (
             s.fractions,
+            s.step_shares,
             s.f_w,
             s.f_w_newfoot,
             s.speed,
@@ -287,6 +268,7 @@ fn simulate_inner(
         ),
         None => (
             stats.fractions(),
+            stats.step_shares(),
             stats.window_touchdowns as f64 / window,
             stats.window_newfoot as f64 / window,
             match stats.window_com_x {
@@ -305,7 +287,7 @@ fn simulate_inner(
         (speed * window < 0.5 * phys.length).then_some(FailureDetail::NoProgress)
     });
     let label = match failure {
-        None => gait::label(&fractions, options.eps),
+        None => gait::label(&fractions, &step_shares, &options.labels),
         Some(detail) => detail.label(),
     };
     let cycle = match &run.sections {
@@ -315,8 +297,10 @@ fn simulate_inner(
     Outcome {
         label,
         failure,
+        start,
         t_end: end.t,
         fractions,
+        step_shares,
         touchdowns: stats.touchdowns,
         f_w,
         f_w_newfoot,
@@ -326,22 +310,23 @@ fn simulate_inner(
         energy,
         period: if label.is_stable() { period } else { 0 },
         cycle,
-        work: IntegratorWork {
-            steps: end.work.steps,
-            rejected: end.work.rejected,
-            rhs_evals: end.work.rhs_evals,
-            events: end.work.events,
+        work: {
+            let mut work = end.work;
+            work += standing;
+            work.into()
         },
     }
 }
 
-/// The outcome of a run that could not start.
-fn failed_at_start(detail: FailureDetail) -> Outcome {
+/// The outcome of a run that could not start, after `work` trying.
+fn failed_at_start(detail: FailureDetail, work: Work) -> Outcome {
     Outcome {
         label: Label::Collapse,
         failure: Some(detail),
+        start: Stance::RestShape,
         t_end: 0.0,
         fractions: Default::default(),
+        step_shares: Default::default(),
         touchdowns: 0,
         f_w: 0.0,
         f_w_newfoot: 0.0,
@@ -351,6 +336,6 @@ fn failed_at_start(detail: FailureDetail) -> Outcome {
         energy: Energy::default(),
         period: 0,
         cycle: None,
-        work: IntegratorWork::default(),
+        work: work.into(),
     }
 }

@@ -38,7 +38,7 @@ use crate::hybrid::{self, EndReason, EngineOptions, Flow, Guards, HybridSystem};
 use crate::initial::initial_state;
 use crate::integrate::{Dense, Method};
 use crate::limit::{self, FixedPoint, NewtonError};
-use crate::options::Options;
+use crate::options::{LabelOptions, Options};
 use crate::outcome::{ContactFractions, FailureDetail, Label};
 use crate::params::{Params, Physical};
 use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
@@ -111,6 +111,12 @@ pub struct Step {
 }
 
 impl Step {
+    /// The gait label of `steps` together (MODEL.md §5).
+    pub fn label(steps: &[Step], labels: &LabelOptions) -> Label {
+        let shares = crate::gait::step_shares(steps.iter().map(|s| &s.state_time), labels);
+        crate::gait::label(&Step::fractions(steps), &shares, labels)
+    }
+
     /// Contact-state fractions of `steps` together.
     pub fn fractions(steps: &[Step]) -> ContactFractions {
         let mut t = [0.0; 4];
@@ -457,7 +463,7 @@ impl StepMap {
             method: cycle.method,
             rtol: cycle.rtol,
             atol: cycle.atol,
-            ..crate::simulate::engine_options(options)
+            ..options.engine()
         };
         let l = phys.length;
         let g = phys.g;
@@ -488,7 +494,8 @@ impl StepMap {
     /// (its stance foot, a+, is the front foot).
     pub fn first(&self, options: &Options) -> Result<Step, StepError> {
         let mut rtw = self.rtw.clone();
-        let y = initial_state(&mut rtw, options).map_err(StepError::Failure)?;
+        let (y, _) = initial_state(&mut rtw, options, &mut Default::default())
+            .map_err(StepError::Failure)?;
         self.run_step(rtw, y)
     }
 
@@ -594,9 +601,9 @@ impl LimitCycle {
         self.floquet_max() < 1.0
     }
 
-    /// The gait label of the orbit's contact fractions (MODEL.md §5).
-    pub fn label(&self, eps: f64) -> Label {
-        crate::gait::label(&Step::fractions(&self.steps), eps)
+    /// The gait label of the orbit's contact fractions and steps (MODEL.md §5).
+    pub fn label(&self, labels: &LabelOptions) -> Label {
+        Step::label(&self.steps, labels)
     }
 }
 

@@ -431,7 +431,8 @@ fn adopted_default_walks_at_fig7a_within_its_friction_cone() {
     assert_eq!(o.strings.rest_length_ratio, 0.85);
     assert!(o.strings.slack);
     assert_eq!(o.contact.mu, 0.8);
-    assert_eq!(o.initial.shape, rtw_model::options::InitialShape::Static);
+    assert_eq!(o.initial.shape, rtw_model::options::InitialShape::Settled);
+    assert_eq!((o.labels.flight_steps, o.labels.triple_steps), (0.5, 0.5));
     // At the default (scan) accuracy, and at a tight one where the energy
     // balance is a physics check rather than a measure of integration error.
     let tight = Options {
@@ -480,7 +481,7 @@ fn static_start_is_an_equilibrium() {
     o.strings.rest_length_ratio = 0.85;
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
     let mut sys = Rtw::new(&phys, &o);
-    let y = rtw_model::initial::initial_state(&mut sys, &o).unwrap();
+    let (y, _) = rtw_model::initial::initial_state(&mut sys, &o, &mut Default::default()).unwrap();
     let mut dy = [0.0; N];
     sys.dynamics(&y, &mut dy);
     let acc: f64 = (0..3)
@@ -516,7 +517,7 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
     o.strings.rest_length_ratio = 0.85;
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
     let mut sys = Rtw::new(&phys, &o);
-    let y0 = rtw_model::initial::initial_state(&mut sys, &o).unwrap();
+    let (y0, _) = rtw_model::initial::initial_state(&mut sys, &o, &mut Default::default()).unwrap();
     let grounded: Vec<usize> = (0..3).filter(|&i| sys.modes[i].tip().is_some()).collect();
     assert!(
         !grounded.is_empty(),

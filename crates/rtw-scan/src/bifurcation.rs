@@ -33,7 +33,7 @@ use rtw_model::limit;
 use rtw_model::stepmap::{
     CycleError, CycleOptions, LimitCycle, SectionPoint, Step, StepError, StepMap,
 };
-use rtw_model::{Label, Options, ParamError, Params, gait};
+use rtw_model::{Label, Options, ParamError, Params};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -323,7 +323,7 @@ fn analyse(
     let hist: Vec<SectionPoint> = steps.iter().map(|s| s.to).collect();
     let max_period = sweep.cycle.max_period.min(hist.len() / 2);
     let period = map.period_of(&hist, max_period, sweep.cycle.period_tol);
-    let label = gait::label(&Step::fractions(steps), options.eps);
+    let label = Step::label(steps, &options.labels);
     let mut row = PointRow {
         period,
         ..PointRow::new(value, PointLabel::Outcome(label))

@@ -7,7 +7,7 @@
 //! nothing physically. It panics for `rho > 4.75` and returns a numerical
 //! `diverged` for `rho < 1.1`, so scans over ρ ∈ [1, 5] exercise both paths.
 
-use rtw_model::outcome::{ContactFractions, Energy, FailureDetail, IntegratorWork};
+use rtw_model::outcome::{ContactFractions, Energy, FailureDetail, IntegratorWork, StepShares};
 use rtw_model::{Label, Options, Outcome, Params};
 use std::time::Duration;
 
@@ -44,12 +44,18 @@ pub fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
     Outcome {
         label,
         failure,
+        start: Default::default(),
         t_end,
         fractions: ContactFractions {
             nlsp,
             slsp,
             dlsp: 1.0 - nlsp - tlsp - slsp,
             tlsp,
+        },
+        step_shares: StepShares {
+            steps: 20,
+            flight: nlsp.min(1.0) * 2.0,
+            triple: tlsp * 5.0,
         },
         touchdowns: (t_end * p.f_n) as u64,
         f_w: p.f_n,

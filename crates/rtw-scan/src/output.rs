@@ -26,6 +26,7 @@ use parquet::basic::{Compression, ZstdLevel};
 use parquet::file::metadata::KeyValue;
 use parquet::file::properties::WriterProperties;
 use parquet::schema::types::ColumnPath;
+use rtw_model::outcome::FailureDetail;
 use rtw_model::{Label, Outcome, Params, Physical, TraceSample};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 use std::collections::BTreeMap;
@@ -193,13 +194,31 @@ pub static COLUMNS: &[Column] = &[
         name: "message",
         group: "outcome",
         nullable: true,
-        get: Get::Str(|r| r.message.as_deref()),
+        // A panic's message, else what the failure means in words.
+        get: Get::Str(|r| {
+            r.message.as_deref().or_else(|| {
+                r.outcome
+                    .and_then(|o| o.failure)
+                    .map(FailureDetail::describe)
+            })
+        }),
+    },
+    Column {
+        name: "start",
+        group: "outcome",
+        nullable: true,
+        get: Get::Str(|r| r.outcome.map(|o| o.start.as_str())),
     },
     metric("t_end", |r| r.outcome.map(|o| o.t_end)),
     metric("nlsp", |r| r.outcome.map(|o| o.fractions.nlsp)),
     metric("slsp", |r| r.outcome.map(|o| o.fractions.slsp)),
     metric("dlsp", |r| r.outcome.map(|o| o.fractions.dlsp)),
     metric("tlsp", |r| r.outcome.map(|o| o.fractions.tlsp)),
+    count("window_steps", "metric", |r| {
+        r.outcome.map(|o| o.step_shares.steps as i64)
+    }),
+    metric("flight_steps", |r| r.outcome.map(|o| o.step_shares.flight)),
+    metric("triple_steps", |r| r.outcome.map(|o| o.step_shares.triple)),
     count("touchdowns", "metric", |r| {
         r.outcome.map(|o| o.touchdowns as i64)
     }),
@@ -757,12 +776,18 @@ pub(crate) mod tests {
         Outcome {
             label,
             failure: (label == Label::Stall).then_some(FailureDetail::NoTouchdown),
+            start: rtw_model::outcome::Stance::TwoFeet,
             t_end: 20.0,
             fractions: ContactFractions {
                 nlsp: 0.1,
                 slsp: 0.5,
                 dlsp: 0.4,
                 tlsp: 0.0,
+            },
+            step_shares: rtw_model::outcome::StepShares {
+                steps: 30,
+                flight: 0.4,
+                triple: 0.0,
             },
             touchdowns: 40,
             f_w: 3.2,
@@ -870,6 +895,13 @@ pub(crate) mod tests {
                 Some(inner) if k == "energy" => {
                     inner.keys().map(|f| format!("energy_{f}")).collect()
                 }
+                Some(inner) if k == "step_shares" => inner
+                    .keys()
+                    .map(|f| match f.as_str() {
+                        "steps" => "window_steps".into(),
+                        _ => format!("{f}_steps"),
+                    })
+                    .collect(),
                 Some(inner) if k == "cycle" => inner
                     .keys()
                     .map(|f| match f.as_str() {

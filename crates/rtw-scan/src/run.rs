@@ -656,6 +656,7 @@ mod tests {
     use crate::config::parse;
     use crate::fake;
     use arrow::array::Array;
+    use rtw_model::outcome::FailureDetail;
 
     const CFG: &str = r#"
 seed = 11
@@ -788,6 +789,7 @@ t_max = 2.0
         let labels = output::label_column(&b).unwrap();
         let rho = output::f64_column(&b, "rho").unwrap();
         let msg = b.column_by_name("message").unwrap().as_string::<i32>();
+        let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
         let mut panicked = 0;
         for (i, label) in labels.iter().enumerate() {
             if rho.value(i) > 4.75 {
@@ -799,8 +801,15 @@ t_max = 2.0
                     msg.value(i)
                 );
                 assert!(msg.value(i).starts_with("panicked at "), "{}", msg.value(i));
-            } else {
+            } else if failure.is_null(i) {
                 assert!(msg.is_null(i));
+            } else {
+                // A failure says what it means in words.
+                let detail = FailureDetail::ALL
+                    .into_iter()
+                    .find(|d| d.as_str() == failure.value(i))
+                    .unwrap();
+                assert_eq!(msg.value(i), detail.describe());
             }
         }
         assert!(panicked > 0, "the seed should draw some rho > 4.75");

@@ -101,8 +101,10 @@ fn smoke_scan_runs_without_diverged_rows_and_independent_of_threads() {
     let ra = rows(&a.join("samples.parquet"));
     assert_eq!(ra.len(), 6);
     for r in &ra {
+        // A message without a failure is a panic's (a failure's message
+        // says what the failure means).
         assert!(
-            r.contains(&"message=null".to_string()),
+            r.contains(&"message=null".to_string()) || !r.contains(&"failure=null".to_string()),
             "a sample panicked: {r:?}"
         );
         assert!(
