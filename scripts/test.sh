@@ -25,15 +25,17 @@ if [ -f scripts/check_parquet.py ]; then
   rm -rf "$out"
 fi
 echo "== generated tables match the committed results they are made from"
-# The variant study's and the reproduction's tables, and the README's copies
-# of them, are regenerated from the committed results and must not change:
-# no number in them is typed by hand.
+# The variant study's and the reproduction's tables, and their copies in
+# README.md and docs/*.md, are regenerated from the committed results and must
+# not change: no number in them is typed by hand.
 check=$(mktemp -d)
-cp README.md "$check/README.md"
+docs=(README.md docs/*.md)
+mkdir -p "$check/docs"
+for f in "${docs[@]}"; do cp "$f" "$check/$f"; done
 .venv/bin/python scripts/variants_report.py results/variants >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null
-.venv/bin/python scripts/readme_tables.py "$check/README.md" >/dev/null
-diff -u README.md "$check/README.md"
+.venv/bin/python scripts/readme_tables.py "${docs[@]/#/$check/}" >/dev/null
+for f in "${docs[@]}"; do diff -u "$f" "$check/$f"; done
 git diff --exit-code -- results/variants/summary.md results/variants/summary.json results/reproduction.md
 rm -rf "$check"
 

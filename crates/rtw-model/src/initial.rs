@@ -1,4 +1,4 @@
-//! The initial state (MODEL.md §6): the star standing on two feet (spokes at
+//! The initial state (docs/model.md §6): the star standing on two feet (spokes at
 //! −60° and −120°), the front foot pinned at the origin, turning rigidly about
 //! it at `initial.omega`.
 

@@ -1,8 +1,8 @@
-//! What one run produces: the gait label and every metric of MODEL.md §5.
+//! What one run produces: the gait label and every metric of docs/model.md §5.
 
 use serde::{Deserialize, Serialize};
 
-/// The outcome label of a run (MODEL.md §5).
+/// The outcome label of a run (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Label {
@@ -93,7 +93,7 @@ pub enum FailureDetail {
 }
 
 impl FailureDetail {
-    /// The outcome label of a run that failed this way (MODEL.md §5):
+    /// The outcome label of a run that failed this way (docs/model.md §5):
     /// collapse, stall, or diverged for a numerical failure.
     pub fn label(self) -> Label {
         match self {
@@ -162,7 +162,7 @@ pub struct IntegratorWork {
     pub events: u64,
 }
 
-/// Everything one run measures (MODEL.md §5).
+/// Everything one run measures (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     pub label: Label,

@@ -594,7 +594,7 @@ impl LimitCycle {
         self.floquet_max() < 1.0
     }
 
-    /// The gait label of the orbit's contact fractions (MODEL.md §5).
+    /// The gait label of the orbit's contact fractions (docs/model.md §5).
     pub fn label(&self, eps: f64) -> Label {
         crate::gait::label(&Step::fractions(&self.steps), eps)
     }

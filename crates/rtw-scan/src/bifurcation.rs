@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-/// The parameters a sweep can vary: the six inputs of MODEL.md §1 and `s`,
+/// The parameters a sweep can vary: the six inputs of docs/model.md §1 and `s`,
 /// the strings' rest-length ratio (`strings.rest_length_ratio`).
 pub const SWEEP_KEYS: [&str; 7] = ["length", "rho", "alpha", "fn", "zeta", "phi", "s"];
 
