@@ -16,6 +16,10 @@
 # Usage: scripts/test_slurm.sh [CONFIG]   (default configs/smoke.toml)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "$(id -u)" -ne 0 ]; then
+  echo "test_slurm: needs root (it installs Slurm and munge with apt-get and starts their daemons): sudo $0" >&2
+  exit 1
+fi
 config=${1:-configs/smoke.toml}
 shards=4
 timeout_s=600
