@@ -3,8 +3,9 @@
 #   1. Rust (any user, only the toolchain): fmt, clippy, every Rust test;
 #   2. Python (python3 with venv; pip fetches scripts/requirements.txt into
 #      .venv the first time): the pandas/polars/pyarrow check of the Parquet
-#      output and the check that the generated tables in README.md and
-#      docs/*.md match the committed results;
+#      output, that Cargo.toml's rust-version covers every dependency's, and
+#      that the generated tables in README.md and docs/*.md match the
+#      committed results;
 #   3. Slurm: a sharded scan on a real one-node cluster (scripts/test_slurm.sh;
 #      installs Slurm and munge from Debian's packages and starts their
 #      daemons, so it needs root). As root (CI: .ci/run) it always runs; as
@@ -30,6 +31,8 @@ if [ -f scripts/check_parquet.py ]; then
   .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
   rm -rf "$out"
 fi
+echo "== rust-version covers every dependency (scripts/check_msrv.py)"
+.venv/bin/python scripts/check_msrv.py
 echo "== generated tables match the committed results they are made from"
 # The variant study's and the reproduction's tables, and their copies in
 # README.md and docs/*.md, are regenerated from the committed results and must

@@ -301,7 +301,7 @@ fn solve_minimal(
     let lc = map.solve(start, n, cycle)?;
     let p = &lc.orbit[0];
     let scale = map.coord_scale(p);
-    let shorter = (1..n).filter(|d| n % d == 0).find(|&d| {
+    let shorter = (1..n).filter(|d| n.is_multiple_of(*d)).find(|&d| {
         let q = &lc.orbit[d];
         q.modes == p.modes
             && limit::scaled_max(&q.coords(), &p.coords(), &scale) <= cycle.period_tol
