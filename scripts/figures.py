@@ -52,9 +52,9 @@ ROD_COLOR = ("#1f77b4", "#d62728", "#2ca02c")  # rods a, b, c
 CLUSTER_COLOR = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf")
 KIND_MARKER = {"collapse": "^", "stall": "o"}
 
-# The article's walking example (Fig. 7(a), MODEL.md §1), for the gait gallery.
+# The article's walking example (Fig. 7(a), docs/model.md §1), for the gait gallery.
 FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
-# The variant that walks there (MODEL.md §9) and the paper-faithful one (S5–S6 literally).
+# The variant that walks there (docs/model.md §9) and the paper-faithful one (S5–S6 literally).
 # The variant files the gallery's walk and skip are run with (configs/variants/).
 DEFAULT_VARIANT = "prestress-0.85-static-mu0.8-slack"
 # Trace sampling for the gait gallery (events are recorded as well).
@@ -91,7 +91,7 @@ class Scan:
         return f"{name} · model variant: {self.variant}"
 
 
-# The §1–§6 defaults (MODEL.md); a title names only what a variant changes.
+# The literal model's choices (docs/model.md §9); a title names only what a variant changes.
 DEFAULTS = {"mu": "inf", "slack": "false", "damping": "along", "normalization": "supplementary",
             "initial": "rigid_star(omega=-2)"}
 
@@ -139,7 +139,7 @@ def fig_s2(scan: Scan, out: Path) -> Path:
     lo, hi = fn.min(), fn.max()
     grid = np.linspace(lo, hi, 2)
     ax.plot(grid, grid, color="black", lw=1, ls="--", label=r"$f_w = f_n$")
-    ax.plot(grid, math.sqrt(3) * grid, color="black", lw=1, ls=":", label=r"$f_w = \sqrt{3}\,f_n$ (true mode, MODEL.md §7)")
+    ax.plot(grid, math.sqrt(3) * grid, color="black", lw=1, ls=":", label=r"$f_w = \sqrt{3}\,f_n$ (true mode, docs/model.md §7)")
     # Squares (new-foot rate) under circles (all touchdowns): where the two
     # definitions agree, a dot sits inside a square.
     for col, marker, size, ls, name in (

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where the instructions of one run go: the README's "Hot path" table.
+"""Where the instructions of one run go: the "Hot path" table of docs/performance.md.
 
 Usage: scripts/hot_path.py CALLGRIND_OUT [CALLGRIND_OUT ...]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's "Hot path" table: instruction counts (callgrind, repeatable on
+# The "Hot path" table of docs/performance.md: instruction counts (callgrind, repeatable on
 # a shared machine) of one 20 s run at Fig. 7(a), s = 0.85, for the default
 # method (DP5(4) at rtol 1e-4) and DOP853 at rtol 1e-10, split by
 # scripts/hot_path.py. Needs valgrind. Usage: scripts/hot_path.sh [OUTDIR]

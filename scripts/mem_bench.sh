@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peak memory of a scan against its sample count (README, "Scaling and memory").
+# Peak memory of a scan against its sample count (docs/performance.md, "Scaling and memory").
 #
 #   scripts/mem_bench.sh [SIZE ...]      # default: 1k 10k 100k (configs/bench/mem-SIZE.toml)
 #

@@ -1,5 +1,5 @@
-"""Copies generated tables into README.md between markers, so that no number
-in the README is typed by hand:
+"""Copies generated tables into README.md and docs/*.md between markers, so
+that no number in the documentation is typed by hand:
 
     <!-- begin: results/reproduction.md -->
     ...replaced by the file's Markdown tables...
@@ -8,7 +8,12 @@ in the README is typed by hand:
 A marker may name a section: `results/variants/summary.md#At a glance` takes
 only the tables under that heading, and a row filter after `|` keeps the
 header and the rows whose first cell is listed:
-`results/variants/summary.md#Fig. 7(a)|literal,prestress-0.85`. Usage: python scripts/readme_tables.py README.md
+`results/variants/summary.md#Fig. 7(a)|literal,prestress-0.85`.
+
+Usage: python scripts/readme_tables.py [FILE ...]
+(default: README.md and every docs/*.md; source paths are relative to the
+repository root whichever file holds the marker, so a block moves with its
+section.)
 """
 
 from __future__ import annotations
@@ -43,12 +48,18 @@ def tables(src: str) -> str:
     return "\n".join(rows) + "\n"
 
 
-def main(readme: Path) -> None:
-    text = readme.read_text()
+def refresh(doc: Path) -> None:
+    text = doc.read_text()
     new, n = BLOCK.subn(lambda m: m.group(1) + tables(m.group("src")) + m.group(4), text)
-    readme.write_text(new)
-    print(f"readme_tables: {n} tables refreshed in {readme}")
+    doc.write_text(new)
+    print(f"readme_tables: {n} tables refreshed in {doc}")
+
+
+def documents() -> list[Path]:
+    """The files whose marked blocks are generated: the README and docs/."""
+    return [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 
 
 if __name__ == "__main__":
-    main(Path(sys.argv[1] if len(sys.argv) > 1 else ROOT / "README.md"))
+    for doc in [Path(a) for a in sys.argv[1:]] or documents():
+        refresh(doc)

@@ -16,6 +16,10 @@
 # Usage: scripts/test_slurm.sh [CONFIG]   (default configs/smoke.toml)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "$(id -u)" -ne 0 ]; then
+  echo "test_slurm: needs root (it installs Slurm and munge with apt-get and starts their daemons): sudo $0" >&2
+  exit 1
+fi
 config=${1:-configs/smoke.toml}
 shards=4
 timeout_s=600
@@ -64,7 +68,7 @@ scripts/slurm/local-cluster.sh start "$state" || fail "Slurm did not start on th
 export SLURM_CONF=$state/slurm.conf
 
 out=$work/sharded
-# The two commands of the README's "On a cluster" (plus log locations).
+# The two commands of docs/cluster.md (plus log locations).
 jid=$(sbatch --parsable --array=0-$((shards - 1)) --cpus-per-task=1 \
   --output="$work/task-%a.out" scripts/slurm/scan-array.sbatch "$config" "$out") ||
   fail "sbatch of the array was refused"
@@ -93,7 +97,7 @@ done
 .venv/bin/python scripts/compare_scans.py "$out/part-*.parquet" "$work/single/samples.parquet" ||
   fail "the parts, read with polars.scan_parquet, differ from the single-machine run"
 
-# A lost shard rerun alone, as the README says (RTW_SHARDS: that array has
+# A lost shard rerun alone, as docs/cluster.md says (RTW_SHARDS: that array has
 # one task), then merged again: still the single-machine rows.
 rm "$out/part-2.parquet" "$out/samples.parquet"
 jid=$(sbatch --parsable --array=2 --export=ALL,RTW_SHARDS=$shards --cpus-per-task=1 \

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The variant study of MODEL.md §9 (issue 4): for every model variant in
+# The variant study of docs/model.md §9 (issue 4): for every model variant in
 # configs/variants/ (or those named as arguments), measure with rtw-scan
 #   * the Fig. 7(a) gait            -> results/variants/<v>/fig7a.json
 #   * the Fig. S3 slope sweep       -> results/variants/<v>/fig-s3/
@@ -23,7 +23,7 @@ fi
 if [ -z "${REPORT_ONLY:-}" ]; then
   cargo build --release -q -p rtw-scan
   scan=target/release/rtw-scan
-  # The Fig. 7(a) point (main article; MODEL.md §8).
+  # The Fig. 7(a) point (main article; docs/model.md §8).
   fig7a=(--length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15)
   for v in "${variants[@]}"; do
     file=configs/variants/$v.toml

@@ -95,7 +95,7 @@ struct Case {
     name: &'static str,
     params: Params,
     /// The model variant: `default` (the adopted model) or `literal`
-    /// (MODEL.md §1–§6, zero-rest-length strings).
+    /// (the paper-faithful model of docs/model.md §9, zero-rest-length strings).
     variant: &'static str,
 }
 
@@ -401,7 +401,7 @@ fn main() -> Result<()> {
     );
     let _ = writeln!(
         md,
-        "`configs/bench/scan200.toml` (MODEL.md §8's box at L = 0.8: the first 200 samples of `configs/paper.toml`, default model). \
+        "`configs/bench/scan200.toml` (docs/model.md §8's box at L = 0.8: the first 200 samples of `configs/paper.toml`, default model). \
          CPU s: the sum of the per-sample times; wall s: the whole scan on the worker threads. \
          Outcome % per label, largest |Δ| against the reference (pp), labels that differ \
          (flips), median relative f_w error over samples stable in both with the same label.\n"

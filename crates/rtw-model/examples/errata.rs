@@ -1,5 +1,5 @@
-//! The numerical check behind each erratum of MODEL.md §7, printed as a
-//! Markdown table (README "Reproduction"):
+//! The numerical check behind each erratum of docs/model.md §7, printed as a
+//! Markdown table (docs/reproduction.md):
 //!
 //!     cargo run --release -p rtw-model --example errata
 //!
@@ -44,7 +44,7 @@ fn main() {
         "Fig. 7(a) point, zero rest length (S5-S6), k = {:.1} N/m, r = {:.3} m\n",
         ph.k, ph.r
     );
-    println!("| erratum (MODEL.md §7) | check | value |");
+    println!("| erratum (docs/model.md §7) | check | value |");
     println!("|---|---|---:|");
 
     // 1. The rest angle: the star is in equilibrium at θa − θb = −π/3 and

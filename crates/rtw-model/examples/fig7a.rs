@@ -1,5 +1,5 @@
 //! Prints the outcome at the article's Fig. 7(a) point for the literal model
-//! (MODEL.md §1–§6) with string rest-length ratios `s` (default 0 and 0.85),
+//! (docs/model.md §9) with string rest-length ratios `s` (default 0 and 0.85),
 //! then for the adopted default model:
 //! `cargo run --release -p rtw-model --example fig7a [-- s ...]`.
 use rtw_model::{Options, Params, simulate};

@@ -1,4 +1,4 @@
-//! Ground contact of one rod (MODEL.md §4): the three modes in reduced
+//! Ground contact of one rod (docs/model.md §4): the three modes in reduced
 //! coordinates, the contact force λ, the touchdown impact and the one
 //! mode-choice rule used at every touchdown, lift-off and re-stick.
 //!
@@ -219,7 +219,7 @@ impl RodBody {
         self.inertia * r.omega + self.m * cross(sub(r.c, p), r.v)
     }
 
-    /// The perfectly inelastic touchdown of `tip` (MODEL.md §4).
+    /// The perfectly inelastic touchdown of `tip` (docs/model.md §4).
     ///
     /// Sticking impact: the tip stops, angular momentum about it is conserved,
     /// `I_P ω⁺ = I ω⁻ + m (c − P) × v⁻`. If that would need a pulling normal
@@ -277,7 +277,7 @@ impl RodBody {
         }
     }
 
-    /// The one mode-choice rule (MODEL.md §4), for a rod whose `tip` is on the
+    /// The one mode-choice rule (docs/model.md §4), for a rod whose `tip` is on the
     /// ground with zero normal velocity: *stick* if its normal force λ_y > 0
     /// (and, with finite μ, |λ_x| ≤ μ λ_y) and the tip is at rest; else *free*
     /// if the free tip would not accelerate into the ground; else *slide*. If
@@ -588,7 +588,7 @@ mod tests {
             torque: 0.0,
         };
         assert_eq!(b.choose_mode(&r, tip, true, &up, mu), RodMode::Free);
-        // The Painlevé-type gap of MODEL.md §4: a large uphill pull F_x that
+        // The Painlevé-type gap of docs/model.md §4: a large uphill pull F_x that
         // the pinned tip resists makes stick need λ_y < 0, while released the
         // torque drives the free tip into the ground: slide. (With ω = 0,
         // λ_y = −m d_x (τ − d × F)/I_P − F_y < 0 needs F_x < −115 N here.)

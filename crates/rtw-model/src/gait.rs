@@ -1,4 +1,4 @@
-//! Run statistics over the analysis window and the gait label (MODEL.md §5).
+//! Run statistics over the analysis window and the gait label (docs/model.md §5).
 
 use crate::geometry::Tip;
 use crate::options::LabelOptions;

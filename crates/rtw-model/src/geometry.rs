@@ -1,4 +1,4 @@
-//! Rods, tips and connection points in the slope frame (MODEL.md §2–§3).
+//! Rods, tips and connection points in the slope frame (docs/model.md §2–§3).
 //!
 //! `x` runs down the slope, `y` along its normal; the ground is `y = 0`.
 //! A rod has centre `c`, angle `θ` and unit vector `e = (cos θ, sin θ)`; its
@@ -114,7 +114,7 @@ impl RodFrame {
     }
 }
 
-/// The rest shape (MODEL.md §3): a regular six-spoked star, all centres at
+/// The rest shape (docs/model.md §3): a regular six-spoked star, all centres at
 /// `hub`, with rod angles `θ_a`, `θ_a + π/3`, `θ_a + 2π/3`, so that the spokes
 /// a+, b+, c+, a−, b−, c− go round in that angular order.
 pub fn rest_star(hub: V2, theta_a: f64) -> [RodState; 3] {

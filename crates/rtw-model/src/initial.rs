@@ -1,4 +1,4 @@
-//! The initial state (MODEL.md §6): the star standing on the slope, then
+//! The initial state (docs/model.md §6): the star standing on the slope, then
 //! pushed, turning rigidly about its front (most downhill) foot at
 //! `initial.omega`.
 //!

@@ -1,7 +1,7 @@
 //! # rtw-model
 //!
 //! The 9-DOF hybrid model of the rimless wheel-like tensegrity (RTW) of Zheng,
-//! Asano, Yan, Li and Tokuda, as specified in the project's `MODEL.md`: three
+//! Asano, Yan, Li and Tokuda, as specified in the project's `docs/model.md`: three
 //! rods joined by six Kelvin–Voigt strings, rolling down a slope, with per-rod
 //! contact modes (free, stick, slide), inelastic touchdowns and lift-offs.
 //!
@@ -10,7 +10,7 @@
 //! | module | what it computes |
 //! |---|---|
 //! | [`params`] | normalized inputs (L, ρ, α, f_n, ζ, φ) → physical (m, l_c, I, r, k, c) |
-//! | [`options`] | every modelling and numerical choice, with MODEL.md's defaults |
+//! | [`options`] | every modelling and numerical choice, with the adopted defaults (docs/model.md §9) |
 //! | [`geometry`] | rods, tips, connection points, the rest star |
 //! | [`strings`] | the hexagon of strings: forces, potential, dissipation |
 //! | [`contact`] | per-rod modes: free / stick / slide dynamics, λ, impacts, mode choice |

@@ -14,7 +14,7 @@
 //! `A = [[0, Id], [−M⁻¹K, −M⁻¹C]]` ([`approximate_modes`]).
 //!
 //! The supplementary's linearization (S7–S16) is wrong in three ways
-//! (MODEL.md §7):
+//! (docs/model.md §7):
 //!
 //! * S7–S10 write `−3/π` for the rest angle `θa − θb`; it is `−π/3`.
 //! * S1 with S5–S6 has the sign of `F` reversed: `F` is the gradient of the
@@ -83,7 +83,7 @@
 //! | 0 | 0 ×3 | 6.164 | 6.164 ×2 | 6.164 | 5.662 ×2 |
 //! | 0.85 | 0 ×3 | 2.387 | 4.674 ×2 | 6.164 | 6.759 ×2 |
 //!
-//! This confirms MODEL.md §9 (5.66 Hz ×2 = `√3 f_n` and 6.16 Hz ×4 at
+//! This confirms docs/model.md §9 (5.66 Hz ×2 = `√3 f_n` and 6.16 Hz ×4 at
 //! `s = 0`, one 6.16 Hz mode softening as `√(1 − s)`), and completes it: two
 //! more 6.16 Hz modes soften as `√(1 − s/2)` and the 5.66 Hz pair stiffens
 //! as `√(1 + s/2)`.

@@ -1,6 +1,6 @@
-//! Every choice MODEL.md leaves to configuration.
+//! Every modelling and numerical choice of docs/model.md, as options.
 //!
-//! Two named sets of modelling choices (MODEL.md §9):
+//! Two named sets of modelling choices (docs/model.md §9):
 //!
 //! * [`Options::default`], **the adopted model**
 //!   (`prestress-0.85-settled-mu0.8-slack-steps`): strings with natural length
@@ -14,7 +14,7 @@
 //!   show both failure clusters of Fig. S4, it is the closest to the
 //!   article's 1000-sample statistic within sampling error whose strings
 //!   cannot push. The natural length is fitted, not published.
-//! * [`Options::literal`]: MODEL.md §1–§6 as written, the supplementary's
+//! * [`Options::literal`]: docs/model.md §1–§6 as first written, the supplementary's
 //!   S5–S6 taken literally (zero rest length, no slip, a rigid start, any
 //!   flight makes a skip). It is the paper-faithful reconstruction; it skips
 //!   where the article walks.
@@ -46,7 +46,7 @@ pub enum MethodChoice {
     Rk4,
 }
 
-/// The initial shape of the star (MODEL.md §6).
+/// The initial shape of the star (docs/model.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum InitialShape {
@@ -79,7 +79,7 @@ pub enum CannotStand {
     Push,
 }
 
-/// How the string damper acts (MODEL.md §9, `strings.damping`).
+/// How the string damper acts (docs/model.md §9, `strings.damping`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Damping {
@@ -148,7 +148,7 @@ impl Default for ContactOptions {
     }
 }
 
-/// How a stable gait is labelled (MODEL.md §5, Table S1's row for the RTW:
+/// How a stable gait is labelled (docs/model.md §5, Table S1's row for the RTW:
 /// skipping has flight, crawling has triple support, walking neither), as
 /// config keys `labels.*`. A *step* is the time from one touchdown to the
 /// next; the per-step shares count the window's whole steps.
@@ -187,7 +187,7 @@ impl Default for LabelOptions {
 }
 
 impl LabelOptions {
-    /// MODEL.md §5 as written: any flight (then any triple support) above
+    /// docs/model.md §5 as written: any flight (then any triple support) above
     /// 1 % of the window makes the label.
     pub fn any() -> Self {
         Self {
@@ -214,7 +214,7 @@ impl LabelOptions {
     }
 }
 
-/// All simulation options (MODEL.md §4–§6, §9). The default is the adopted
+/// All simulation options (docs/model.md §4–§6, §9). The default is the adopted
 /// model, [`Options::literal`] the paper-faithful one (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -293,12 +293,12 @@ impl Default for Options {
 }
 
 /// Largest finite friction coefficient accepted: above 4/3 a uniform rod can
-/// meet the Painlevé paradox (MODEL.md §4).
+/// meet the Painlevé paradox (docs/model.md §4).
 pub const MU_MAX_FINITE: f64 = 4.0 / 3.0;
 
 impl Options {
-    /// MODEL.md §1–§6 as written (the paper-faithful reconstruction, variant
-    /// `literal`): zero-rest-length strings, no slip (μ = ∞, frictionless
+    /// The supplementary taken literally (docs/model.md §9: the
+    /// paper-faithful reconstruction, variant `literal`): zero-rest-length strings, no slip (μ = ∞, frictionless
     /// slide fallback), a rigid star started at ω = −2 rad/s.
     pub fn literal() -> Self {
         Self {

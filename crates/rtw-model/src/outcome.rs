@@ -1,8 +1,8 @@
-//! What one run produces: the gait label and every metric of MODEL.md §5.
+//! What one run produces: the gait label and every metric of docs/model.md §5.
 
 use serde::{Deserialize, Serialize};
 
-/// The outcome label of a run (MODEL.md §5).
+/// The outcome label of a run (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Label {
@@ -120,7 +120,7 @@ impl FailureDetail {
         FailureDetail::Zeno,
     ];
 
-    /// The outcome label of a run that failed this way (MODEL.md §5):
+    /// The outcome label of a run that failed this way (docs/model.md §5):
     /// collapse, stall, or diverged for a numerical failure.
     pub fn label(self) -> Label {
         match self {
@@ -203,7 +203,7 @@ pub struct ContactFractions {
     pub tlsp: f64,
 }
 
-/// How the star stood before the push (`initial.shape`, MODEL.md §6).
+/// How the star stood before the push (`initial.shape`, docs/model.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Stance {
@@ -279,7 +279,7 @@ impl From<crate::hybrid::Work> for IntegratorWork {
     }
 }
 
-/// Everything one run measures (MODEL.md §5).
+/// Everything one run measures (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     pub label: Label,

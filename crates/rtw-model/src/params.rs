@@ -1,5 +1,5 @@
 //! Normalized inputs (L, ρ, α, f_n, ζ, φ) and the physical parameters they
-//! give (MODEL.md §1, supplementary S19–S22).
+//! give (docs/model.md §1, supplementary S19–S22).
 
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -37,7 +37,7 @@ pub(crate) fn check(
     }
 }
 
-/// The six normalized inputs of one sample (MODEL.md §1).
+/// The six normalized inputs of one sample (docs/model.md §1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Params {
     /// Rod length `L` [m].
@@ -89,7 +89,7 @@ impl Params {
         }
     }
 
-    /// MODEL.md §1: L > 0, ρ > 0, 0 ≤ α < 0.5, f_n > 0, ζ ≥ 0, |φ| < π/2, all finite.
+    /// docs/model.md §1: L > 0, ρ > 0, 0 ≤ α < 0.5, f_n > 0, ζ ≥ 0, |φ| < π/2, all finite.
     pub fn validate(&self) -> Result<(), ParamError> {
         check("length", self.length, "finite and > 0 (m)", |v| v > 0.0)?;
         check("rho", self.rho, "finite and > 0 (kg/m)", |v| v > 0.0)?;
@@ -105,7 +105,7 @@ impl Params {
     }
 }
 
-/// How (f_n, ζ) map to (k, c) (MODEL.md §9, `normalization`).
+/// How (f_n, ζ) map to (k, c) (docs/model.md §9, `normalization`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Normalization {
@@ -154,7 +154,7 @@ impl Physical {
         let (k, c) = match normalization {
             Normalization::Supplementary => (k_supp, c_supp),
             // The rotor mode has stiffness 3 k r² and decay rate 9 c r² / (4 I)
-            // (MODEL.md §7): match ω = 2π f_n and σ/ω = ζ.
+            // (docs/model.md §7): match ω = 2π f_n and σ/ω = ζ.
             Normalization::Eigen => (
                 k_supp / 3.0,
                 4.0 * inertia * p.zeta * 2.0 * PI * p.f_n / (9.0 * r * r),
@@ -192,7 +192,7 @@ mod tests {
 
     #[test]
     fn fig7a_test_vector() {
-        // MODEL.md §1: the article's round numbers.
+        // docs/model.md §1: the article's round numbers.
         let ph = Physical::new(&Params::fig7a(), Normalization::Supplementary, 9.81);
         assert!((ph.m - 2.0).abs() < 1e-12);
         assert!((ph.l_c - 0.1).abs() < 1e-12);

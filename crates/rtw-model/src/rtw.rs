@@ -1,4 +1,4 @@
-//! The RTW as a hybrid system (MODEL.md §2–§5): continuous dynamics of the
+//! The RTW as a hybrid system (docs/model.md §2–§5): continuous dynamics of the
 //! three rods in their contact modes, the guards that end a mode, and the
 //! resets (touchdown, lift-off, re-stick, slip, failure).
 //!
@@ -469,7 +469,7 @@ impl Rtw {
     }
 
     /// The largest friction ratio |λ_x|/λ_y over the sticking rods whose
-    /// normal force exceeds 5 % of a rod's weight (MODEL.md §4's
+    /// normal force exceeds 5 % of a rod's weight (docs/model.md §4's
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
     pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
         // Only sticking rods count: without one, no contact force is needed.

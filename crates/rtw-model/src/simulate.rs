@@ -1,5 +1,5 @@
 //! `simulate(params, options) -> Outcome`: one run of the RTW on the hybrid
-//! engine, with the statistics of MODEL.md §5 gathered as it goes.
+//! engine, with the statistics of docs/model.md §5 gathered as it goes.
 
 use crate::gait::{self, GaitStats, Settled};
 use crate::geometry::V2;

@@ -111,7 +111,7 @@ pub struct Step {
 }
 
 impl Step {
-    /// The gait label of `steps` together (MODEL.md §5).
+    /// The gait label of `steps` together (docs/model.md §5).
     pub fn label(steps: &[Step], labels: &LabelOptions) -> Label {
         let shares = crate::gait::step_shares(steps.iter().map(|s| &s.state_time), labels);
         crate::gait::label(&Step::fractions(steps), &shares, labels)
@@ -601,7 +601,7 @@ impl LimitCycle {
         self.floquet_max() < 1.0
     }
 
-    /// The gait label of the orbit's contact fractions and steps (MODEL.md §5).
+    /// The gait label of the orbit's contact fractions and steps (docs/model.md §5).
     pub fn label(&self, labels: &LabelOptions) -> Label {
         Step::label(&self.steps, labels)
     }

@@ -1,4 +1,4 @@
-//! The hexagon of six massless Kelvin–Voigt strings (MODEL.md §3, §9).
+//! The hexagon of six massless Kelvin–Voigt strings (docs/model.md §3, §9).
 //!
 //! String `j` joins spoke `j` to spoke `j+1` of [`SPOKES`] (a+–b+, b+–c+,
 //! c+–a−, a−–b−, b−–c−, c−–a+), between the connection points `c ± r e`.
@@ -135,7 +135,7 @@ mod tests {
     }
 
     /// Generalized forces of the approximate model (common fixed centre),
-    /// S5–S6 with the sign of MODEL.md §3 (M q̈ = −F).
+    /// S5–S6 with the sign of docs/model.md §3 (M q̈ = −F).
     fn s5_s6(k: f64, c: f64, r: f64, th: [f64; 3], w: [f64; 3]) -> [f64; 3] {
         let [a, b, cc] = th;
         let [da, db, dc] = w;

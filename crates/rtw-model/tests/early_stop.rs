@@ -2,7 +2,7 @@
 //! map has converged measures the same gait as the full-length run.
 use rtw_model::{Label, Options, Params, simulate};
 
-/// The literal model (MODEL.md §1–§6) with rest-length ratio `s`.
+/// The literal model (docs/model.md §9) with rest-length ratio `s`.
 fn options(s: f64, stop: bool) -> Options {
     let mut o = Options {
         stop_when_settled: stop,
@@ -14,7 +14,7 @@ fn options(s: f64, stop: bool) -> Options {
 
 #[test]
 fn a_settled_walk_stops_early_with_the_full_runs_statistics() {
-    // Fig. 7(a) with prestressed strings walks with period 1 (MODEL.md §9).
+    // Fig. 7(a) with prestressed strings walks with period 1 (docs/model.md §9).
     let full = simulate(&Params::fig7a(), &options(0.85, false));
     let early = simulate(&Params::fig7a(), &options(0.85, true));
     assert_eq!((full.label, full.period), (Label::Walk, 1));

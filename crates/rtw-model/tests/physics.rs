@@ -266,7 +266,7 @@ fn fig7a_options() -> Options {
 
 #[test]
 fn fig7a_runs_without_divergence_and_yields_a_stable_gait() {
-    // MODEL.md §9: with the default variant (zero rest length) the Fig. 7(a)
+    // docs/model.md §9: with the literal model (zero rest length) the Fig. 7(a)
     // point skips; with s = 0.85 it walks. Both must be stable and finite.
     // The reference is that independent implementation's measurement: at
     // s = 0 ≈ 35–40 % flight, ≈ 5 % double support, ≈ 0.9 m/s, chaotic; at
@@ -450,7 +450,7 @@ fn adopted_default_walks_at_fig7a_within_its_friction_cone() {
     let out = simulate(&Params::fig7a(), &tight);
     let scale = out.energy.gravity_released.abs().max(1.0);
     assert!(out.energy.balance_error.abs() < 1e-6 * scale, "{out:?}");
-    // And the literal variant does not walk there (MODEL.md §9).
+    // And the literal variant does not walk there (docs/model.md §9).
     assert_eq!(
         simulate(&Params::fig7a(), &Options::literal()).label,
         Label::Skip

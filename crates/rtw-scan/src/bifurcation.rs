@@ -15,8 +15,8 @@
 //! diverged) or, when the map itself stopped, `failure` ([`PointLabel`]),
 //! and its reason.
 //!
-//! Output: `FILE.parquet`, one row per parameter value ([`POINT_COLUMNS`]),
-//! and `FILE.steps.parquet`, one row per recorded step ([`STEP_COLUMNS`]),
+//! Output: `FILE.parquet`, one row per parameter value ([`points_schema`]),
+//! and `FILE.steps.parquet`, one row per recorded step ([`steps_schema`]),
 //! with the resolved options, the swept parameter and the base point in the
 //! metadata; and a markdown summary ([`summary_markdown`]).
 
@@ -27,7 +27,7 @@ use arrow::array::{
     ArrayRef, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array, RecordBatch,
     StringArray,
 };
-use arrow::datatypes::{DataType, Field, Int32Type, Schema};
+use arrow::datatypes::{DataType, Field, Int32Type, Schema, SchemaRef};
 use parquet::file::metadata::KeyValue;
 use rtw_model::limit;
 use rtw_model::stepmap::{
@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-/// The parameters a sweep can vary: the six inputs of MODEL.md §1 and `s`,
+/// The parameters a sweep can vary: the six inputs of docs/model.md §1 and `s`,
 /// the strings' rest-length ratio (`strings.rest_length_ratio`).
 pub const SWEEP_KEYS: [&str; 7] = ["length", "rho", "alpha", "fn", "zeta", "phi", "s"];
 
@@ -301,7 +301,7 @@ fn solve_minimal(
     let lc = map.solve(start, n, cycle)?;
     let p = &lc.orbit[0];
     let scale = map.coord_scale(p);
-    let shorter = (1..n).filter(|d| n % d == 0).find(|&d| {
+    let shorter = (1..n).filter(|d| n.is_multiple_of(*d)).find(|&d| {
         let q = &lc.orbit[d];
         q.modes == p.modes
             && limit::scaled_max(&q.coords(), &p.coords(), &scale) <= cycle.period_tol
@@ -418,37 +418,174 @@ pub fn run_sweep(
     (points, step_rows)
 }
 
-/// Column names of the per-value file (the swept parameter's column is
-/// `value`; its name is in the metadata and the `param` column).
-pub const POINT_COLUMNS: [&str; 16] = [
-    "param",
-    "value",
-    "label",
-    "period",
-    "floquet_max",
-    "mu_re",
-    "mu_im",
-    "stable",
-    "restarted",
-    "residual",
-    "newton_iterations",
-    "newton_error",
-    "failure",
-    "transient",
-    "record",
-    "wall_time_s",
-];
+/// One column of a bifurcation file: name, Arrow type, nullable, unit,
+/// description (the last two go to the field metadata, [`crate::dictionary`]).
+type ColumnDef = (&'static str, DataType, bool, &'static str, &'static str);
 
-/// Column names of the per-step file.
-pub const STEP_COLUMNS: [&str; 7] = [
-    "param",
-    "value",
-    "k",
-    "omega",
-    "step_time",
-    "advance",
-    "label",
-];
+const PARAM: &str = "the swept parameter's name (length, rho, alpha, fn, zeta, phi or s)";
+const VALUE: &str =
+    "the swept parameter's value, in its unit in samples.parquet (s = rest_length_ratio: 1)";
+const VALUE_UNIT: &str = "as param";
+
+/// The per-value file's columns (`FILE.parquet`), in file order.
+fn point_columns() -> [ColumnDef; 16] {
+    use DataType::{Boolean, Float64, Int64, Utf8};
+    [
+        ("param", Utf8, false, "-", PARAM),
+        ("value", Float64, false, VALUE_UNIT, VALUE),
+        (
+            "label",
+            output::label_type(),
+            false,
+            "-",
+            "gait or failure at this value; failure: the step map stopped (no new foot landed)",
+        ),
+        (
+            "period",
+            Int64,
+            true,
+            "1",
+            "period of the solved cycle in steps; null: no period found (chaotic or failure)",
+        ),
+        (
+            "floquet_max",
+            Float64,
+            true,
+            "1",
+            "largest Floquet multiplier modulus of the solved cycle (< 1: stable)",
+        ),
+        (
+            "mu_re",
+            Float64,
+            true,
+            "1",
+            "real part of the largest multiplier (−1: period doubling, +1: fold)",
+        ),
+        (
+            "mu_im",
+            Float64,
+            true,
+            "1",
+            "imaginary part of the largest multiplier (a complex pair: Neimark–Sacker)",
+        ),
+        ("stable", Boolean, true, "-", "floquet_max < 1"),
+        (
+            "restarted",
+            Boolean,
+            false,
+            "-",
+            "the map failed from the continued point and this value started again from the initial state",
+        ),
+        (
+            "residual",
+            Float64,
+            true,
+            "1",
+            "Newton's scaled residual |Pⁿ(z) − z| at the fixed point",
+        ),
+        (
+            "newton_iterations",
+            Int64,
+            true,
+            "1",
+            "Newton iterations to the fixed point",
+        ),
+        (
+            "newton_error",
+            Utf8,
+            true,
+            "-",
+            "why Newton found no fixed point although the iterates were periodic",
+        ),
+        (
+            "failure",
+            Utf8,
+            true,
+            "-",
+            "why the step map failed at this value",
+        ),
+        (
+            "transient",
+            Int64,
+            false,
+            "1",
+            "steps iterated before recording (--transient)",
+        ),
+        ("record", Int64, false, "1", "steps recorded (--record)"),
+        (
+            "wall_time_s",
+            Float64,
+            false,
+            "s",
+            "wall-clock time of this value (machine-dependent)",
+        ),
+    ]
+}
+
+/// The per-step file's columns (`FILE.steps.parquet`), in file order.
+fn step_columns() -> [ColumnDef; 7] {
+    use DataType::{Float64, Int64, Utf8};
+    [
+        ("param", Utf8, false, "-", PARAM),
+        ("value", Float64, false, VALUE_UNIT, VALUE),
+        (
+            "k",
+            Int64,
+            false,
+            "-",
+            "index among the recorded steps (0 … record − 1)",
+        ),
+        (
+            "omega",
+            Float64,
+            false,
+            "rad/s",
+            "post-impact angular velocity of the new stance rod",
+        ),
+        (
+            "step_time",
+            Float64,
+            false,
+            "s",
+            "time from the previous section crossing",
+        ),
+        (
+            "advance",
+            Float64,
+            false,
+            "m",
+            "downhill advance of the landing foot",
+        ),
+        (
+            "label",
+            output::label_type(),
+            false,
+            "-",
+            "the value's label (as in FILE.parquet)",
+        ),
+    ]
+}
+
+fn schema_of(columns: impl IntoIterator<Item = ColumnDef>) -> SchemaRef {
+    let fields: Vec<Field> = columns
+        .into_iter()
+        .map(|(n, t, null, unit, description)| {
+            crate::dictionary::field(n, t, null, unit, description)
+        })
+        .collect();
+    Arc::new(Schema::new(fields))
+}
+
+/// The schema of the per-value file `FILE.parquet`: one row per value.
+pub fn points_schema() -> SchemaRef {
+    schema_of(point_columns())
+}
+
+/// The schema of the per-step file `FILE.steps.parquet`: one row per
+/// recorded step.
+pub fn steps_schema() -> SchemaRef {
+    schema_of(step_columns())
+}
 
 fn f64s(it: impl Iterator<Item = Option<f64>>) -> ArrayRef {
     Arc::new(it.collect::<Float64Array>())
@@ -458,17 +595,7 @@ fn i64s(it: impl Iterator<Item = Option<i64>>) -> ArrayRef {
     Arc::new(it.collect::<Int64Array>())
 }
 
-fn batch(fields: Vec<(&str, DataType, bool)>, arrays: Vec<ArrayRef>) -> RecordBatch {
-    let schema = Schema::new(
-        fields
-            .into_iter()
-            .map(|(n, t, null)| Field::new(n, t, null))
-            .collect::<Vec<_>>(),
-    );
-    RecordBatch::try_new(Arc::new(schema), arrays).expect("arrays match the schema")
-}
-
-/// Per-value rows → a record batch with [`POINT_COLUMNS`].
+/// Per-value rows → a record batch of [`points_schema`].
 pub fn points_batch(sweep: &Sweep, rows: &[PointRow]) -> RecordBatch {
     let name = sweep.param.name();
     let n = rows.len();
@@ -502,34 +629,10 @@ pub fn points_batch(sweep: &Sweep, rows: &[PointRow]) -> RecordBatch {
         i64s(rows.iter().map(|_| Some(sweep.record as i64))),
         f64s(rows.iter().map(|r| Some(r.wall_time_s))),
     ];
-    use DataType::{Boolean, Float64, Int64, Utf8};
-    let types = [
-        (Utf8, false),
-        (Float64, false),
-        (output::label_type(), false),
-        (Int64, true),
-        (Float64, true),
-        (Float64, true),
-        (Float64, true),
-        (Boolean, true),
-        (Boolean, false),
-        (Float64, true),
-        (Int64, true),
-        (Utf8, true),
-        (Utf8, true),
-        (Int64, false),
-        (Int64, false),
-        (Float64, false),
-    ];
-    let fields = POINT_COLUMNS
-        .iter()
-        .zip(types)
-        .map(|(c, (t, null))| (*c, t, null))
-        .collect();
-    batch(fields, arrays)
+    RecordBatch::try_new(points_schema(), arrays).expect("arrays match the schema")
 }
 
-/// Per-step rows → a record batch with [`STEP_COLUMNS`].
+/// Per-step rows → a record batch of [`steps_schema`].
 pub fn steps_batch(sweep: &Sweep, rows: &[StepRow]) -> RecordBatch {
     let name = sweep.param.name();
     let arrays: Vec<ArrayRef> = vec![
@@ -544,22 +647,7 @@ pub fn steps_batch(sweep: &Sweep, rows: &[StepRow]) -> RecordBatch {
         f64s(rows.iter().map(|r| Some(r.advance))),
         label_array(rows.iter().map(|r| r.label)),
     ];
-    use DataType::{Float64, Int64, Utf8};
-    let types = [
-        Utf8,
-        Float64,
-        Int64,
-        Float64,
-        Float64,
-        Float64,
-        output::label_type(),
-    ];
-    let fields = STEP_COLUMNS
-        .iter()
-        .zip(types)
-        .map(|(c, t)| (*c, t, false))
-        .collect();
-    batch(fields, arrays)
+    RecordBatch::try_new(steps_schema(), arrays).expect("arrays match the schema")
 }
 
 /// Metadata key: the swept parameter.

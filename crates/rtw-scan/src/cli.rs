@@ -61,7 +61,7 @@ enum Command {
     /// Simulate one RTW and print its outcome and every metric.
     #[command(
         long_about = "Simulate one RTW and print its outcome and every metric.\n\n\
-        The simulation options come from the [simulation] table of --config (default: MODEL.md's defaults) and \
+        The simulation options come from the [simulation] table of --config (default: the adopted model, docs/model.md §9) and \
         then the --set overrides, e.g. --set initial.omega=-3 --set contact.mu=0.8 --set strings.slack=true \
         --set method=dop853. Values are read as TOML values (inf, true, \"text\"); a value that is not one is taken \
         as a string."

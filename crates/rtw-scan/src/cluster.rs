@@ -1,4 +1,4 @@
-//! k-means clustering of the failed samples (MODEL.md §8, Fig. S4).
+//! k-means clustering of the failed samples (docs/model.md §8, Fig. S4).
 //!
 //! The failures (labels `collapse` and `stall`) are clustered on their
 //! standardized (α, f_n, φ) with k-means: k-means++ starts from a ChaCha8

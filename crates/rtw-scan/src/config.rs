@@ -16,14 +16,14 @@
 //! [cluster]
 //! k = 2                     # default 2
 //!
-//! [simulation]              # rtw_model::Options, every key of MODEL.md
+//! [simulation]              # rtw_model::Options, every key of docs/model.md §9
 //! t_max = 20.0
 //! contact.mu = 0.8
 //! ```
 //!
 //! Unknown keys are refused everywhere, and every error names the key path,
 //! the offending value and what is allowed. Every parameter value a scan can
-//! produce is checked against MODEL.md §1 up front (fixed values, both ends of
+//! produce is checked against docs/model.md §1 up front (fixed values, both ends of
 //! a uniform range, every grid point): the valid sets are intervals, so a
 //! range whose ends are valid only yields valid samples.
 
@@ -346,7 +346,7 @@ fn layer_variant_and_sets(
 }
 
 /// The simulation options of a single model (`simulate`, `bifurcation`):
-/// the `[simulation]` table of `config_file` (default: MODEL.md's defaults),
+/// the `[simulation]` table of `config_file` (default: the adopted model, docs/model.md §9),
 /// then a variant file, then the `--set` overrides, validated.
 pub fn simulation_options(
     config_file: Option<&Path>,
@@ -444,7 +444,7 @@ pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
     Ok(options)
 }
 
-/// Checks one value of parameter `index` against MODEL.md §1 via
+/// Checks one value of parameter `index` against docs/model.md §1 via
 /// [`Params::validate`] (the ranges live in rtw-model only).
 pub fn check_param(index: usize, value: f64) -> Result<(), ParamError> {
     let mut p = Params::fig7a();
@@ -555,7 +555,7 @@ impl ScanConfig {
         config_hash(&self.to_toml())
     }
 
-    /// Is this the article's 1000-sample scan (MODEL.md §8: L = 0.8 and the
+    /// Is this the article's 1000-sample scan (docs/model.md §8: L = 0.8 and the
     /// stated uniform ranges), whatever the sample count, seed or variant?
     pub fn is_paper_scan(&self) -> bool {
         let u = |lo, hi| Axis::Uniform { lo, hi };
@@ -587,7 +587,7 @@ pub fn config_hash(toml_text: &str) -> String {
     format!("{:016x}", fnv1a64(toml_text.as_bytes()))
 }
 
-/// The model variant of MODEL.md §9 that a run used: every open choice.
+/// The model variant of docs/model.md §9 that a run used: every open choice.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Variant {
     pub rest_length_ratio: f64,

@@ -2,7 +2,7 @@
 //! machinery (determinism, resume, panics → `diverged`) without physics.
 //!
 //! Reachable from the binary only through the hidden `--fake-sim MS` flag.
-//! Its labels are crude functions of the parameters shaped like MODEL.md §8's
+//! Its labels are crude functions of the parameters shaped like docs/model.md §8's
 //! picture (small α with low f_n collapses, small φ stalls); they mean
 //! nothing physically. It panics for `rho > 4.75` and returns a numerical
 //! `diverged` for `rho < 1.1`, so scans over ρ ∈ [1, 5] exercise both paths.

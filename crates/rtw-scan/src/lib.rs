@@ -13,6 +13,7 @@
 //! | [`run`] | parallel chunks, durable parts, resume, panics → `diverged` rows |
 //! | [`shard`] | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | [`output`] | the row schema; Parquet, JSON and text forms; trace files |
+//! | [`dictionary`] | every Parquet column's unit and meaning (field metadata, docs/data-dictionary.md) |
 //! | [`cluster`] | k-means++ of (a bounded sample of) the failures, silhouette, naming by kind |
 //! | [`report`] | shares with Wilson intervals, paper numbers, summary files |
 //! | [`bifurcation`] | one parameter swept with continuation on the step map: `bifurcation` |
@@ -39,6 +40,7 @@ pub mod bifurcation;
 pub mod cli;
 pub mod cluster;
 pub mod config;
+pub mod dictionary;
 pub mod fake;
 pub mod output;
 pub mod report;

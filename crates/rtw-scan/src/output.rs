@@ -14,6 +14,7 @@
 
 use crate::cluster::{Failure, FailureClusters};
 use crate::config::{ScanConfig, Variant};
+use crate::dictionary;
 use anyhow::{Context, Result, anyhow, bail};
 use arrow::array::{
     Array, ArrayRef, AsArray, DictionaryArray, Float64Array, Int8Array, Int32Array, Int64Array,
@@ -122,78 +123,148 @@ pub struct Column {
     /// Section of the `simulate` text table.
     pub group: &'static str,
     pub nullable: bool,
+    /// Unit (`1`: dimensionless, `-`: not a quantity), written to the Arrow
+    /// field metadata and docs/data-dictionary.md ([`crate::dictionary`]).
+    pub unit: &'static str,
+    pub description: &'static str,
     pub get: Get,
 }
 
-const fn input(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
+/// A float column of `group`.
+const fn float(
+    name: &'static str,
+    group: &'static str,
+    nullable: bool,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column {
     Column {
         name,
-        group: "input",
-        nullable: false,
+        group,
+        nullable,
+        unit,
+        description,
         get: Get::F64(get),
     }
 }
-const fn derived(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
-    Column {
-        name,
-        group: "derived",
-        nullable: false,
-        get: Get::F64(get),
-    }
+const fn input(
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column {
+    float(name, "input", false, unit, description, get)
 }
-const fn metric(name: &'static str, get: fn(&Row) -> Option<f64>) -> Column {
-    Column {
-        name,
-        group: "metric",
-        nullable: true,
-        get: Get::F64(get),
-    }
+const fn derived(
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column {
+    float(name, "derived", false, unit, description, get)
 }
-const fn count(name: &'static str, group: &'static str, get: fn(&Row) -> Option<i64>) -> Column {
+/// Null when the sample panicked.
+const fn metric(
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column {
+    float(name, "metric", true, unit, description, get)
+}
+const fn count(
+    name: &'static str,
+    group: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<i64>,
+) -> Column {
     Column {
         name,
         group,
         nullable: true,
+        unit: "1",
+        description,
         get: Get::I64(get),
     }
 }
 
-/// Every column of a scan row, in file order.
+/// Every column of a scan row, in file order. Metrics and counts are null in
+/// a row whose sample panicked (its `message` says why).
 pub static COLUMNS: &[Column] = &[
     Column {
         name: "sample_id",
         group: "id",
         nullable: false,
+        unit: "-",
+        description: "sample index; the row depends only on (seed, sample_id)",
         get: Get::I64(|r| Some(r.sample_id as i64)),
     },
-    input("length", |r| Some(r.params.length)),
-    input("rho", |r| Some(r.params.rho)),
-    input("alpha", |r| Some(r.params.alpha)),
-    input("fn", |r| Some(r.params.f_n)),
-    input("zeta", |r| Some(r.params.zeta)),
-    input("phi", |r| Some(r.params.phi)),
-    derived("m", |r| Some(r.physical.m)),
-    derived("l_c", |r| Some(r.physical.l_c)),
-    derived("inertia", |r| Some(r.physical.inertia)),
-    derived("r", |r| Some(r.physical.r)),
-    derived("k", |r| Some(r.physical.k)),
-    derived("c", |r| Some(r.physical.c)),
+    input("length", "m", "rod length L", |r| Some(r.params.length)),
+    input("rho", "kg/m", "mass per length ρ of a rod", |r| {
+        Some(r.params.rho)
+    }),
+    input(
+        "alpha",
+        "1",
+        "connection ratio α: each string end sits α·L from a rod's tip",
+        |r| Some(r.params.alpha),
+    ),
+    input(
+        "fn",
+        "Hz",
+        "eigen-frequency f_n of the normalization (docs/model.md §1; the true mode is √3·f_n, §7)",
+        |r| Some(r.params.f_n),
+    ),
+    input("zeta", "1", "damping ratio ζ of the normalization", |r| {
+        Some(r.params.zeta)
+    }),
+    input("phi", "rad", "slope angle φ", |r| Some(r.params.phi)),
+    derived("m", "kg", "rod mass m = ρ L", |r| Some(r.physical.m)),
+    derived(
+        "l_c",
+        "m",
+        "connection offset from each tip l_c = α L",
+        |r| Some(r.physical.l_c),
+    ),
+    derived(
+        "inertia",
+        "kg·m²",
+        "rod inertia about its centre I = m L²/12",
+        |r| Some(r.physical.inertia),
+    ),
+    derived("r", "m", "connection radius r = L/2 − l_c", |r| {
+        Some(r.physical.r)
+    }),
+    derived("k", "N/m", "string stiffness k", |r| Some(r.physical.k)),
+    derived("c", "N·s/m", "string damping coefficient c", |r| {
+        Some(r.physical.c)
+    }),
     Column {
         name: "outcome",
         group: "outcome",
         nullable: false,
+        unit: "-",
+        description: "gait (skip, walk, crawl) or failure (collapse, stall, diverged), docs/model.md §5",
         get: Get::Label,
     },
     Column {
         name: "failure",
         group: "outcome",
         nullable: true,
+        unit: "-",
+        description: "why the run failed (rod_down, com_low, no_standing_equilibrium, standing_rod_down, \
+                      standing_com_low, standing_rolls_away, no_touchdown, no_progress, non_finite, \
+                      step_underflow, work_budget, zeno); null for a gait",
         get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())),
     },
     Column {
         name: "message",
         group: "outcome",
         nullable: true,
+        unit: "-",
+        description: "the error message of a sample that panicked (outcome diverged), else what its \
+                      failure means in words; null for a gait",
         // A panic's message, else what the failure means in words.
         get: Get::Str(|r| {
             r.message.as_deref().or_else(|| {
@@ -207,70 +278,186 @@ pub static COLUMNS: &[Column] = &[
         name: "start",
         group: "outcome",
         nullable: true,
+        unit: "-",
+        description: "how the star stood before the push: two_feet, three_feet (static equilibrium), \
+                      rest_shape (not in equilibrium), docs/model.md §6",
         get: Get::Str(|r| r.outcome.map(|o| o.start.as_str())),
     },
-    metric("t_end", |r| r.outcome.map(|o| o.t_end)),
-    metric("nlsp", |r| r.outcome.map(|o| o.fractions.nlsp)),
-    metric("slsp", |r| r.outcome.map(|o| o.fractions.slsp)),
-    metric("dlsp", |r| r.outcome.map(|o| o.fractions.dlsp)),
-    metric("tlsp", |r| r.outcome.map(|o| o.fractions.tlsp)),
-    count("window_steps", "metric", |r| {
-        r.outcome.map(|o| o.step_shares.steps as i64)
-    }),
-    metric("flight_steps", |r| r.outcome.map(|o| o.step_shares.flight)),
-    metric("triple_steps", |r| r.outcome.map(|o| o.step_shares.triple)),
-    count("touchdowns", "metric", |r| {
-        r.outcome.map(|o| o.touchdowns as i64)
-    }),
-    metric("f_w", |r| r.outcome.map(|o| o.f_w)),
-    metric("f_w_newfoot", |r| r.outcome.map(|o| o.f_w_newfoot)),
-    metric("speed", |r| r.outcome.map(|o| o.speed)),
-    metric("mu_required", |r| r.outcome.map(|o| o.mu_required)),
-    metric("slide_time", |r| r.outcome.map(|o| o.slide_time)),
-    metric("energy_initial", |r| r.outcome.map(|o| o.energy.initial)),
-    metric("energy_last", |r| r.outcome.map(|o| o.energy.last)),
-    metric("energy_gravity_released", |r| {
-        r.outcome.map(|o| o.energy.gravity_released)
-    }),
-    metric("energy_impact_loss", |r| {
-        r.outcome.map(|o| o.energy.impact_loss)
-    }),
-    metric("energy_damping_loss", |r| {
-        r.outcome.map(|o| o.energy.damping_loss)
-    }),
-    metric("energy_friction_loss", |r| {
-        r.outcome.map(|o| o.energy.friction_loss)
-    }),
-    metric("energy_balance_error", |r| {
-        r.outcome.map(|o| o.energy.balance_error)
-    }),
+    metric(
+        "t_end",
+        "s",
+        "simulated time at the end of the run (t_max unless it failed or settled early)",
+        |r| r.outcome.map(|o| o.t_end),
+    ),
+    metric(
+        "nlsp",
+        "1",
+        "fraction of the analysis window with no foot on the ground (flight)",
+        |r| r.outcome.map(|o| o.fractions.nlsp),
+    ),
+    metric(
+        "slsp",
+        "1",
+        "fraction of the analysis window with one rod on the ground",
+        |r| r.outcome.map(|o| o.fractions.slsp),
+    ),
+    metric(
+        "dlsp",
+        "1",
+        "fraction of the analysis window with two rods on the ground",
+        |r| r.outcome.map(|o| o.fractions.dlsp),
+    ),
+    metric(
+        "tlsp",
+        "1",
+        "fraction of the analysis window with three rods on the ground",
+        |r| r.outcome.map(|o| o.fractions.tlsp),
+    ),
+    count(
+        "window_steps",
+        "metric",
+        "whole steps (one new foot's touchdown to the next) in the analysis window",
+        |r| r.outcome.map(|o| o.step_shares.steps as i64),
+    ),
+    metric(
+        "flight_steps",
+        "1",
+        "share of the window's steps whose own flight fraction exceeds labels.flight (docs/model.md §5)",
+        |r| r.outcome.map(|o| o.step_shares.flight),
+    ),
+    metric(
+        "triple_steps",
+        "1",
+        "share of the window's steps whose own triple-support fraction exceeds labels.triple",
+        |r| r.outcome.map(|o| o.step_shares.triple),
+    ),
+    count(
+        "touchdowns",
+        "metric",
+        "touchdowns over the whole run",
+        |r| r.outcome.map(|o| o.touchdowns as i64),
+    ),
+    metric(
+        "f_w",
+        "Hz",
+        "step frequency: touchdowns per second over the analysis window",
+        |r| r.outcome.map(|o| o.f_w),
+    ),
+    metric(
+        "f_w_newfoot",
+        "Hz",
+        "touchdowns of a tip other than the one that rod last landed on, per second over the analysis window",
+        |r| r.outcome.map(|o| o.f_w_newfoot),
+    ),
+    metric(
+        "speed",
+        "m/s",
+        "mean downhill speed of the centre of mass over the analysis window",
+        |r| r.outcome.map(|o| o.speed),
+    ),
+    metric(
+        "mu_required",
+        "1",
+        "largest |λ_x|/λ_y while a rod sticks with λ_y > 0.05 m g, over the analysis window (docs/model.md §4)",
+        |r| r.outcome.map(|o| o.mu_required),
+    ),
+    metric(
+        "slide_time",
+        "s",
+        "rod-seconds spent sliding over the whole run",
+        |r| r.outcome.map(|o| o.slide_time),
+    ),
+    metric(
+        "energy_initial",
+        "J",
+        "total energy at the start (kinetic, string and gravity potential)",
+        |r| r.outcome.map(|o| o.energy.initial),
+    ),
+    metric(
+        "energy_last",
+        "J",
+        "total energy at the end of the run",
+        |r| r.outcome.map(|o| o.energy.last),
+    ),
+    metric(
+        "energy_gravity_released",
+        "J",
+        "potential energy of gravity released over the run",
+        |r| r.outcome.map(|o| o.energy.gravity_released),
+    ),
+    metric(
+        "energy_impact_loss",
+        "J",
+        "energy lost in touchdown impacts",
+        |r| r.outcome.map(|o| o.energy.impact_loss),
+    ),
+    metric(
+        "energy_damping_loss",
+        "J",
+        "energy dissipated by the string dampers",
+        |r| r.outcome.map(|o| o.energy.damping_loss),
+    ),
+    metric(
+        "energy_friction_loss",
+        "J",
+        "work of sliding friction (finite μ only)",
+        |r| r.outcome.map(|o| o.energy.friction_loss),
+    ),
+    metric(
+        "energy_balance_error",
+        "J",
+        "energy_last + the three losses − energy_initial: zero up to integration error",
+        |r| r.outcome.map(|o| o.energy.balance_error),
+    ),
     // From the step map's Newton solution when the run asked for its limit
     // cycle (`limit_cycle = true`) and one was found, else from the
     // touchdown return times.
-    count("period", "metric", |r| {
-        r.outcome
-            .map(|o| i64::from(o.cycle.map_or(o.period, |c| c.period)))
+    count(
+        "period",
+        "metric",
+        "period of the gait in steps (0: none found); from the step map with limit_cycle = true, \
+         else from the touchdown return map",
+        |r| {
+            r.outcome
+                .map(|o| i64::from(o.cycle.map_or(o.period, |c| c.period)))
+        },
+    ),
+    metric(
+        "floquet_max",
+        "1",
+        "largest Floquet multiplier modulus of the gait's limit cycle (< 1: stable); null unless limit_cycle = true found one",
+        |r| r.outcome.and_then(|o| o.cycle).map(|c| c.floquet_max),
+    ),
+    metric(
+        "cycle_residual",
+        "1",
+        "scaled Newton residual |Pⁿ(z) − z| of the limit cycle's fixed point; null as floquet_max",
+        |r| r.outcome.and_then(|o| o.cycle).map(|c| c.residual),
+    ),
+    count("steps", "work", "accepted integrator steps", |r| {
+        r.outcome.map(|o| o.work.steps as i64)
     }),
-    metric("floquet_max", |r| {
-        r.outcome.and_then(|o| o.cycle).map(|c| c.floquet_max)
-    }),
-    metric("cycle_residual", |r| {
-        r.outcome.and_then(|o| o.cycle).map(|c| c.residual)
-    }),
-    count("steps", "work", |r| r.outcome.map(|o| o.work.steps as i64)),
-    count("rejected", "work", |r| {
+    count("rejected", "work", "rejected integrator steps", |r| {
         r.outcome.map(|o| o.work.rejected as i64)
     }),
-    count("rhs_evals", "work", |r| {
-        r.outcome.map(|o| o.work.rhs_evals as i64)
-    }),
-    count("events", "work", |r| {
-        r.outcome.map(|o| o.work.events as i64)
-    }),
+    count(
+        "rhs_evals",
+        "work",
+        "right-hand-side evaluations (the machine-independent work)",
+        |r| r.outcome.map(|o| o.work.rhs_evals as i64),
+    ),
+    count(
+        "events",
+        "work",
+        "events located (touchdowns, lift-offs, mode switches)",
+        |r| r.outcome.map(|o| o.work.events as i64),
+    ),
     Column {
         name: "wall_time_s",
         group: "work",
         nullable: false,
+        unit: "s",
+        description: "wall-clock time of this sample's simulation (machine-dependent)",
         get: Get::F64(|r| Some(r.wall_time_s)),
     },
 ];
@@ -290,7 +477,7 @@ static SCHEMA: LazyLock<SchemaRef> = LazyLock::new(|| {
                 Get::Str(_) => DataType::Utf8,
                 Get::Label => label_type(),
             };
-            Field::new(c.name, ty, c.nullable)
+            dictionary::field(c.name, ty, c.nullable, c.unit, c.description)
         })
         .collect();
     Arc::new(Schema::new(fields))
@@ -604,16 +791,52 @@ impl<'a> AssignmentsWriter<'a> {
     }
 }
 
-fn assignments_schema() -> SchemaRef {
-    let f = |name, ty| Field::new(name, ty, false);
+/// The schema of `cluster --assignments`: one row per failed sample.
+pub fn assignments_schema() -> SchemaRef {
+    let f = |name, ty, unit, description| dictionary::field(name, ty, false, unit, description);
     Arc::new(Schema::new(vec![
-        f("sample_id", DataType::Int64),
-        f("cluster", DataType::Int64),
-        f("cluster_name", DataType::Utf8),
-        f("outcome", DataType::Utf8),
-        f("alpha", DataType::Float64),
-        f("fn", DataType::Float64),
-        f("phi", DataType::Float64),
+        f(
+            "sample_id",
+            DataType::Int64,
+            "-",
+            "the failed sample's id in the scan",
+        ),
+        f(
+            "cluster",
+            DataType::Int64,
+            "-",
+            "index of the k-means cluster of its nearest centre",
+        ),
+        f(
+            "cluster_name",
+            DataType::Utf8,
+            "-",
+            "the cluster's name by its kind of failure (e.g. collapse region, barrier region)",
+        ),
+        f(
+            "outcome",
+            DataType::Utf8,
+            "-",
+            "the sample's failure label (collapse, stall, diverged)",
+        ),
+        f(
+            "alpha",
+            DataType::Float64,
+            "1",
+            "connection ratio α (a clustering coordinate)",
+        ),
+        f(
+            "fn",
+            DataType::Float64,
+            "Hz",
+            "eigen-frequency f_n (a clustering coordinate)",
+        ),
+        f(
+            "phi",
+            DataType::Float64,
+            "rad",
+            "slope angle φ (a clustering coordinate)",
+        ),
     ]))
 }
 
@@ -669,56 +892,110 @@ enum TraceGet {
 /// A scalar field of a trace sample.
 type TraceScalar = fn(&TraceSample) -> f64;
 
-fn trace_columns() -> Vec<(String, TraceGet)> {
+/// One column of a trace file: name, unit, description, value.
+type TraceColumn = (String, &'static str, String, TraceGet);
+
+fn trace_columns() -> Vec<TraceColumn> {
     use TraceGet::{F64, I8};
-    let mut cols: Vec<(String, TraceGet)> = vec![("t".into(), F64(Box::new(|s| s.t)))];
+    let mut cols: Vec<TraceColumn> = vec![(
+        "t".into(),
+        "s",
+        "time since the start of the run".into(),
+        F64(Box::new(|s| s.t)),
+    )];
     for (rod, name) in ["a", "b", "c"].into_iter().enumerate() {
-        for (j, q) in ["x", "y", "theta"].into_iter().enumerate() {
+        let pose = [
+            (
+                "x",
+                "m",
+                "centre's position along the slope (downhill positive)",
+            ),
+            (
+                "y",
+                "m",
+                "centre's height above the ground, along the slope normal",
+            ),
+            ("theta", "rad", "angle from the slope's x axis"),
+        ];
+        for (j, (q, unit, what)) in pose.into_iter().enumerate() {
             cols.push((
                 format!("{q}_{name}"),
+                unit,
+                format!("rod {name}: {what}"),
                 F64(Box::new(move |s| s.pose[rod][j])),
             ));
         }
-        for (j, q) in ["vx", "vy", "omega"].into_iter().enumerate() {
-            cols.push((format!("{q}_{name}"), F64(Box::new(move |s| s.vel[rod][j]))));
+        let vel = [
+            ("vx", "m/s", "centre's velocity along x"),
+            ("vy", "m/s", "centre's velocity along y"),
+            ("omega", "rad/s", "angular velocity"),
+        ];
+        for (j, (q, unit, what)) in vel.into_iter().enumerate() {
+            cols.push((
+                format!("{q}_{name}"),
+                unit,
+                format!("rod {name}: {what}"),
+                F64(Box::new(move |s| s.vel[rod][j])),
+            ));
         }
         cols.push((
             format!("contact_{name}"),
+            "-",
+            format!(
+                "rod {name}'s contact mode: 0 free, +1/−1 stick on tip ±, +2/−2 slide on tip ±"
+            ),
             I8(Box::new(move |s| s.contact[rod])),
         ));
     }
     cols.push((
         "contact_state".into(),
+        "1",
+        "rods on the ground: 0 NLSP (flight), 1 SLSP, 2 DLSP, 3 TLSP".into(),
         I8(Box::new(|s| s.contact_state as i8)),
     ));
-    let scalars: [(&str, TraceScalar); 5] = [
-        ("kinetic", |s| s.kinetic),
-        ("gravity_potential", |s| s.gravity_potential),
-        ("string_potential", |s| s.string_potential),
-        ("damping_loss", |s| s.damping_loss),
-        ("impact_loss", |s| s.impact_loss),
+    let scalars: [(&str, &str, TraceScalar); 5] = [
+        ("kinetic", "kinetic energy", |s| s.kinetic),
+        ("gravity_potential", "potential energy of gravity", |s| {
+            s.gravity_potential
+        }),
+        ("string_potential", "elastic energy of the strings", |s| {
+            s.string_potential
+        }),
+        (
+            "damping_loss",
+            "energy dissipated by the dampers so far",
+            |s| s.damping_loss,
+        ),
+        ("impact_loss", "energy lost in impacts so far", |s| {
+            s.impact_loss
+        }),
     ];
-    for (n, g) in scalars {
-        cols.push((n.into(), F64(Box::new(g))));
+    for (n, what, g) in scalars {
+        cols.push((n.into(), "J", what.into(), F64(Box::new(g))));
     }
     cols
+}
+
+/// The schema of a trace file (`simulate --trace`).
+pub fn trace_schema() -> SchemaRef {
+    let fields: Vec<Field> = trace_columns()
+        .into_iter()
+        .map(|(n, unit, description, g)| {
+            let ty = match g {
+                TraceGet::F64(_) => DataType::Float64,
+                TraceGet::I8(_) => DataType::Int8,
+            };
+            dictionary::field(n, ty, false, unit, &description)
+        })
+        .collect();
+    Arc::new(Schema::new(fields))
 }
 
 impl TraceWriter {
     const BATCH: usize = 8192;
 
     pub fn create(dest: &Path, metadata: Vec<KeyValue>) -> Result<Self> {
-        let fields: Vec<Field> = trace_columns()
-            .into_iter()
-            .map(|(n, g)| {
-                let ty = match g {
-                    TraceGet::F64(_) => DataType::Float64,
-                    TraceGet::I8(_) => DataType::Int8,
-                };
-                Field::new(n, ty, false)
-            })
-            .collect();
-        let schema = Arc::new(Schema::new(fields));
+        let schema = trace_schema();
         let props = writer_properties(&schema, Self::BATCH, metadata);
         let file = ParquetFile::create(dest, schema.clone(), props)?;
         Ok(Self {
@@ -744,7 +1021,7 @@ impl TraceWriter {
         }
         let arrays: Vec<ArrayRef> = trace_columns()
             .into_iter()
-            .map(|(_, g)| match g {
+            .map(|(_, _, _, g)| match g {
                 TraceGet::F64(g) => {
                     Arc::new(self.buffer.iter().map(&g).collect::<Float64Array>()) as ArrayRef
                 }

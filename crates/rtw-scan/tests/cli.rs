@@ -435,6 +435,25 @@ fn samples_file_has_the_documented_columns_and_metadata() {
         schema.field_with_name("alpha").unwrap().data_type(),
         &arrow::datatypes::DataType::Float64
     );
+    // The data dictionary travels in the file: every column has a unit and a
+    // description in its Arrow field metadata.
+    for f in schema.fields() {
+        for key in ["unit", "description"] {
+            assert!(
+                f.metadata().get(key).is_some_and(|v| !v.is_empty()),
+                "column {} has no {key} in the written file",
+                f.name()
+            );
+        }
+    }
+    assert_eq!(
+        schema.field_with_name("fn").unwrap().metadata()["unit"],
+        "Hz"
+    );
+    assert_eq!(
+        schema.field_with_name("phi").unwrap().metadata()["unit"],
+        "rad"
+    );
     let f = std::fs::File::open(&path).unwrap();
     let reader = parquet::file::reader::SerializedFileReader::new(f).unwrap();
     use parquet::file::reader::FileReader;

@@ -69,7 +69,7 @@ fn a_three_point_phi_sweep_writes_both_files() {
     for (row, phi) in points.iter().zip(["0.14", "0.15", "0.16"]) {
         assert_eq!(field(row, "param"), "phi");
         assert!(field(row, "value").starts_with(phi), "{row:?}");
-        // The article's walk (MODEL.md §9, default model): a stable period-1
+        // The article's walk (docs/model.md §9, default model): a stable period-1
         // gait, found by continuation, no restart. At φ = 0.15 its largest
         // multiplier is 0.833 (examples/cycle.rs, the variational Jacobian
         // agreeing with central differences to 5e-8); a 0.01 change of φ
