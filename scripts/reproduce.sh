@@ -6,8 +6,11 @@
 #   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/
 #   4. the errata checks (rtw-model example errata) -> results/errata.md
 #   5. the figures (./scripts/figures.sh) -> results/figures/
-#   6. the side-by-side table (scripts/reproduction_report.py) -> results/reproduction.md
-#   7. the generated tables of README.md and docs/*.md (scripts/readme_tables.py)
+#   6. Fig. S2 by each definition of f_w (scripts/fig_s2_frequencies.py) -> results/fig-s2/frequencies.*
+#   7. the standing start and label rule against the previous default (scripts/fidelity_report.py)
+#      -> results/fidelity.md
+#   8. the side-by-side table (scripts/reproduction_report.py) -> results/reproduction.md
+#   9. the generated tables of README.md and docs/*.md (scripts/readme_tables.py)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
@@ -25,6 +28,8 @@ done
   target/release/examples/errata
 } >results/errata.md
 ./scripts/figures.sh
+.venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
+.venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null
 .venv/bin/python scripts/readme_tables.py
 echo "reproduce: done (see git status for what changed)"
