@@ -28,7 +28,7 @@
 //! range whose ends are valid only yields valid samples.
 
 use anyhow::{Context, Result, anyhow, bail};
-use rtw_model::options::{Damping, InitialShape, MethodChoice};
+use rtw_model::options::{CannotStand, Damping, InitialShape, LabelOptions, MethodChoice};
 use rtw_model::{Normalization, Options, ParamError, Params};
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
@@ -599,7 +599,9 @@ pub struct Variant {
     pub damping: Damping,
     pub normalization: Normalization,
     pub initial_shape: InitialShape,
+    pub initial_cannot_stand: CannotStand,
     pub initial_omega: f64,
+    pub labels: LabelOptions,
     pub method: MethodChoice,
     pub rtol: f64,
     pub atol: f64,
@@ -624,7 +626,9 @@ impl Variant {
             damping: o.strings.damping,
             normalization: o.normalization,
             initial_shape: o.initial.shape,
+            initial_cannot_stand: o.initial.cannot_stand,
             initial_omega: o.initial.omega,
+            labels: o.labels,
             method: o.method,
             rtol: o.rtol,
             atol: o.atol,
@@ -645,7 +649,8 @@ impl fmt::Display for Variant {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "rest_length_ratio={} mu={} slack={} damping={} normalization={} initial={}(omega={}) method={} rtol={:e} atol={:e} t_max={}",
+            "rest_length_ratio={} mu={} slack={} damping={} normalization={} initial={}(omega={}{}) \
+             labels=(flight {} in {} of steps, triple {} in {}) method={} rtol={:e} atol={:e} t_max={}",
             self.rest_length_ratio,
             self.mu,
             self.slack,
@@ -653,6 +658,15 @@ impl fmt::Display for Variant {
             enum_name(&self.normalization),
             enum_name(&self.initial_shape),
             self.initial_omega,
+            match self.initial_shape {
+                InitialShape::Settled =>
+                    format!(", cannot_stand={}", enum_name(&self.initial_cannot_stand)),
+                _ => String::new(),
+            },
+            self.labels.flight,
+            self.labels.flight_steps,
+            self.labels.triple,
+            self.labels.triple_steps,
             enum_name(&self.method),
             self.rtol,
             self.atol,
