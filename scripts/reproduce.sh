@@ -5,7 +5,8 @@
 #   2. the variant study (./scripts/variants.sh)  -> results/variants/
 #   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/
 #   4. the errata checks (rtw-model example errata) -> results/errata.md
-#   5. the figures (./scripts/figures.sh) -> results/figures/
+#   5. the figures (./scripts/figures.sh) -> results/figures/, and the bifurcation
+#      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/
 #   6. Fig. S2 by each definition of f_w (scripts/fig_s2_frequencies.py) -> results/fig-s2/frequencies.*
 #   7. the standing start and label rule against the previous default (scripts/fidelity_report.py)
 #      -> results/fidelity.md
@@ -28,6 +29,7 @@ done
   target/release/examples/errata
 } >results/errata.md
 ./scripts/figures.sh
+./scripts/bifurcation.sh >/dev/null
 .venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
 .venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null
