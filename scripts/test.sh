@@ -24,6 +24,9 @@ if [ -f scripts/check_parquet.py ]; then
   .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
   rm -rf "$out"
 fi
+echo "== fault injection: kills, a full disk, corrupt pages (scripts/fault_inject.sh)"
+./scripts/fault_inject.sh
+
 echo "== generated tables match the committed results they are made from"
 # The variant study's and the reproduction's tables, and the README's copies
 # of them, are regenerated from the committed results and must not change:
