@@ -78,7 +78,7 @@ class Scan:
         if not path.exists():
             sys.exit(
                 f"figures: {path} is missing: run the scan first "
-                f"(cargo run --release -p rtw-scan -- run configs/{path.parent.name}.toml)"
+                f"(cargo run --release -p rtw-scan -- run configs/{path.parent.name}.toml --out results/{path.parent.name})"
             )
         meta = pq.read_metadata(path).metadata or {}
         variant = meta.get(b"rtw.variant", b"(unknown variant)").decode()

@@ -17,7 +17,7 @@ cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
 for c in paper fig-s2 fig-s3; do
   rm -rf "results/$c"
-  target/release/rtw-scan run "configs/$c.toml" >/dev/null
+  target/release/rtw-scan run "configs/$c.toml" --out "results/$c" >/dev/null
 done
 ./scripts/variants.sh >/dev/null
 ./scripts/sensitivity.sh >/dev/null

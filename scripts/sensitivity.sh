@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ -z "${REPORT_ONLY:-}" ]; then
   cargo build --release -q -p rtw-scan
-  [ -f results/paper/samples.parquet ] || target/release/rtw-scan run configs/paper.toml >/dev/null
+  [ -f results/paper/samples.parquet ] || target/release/rtw-scan run configs/paper.toml --out results/paper >/dev/null
   for f in configs/sensitivity/*.toml; do
     n=$(basename "$f" .toml)
     echo "== $n"

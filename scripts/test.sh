@@ -33,6 +33,9 @@ if [ -f scripts/check_parquet.py ]; then
 fi
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
 .venv/bin/python scripts/check_msrv.py
+echo "== fault injection: kills, a full disk, corrupt pages (scripts/fault_inject.sh)"
+./scripts/fault_inject.sh
+
 echo "== generated tables match the committed results they are made from"
 # The variant study's and the reproduction's tables, and their copies in
 # README.md and docs/*.md, are regenerated from the committed results and must

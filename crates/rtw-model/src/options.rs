@@ -240,7 +240,7 @@ pub struct Options {
     /// Stall when no touchdown happens for this long [s].
     pub stall_time: f64,
     /// Touchdown is declared at tip height −touchdown_offset·L (guard against
-    /// re-triggering a touchdown at a tip released at y = 0).
+    /// re-triggering a touchdown at a tip released at y = 0); in (0, 1e-6].
     pub touchdown_offset: f64,
     /// Sample the trajectory every `trace_dt` seconds when recording (0: every step).
     pub trace_dt: f64,
@@ -342,25 +342,39 @@ impl Options {
         check("rk4_step", self.rk4_step, "finite and > 0 (s)", |v| v > 0.0)?;
         check("h_max", self.h_max, "finite and > 0 (s)", |v| v > 0.0)?;
         check("max_steps", self.max_steps as f64, ">= 1", |v| v >= 1.0)?;
-        check("g", self.g, "finite and >= 0 (m/s^2)", |v| v >= 0.0)?;
-        check("analysis_window", self.analysis_window, "in (0, 1]", |v| {
-            v > 0.0 && v <= 1.0
-        })?;
+        // Each lower or upper end below is the last value at which the
+        // Fig. 7(a) walk is still judged a walk (or, for g and initial.omega,
+        // still gives a physical outcome): tests/option_ranges.rs. Below g =
+        // 0.1 the standing equilibrium is not found (its tolerance scales
+        // with g); a window under 10 % of t_max holds too few returns to
+        // judge a gait; a stall time under 1 s is shorter than a step; a
+        // collapse height above 0.75 h₀ is reached by a walking gait; at
+        // |ω₀| ≫ 50 rad/s the state overflows.
+        check("g", self.g, "finite and >= 0.1 (m/s^2)", |v| v >= 0.1)?;
+        check(
+            "analysis_window",
+            self.analysis_window,
+            "in [0.1, 1]",
+            |v| (0.1..=1.0).contains(&v),
+        )?;
         self.labels.validate()?;
         check(
             "collapse_height_ratio",
             self.collapse_height_ratio,
-            "in [0, 1)",
-            |v| (0.0..1.0).contains(&v),
+            "in [0, 0.75]",
+            |v| (0.0..=0.75).contains(&v),
         )?;
-        check("stall_time", self.stall_time, "finite and > 0 (s)", |v| {
-            v > 0.0
+        check("stall_time", self.stall_time, "finite and >= 1 (s)", |v| {
+            v >= 1.0
         })?;
+        // Not 0: a tip released on the ground starts its touchdown guard at
+        // exactly 0, which event location does not count as a crossing, so
+        // its next touchdown would be missed (the walk falls through the floor).
         check(
             "touchdown_offset",
             self.touchdown_offset,
-            "in [0, 1e-6]",
-            |v| (0.0..=1e-6).contains(&v),
+            "in (0, 1e-6]",
+            |v| v > 0.0 && v <= 1e-6,
         )?;
         check("trace_dt", self.trace_dt, "finite and >= 0 (s)", |v| {
             v >= 0.0
@@ -368,8 +382,8 @@ impl Options {
         check(
             "initial.omega",
             self.initial.omega,
-            "finite (rad/s)",
-            |_| true,
+            "in [-50, 50] (rad/s)",
+            |v| v.abs() <= 50.0,
         )?;
         check(
             "strings.rest_length_ratio",

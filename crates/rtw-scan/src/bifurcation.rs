@@ -120,6 +120,13 @@ pub struct Sweep {
     pub cycle: CycleOptions,
 }
 
+/// Most values of a sweep: its rows are held in memory until written.
+pub const MAX_POINTS: usize = 1_000_000;
+/// Most recorded steps per value (periods up to 12 are detected).
+pub const MAX_RECORD: usize = 10_000;
+/// Most transient steps per value.
+pub const MAX_TRANSIENT: usize = 10_000_000;
+
 impl Sweep {
     /// `points` values from `from` to `to` (inclusive, either direction),
     /// checked: both ends valid for the parameter, `points ≥ 2`, `record ≥ 2`
@@ -141,11 +148,18 @@ impl Sweep {
         config::validate_options(&options, "simulation")?;
         param.check(&base, &options, from, "--from")?;
         param.check(&base, &options, to, "--to")?;
-        if points < 2 {
-            bail!("--points: {points} is invalid: must be an integer >= 2");
+        if !(2..=MAX_POINTS).contains(&points) {
+            bail!(
+                "--points: {points} is invalid: must be an integer >= 2 and at most {MAX_POINTS}"
+            );
         }
-        if record < 2 {
-            bail!("--record: {record} is invalid: must be an integer >= 2");
+        if !(2..=MAX_RECORD).contains(&record) {
+            bail!(
+                "--record: {record} is invalid: must be an integer >= 2 and at most {MAX_RECORD}"
+            );
+        }
+        if transient > MAX_TRANSIENT {
+            bail!("--transient: {transient} is invalid: must be at most {MAX_TRANSIENT}");
         }
         Ok(Self {
             param,
@@ -712,10 +726,42 @@ pub fn summary_path(out: &Path) -> PathBuf {
 /// The `bifurcation` subcommand once its arguments are checked: runs the
 /// sweep (progress on stderr), writes both Parquet files and the summary
 /// (`FILE.md`), and prints the summary.
-pub fn cmd(sweep: &Sweep, out: &Path) -> Result<std::process::ExitCode> {
+/// Refuses, unless `force`, to write the sweep's files (`out`, its
+/// `.steps.parquet` and `.md`) over files that are not a sweep's: another
+/// kind of Parquet file, or an `.md` that is not the summary of a sweep at
+/// `out`.
+pub fn check_outputs(out: &Path, force: bool) -> Result<()> {
+    use output::FileKind::Bifurcation;
+    output::check_destination(out, Bifurcation, &[], "--out", force)?;
+    output::check_destination(
+        &steps_path(out),
+        Bifurcation,
+        &[],
+        "--out (steps file)",
+        force,
+    )?;
+    let md = summary_path(out);
+    if !force && md.exists() && !out.exists() {
+        bail!(
+            "--out {}: {} exists and is not the summary of a sweep there: refusing to replace it; \
+             choose another file, or pass --force",
+            out.display(),
+            md.display()
+        );
+    }
+    for f in [out.to_path_buf(), steps_path(out), md] {
+        output::remove_stray_temps(&f)?;
+    }
+    Ok(())
+}
+
+pub fn cmd(sweep: &Sweep, out: &Path, quiet: bool) -> Result<std::process::ExitCode> {
     let t0 = Instant::now();
     let n = sweep.values.len();
     let (points, steps) = run_sweep(sweep, |i, r| {
+        if quiet {
+            return;
+        }
         eprintln!(
             "rtw-scan: {} = {:.5} ({}/{n}): {} period {} max|mu| {}{} [{:.2} s]",
             sweep.param.name(),
@@ -732,13 +778,15 @@ pub fn cmd(sweep: &Sweep, out: &Path) -> Result<std::process::ExitCode> {
     let sp = write(out, sweep, &points, &steps, wall)?;
     let md = summary_markdown(sweep, &points, wall);
     output::write_atomic(&summary_path(out), md.as_bytes())?;
-    eprintln!(
-        "rtw-scan: {} values in {}, {} recorded steps in {}",
-        points.len(),
-        out.display(),
-        steps.len(),
-        sp.display()
-    );
+    if !quiet {
+        eprintln!(
+            "rtw-scan: {} values in {}, {} recorded steps in {}",
+            points.len(),
+            out.display(),
+            steps.len(),
+            sp.display()
+        );
+    }
     print!("{md}");
     Ok(std::process::ExitCode::SUCCESS)
 }

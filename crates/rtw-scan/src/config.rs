@@ -63,6 +63,17 @@ impl Axis {
         }
     }
 
+    /// The number of grid points of a grid axis (`None` for fixed and
+    /// uniform axes), without making them: a linspace may have more points
+    /// than memory can hold, and is refused by its count alone.
+    pub fn grid_len(&self) -> Option<u64> {
+        match self {
+            Axis::Fixed(_) | Axis::Uniform { .. } => None,
+            Axis::List(v) => Some(v.len() as u64),
+            Axis::Linspace { n, .. } => Some(*n),
+        }
+    }
+
     fn to_toml(&self) -> toml::Value {
         use toml::Value;
         let table = |key: &str, items: Vec<Value>| {
@@ -90,20 +101,26 @@ impl Axis {
 
 /// `n` points from `lo` to `hi`, both included (`n = 1`: just `lo`).
 pub fn linspace(lo: f64, hi: f64, n: u64) -> Vec<f64> {
-    match n {
-        0 => vec![],
-        1 => vec![lo],
-        _ => (0..n)
-            .map(|i| {
-                if i == n - 1 {
-                    hi
-                } else {
-                    lo + (hi - lo) * i as f64 / (n - 1) as f64
-                }
-            })
-            .collect(),
+    (0..n).map(|i| linspace_point(lo, hi, n, i)).collect()
+}
+
+/// Point `i` (`i < n`) of [`linspace`]`(lo, hi, n)`, computed alone so that a
+/// scan never holds its grid in memory.
+pub fn linspace_point(lo: f64, hi: f64, n: u64, i: u64) -> f64 {
+    if i == 0 {
+        lo
+    } else if i == n - 1 {
+        hi
+    } else {
+        lo + (hi - lo) * i as f64 / (n - 1) as f64
     }
 }
+
+/// The most rows a scan may have (grid points × samples): about 100 TB of
+/// Parquet and 10⁴ core-years at the paper scan's speed, far beyond any
+/// machine; larger counts are refused up front rather than run out of
+/// memory or disk. (`sample_id` itself could count to 2⁶³.)
+pub const MAX_ROWS: u64 = 1_000_000_000_000;
 
 impl<'de> Deserialize<'de> for Axis {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -227,17 +244,18 @@ pub struct ScanConfig {
 
 /// Reads and validates a config file; errors name the file and the key.
 pub fn load(path: &Path) -> Result<ScanConfig> {
-    let text = read_text(path)?;
+    let text = read_text(path, "config")?;
     parse(&text).with_context(|| format!("config {}", path.display()))
 }
 
-/// Reads a UTF-8 text file, with errors naming the path.
-pub fn read_text(path: &Path) -> Result<String> {
+/// Reads a UTF-8 text file, with errors naming what it is (`config`,
+/// `variant`) and the path.
+pub fn read_text(path: &Path, what: &str) -> Result<String> {
     let bytes =
-        std::fs::read(path).with_context(|| format!("cannot read config {}", path.display()))?;
+        std::fs::read(path).with_context(|| format!("cannot read {what} {}", path.display()))?;
     String::from_utf8(bytes).map_err(|e| {
         anyhow!(
-            "config {} is not valid UTF-8 (invalid byte at offset {})",
+            "{what} {} is not valid UTF-8 (invalid byte at offset {})",
             path.display(),
             e.utf8_error().valid_up_to()
         )
@@ -267,7 +285,8 @@ fn from_value<'de, T: Deserialize<'de>>(value: toml::Value, prefix: &str) -> Res
             .filter(|l| !l.starts_with("in `"))
             .collect::<Vec<_>>()
             .join("\n")
-            .replace("unknown field", "unknown key");
+            .replace("unknown field", "unknown key")
+            .replace("missing field", "missing key");
         if key == "." || key.is_empty() {
             anyhow!("{inner}")
         } else {
@@ -332,7 +351,7 @@ fn layer_variant_and_sets(
 ) -> Result<Option<String>> {
     let mut name = None;
     if let Some(vpath) = variant {
-        let vt = parse_table(&read_text(vpath)?)
+        let vt = parse_table(&read_text(vpath, "variant")?)
             .with_context(|| format!("variant {}", vpath.display()))?;
         let v: RawVariant = from_value(toml::Value::Table(vt), "")
             .with_context(|| format!("variant {}", vpath.display()))?;
@@ -364,8 +383,8 @@ pub fn simulation_options(
 /// Reads a config file into its top-level table and, taken out of it, its
 /// `[simulation]` table (empty when absent). Errors name the file.
 pub fn read_split(path: &Path) -> Result<(toml::Table, toml::Table)> {
-    let mut table =
-        parse_table(&read_text(path)?).with_context(|| format!("config {}", path.display()))?;
+    let mut table = parse_table(&read_text(path, "config")?)
+        .with_context(|| format!("config {}", path.display()))?;
     let simulation = match table.remove("simulation") {
         None => toml::Table::new(),
         Some(toml::Value::Table(s)) => s,
@@ -388,22 +407,43 @@ fn merge_tables(base: &mut toml::Table, over: toml::Table) {
 }
 
 fn parse_value(table: toml::Table) -> Result<ScanConfig> {
-    let raw: RawConfig = from_value(toml::Value::Table(table), "")?;
-    if raw.samples < 1 {
+    let missing: Vec<&str> = [
+        ("seed", "seed"),
+        ("samples", "samples"),
+        ("params", "[params]"),
+    ]
+    .into_iter()
+    .filter(|(key, _)| !table.contains_key(*key))
+    .map(|(_, shown)| shown)
+    .collect();
+    if !missing.is_empty() {
+        let what = if missing.len() == 3 && table.keys().all(|k| k == "simulation") {
+            "the config has no scan in it".to_string()
+        } else {
+            format!("{} missing", missing.join(", "))
+        };
         bail!(
-            "samples: {} is invalid: must be an integer >= 1",
+            "{what}: a scan config needs `seed = INTEGER`, `samples = INTEGER` (draws per grid point) \
+             and a [params] table giving length, rho, alpha, fn, zeta and phi (see configs/paper.toml)"
+        );
+    }
+    let raw: RawConfig = from_value(toml::Value::Table(table), "")?;
+    if raw.samples < 1 || raw.samples as u64 > MAX_ROWS {
+        bail!(
+            "samples: {} is invalid: must be an integer >= 1 and at most {MAX_ROWS} (10^12)",
             raw.samples
         );
     }
-    if raw.cluster.k < 1 {
+    let max_k = crate::cluster::CLUSTER_MAX_POINTS as i64;
+    if !(1..=max_k).contains(&raw.cluster.k) {
         bail!(
-            "cluster.k: {} is invalid: must be an integer >= 1",
+            "cluster.k: {} is invalid: must be an integer >= 1 and at most {max_k} (the most failures k-means is run on)",
             raw.cluster.k
         );
     }
-    if raw.cluster.restarts < 1 {
+    if !(1..=MAX_RESTARTS).contains(&raw.cluster.restarts) {
         bail!(
-            "cluster.restarts: {} is invalid: must be an integer >= 1",
+            "cluster.restarts: {} is invalid: must be an integer >= 1 and at most {MAX_RESTARTS}",
             raw.cluster.restarts
         );
     }
@@ -424,6 +464,10 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
     cfg.total_rows()?;
     Ok(cfg)
 }
+
+/// Most k-means restarts accepted (`cluster.restarts`): each is a full
+/// k-means of up to [`crate::cluster::CLUSTER_MAX_POINTS`] points.
+pub const MAX_RESTARTS: i64 = 1000;
 
 /// Options → validated, the error naming `prefix.key`.
 pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {
@@ -486,7 +530,12 @@ fn validate_axis(i: usize, axis: &Axis) -> Result<()> {
             }
             Ok(())
         }
-        Axis::Linspace { lo, hi, .. } => {
+        Axis::Linspace { lo, hi, n } => {
+            if *n > MAX_ROWS {
+                bail!(
+                    "params.{key}.linspace[2] (n): {n} points is invalid: must be at most {MAX_ROWS} (10^12, the most rows a scan may have)"
+                );
+            }
             check(*lo, ".linspace[0] (lo)")?;
             check(*hi, ".linspace[1] (hi)")
         }
@@ -502,25 +551,46 @@ fn validate_axis(i: usize, axis: &Axis) -> Result<()> {
 }
 
 impl ScanConfig {
-    /// Number of grid points (product of the grid axes' sizes; 1 without grid).
+    /// Number of grid points (product of the grid axes' sizes; 1 without
+    /// grid), at most [`MAX_ROWS`].
     pub fn grid_size(&self) -> Result<u64> {
+        let too_many = || {
+            anyhow!(
+                "params: the grid (the product of the grid axes' point counts: {}) has more than \
+                 {MAX_ROWS} points: a scan may have at most {MAX_ROWS} (10^12) rows",
+                self.grid_counts()
+            )
+        };
         self.params.iter().try_fold(1u64, |acc, a| {
-            let n = a.grid_points().map_or(1, |g| g.len() as u64);
+            let n = a.grid_len().unwrap_or(1);
             acc.checked_mul(n)
-                .ok_or_else(|| anyhow!("params: the grid has more than 2^64 points"))
+                .filter(|g| *g <= MAX_ROWS)
+                .ok_or_else(too_many)
         })
     }
 
-    /// Rows of the scan: grid points × samples.
+    /// `key n × key n …` of the grid axes, for messages.
+    fn grid_counts(&self) -> String {
+        PARAM_KEYS
+            .iter()
+            .zip(&self.params)
+            .filter_map(|(k, a)| a.grid_len().map(|n| format!("{k} {n}")))
+            .collect::<Vec<_>>()
+            .join(" × ")
+    }
+
+    /// Rows of the scan: grid points × samples, at most [`MAX_ROWS`].
     pub fn total_rows(&self) -> Result<u64> {
-        let rows = self
-            .grid_size()?
-            .checked_mul(self.samples)
-            .ok_or_else(|| anyhow!("samples: grid points × samples overflows"))?;
-        if rows > i64::MAX as u64 {
-            bail!("samples: {rows} rows is more than a sample_id can count");
-        }
-        Ok(rows)
+        let grid = self.grid_size()?;
+        grid.checked_mul(self.samples)
+            .filter(|rows| *rows <= MAX_ROWS)
+            .ok_or_else(|| {
+                anyhow!(
+                    "samples: {grid} grid points × {} samples is more rows than a scan may have: \
+                     at most {MAX_ROWS} (10^12)",
+                    self.samples
+                )
+            })
     }
 
     /// The resolved config (every simulation option spelled out) as TOML; it
@@ -591,9 +661,9 @@ pub fn config_hash(toml_text: &str) -> String {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Variant {
     pub rest_length_ratio: f64,
-    /// Friction coefficient; `inf` (no slip) is written as the string "inf"
-    /// in JSON, which has no infinity.
-    #[serde(serialize_with = "number_or_inf")]
+    /// Friction coefficient; `inf` (no slip) is `null` in JSON, which has no
+    /// infinity (the one rule of every JSON rtw-scan writes: a non-finite
+    /// number is `null`).
     pub mu: f64,
     pub slack: bool,
     pub damping: Damping,
@@ -606,15 +676,6 @@ pub struct Variant {
     pub rtol: f64,
     pub atol: f64,
     pub t_max: f64,
-}
-
-/// A float as a JSON-safe value: finite as a number, else "inf", "-inf", "NaN".
-fn number_or_inf<S: serde::Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-    if v.is_finite() {
-        s.serialize_f64(*v)
-    } else {
-        s.serialize_str(&v.to_string())
-    }
 }
 
 impl Variant {
@@ -683,6 +744,11 @@ pub fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
         .split_once('=')
         .ok_or_else(|| anyhow!("--set {assignment:?}: expected KEY=VALUE"))?;
     let (key, value) = (key.trim(), value.trim());
+    if value.contains(['\n', '\r']) {
+        bail!(
+            "--set {key}: the value contains a newline: give one KEY=VALUE per --set (repeat --set for more)"
+        );
+    }
     let parts: Vec<&str> = key.split('.').collect();
     if parts.iter().any(|p| p.is_empty()) {
         bail!("--set {assignment:?}: empty key segment in {key:?}");
@@ -788,7 +854,9 @@ phi = [0.1, 0.2]
         let e = err(&BASE.replace("samples = 10", "samples = -3"));
         assert!(e.contains("samples: -3 is invalid"), "{e}");
         let e = err(&BASE.replace("seed = 7", ""));
-        assert!(e.contains("missing field `seed`"), "{e}");
+        assert!(e.starts_with("seed missing: a scan config needs"), "{e}");
+        let e = err(&BASE.replace("phi = [0.1, 0.2]", ""));
+        assert!(e.contains("params: missing key `phi`"), "{e}");
         let e = err(&format!("{BASE}\n[simulation]\ncontact.muu = 1\n"));
         assert!(
             e.contains("simulation.contact.muu: unknown key `muu`, expected `mu`"),

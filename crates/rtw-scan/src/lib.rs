@@ -28,11 +28,11 @@
 //! rtw-scan simulate --length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15 \
 //!     [--config FILE] [--set contact.mu=0.8]... [--json] [--trace trace.parquet]
 //! rtw-scan cluster results/paper/samples.parquet [--k 3] [--json]
-//! rtw-scan summary results/paper/samples.parquet
+//! rtw-scan summary results/paper/samples.parquet [--json]
 //! ```
 //!
 //! `run` writes `DIR/samples.parquet`, `DIR/summary.json` and
-//! `DIR/summary.md` (default `DIR`: `results/<config file stem>/`). The
+//! `DIR/summary.md` (default `DIR`: `runs/<scan name>/`). The
 //! Parquet file is checked from Python (pandas, polars, pyarrow) by
 //! `scripts/check_parquet.py`.
 

@@ -56,6 +56,9 @@ pub const META_SHARD: &str = "rtw.shard";
 pub const META_TOTAL_ROWS: &str = "rtw.total_rows";
 /// Metadata key: how many shards a merged file was made of.
 pub const META_SHARDS: &str = "rtw.shards";
+/// Metadata key: [`ContentHash`] of the file's rows, written with them and
+/// checked by every read ([`open`]), so a corrupt page is refused.
+pub const META_CONTENT_HASH: &str = "rtw.content_hash";
 
 /// Most rows per row group of a file rtw-scan writes whole (samples, part
 /// and assignments files). One row group per 256-row chunk made the footer
@@ -86,6 +89,107 @@ pub fn scan_metadata(cfg: &ScanConfig) -> Vec<KeyValue> {
         kv(META_SEED, cfg.seed.to_string()),
         kv(META_VARIANT, Variant::of(&cfg.simulation).to_string()),
     ]
+}
+
+/// What an rtw-scan Parquet file holds, told by the metadata it carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    /// Scan rows: `samples.parquet`, `part-K.parquet`, chunks (`rtw.config`).
+    Scan,
+    /// `cluster --assignments` (`rtw.clusters`).
+    Assignments,
+    /// `simulate --trace` (`rtw.params` and `rtw.options`).
+    Trace,
+    /// `bifurcation` per-value and per-step files (`rtw.bifurcation.param`).
+    Bifurcation,
+}
+
+impl FileKind {
+    /// The kind of a file with metadata `meta`, if rtw-scan wrote it.
+    pub fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
+        if meta.contains_key(crate::bifurcation::META_PARAM) {
+            Some(Self::Bifurcation)
+        } else if meta.contains_key(META_CLUSTERS) {
+            Some(Self::Assignments)
+        } else if meta.contains_key(META_CONFIG) {
+            Some(Self::Scan)
+        } else if meta.contains_key("rtw.options") {
+            Some(Self::Trace)
+        } else {
+            None
+        }
+    }
+
+    fn describe(self) -> &'static str {
+        match self {
+            Self::Scan => "a scan (rows of `rtw-scan run`)",
+            Self::Assignments => "cluster assignments (`cluster --assignments`)",
+            Self::Trace => "a trace (`simulate --trace`)",
+            Self::Bifurcation => "a bifurcation sweep (`bifurcation`)",
+        }
+    }
+}
+
+/// Refuses, unless `force`, to write a `kind` file at `dest` (given by the
+/// option `flag`) when `dest` is one of the command's `inputs`, or exists and
+/// is not a file of the same kind (another kind of rtw-scan file, another
+/// Parquet file, or not a Parquet file at all). A file of the same kind is
+/// the command's own earlier output and may be replaced.
+pub fn check_destination(
+    dest: &Path,
+    kind: FileKind,
+    inputs: &[&Path],
+    flag: &str,
+    force: bool,
+) -> Result<()> {
+    if force || !dest.exists() {
+        return Ok(());
+    }
+    let shown = dest.display();
+    let same = |a: &Path| match (a.canonicalize(), dest.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if let Some(input) = inputs.iter().find(|i| same(i)) {
+        bail!(
+            "{flag} {shown}: that is its own input {}: writing there would replace it; choose \
+             another file, or pass --force",
+            input.display()
+        );
+    }
+    if dest.is_dir() {
+        bail!("{flag} {shown}: is a directory");
+    }
+    let found = match open(dest, 1) {
+        Err(_) => "a file that is not a Parquet file".to_string(),
+        Ok(input) => match FileKind::of(&input.metadata) {
+            Some(k) if k == kind => return Ok(()),
+            Some(k) => format!("{} (from its metadata)", k.describe()),
+            None => "a Parquet file rtw-scan did not write".to_string(),
+        },
+    };
+    bail!(
+        "{flag} {shown}: holds {found}, not {}: refusing to write over it; choose another file, \
+         or pass --force to replace it",
+        kind.describe()
+    )
+}
+
+/// A scan named for messages: `config hash H (name N, seed S)`.
+pub fn scan_label(hash: &str, name: Option<&str>, seed: u64) -> String {
+    match name {
+        Some(n) => format!("config hash {hash} (name {n}, seed {seed})"),
+        None => format!("config hash {hash} (seed {seed})"),
+    }
+}
+
+/// [`scan_label`] of a scan file from its metadata.
+pub fn scan_label_of(meta: &BTreeMap<String, String>) -> String {
+    let hash = meta.get(META_CONFIG_HASH).map_or("(none)", String::as_str);
+    match meta.get(META_CONFIG).map(|c| crate::config::parse(c)) {
+        Some(Ok(c)) => scan_label(hash, c.name.as_deref(), c.seed),
+        _ => format!("config hash {hash}"),
+    }
 }
 
 /// One scan row: a sample's inputs, derived parameters and outcome.
@@ -594,7 +698,182 @@ pub fn writer_properties(
 /// A temporary file next to `dest` (same directory, so a rename moves it
 /// into place atomically), named `.NAME.XXXXXX.tmp`, with the usual
 /// permissions (0666 less the umask) rather than tempfile's 0600.
-fn temp_file_for(dest: &Path) -> Result<tempfile::NamedTempFile> {
+fn temp_file_for(dest: &Path) -> Result<Temp> {
+    let file = named_temp_for(dest)?;
+    let guard = Registered::new(file.path().to_path_buf());
+    Ok(Temp { file, guard })
+}
+
+/// A temporary file, known to [`remove_live_files`] until it is dropped or
+/// moved into place.
+struct Temp {
+    file: tempfile::NamedTempFile,
+    guard: Registered,
+}
+
+impl Temp {
+    fn persist(self, dest: &Path) -> Result<()> {
+        let Temp { file, guard } = self;
+        file.persist(dest)
+            .with_context(|| format!("cannot move the finished file to {}", dest.display()))?;
+        drop(guard);
+        Ok(())
+    }
+}
+
+/// Files that exist only while a command runs (temporary files, locks):
+/// removed by [`remove_live_files`] when a signal ends the process at once.
+static LIVE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Registers a path in [`LIVE`] for as long as it lives.
+pub(crate) struct Registered(PathBuf);
+
+impl Registered {
+    pub(crate) fn new(path: PathBuf) -> Self {
+        if let Ok(mut live) = LIVE.lock() {
+            live.push(path.clone());
+        }
+        Self(path)
+    }
+}
+
+impl Drop for Registered {
+    fn drop(&mut self) {
+        if let Ok(mut live) = LIVE.lock()
+            && let Some(i) = live.iter().rposition(|p| *p == self.0)
+        {
+            live.swap_remove(i);
+        }
+    }
+}
+
+/// Removes every temporary and lock file this process has open: called by
+/// the signal handler before it exits, since a process ending in
+/// `std::process::exit` runs no destructors.
+pub fn remove_live_files() {
+    let live = match LIVE.try_lock() {
+        Ok(live) => live.clone(),
+        // Held by a thread that will never resume: read it anyway.
+        Err(std::sync::TryLockError::Poisoned(p)) => p.into_inner().clone(),
+        Err(std::sync::TryLockError::WouldBlock) => {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            LIVE.lock().map(|l| l.clone()).unwrap_or_default()
+        }
+    };
+    for p in live {
+        let _ = std::fs::remove_file(p);
+    }
+}
+
+/// Removes the temporary files `.NAME.XXXXXX.tmp` that an earlier, killed
+/// writer of `dest` left beside it (never anything else). Call it only while
+/// no other process can be writing `dest` (under its [`Lock`]).
+pub fn remove_stray_temps(dest: &Path) -> Result<()> {
+    let dir = dest
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let Some(name) = dest.file_name().and_then(|n| n.to_str()) else {
+        return Ok(());
+    };
+    let prefix = format!(".{name}.");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries.flatten() {
+        let n = entry.file_name();
+        let n = n.to_string_lossy();
+        if n.starts_with(&prefix) && n.ends_with(".tmp") && n.len() == prefix.len() + 10 {
+            std::fs::remove_file(entry.path())
+                .with_context(|| format!("cannot remove {}", entry.path().display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// An exclusive lock on writing one result (`DIR/.NAME.lock` for `DIR/NAME`),
+/// held by one process at a time; the file names the holder's PID. The
+/// operating system releases it when the process ends, however it ends, so a
+/// killed run never leaves a stale lock; the file itself is removed on drop.
+pub struct Lock {
+    _file: File,
+    path: PathBuf,
+    _live: Registered,
+}
+
+impl Lock {
+    /// The lock file of the result `dest`.
+    pub fn path_for(dest: &Path) -> PathBuf {
+        let name = dest.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        dest.with_file_name(format!(".{name}.lock"))
+    }
+
+    /// Takes the lock of `dest`, or says which process holds it; `doing`
+    /// says what the holder is doing ("running this scan in DIR").
+    pub fn acquire(dest: &Path, doing: &str) -> Result<Self> {
+        use std::io::Write;
+        let path = Self::path_for(dest);
+        loop {
+            let mut file = std::fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+                .with_context(|| format!("cannot create the lock file {}", path.display()))?;
+            match file.try_lock() {
+                Ok(()) => {}
+                Err(std::fs::TryLockError::WouldBlock) => {
+                    let pid = std::fs::read_to_string(&path).unwrap_or_default();
+                    let pid = pid.trim();
+                    let pid = if pid.is_empty() { "?" } else { pid };
+                    bail!(
+                        "another rtw-scan (PID {pid}) is {doing} (it holds {}): wait for it to \
+                         finish, or stop it (kill -INT {pid}); what it leaves unfinished, --resume finishes",
+                        path.display()
+                    );
+                }
+                Err(std::fs::TryLockError::Error(e)) => {
+                    return Err(e).with_context(|| format!("cannot lock {}", path.display()));
+                }
+            }
+            // The last holder removes the file as it lets go: if that
+            // happened between our open and our lock, we hold a file that is
+            // no longer at `path`; try again with the one that is.
+            if same_file(&file, &path) {
+                file.set_len(0)?;
+                writeln!(file, "{}", std::process::id())?;
+                return Ok(Self {
+                    _file: file,
+                    _live: Registered::new(path.clone()),
+                    path,
+                });
+            }
+        }
+    }
+}
+
+impl Drop for Lock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+#[cfg(unix)]
+fn same_file(file: &File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (file.metadata(), std::fs::metadata(path)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_file(_: &File, path: &Path) -> bool {
+    path.exists()
+}
+
+fn named_temp_for(dest: &Path) -> Result<tempfile::NamedTempFile> {
     let dir = dest
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -614,37 +893,43 @@ fn temp_file_for(dest: &Path) -> Result<tempfile::NamedTempFile> {
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     use std::io::Write;
     let mut tmp = temp_file_for(path)?;
-    tmp.write_all(bytes)?;
-    tmp.as_file().sync_all()?;
-    tmp.persist(path)
+    tmp.file
+        .write_all(bytes)
         .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
+    tmp.file.as_file().sync_all()?;
+    tmp.persist(path)
 }
 
 /// A Parquet file being written under a temporary name next to `dest`;
-/// [`ParquetFile::finish`] closes, syncs and renames it. Dropped unfinished,
+/// [`ParquetFile::finish`] closes, syncs and renames it, with the
+/// [`ContentHash`] of every row written in its metadata. Dropped unfinished,
 /// the temporary file is removed.
 pub struct ParquetFile {
-    tmp: tempfile::NamedTempFile,
+    tmp: Temp,
     writer: ArrowWriter<File>,
     dest: PathBuf,
+    hash: ContentHash,
 }
 
 impl ParquetFile {
     pub fn create(dest: &Path, schema: SchemaRef, props: WriterProperties) -> Result<Self> {
         let tmp = temp_file_for(dest)?;
         let file = tmp
+            .file
             .reopen()
-            .with_context(|| format!("cannot open {}", tmp.path().display()))?;
+            .with_context(|| format!("cannot open {}", tmp.file.path().display()))?;
+        let hash = ContentHash::new(schema.fields().len());
         let writer = ArrowWriter::try_new(file, schema, Some(props))?;
         Ok(Self {
             tmp,
             writer,
             dest: dest.to_path_buf(),
+            hash,
         })
     }
 
     pub fn write(&mut self, batch: &RecordBatch) -> Result<()> {
+        self.hash.update(batch)?;
         self.writer
             .write(batch)
             .with_context(|| format!("writing {}", self.dest.display()))
@@ -657,14 +942,134 @@ impl ParquetFile {
 
     /// Closes the writer, syncs the data and moves the file to its name.
     pub fn finish(self) -> Result<()> {
-        let Self { tmp, writer, dest } = self;
+        let Self {
+            tmp,
+            mut writer,
+            dest,
+            hash,
+        } = self;
+        writer.append_key_value_metadata(kv(META_CONTENT_HASH, hash.value()));
         writer
             .close()
             .with_context(|| format!("closing {}", dest.display()))?;
-        tmp.as_file().sync_all()?;
+        tmp.file.as_file().sync_all()?;
         tmp.persist(&dest)
-            .with_context(|| format!("cannot move the finished file to {}", dest.display()))?;
+    }
+}
+
+/// A hash of a table's values, column by column in file order: for each
+/// column, its values in row order (a null as a marker word, a number as its
+/// 64 bits, a string as its length and bytes, a dictionary entry as its
+/// string) folded through SplitMix64's finalizer; then the column hashes
+/// folded the same way. It depends on the rows only, not on how they are cut
+/// into batches, row groups or pages, nor on the compression. Unlike a CRC
+/// per page (which the parquet crate can check but not write), it also
+/// catches a page that decodes cleanly to wrong numbers.
+#[derive(Clone, Debug)]
+pub struct ContentHash {
+    columns: Vec<u64>,
+}
+
+impl ContentHash {
+    const NULL: u64 = 0x6e75_6c6c_6e75_6c6c;
+
+    pub fn new(columns: usize) -> Self {
+        Self {
+            columns: vec![0; columns],
+        }
+    }
+
+    fn fold(h: &mut u64, word: u64) {
+        *h = crate::cluster::mix(*h ^ word);
+    }
+
+    fn fold_str(h: &mut u64, s: &str) {
+        Self::fold(h, s.len() as u64);
+        for chunk in s.as_bytes().chunks(8) {
+            let mut w = [0u8; 8];
+            w[..chunk.len()].copy_from_slice(chunk);
+            Self::fold(h, u64::from_le_bytes(w));
+        }
+    }
+
+    /// Adds the rows of `batch` (the columns of the schema it was made with).
+    pub fn update(&mut self, batch: &RecordBatch) -> Result<()> {
+        if batch.num_columns() != self.columns.len() {
+            bail!(
+                "{} columns where the file has {}",
+                batch.num_columns(),
+                self.columns.len()
+            );
+        }
+        for (h, col) in self.columns.iter_mut().zip(batch.columns()) {
+            let words = |h: &mut u64, w: &mut dyn Iterator<Item = Option<u64>>| {
+                for v in w {
+                    Self::fold(h, v.unwrap_or(Self::NULL));
+                }
+            };
+            match col.data_type() {
+                DataType::Float64 => words(
+                    h,
+                    &mut col
+                        .as_primitive::<Float64Type>()
+                        .iter()
+                        .map(|v| v.map(f64::to_bits)),
+                ),
+                DataType::Int64 => words(
+                    h,
+                    &mut col
+                        .as_primitive::<Int64Type>()
+                        .iter()
+                        .map(|v| v.map(|x| x as u64)),
+                ),
+                DataType::Int8 => words(
+                    h,
+                    &mut col
+                        .as_primitive::<arrow::datatypes::Int8Type>()
+                        .iter()
+                        .map(|v| v.map(|x| x as u64)),
+                ),
+                DataType::Int32 => words(
+                    h,
+                    &mut col
+                        .as_primitive::<Int32Type>()
+                        .iter()
+                        .map(|v| v.map(|x| x as u64)),
+                ),
+                DataType::Boolean => {
+                    words(h, &mut col.as_boolean().iter().map(|v| v.map(u64::from)))
+                }
+                DataType::Utf8 => {
+                    for v in col.as_string::<i32>().iter() {
+                        match v {
+                            Some(s) => Self::fold_str(h, s),
+                            None => Self::fold(h, Self::NULL),
+                        }
+                    }
+                }
+                DataType::Dictionary(k, v) if **k == DataType::Int32 && **v == DataType::Utf8 => {
+                    let dict = col.as_dictionary::<Int32Type>();
+                    let values = dict.values().as_string::<i32>();
+                    for key in dict.keys().iter() {
+                        match key.filter(|k| (*k as usize) < values.len()) {
+                            Some(k) => Self::fold_str(h, values.value(k as usize)),
+                            None => Self::fold(h, Self::NULL),
+                        }
+                    }
+                }
+                other => bail!("cannot hash a column of type {other}"),
+            }
+        }
         Ok(())
+    }
+
+    /// The hash, as it is written in [`META_CONTENT_HASH`]: 16 hex digits.
+    pub fn value(&self) -> String {
+        let mut h = 0;
+        for c in &self.columns {
+            Self::fold(&mut h, *c);
+        }
+        format!("{h:016x}")
     }
 }
 
@@ -680,28 +1085,132 @@ pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> 
 pub struct ParquetInput {
     pub metadata: BTreeMap<String, String>,
     pub rows: i64,
-    pub reader: ParquetRecordBatchReader,
+    pub reader: VerifiedReader,
 }
 
-/// Opens a Parquet file for reading, with errors naming the path.
+/// The batches of a Parquet file, checked: a page that does not decode, and
+/// (once the last batch has been read) rows that do not hash to the file's
+/// [`META_CONTENT_HASH`], are errors naming the file. Files without the key
+/// (written before it existed) are read unchecked.
+pub struct VerifiedReader {
+    inner: ParquetRecordBatchReader,
+    path: PathBuf,
+    hash: ContentHash,
+    expected: Option<String>,
+    done: bool,
+}
+
+impl Iterator for VerifiedReader {
+    type Item = Result<RecordBatch>;
+
+    fn next(&mut self) -> Option<Result<RecordBatch>> {
+        if self.done {
+            return None;
+        }
+        let corrupt = |why: String| {
+            anyhow!(
+                "{} is corrupt: {why}; restore it or rerun what made it",
+                self.path.display()
+            )
+        };
+        match self.inner.next() {
+            Some(Ok(batch)) => {
+                if let Err(e) = self.hash.update(&batch) {
+                    self.done = true;
+                    return Some(Err(corrupt(format!("{e:#}"))));
+                }
+                Some(Ok(batch))
+            }
+            Some(Err(e)) => {
+                self.done = true;
+                Some(Err(corrupt(format!("a page does not decode ({e})"))))
+            }
+            None => {
+                self.done = true;
+                let got = self.hash.value();
+                match &self.expected {
+                    Some(want) if *want != got => Some(Err(corrupt(format!(
+                        "its rows hash to {got}, not to the {want} written with them \
+                         (`{META_CONTENT_HASH}`)"
+                    )))),
+                    _ => None,
+                }
+            }
+        }
+    }
+}
+
+/// Opens a Parquet file for reading, with errors naming the path; its
+/// batches are checked against its content hash ([`VerifiedReader`]).
 pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
         .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
     let meta = builder.metadata().file_metadata();
     let rows = meta.num_rows();
-    let metadata = meta
+    let metadata: BTreeMap<String, String> = meta
         .key_value_metadata()
         .into_iter()
         .flatten()
         .filter_map(|kv| Some((kv.key.clone(), kv.value.clone()?)))
         .collect();
-    let reader = builder.with_batch_size(batch_size.max(1)).build()?;
+    let columns = builder.schema().fields().len();
+    let inner = builder.with_batch_size(batch_size.max(1)).build()?;
     Ok(ParquetInput {
-        metadata,
         rows,
-        reader,
+        reader: VerifiedReader {
+            inner,
+            path: path.to_path_buf(),
+            hash: ContentHash::new(columns),
+            expected: metadata.get(META_CONTENT_HASH).cloned(),
+            done: false,
+        },
+        metadata,
     })
+}
+
+/// Checks the values of a batch of scan rows that every reader relies on:
+/// each input parameter inside its range (docs/model.md §1), the derived
+/// parameters finite. `first_row` is the batch's first row in the file; an
+/// error names the file, the column and the row.
+pub fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64) -> Result<()> {
+    for (i, key) in crate::config::PARAM_KEYS.iter().enumerate() {
+        let col = f64_column(batch, key).with_context(|| path.display().to_string())?;
+        for (r, v) in col.iter().enumerate() {
+            let bad = match v {
+                None => Some("null: must be a number".to_string()),
+                Some(v) => crate::config::check_param(i, v).err().map(|e| {
+                    // Corrupt bits are often huge or tiny: keep them readable.
+                    let shown = if v != 0.0 && !(1e-6..1e6).contains(&v.abs()) {
+                        format!("{v:e}")
+                    } else {
+                        v.to_string()
+                    };
+                    format!("{shown} is invalid: must be {}", e.range)
+                }),
+            };
+            if let Some(why) = bad {
+                bail!(
+                    "{}: column `{key}`, row {}: {why}; the file is corrupt or was not written by rtw-scan",
+                    path.display(),
+                    first_row + r as u64
+                );
+            }
+        }
+    }
+    for c in COLUMNS.iter().filter(|c| c.group == "derived") {
+        let col = f64_column(batch, c.name).with_context(|| path.display().to_string())?;
+        if let Some(r) = col.iter().position(|v| !v.is_some_and(f64::is_finite)) {
+            bail!(
+                "{}: column `{}`, row {}: {:?} is invalid: must be a finite number; the file is corrupt",
+                path.display(),
+                c.name,
+                first_row + r as u64,
+                col.iter().nth(r).flatten()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// A `Float64` column of a scan batch, by name.
@@ -882,6 +1391,7 @@ pub struct TraceWriter {
     schema: SchemaRef,
     buffer: Vec<TraceSample>,
     rows: u64,
+    max_rows: u64,
 }
 
 enum TraceGet {
@@ -991,10 +1501,75 @@ pub fn trace_schema() -> SchemaRef {
     Arc::new(Schema::new(fields))
 }
 
+/// Bytes of one trace sample before compression (the sum of its columns'
+/// widths): the unit of `simulate --trace`'s size estimate and limit.
+pub fn trace_row_bytes() -> u64 {
+    trace_columns()
+        .iter()
+        .map(|(_, _, _, g)| match g {
+            TraceGet::F64(_) => 8,
+            TraceGet::I8(_) => 1,
+        })
+        .sum()
+}
+
+/// Most samples a trace of a run with `options` can have: one every
+/// `trace_dt` over `t_max`, or with `trace_dt = 0` one per step, at most the
+/// work budget `max_steps`.
+pub fn trace_rows_bound(options: &rtw_model::Options) -> u64 {
+    if options.trace_dt > 0.0 {
+        (options.t_max / options.trace_dt).min(u64::MAX as f64 / 2.0) as u64 + 2
+    } else {
+        options.max_steps.saturating_add(1)
+    }
+}
+
+/// A byte count in decimal units (`2.0 GB`).
+pub fn human_bytes(b: f64) -> String {
+    let units = ["B", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let mut v = b;
+    let mut u = 0;
+    while v >= 1000.0 && u + 1 < units.len() {
+        v /= 1000.0;
+        u += 1;
+    }
+    format!("{v:.1} {}", units[u])
+}
+
+/// Parses a size such as `2GB`, `500 MB`, `1e9` (bytes), `64kB`; decimal units.
+pub fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
+    let (num, unit) = t.split_at(split);
+    let factor = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 1.0,
+        "kb" | "k" => 1e3,
+        "mb" | "m" => 1e6,
+        "gb" | "g" => 1e9,
+        "tb" | "t" => 1e12,
+        _ => {
+            return Err(format!(
+                "`{s}`: unknown unit `{unit}`: use B, kB, MB, GB or TB"
+            ));
+        }
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a size such as 2GB or 500MB"))?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!("`{s}`: must be a size > 0"));
+    }
+    Ok((v * factor).min(u64::MAX as f64) as u64)
+}
+
 impl TraceWriter {
     const BATCH: usize = 8192;
 
-    pub fn create(dest: &Path, metadata: Vec<KeyValue>) -> Result<Self> {
+    /// A trace of at most `limit` bytes before compression: a sample past it
+    /// is an error (the estimate made before the run is an upper bound, this
+    /// is the backstop).
+    pub fn create(dest: &Path, metadata: Vec<KeyValue>, limit: u64) -> Result<Self> {
         let schema = trace_schema();
         let props = writer_properties(&schema, Self::BATCH, metadata);
         let file = ParquetFile::create(dest, schema.clone(), props)?;
@@ -1003,11 +1578,19 @@ impl TraceWriter {
             schema,
             buffer: Vec::with_capacity(Self::BATCH),
             rows: 0,
+            max_rows: limit / trace_row_bytes(),
         })
     }
 
     /// Buffers one sample, writing a row group when the buffer is full.
     pub fn push(&mut self, s: &TraceSample) -> Result<()> {
+        if self.rows + self.buffer.len() as u64 >= self.max_rows {
+            bail!(
+                "the trace reached its limit of {} samples ({}); raise --trace-limit or trace_dt",
+                self.max_rows,
+                human_bytes((self.max_rows * trace_row_bytes()) as f64)
+            );
+        }
         self.buffer.push(*s);
         if self.buffer.len() >= Self::BATCH {
             self.flush()?;

@@ -143,6 +143,7 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
     for batch in input.reader {
         let batch = batch.with_context(|| format!("reading {}", path.display()))?;
         let ctx = || format!("{}", path.display());
+        output::check_scan_values(&batch, path, data.rows)?;
         let labels = output::label_column(&batch).with_context(ctx)?;
         let wall = output::f64_column(&batch, "wall_time_s").with_context(ctx)?;
         for (i, label) in labels.iter().enumerate() {
@@ -300,6 +301,34 @@ pub fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
         samples_per_s: data.wall_time_s.filter(|w| *w > 0.0).map(|w| n as f64 / w),
         sample_time_s: data.sample_time_s,
     })
+}
+
+/// Refuses to let the summary of `samples` replace `dir/summary.json` and
+/// `summary.md` when they are the summary of another file (the summary of a
+/// part beside the merged scan's, say), or are not rtw-scan summaries.
+pub fn check_summary_target(dir: &Path, samples: &Path) -> Result<()> {
+    let json = dir.join("summary.json");
+    if !json.exists() {
+        return Ok(());
+    }
+    let of = std::fs::read_to_string(&json)
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v.get("file").and_then(|f| f.as_str()).map(str::to_string));
+    let name = |p: &Path| p.file_name().map(|n| n.to_os_string());
+    match of {
+        Some(f) if name(Path::new(&f)) == name(samples) => Ok(()),
+        Some(f) => bail!(
+            "{} is the summary of {f}, not of {}: writing this one would replace it; pass --force to \
+             replace it",
+            json.display(),
+            samples.display()
+        ),
+        None => bail!(
+            "{} is not an rtw-scan summary: refusing to replace it; pass --force to replace it",
+            json.display()
+        ),
+    }
 }
 
 /// Writes `summary.json` and `summary.md` into `dir`.
@@ -483,6 +512,7 @@ phi = { uniform = [0.05, 0.12] }
             chunk_size: NonZeroUsize::new(4000).unwrap(),
             progress: ProgressMode::Quiet,
             shard: None,
+            force: false,
         };
         let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
             crate::fake::simulate(p, o, std::time::Duration::ZERO)

@@ -29,8 +29,8 @@
 
 use crate::config::ScanConfig;
 use crate::output::{
-    self, MAX_ROW_GROUP_ROWS, META_CHUNK_WALL_TIME, META_CONFIG, META_SHARD, META_TOTAL_ROWS,
-    META_WALL_TIME, ParquetFile, READ_BATCH_ROWS, Row, schema,
+    self, MAX_ROW_GROUP_ROWS, META_CHUNK_WALL_TIME, META_CONFIG, META_CONFIG_HASH, META_SHARD,
+    META_TOTAL_ROWS, META_WALL_TIME, ParquetFile, READ_BATCH_ROWS, Row, schema,
 };
 use crate::sample::Sampler;
 use crate::shard::Shard;
@@ -52,6 +52,23 @@ use std::time::{Duration, Instant};
 
 /// Rows per chunk unless told otherwise.
 pub const DEFAULT_CHUNK_SIZE: usize = 256;
+
+/// Most worker threads per core accepted by `--threads`: more only adds
+/// switching (10 000 threads took 98 s for 6 samples), and a huge count
+/// would start threads until the system stops it.
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores.
+pub fn check_threads(threads: Option<NonZeroUsize>) -> Result<()> {
+    let cores = std::thread::available_parallelism().map_or(1, NonZeroUsize::get);
+    let cap = MAX_THREADS_PER_CORE * cores;
+    match threads {
+        Some(n) if n.get() > cap => bail!(
+            "--threads: {n} is invalid: must be at most {cap} ({MAX_THREADS_PER_CORE} per core, {cores} cores)"
+        ),
+        _ => Ok(()),
+    }
+}
 
 /// A simulator: `rtw_model::simulate` or a test double.
 pub type Simulator<'a> = &'a (dyn Fn(&Params, &Options) -> Outcome + Sync);
@@ -79,6 +96,9 @@ pub struct RunSettings {
     pub progress: ProgressMode,
     /// Run only this shard's id range, into `part-K.parquet`.
     pub shard: Option<Shard>,
+    /// Write even over another scan's results (or its unfinished run) in
+    /// the output directory.
+    pub force: bool,
 }
 
 /// How a scan ended.
@@ -155,26 +175,53 @@ pub fn run_scan(
     let rows = ids.end - ids.start;
     let shard_text = settings.shard.map(|s| s.to_string());
     let config_toml = cfg.to_toml();
+    check_threads(settings.threads)?;
     let out = &settings.out_dir;
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output directory {}", out.display()))?;
     let layout = Layout::new(out, settings.shard);
+    let _lock = output::Lock::acquire(
+        &layout.samples,
+        &format!("writing {}", layout.samples.display()),
+    )?;
+    if !settings.force {
+        refuse_other_results(out, cfg, settings.shard)?;
+    }
+    // Temporary files of a killed run, merge or summary of this very result.
+    output::remove_stray_temps(&layout.samples)?;
+    if settings.shard.is_none() {
+        for f in ["summary.json", "summary.md"] {
+            output::remove_stray_temps(&out.join(f))?;
+        }
+    }
 
-    let chunk_size = if layout.partial.exists() {
-        if !settings.resume {
-            bail!(
-                "{} holds an unfinished run: pass --resume to finish it, or delete it to start over",
+    let unfinished = if layout.partial.exists() {
+        let same = read_manifest(&layout.manifest()).map(|m| {
+            (m.config == config_toml && m.rows == rows && m.shard == shard_text).then_some(m)
+        });
+        match same {
+            Ok(Some(m)) if settings.resume => Some(m),
+            Ok(Some(_)) => bail!(
+                "{} holds an unfinished run of this scan: pass --resume to finish it, or delete it to start over",
                 layout.partial.display()
-            );
-        }
-        let manifest = read_manifest(&layout.manifest())?;
-        if manifest.config != config_toml || manifest.rows != rows || manifest.shard != shard_text {
-            bail!(
-                "cannot resume: the unfinished run in {} was started with a different config \
-                 (or another --shard split); delete it to start over",
+            ),
+            _ if settings.force => {
+                std::fs::remove_dir_all(&layout.partial)
+                    .with_context(|| format!("cannot remove {}", layout.partial.display()))?;
+                None
+            }
+            Ok(None) => bail!(
+                "cannot {}: the unfinished run in {} was started with a different config (or another \
+                 --shard split); choose another --out, or pass --force to discard it",
+                if settings.resume { "resume" } else { "start" },
                 layout.partial.display()
-            );
+            ),
+            Err(e) => return Err(e.context("pass --force to discard the unfinished run")),
         }
+    } else {
+        None
+    };
+    let chunk_size = if let Some(manifest) = unfinished {
         remove_stray_files(&layout.partial)?;
         manifest.chunk_size.max(1)
     } else {
@@ -207,17 +254,24 @@ pub fn run_scan(
         metadata.push(output::kv(META_TOTAL_ROWS, total.to_string()));
     }
 
-    // Chunks already on disk (resume), with their labels for the progress counts.
-    let mut done = vec![false; chunks as usize];
+    // Chunks already on disk (resume), with their labels for the progress
+    // counts: found by listing `.partial`, so the work before the first
+    // sample grows with the chunks kept, not with the scan's size.
+    let mut done = std::collections::BTreeSet::new();
     let progress = Progress::new(rows, settings.progress);
-    for c in 0..chunks {
+    for c in chunks_on_disk(&layout.partial)? {
         let path = layout.chunk(c);
-        if !path.exists() {
-            continue;
+        if stop.load(Ordering::SeqCst) {
+            break;
         }
-        match chunk_labels(&path, range(c), &config_toml) {
+        let checked = if c < chunks {
+            chunk_labels(&path, range(c), &config_toml)
+        } else {
+            Err(anyhow!("beyond the scan's {chunks} chunks"))
+        };
+        match checked {
             Ok(labels) => {
-                done[c as usize] = true;
+                done.insert(c);
                 labels.into_iter().for_each(|l| progress.record_previous(l));
             }
             Err(e) => {
@@ -235,7 +289,7 @@ pub fn run_scan(
         .context("cannot start the worker threads")?;
     let mut computed = 0;
     for c in 0..chunks {
-        if done[c as usize] {
+        if done.contains(&c) {
             continue;
         }
         if stop.load(Ordering::SeqCst) {
@@ -264,11 +318,11 @@ pub fn run_scan(
             started.elapsed().as_secs_f64().to_string(),
         ));
         output::write_file(&layout.chunk(c), &output::to_batch(&chunk), meta)?;
-        done[c as usize] = true;
+        done.insert(c);
         computed += chunk.len() as u64;
     }
 
-    let chunks_done = done.iter().filter(|d| **d).count() as u64;
+    let chunks_done = done.len() as u64;
     if chunks_done < chunks {
         progress.finish(false);
         return Ok(RunStatus::Interrupted {
@@ -319,6 +373,7 @@ pub fn concat_scan_files(
     let mut next = ids.start;
     for path in inputs {
         let input = output::open(path, READ_BATCH_ROWS)?;
+        let first_row = next;
         wall += input
             .metadata
             .get(wall_key)
@@ -356,6 +411,7 @@ pub fn concat_scan_files(
                     ids.end.saturating_sub(1)
                 );
             }
+            output::check_scan_values(&batch, path, next - batch.num_rows() as u64 - first_row)?;
             file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
         }
     }
@@ -392,9 +448,79 @@ fn chunk_labels(path: &Path, ids: std::ops::Range<u64>, config: &str) -> Result<
             }
             next += 1;
         }
+        output::check_scan_values(&batch, path, labels.len() as u64)?;
         labels.extend(output::label_column(&batch)?);
     }
     Ok(labels)
+}
+
+/// The chunk numbers of the `chunk-NNNNN.parquet` files in `partial`.
+fn chunks_on_disk(partial: &Path) -> Result<Vec<u64>> {
+    let mut found = Vec::new();
+    for entry in
+        std::fs::read_dir(partial).with_context(|| format!("cannot read {}", partial.display()))?
+    {
+        let name = entry?.file_name();
+        let name = name.to_string_lossy();
+        if let Some(c) = name
+            .strip_prefix("chunk-")
+            .and_then(|n| n.strip_suffix(".parquet"))
+            .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|n| n.parse().ok())
+        {
+            found.push(c);
+        }
+    }
+    found.sort_unstable();
+    Ok(found)
+}
+
+/// Refuses to run into a directory that holds another scan's results: a
+/// `samples.parquet` or `part-K.parquet` of another config (hash), or, for a
+/// shard, the parts of another split of this scan.
+fn refuse_other_results(out: &Path, cfg: &ScanConfig, shard: Option<Shard>) -> Result<()> {
+    let hash = cfg.hash();
+    let ours = output::scan_label(&hash, cfg.name.as_deref(), cfg.seed);
+    let mut names: Vec<String> = std::fs::read_dir(out)
+        .with_context(|| format!("cannot read {}", out.display()))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n == "samples.parquet" || crate::shard::part_index(n).is_some())
+        .collect();
+    names.sort();
+    for name in names {
+        let path = out.join(&name);
+        let meta = match output::open(&path, 1) {
+            Ok(i) => i.metadata,
+            Err(e) => bail!(
+                "{} holds {name}, which is not a scan rtw-scan can read ({e:#}); this run is {ours}: \
+                 choose another --out, or pass --force to replace it",
+                out.display()
+            ),
+        };
+        if meta.get(META_CONFIG_HASH) != Some(&hash) {
+            bail!(
+                "{} holds another scan's results: {name} is {}; this run is {ours}. Choose another \
+                 --out, or pass --force to replace them",
+                out.display(),
+                output::scan_label_of(&meta)
+            );
+        }
+        let theirs = meta.get(META_SHARD).and_then(|t| t.parse::<Shard>().ok());
+        if let (Some(s), Some(t)) = (shard, theirs)
+            && s.count != t.count
+        {
+            bail!(
+                "{} holds the parts of a {}-shard split of this scan ({name} is shard {t}); this run \
+                 is shard {s}, and merge joins the parts of one split only. Use --shard K/{}, another \
+                 --out, or pass --force",
+                out.display(),
+                t.count,
+                t.count
+            );
+        }
+    }
+    Ok(())
 }
 
 fn read_manifest(path: &Path) -> Result<Manifest> {
@@ -684,6 +810,7 @@ t_max = 2.0
             chunk_size: NonZeroUsize::new(chunk).unwrap(),
             progress: ProgressMode::Quiet,
             shard: None,
+            force: false,
         }
     }
 
@@ -761,7 +888,7 @@ t_max = 2.0
             s.shard = Some(Shard { index, count: 3 });
             run_scan(&cfg, &s, &fake_sim, &stop).unwrap();
         }
-        crate::shard::merge_parts(c.path()).unwrap();
+        crate::shard::merge_parts(c.path(), false).unwrap();
         let cap = MAX_ROW_GROUP_ROWS as i64;
         for dir in [&a, &b, &c] {
             assert_eq!(

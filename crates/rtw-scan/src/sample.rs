@@ -10,7 +10,7 @@
 //!
 //! [`PARAM_KEYS`]: crate::config::PARAM_KEYS
 
-use crate::config::{Axis, ScanConfig, param_mut};
+use crate::config::{Axis, ScanConfig, linspace_point, param_mut};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::Params;
@@ -21,6 +21,9 @@ enum Source {
     Fixed(f64),
     Uniform(f64, f64),
     Grid(Vec<f64>),
+    /// A linspace axis, its points computed one at a time (it may have more
+    /// than memory holds).
+    Linspace(f64, f64, u64),
 }
 
 /// Maps sample ids to parameters for one config.
@@ -41,9 +44,8 @@ impl Sampler {
             .map(|a| match a {
                 Axis::Fixed(v) => Source::Fixed(*v),
                 Axis::Uniform { lo, hi } => Source::Uniform(*lo, *hi),
-                Axis::Linspace { .. } | Axis::List(_) => {
-                    Source::Grid(a.grid_points().expect("grid axis has points"))
-                }
+                Axis::Linspace { lo, hi, n } => Source::Linspace(*lo, *hi, *n),
+                Axis::List(points) => Source::Grid(points.clone()),
             })
             .collect();
         Self {
@@ -75,6 +77,11 @@ impl Sampler {
                 Source::Grid(points) => {
                     let n = points.len() as u64;
                     let v = points[(grid % n) as usize];
+                    grid /= n;
+                    v
+                }
+                Source::Linspace(lo, hi, n) => {
+                    let v = linspace_point(*lo, *hi, *n, grid % n);
                     grid /= n;
                     v
                 }

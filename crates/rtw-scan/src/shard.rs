@@ -97,7 +97,7 @@ fn part_name(k: u64) -> String {
 }
 
 /// `K` of a file named `part-K.parquet`.
-fn part_index(name: &str) -> Option<u64> {
+pub(crate) fn part_index(name: &str) -> Option<u64> {
     let k = name.strip_prefix("part-")?.strip_suffix(".parquet")?;
     if k.is_empty() || !k.bytes().all(|b| b.is_ascii_digit()) {
         return None;
@@ -177,9 +177,10 @@ pub struct Merged {
 /// Checks the `part-K.parquet` files in `dir` and concatenates them into
 /// `dir/samples.parquet`. Refuses, naming the files, when the parts come from
 /// different configs, versions or shard counts, when a shard is missing, or
-/// when their `sample_id`s are not exactly 0..n−1 once each; nothing is
-/// written then.
-pub fn merge_parts(dir: &Path) -> Result<Merged> {
+/// when their `sample_id`s are not exactly 0..n−1 once each, when a part is
+/// corrupt, or (unless `force`) when `dir/samples.parquet` holds another
+/// scan; nothing is written then.
+pub fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
     let entries = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read directory {}", dir.display()))?;
     let mut found = BTreeMap::new();
@@ -281,6 +282,29 @@ pub fn merge_parts(dir: &Path) -> Result<Merged> {
         );
     }
 
+    let samples = dir.join("samples.parquet");
+    let _lock = output::Lock::acquire(&samples, &format!("writing {}", samples.display()))?;
+    if !force && samples.exists() {
+        let theirs = output::open(&samples, 1).map(|i| i.metadata);
+        if theirs
+            .as_ref()
+            .map_or(true, |m| m.get(META_CONFIG_HASH) != Some(&first.hash))
+        {
+            bail!(
+                "{} holds another scan: {}; the parts are {}. Merge into another directory, or \
+                 pass --force to replace it",
+                samples.display(),
+                theirs.map_or_else(
+                    |e| format!("not a readable scan ({e:#})"),
+                    |m| output::scan_label_of(&m)
+                ),
+                describe(first)
+            );
+        }
+    }
+    for f in ["samples.parquet", "summary.json", "summary.md"] {
+        output::remove_stray_temps(&dir.join(f))?;
+    }
     let mut metadata = output::scan_metadata(&cfg);
     for kv in &mut metadata {
         // The parts' version, which need not be the merging binary's.
@@ -289,7 +313,6 @@ pub fn merge_parts(dir: &Path) -> Result<Merged> {
         }
     }
     metadata.push(output::kv(META_SHARDS, n.to_string()));
-    let samples = dir.join("samples.parquet");
     let paths: Vec<PathBuf> = parts.iter().map(|p| p.path.clone()).collect();
     concat_scan_files(
         &paths,

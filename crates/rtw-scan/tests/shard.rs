@@ -212,7 +212,7 @@ fn killed_shard_rerun_with_resume_merges_to_the_identical_file() {
             "--fake-sim",
             "0",
         ],
-        &["cannot resume", "another --shard split"],
+        &["4-shard split", "this run is shard 2/5"],
     );
     // Rerun with --resume: the kept chunks are reused, the rest computed.
     let o = run_ok(&[
@@ -244,8 +244,9 @@ fn killed_shard_rerun_with_resume_merges_to_the_identical_file() {
         "0",
     ]);
     assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
-    // The unfinished run of another shard cannot be resumed as this one.
-    let e = run(&[
+    // Shard 2 of another split would replace part-2 of this one: refused
+    // (issue 14), unless forced.
+    let args = [
         "run",
         &cfg,
         "--out",
@@ -255,8 +256,13 @@ fn killed_shard_rerun_with_resume_merges_to_the_identical_file() {
         "--resume",
         "--fake-sim",
         "0",
-    ]);
-    assert!(e.status.success(), "2/5 is its own shard: {}", stderr(&e));
+    ];
+    run_err(
+        &args,
+        &["4-shard split", "this run is shard 2/5", "--force"],
+    );
+    assert_eq!(metadata(&out.join("part-2.parquet"))["rtw.shard"], "2/4");
+    run_ok(&[&args[..], &["--force"]].concat());
     assert_eq!(metadata(&out.join("part-2.parquet"))["rtw.shard"], "2/5");
     // …and now part-2 is from another split: refused.
     std::fs::remove_file(out.join("samples.parquet")).unwrap();
@@ -303,7 +309,8 @@ fn parts_from_different_configs_or_versions_are_refused() {
     let b = write_config(dir.path(), "b.toml", &paper_like(40, 6));
     let out = dir.path().join("o");
     run_shard(&a, &out, "0/2", &[]);
-    run_shard(&b, &out, "1/2", &[]);
+    // `run` itself refuses to mix two scans in one directory: --force does.
+    run_shard(&b, &out, "1/2", &["--force"]);
     let (ha, hb) = (
         metadata(&out.join("part-0.parquet"))["rtw.config_hash"].clone(),
         metadata(&out.join("part-1.parquet"))["rtw.config_hash"].clone(),
@@ -319,7 +326,7 @@ fn parts_from_different_configs_or_versions_are_refused() {
     );
 
     // Same config, another rtw-scan version.
-    run_shard(&a, &out, "1/2", &[]);
+    run_shard(&a, &out, "1/2", &["--force"]);
     merge(&out);
     std::fs::remove_file(out.join("samples.parquet")).unwrap();
     rewrite_part(

@@ -22,6 +22,12 @@ pub fn config(name: &str) -> PathBuf {
     workspace().join("configs").join(format!("{name}.toml"))
 }
 
+/// `simulate` at the Fig. 7(a) point (main article): add flags after it.
+pub const SIMULATE_FIG7A: [&str; 13] = [
+    "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta",
+    "0.0514", "--phi", "0.15",
+];
+
 /// Runs the binary and returns its output, whatever the exit status.
 pub fn run(args: &[&str]) -> Output {
     bin().args(args).output().expect("rtw-scan runs")
