@@ -23,11 +23,13 @@
 //! | [`variational`] | sensitivities `∂y/∂y₀` through flows, impacts and mode switches |
 //! | [`stepmap`] | the step map at each new foot's touchdown, reduced by the 60° symmetry |
 //! | [`limit`] | fixed points by Newton, Floquet multipliers (any return map) |
+//! | [`continuation`] | branches of fixed points in a parameter, their bifurcations, curves of them in two |
 //! | [`modal`] | eigen-frequencies of the approximate and of the full model |
 //!
 //! The crate does no I/O.
 
 pub mod contact;
+pub mod continuation;
 pub mod gait;
 pub mod geometry;
 pub mod hybrid;
