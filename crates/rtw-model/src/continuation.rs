@@ -394,7 +394,12 @@ fn trace<M: ParamMap>(
         if points.len() >= opts.max_points {
             break End::MaxPoints;
         }
-        let Some((xn, at)) = s.correct(&x, &t, ds, opts.tol, opts.max_iter) else {
+        // A corrector that lands farther from its predictor than the step
+        // is long has likely jumped to another branch: a shorter step.
+        let corrected = s
+            .correct(&x, &t, ds, opts.tol, opts.max_iter)
+            .filter(|(xn, _)| (xn - (&x + &t * ds)).norm() <= ds);
+        let Some((xn, at)) = corrected else {
             ds *= 0.5;
             if ds < opts.ds_min {
                 break End::StepTooSmall;
