@@ -12,7 +12,7 @@ use rtw_bench::{
     Events, ScanDiff, ScanPoint, compare_scans, event_state_error, full, median, state_error,
     touchdown_time_error,
 };
-use rtw_model::options::MethodChoice;
+use rtw_model::Method;
 use rtw_model::{Label, Options, Outcome, Params, simulate, simulate_traced};
 use rtw_scan::config;
 use rtw_scan::sample::Sampler;
@@ -23,31 +23,31 @@ use std::time::Instant;
 /// An integrator setting: the method and its tolerance (RK4: its step).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Setting {
-    method: MethodChoice,
+    method: Method,
     /// rtol of the adaptive methods (atol = rtol/100), or RK4's step [s].
     tol: f64,
 }
 
 /// The reference: the highest-order method at rtol 1e-13.
 const REFERENCE: Setting = Setting {
-    method: MethodChoice::Dop853,
+    method: Method::Dop853,
     tol: 1e-13,
 };
 
 impl Setting {
     fn name(&self) -> String {
         match self.method {
-            MethodChoice::Rk4 => format!("rk4 h={:e}", self.tol),
-            MethodChoice::Dp54 => format!("dp54 {:e}", self.tol),
-            MethodChoice::Dop853 => format!("dop853 {:e}", self.tol),
+            Method::Rk4 => format!("rk4 h={:e}", self.tol),
+            Method::Dp54 => format!("dp54 {:e}", self.tol),
+            Method::Dop853 => format!("dop853 {:e}", self.tol),
         }
     }
 
     fn method_name(&self) -> &'static str {
         match self.method {
-            MethodChoice::Rk4 => "rk4",
-            MethodChoice::Dp54 => "dp54",
-            MethodChoice::Dop853 => "dop853",
+            Method::Rk4 => "rk4",
+            Method::Dp54 => "dp54",
+            Method::Dop853 => "dop853",
         }
     }
 
@@ -56,7 +56,7 @@ impl Setting {
         let mut o = *base;
         o.method = self.method;
         match self.method {
-            MethodChoice::Rk4 => o.rk4_step = self.tol,
+            Method::Rk4 => o.rk4_step = self.tol,
             _ => {
                 o.rtol = self.tol;
                 o.atol = self.tol * 1e-2;
@@ -68,7 +68,7 @@ impl Setting {
 
 fn settings(quick: bool) -> Vec<Setting> {
     let s = |method, tol| Setting { method, tol };
-    use MethodChoice::*;
+    use Method::*;
     if quick {
         return vec![
             s(Rk4, 1e-3),
