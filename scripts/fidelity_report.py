@@ -11,7 +11,7 @@ after, the cross-tabulation of every sample's label, how the shares move
 with each label threshold (the whole curve), and where the crawlers come
 from. Every number is computed here from those files; the only typed numbers
 are the paper's targets (docs/model.md §8). Relabelling at another threshold
-applies the same rule as rtw_model::gait::label to the columns `nlsp`,
+applies the same rule as rtw_model::Label::of_gait to the columns `nlsp`,
 `tlsp`, `flight_steps` and `triple_steps`.
 
 Usage: python scripts/fidelity_report.py
@@ -52,7 +52,7 @@ def shares(df: pl.DataFrame) -> dict:
 
 
 def relabel(df: pl.DataFrame, flight=0.01, triple=0.01, flight_steps=0.0, triple_steps=0.0) -> pl.Series:
-    """rtw_model::gait::label on the stored columns, for the stable rows."""
+    """rtw_model::Label::of_gait on the stored columns, for the stable rows."""
     skip = (pl.col("nlsp") > flight) & (pl.col("flight_steps") >= flight_steps)
     crawl = (pl.col("tlsp") > triple) & (pl.col("triple_steps") >= triple_steps)
     stable = pl.col("outcome").is_in(STABLE)

@@ -68,19 +68,21 @@ def measure(path):
     rhs = incl(r"rtw::Rtw::dynamics \[")
     # Root finding: the guard evaluations at the iterates (`Rtw::guards`,
     # all of them, before; `Rtw::guard`, the located one, after).
-    root = incl(r"rtw::Rtw::guards \[") + incl(r"rtw::Rtw::guard \[")
+    root = incl(r"Rtw as hybrid_ode::system::HybridSystem<20_usize>>::guards \[") + incl(
+        r"Rtw as hybrid_ode::system::HybridSystem<20_usize>>::guard \["
+    )
     # Step ends: the guard set from the RHS's by-products (`guards_of` called
     # from the engine, not from `Rtw::guards`).
     step_end = incl(r"rtw::Rtw::guards_of \[") - called_from(
-        r"rtw::Rtw::guards_of \[", r"rtw::Rtw::guards \("
+        r"rtw::Rtw::guards_of \[", r"HybridSystem<20_usize>>::guards \("
     )
     # Runge–Kutta arithmetic: the tableau code inlined into the engine, and
     # the dense output.
-    stages = incl(r"integrate\.rs:rtw_model::hybrid::run$") + incl(
+    stages = incl(r"integrate\.rs:hybrid_ode::engine::run$") + incl(
         r"integrate::fill_dense \["
     )
     resets = incl(r"HybridSystem<20_usize>>::reset \[")
-    observe = incl(r"Run::observe_step \[")
+    observe = incl(r"Recorder::observe_step \[")
     sincos = incl(r"__sincos_fma \[")
     return {
         "instructions per run": f"{total / 1e6:.1f} M",

@@ -5,14 +5,15 @@
 //! `results/bench`). `--quick` runs a few settings on a 40-sample scan, one
 //! repetition each (a smoke test of the machinery, not a measurement).
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
+use clap::Parser;
 use rayon::prelude::*;
 use rtw_bench::svg::{Panel, Series, render};
 use rtw_bench::{
     Events, ScanDiff, ScanPoint, compare_scans, event_state_error, full, median, state_error,
     touchdown_time_error,
 };
-use rtw_model::options::MethodChoice;
+use rtw_model::Method;
 use rtw_model::{Label, Options, Outcome, Params, simulate, simulate_traced};
 use rtw_scan::config;
 use rtw_scan::sample::Sampler;
@@ -23,31 +24,31 @@ use std::time::Instant;
 /// An integrator setting: the method and its tolerance (RK4: its step).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Setting {
-    method: MethodChoice,
+    method: Method,
     /// rtol of the adaptive methods (atol = rtol/100), or RK4's step [s].
     tol: f64,
 }
 
 /// The reference: the highest-order method at rtol 1e-13.
 const REFERENCE: Setting = Setting {
-    method: MethodChoice::Dop853,
+    method: Method::Dop853,
     tol: 1e-13,
 };
 
 impl Setting {
     fn name(&self) -> String {
         match self.method {
-            MethodChoice::Rk4 => format!("rk4 h={:e}", self.tol),
-            MethodChoice::Dp54 => format!("dp54 {:e}", self.tol),
-            MethodChoice::Dop853 => format!("dop853 {:e}", self.tol),
+            Method::Rk4 => format!("rk4 h={:e}", self.tol),
+            Method::Dp54 => format!("dp54 {:e}", self.tol),
+            Method::Dop853 => format!("dop853 {:e}", self.tol),
         }
     }
 
     fn method_name(&self) -> &'static str {
         match self.method {
-            MethodChoice::Rk4 => "rk4",
-            MethodChoice::Dp54 => "dp54",
-            MethodChoice::Dop853 => "dop853",
+            Method::Rk4 => "rk4",
+            Method::Dp54 => "dp54",
+            Method::Dop853 => "dop853",
         }
     }
 
@@ -56,7 +57,7 @@ impl Setting {
         let mut o = *base;
         o.method = self.method;
         match self.method {
-            MethodChoice::Rk4 => o.rk4_step = self.tol,
+            Method::Rk4 => o.rk4_step = self.tol,
             _ => {
                 o.rtol = self.tol;
                 o.atol = self.tol * 1e-2;
@@ -68,7 +69,7 @@ impl Setting {
 
 fn settings(quick: bool) -> Vec<Setting> {
     let s = |method, tol| Setting { method, tol };
-    use MethodChoice::*;
+    use Method::*;
     if quick {
         return vec![
             s(Rk4, 1e-3),
@@ -248,56 +249,231 @@ fn scan_params(path: &Path, limit: Option<u64>) -> Result<(Options, Vec<Params>)
     Ok((cfg.simulation, (0..n).map(|i| sampler.params(i)).collect()))
 }
 
+/// `cargo run --release -p rtw-bench [-- --quick] [--out DIR] [--threads N]`
+#[derive(Parser)]
+#[command(
+    about = "The work–precision benchmark of the RTW model: writes DIR/work-precision.md and DIR/work-precision.svg"
+)]
 struct Args {
+    /// A few settings on a 40-sample scan, one repetition each: a smoke test
+    /// of the machinery, not a measurement.
+    #[arg(long)]
     quick: bool,
+    /// Output directory.
+    #[arg(long, value_name = "DIR", default_value = "results/bench")]
     out: PathBuf,
-    threads: Option<usize>,
+    /// Worker threads of the scans (default: one per logical core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    threads: Option<u64>,
 }
 
-fn parse_args() -> Result<Args> {
-    let mut a = Args {
-        quick: false,
-        out: PathBuf::from("results/bench"),
-        threads: None,
-    };
-    let mut it = std::env::args().skip(1);
-    while let Some(arg) = it.next() {
-        match arg.as_str() {
-            "--quick" => a.quick = true,
-            "--out" => a.out = it.next().context("--out needs a directory")?.into(),
-            "--threads" => {
-                let v = it.next().context("--threads needs a count")?;
-                let n: usize = v
-                    .parse()
-                    .ok()
-                    .filter(|&n| n >= 1)
-                    .with_context(|| format!("--threads: an integer >= 1, not {v:?}"))?;
-                a.threads = Some(n);
-            }
-            other => bail!("unknown argument {other:?} (valid: --quick, --out DIR, --threads N)"),
-        }
+/// One setting's run of a fixed case and its errors against the reference.
+struct CaseRow {
+    setting: Setting,
+    run: CaseRun,
+    /// State error over the first events.
+    event_err: Option<f64>,
+    /// Touchdown-time error over the first touchdowns.
+    time_err: Option<f64>,
+    /// State error at `T_FIX`.
+    fix_err: Option<f64>,
+    /// Relative f_w error.
+    fw_err: Option<f64>,
+    /// Largest contact-fraction error.
+    fraction_err: f64,
+}
+
+/// A fixed case: its reference run and every setting's.
+struct CaseResult {
+    reference: CaseRun,
+    rows: Vec<CaseRow>,
+}
+
+/// One scan run with and without the early stop at the chosen setting.
+struct EarlyRow {
+    name: &'static str,
+    samples: usize,
+    full: ScanRun,
+    early: ScanRun,
+    diff: ScanDiff,
+    /// Stable samples whose run ended before t_max.
+    stopped: usize,
+}
+
+/// Everything the benchmark measures, before any of it is written.
+struct Measured {
+    quick: bool,
+    reps: usize,
+    cases: Vec<Case>,
+    case_results: Vec<CaseResult>,
+    /// The scanned samples.
+    scan: Vec<Params>,
+    reference: ScanRun,
+    scans: Vec<(Setting, ScanRun, ScanDiff)>,
+    /// Index in `scans` of the cheapest setting that meets the criteria.
+    chosen: Option<usize>,
+    early: Vec<EarlyRow>,
+}
+
+impl Measured {
+    /// The relative f_w error of `s` at the Fig. 7(a) walk (case 0).
+    fn walk_fw_err(&self, s: &Setting) -> f64 {
+        self.case_results[0]
+            .rows
+            .iter()
+            .find(|r| r.setting == *s)
+            .and_then(|r| r.fw_err)
+            .unwrap_or(f64::INFINITY)
     }
-    Ok(a)
+
+    /// Per case: (setting, state error, median ms) of the settings that
+    /// reached the first events.
+    fn plot_cases(&self) -> Vec<Vec<(Setting, f64, f64)>> {
+        self.case_results
+            .iter()
+            .map(|c| {
+                c.rows
+                    .iter()
+                    .filter_map(|r| r.event_err.map(|e| (r.setting, e, r.run.ms)))
+                    .collect()
+            })
+            .collect()
+    }
 }
 
 fn main() -> Result<()> {
-    let args = parse_args()?;
+    let args = Args::parse();
     if let Some(n) = args.threads {
         rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
+            .num_threads(n as usize)
             .build_global()?;
     }
+    let measured = measure(args.quick)?;
+    write_out(&args.out, &report(&measured), &measured)
+}
+
+/// Runs the fixed cases, the scans, and the early-stop comparison.
+fn measure(quick: bool) -> Result<Measured> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let scan_cfg = root.join("configs/bench/scan200.toml");
     let (mut scan_base, all_params) = scan_params(&scan_cfg, None)?;
     // Full-length runs unless a section says otherwise.
     scan_base.stop_when_settled = false;
     let crawl = all_params[CRAWL_SAMPLE];
-    let reps = if args.quick { 1 } else { 5 };
-    let settings = settings(args.quick);
+    let reps = if quick { 1 } else { 5 };
+    let settings = settings(quick);
     let cases = cases(crawl);
+
+    let mut case_results = vec![];
+    for case in &cases {
+        eprintln!("case {}", case.name);
+        let reference = run_case(case, &REFERENCE, 1);
+        let r = &reference.out;
+        let rows = settings
+            .iter()
+            .map(|setting| {
+                let run = run_case(case, setting, reps);
+                let fix_err = match (&run.at_fix, &reference.at_fix) {
+                    (Some(a), Some(b)) => Some(state_error(a, b)),
+                    _ => None,
+                };
+                let (fa, fb) = (fractions(&run.out), fractions(r));
+                CaseRow {
+                    setting: *setting,
+                    event_err: event_state_error(&run.events, &reference.events, FIRST_EVENTS),
+                    time_err: touchdown_time_error(&run.events, &reference.events, FIRST_EVENTS),
+                    fix_err,
+                    fw_err: (r.f_w > 0.0).then(|| ((run.out.f_w - r.f_w) / r.f_w).abs()),
+                    fraction_err: (0..4).map(|i| (fa[i] - fb[i]).abs()).fold(0.0, f64::max),
+                    run,
+                }
+            })
+            .collect();
+        case_results.push(CaseResult { reference, rows });
+    }
+
+    let n_scan = if quick { 40 } else { all_params.len() };
+    let scan = all_params[..n_scan].to_vec();
+    eprintln!("scan: reference");
+    let reference = run_scan(&scan, &REFERENCE.apply(&scan_base));
+    let mut scans = vec![];
+    for setting in &settings {
+        eprintln!("scan: {}", setting.name());
+        let run = run_scan(&scan, &setting.apply(&scan_base));
+        let diff = compare_scans(&run.points, &reference.points);
+        scans.push((*setting, run, diff));
+    }
+    let mut measured = Measured {
+        quick,
+        reps,
+        cases,
+        case_results,
+        scan,
+        reference,
+        scans,
+        chosen: None,
+        early: vec![],
+    };
+    measured.chosen = measured
+        .scans
+        .iter()
+        .enumerate()
+        .filter(|(_, (s, _, d))| {
+            d.max_pp <= 1.0 && d.median_fw_rel < 0.01 && measured.walk_fw_err(s) < 0.01
+        })
+        // Least work by RHS evaluations: on a shared machine the CPU times of
+        // settings with equal work differ by up to 2× from run to run.
+        .min_by_key(|(_, (_, r, _))| r.rhs)
+        .map(|(i, _)| i);
+    let Some(best) = measured.chosen.map(|i| measured.scans[i].0) else {
+        return Ok(measured);
+    };
+
+    let mut early_scans = vec![(
+        "configs/bench/scan200.toml",
+        scan_cfg.clone(),
+        Some(n_scan as u64),
+    )];
+    if !quick {
+        early_scans.push(("configs/paper.toml", root.join("configs/paper.toml"), None));
+    }
+    for (name, path, limit) in early_scans {
+        eprintln!("early stop: {name}");
+        let (base, params) = scan_params(&path, limit)?;
+        let full_o = best.apply(&Options {
+            stop_when_settled: false,
+            ..base
+        });
+        let early_o = Options {
+            stop_when_settled: true,
+            ..full_o
+        };
+        let full = run_scan(&params, &full_o);
+        let early = run_scan(&params, &early_o);
+        let stopped = params
+            .par_iter()
+            .filter(|p| {
+                let o = simulate(p, &early_o);
+                o.label.is_stable() && o.t_end < early_o.t_max
+            })
+            .count();
+        let diff = compare_scans(&early.points, &full.points);
+        measured.early.push(EarlyRow {
+            name,
+            samples: params.len(),
+            full,
+            early,
+            diff,
+            stopped,
+        });
+    }
+    Ok(measured)
+}
+
+/// The Markdown report of what [`measure`] found.
+fn report(m: &Measured) -> String {
     let mut md = String::new();
-    let command = if args.quick {
+    let command = if m.quick {
         "cargo run --release -p rtw-bench -- --quick"
     } else {
         "cargo run --release -p rtw-bench"
@@ -307,13 +483,20 @@ fn main() -> Result<()> {
         md,
         "Made by `{command}` on a machine with {} logical cores ({} worker threads). \
          Reference: DOP853 at rtol 1e-13, atol 1e-15. Adaptive settings use atol = rtol/100; \
-         every setting has h_max = 0.01 s and t_max = 20 s. Wall times are medians of {reps} \
+         every setting has h_max = 0.01 s and t_max = 20 s. Wall times are medians of {} \
          runs, one thread.\n",
         std::thread::available_parallelism().map_or(1, |n| n.get()),
         rayon::current_num_threads(),
+        m.reps,
     );
+    report_cases(&mut md, m);
+    report_scan(&mut md, m);
+    report_choice(&mut md, m);
+    md
+}
 
-    // ---- Fixed cases -------------------------------------------------------
+/// The fixed cases' section.
+fn report_cases(md: &mut String, m: &Measured) {
     let _ = writeln!(md, "## Fixed cases\n");
     let _ = writeln!(
         md,
@@ -322,18 +505,14 @@ fn main() -> Result<()> {
          event-time error: largest |Δt| of the first {FIRST_EVENTS} touchdowns; f_w error \
          relative; fractions: largest |Δ| of NLSP/SLSP/DLSP/TLSP.\n"
     );
-    let mut walk_fw_err: Vec<(Setting, f64)> = vec![];
-    let mut plot_cases: Vec<Vec<(Setting, f64, f64)>> = vec![vec![]; cases.len()];
-    for (ci, case) in cases.iter().enumerate() {
-        eprintln!("case {}", case.name);
-        let reference = run_case(case, &REFERENCE, 1);
+    for (case, result) in m.cases.iter().zip(&m.case_results) {
         let p = case.params;
         let _ = writeln!(
             md,
             "### {} (ρ {:.4}, α {:.4}, f_n {:.4}, ζ {:.4}, φ {:.4}; model {})\n",
             case.name, p.rho, p.alpha, p.f_n, p.zeta, p.phi, case.variant
         );
-        let r = &reference.out;
+        let r = &result.reference.out;
         let _ = writeln!(
             md,
             "Reference: **{}**, f_w {:.4} Hz, NLSP/SLSP/DLSP/TLSP {:.3}/{:.3}/{:.3}/{:.3}, \
@@ -354,47 +533,33 @@ fn main() -> Result<()> {
              touchdown time err (s) | state err at {T_FIX} s | f_w rel err | fraction err |"
         );
         let _ = writeln!(md, "|---|---:|---:|---|---:|---:|---:|---:|---:|");
-        for setting in &settings {
-            let run = run_case(case, setting, reps);
-            let ev = event_state_error(&run.events, &reference.events, FIRST_EVENTS);
-            let te = touchdown_time_error(&run.events, &reference.events, FIRST_EVENTS);
-            let fix = match (&run.at_fix, &reference.at_fix) {
-                (Some(a), Some(b)) => Some(state_error(a, b)),
-                _ => None,
-            };
-            let fw = (r.f_w > 0.0).then(|| ((run.out.f_w - r.f_w) / r.f_w).abs());
-            let (fa, fb) = (fractions(&run.out), fractions(r));
-            let fr = (0..4).map(|i| (fa[i] - fb[i]).abs()).fold(0.0, f64::max);
-            if ci == 0 {
-                walk_fw_err.push((*setting, fw.unwrap_or(f64::INFINITY)));
-            }
-            if let Some(e) = ev {
-                plot_cases[ci].push((*setting, e, run.ms));
-            }
+        for row in &result.rows {
             let _ = writeln!(
                 md,
                 "| {} | {:.2} | {} | {}{} | {} | {} | {} | {} | {:.1e} |",
-                setting.name(),
-                run.ms,
-                run.out.work.rhs_evals,
-                run.out.label.as_str(),
-                if run.out.label == r.label { "" } else { " ≠" },
-                sci(ev),
-                sci(te),
-                sci(fix),
-                sci(fw),
-                fr
+                row.setting.name(),
+                row.run.ms,
+                row.run.out.work.rhs_evals,
+                row.run.out.label.as_str(),
+                if row.run.out.label == r.label {
+                    ""
+                } else {
+                    " ≠"
+                },
+                sci(row.event_err),
+                sci(row.time_err),
+                sci(row.fix_err),
+                sci(row.fw_err),
+                row.fraction_err
             );
         }
         md.push('\n');
     }
+}
 
-    // ---- The scan ----------------------------------------------------------
-    let n_scan = if args.quick { 40 } else { all_params.len() };
-    let scan = &all_params[..n_scan];
-    eprintln!("scan: reference");
-    let ref_opts = REFERENCE.apply(&scan_base);
-    let reference = run_scan(scan, &ref_opts);
+/// The scan's section.
+fn report_scan(md: &mut String, m: &Measured) {
+    let n_scan = m.scan.len();
     let _ = writeln!(
         md,
         "## Scan: {n_scan} samples of the paper's box, default model\n"
@@ -423,6 +588,7 @@ fn main() -> Result<()> {
             .collect::<Vec<_>>()
             .join(" | ")
     };
+    let reference = &m.reference;
     let self_diff = compare_scans(&reference.points, &reference.points);
     let _ = writeln!(
         md,
@@ -433,11 +599,7 @@ fn main() -> Result<()> {
         reference.wall_s,
         pct(&self_diff.percent)
     );
-    let mut scan_results: Vec<(Setting, ScanRun, ScanDiff)> = vec![];
-    for setting in &settings {
-        eprintln!("scan: {}", setting.name());
-        let run = run_scan(scan, &setting.apply(&scan_base));
-        let diff = compare_scans(&run.points, &reference.points);
+    for (setting, run, diff) in &m.scans {
         let _ = writeln!(
             md,
             "| {} | {} | {:.2} | {:.2} | {:.1} | {} | {:.1e} | {} |",
@@ -450,13 +612,12 @@ fn main() -> Result<()> {
             diff.median_fw_rel,
             pct(&diff.percent)
         );
-        scan_results.push((*setting, run, diff));
     }
     let _ = writeln!(
         md,
         "\nThe samples whose label differs from the reference:\n"
     );
-    for (setting, _, diff) in &scan_results {
+    for (setting, _, diff) in &m.scans {
         let flips: Vec<String> = diff
             .flips
             .iter()
@@ -473,24 +634,14 @@ fn main() -> Result<()> {
             }
         );
     }
+}
 
-    // ---- The default -------------------------------------------------------
-    let walk_err = |s: &Setting| {
-        walk_fw_err
-            .iter()
-            .find(|(w, _)| w == s)
-            .map_or(f64::INFINITY, |w| w.1)
-    };
-    let chosen = scan_results
-        .iter()
-        .filter(|(s, _, d)| d.max_pp <= 1.0 && d.median_fw_rel < 0.01 && walk_err(s) < 0.01)
-        // Least work by RHS evaluations: on a shared machine the CPU times of
-        // settings with equal work differ by up to 2× from run to run.
-        .min_by_key(|(_, r, _)| r.rhs);
+/// The chosen default's section and its early-stop comparison.
+fn report_choice(md: &mut String, m: &Measured) {
     let _ = writeln!(md, "\n## The default, by measurement\n");
-    let Some((best, best_run, best_diff)) = chosen else {
+    let Some((best, best_run, best_diff)) = m.chosen.map(|i| &m.scans[i]) else {
         let _ = writeln!(md, "No setting meets the criteria.");
-        return write_out(&args.out, &md, &plot_cases, &cases, &scan_results);
+        return;
     };
     let _ = writeln!(
         md,
@@ -501,24 +652,22 @@ fn main() -> Result<()> {
          {} flips, median f_w error {:.1e}, Fig. 7(a) f_w error {:.1e}).\n",
         best.name(),
         best_run.rhs,
-        reference.rhs as f64 / best_run.rhs as f64,
+        m.reference.rhs as f64 / best_run.rhs as f64,
         best_run.cpu_s,
-        reference.cpu_s,
+        m.reference.cpu_s,
         best_diff.max_pp,
         best_diff.flips.len(),
         best_diff.median_fw_rel,
-        walk_err(best)
+        m.walk_fw_err(best)
     );
     for (i, _, _) in &best_diff.flips {
-        let p = scan[*i];
+        let p = m.scan[*i];
         let _ = writeln!(
             md,
             "* flip #{i}: ρ {:.3}, α {:.3}, f_n {:.3}, ζ {:.3}, φ {:.3}",
             p.rho, p.alpha, p.f_n, p.zeta, p.phi
         );
     }
-
-    // ---- Early stop ----------------------------------------------------------
     let _ = writeln!(
         md,
         "\n## Early stop (`stop_when_settled`) at {}\n",
@@ -535,50 +684,22 @@ fn main() -> Result<()> {
         "| scan | samples | full RHS evals | early RHS evals | work ratio | full CPU s | early CPU s | max Δ (pp) | flips | stopped early |"
     );
     let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    let mut early_scans = vec![(
-        "configs/bench/scan200.toml",
-        scan_cfg.clone(),
-        Some(n_scan as u64),
-    )];
-    if !args.quick {
-        early_scans.push(("configs/paper.toml", root.join("configs/paper.toml"), None));
-    }
-    for (name, path, limit) in early_scans {
-        eprintln!("early stop: {name}");
-        let (base, params) = scan_params(&path, limit)?;
-        let full_o = best.apply(&Options {
-            stop_when_settled: false,
-            ..base
-        });
-        let early_o = Options {
-            stop_when_settled: true,
-            ..full_o
-        };
-        let full_run = run_scan(&params, &full_o);
-        let early_run = run_scan(&params, &early_o);
-        let stopped = params
-            .par_iter()
-            .filter(|p| {
-                let o = simulate(p, &early_o);
-                o.label.is_stable() && o.t_end < early_o.t_max
-            })
-            .count();
-        let diff = compare_scans(&early_run.points, &full_run.points);
+    for e in &m.early {
         let _ = writeln!(
             md,
-            "| `{name}` | {} | {} | {} | {:.2}× | {:.2} | {:.2} | {:.1} | {} | {} |",
-            params.len(),
-            full_run.rhs,
-            early_run.rhs,
-            full_run.rhs as f64 / early_run.rhs as f64,
-            full_run.cpu_s,
-            early_run.cpu_s,
-            diff.max_pp,
-            diff.flips.len(),
-            stopped
+            "| `{}` | {} | {} | {} | {:.2}× | {:.2} | {:.2} | {:.1} | {} | {} |",
+            e.name,
+            e.samples,
+            e.full.rhs,
+            e.early.rhs,
+            e.full.rhs as f64 / e.early.rhs as f64,
+            e.full.cpu_s,
+            e.early.cpu_s,
+            e.diff.max_pp,
+            e.diff.flips.len(),
+            e.stopped
         );
     }
-    write_out(&args.out, &md, &plot_cases, &cases, &scan_results)
 }
 
 const COLORS: [(&str, &str); 3] = [
@@ -602,13 +723,9 @@ fn by_method(points: impl Iterator<Item = (Setting, f64, f64)> + Clone) -> Vec<S
         .collect()
 }
 
-fn write_out(
-    dir: &Path,
-    md: &str,
-    plot_cases: &[Vec<(Setting, f64, f64)>],
-    cases: &[Case],
-    scans: &[(Setting, ScanRun, ScanDiff)],
-) -> Result<()> {
+/// Writes the report and the work–precision plot of `m` into `dir`.
+fn write_out(dir: &Path, md: &str, m: &Measured) -> Result<()> {
+    let (plot_cases, cases, scans) = (m.plot_cases(), &m.cases, &m.scans);
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let mut panels = vec![];
     for ci in [0, 3] {

@@ -4,9 +4,11 @@
 //! `cargo bench -p rtw-model`.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use rtw_model::integrate::{Method, step_with_dense};
-use rtw_model::options::MethodChoice;
-use rtw_model::rtw::{N, Rtw};
+use hybrid_ode::integrate::step_with_dense;
+use hybrid_ode::{Dense, Guards, HybridSystem, Method};
+use rtw_model::plant::initial::initial_state;
+use rtw_model::plant::rtw::Rtw;
+use rtw_model::plant::slots::N;
 use rtw_model::{Options, Params, Physical, simulate};
 use std::hint::black_box;
 
@@ -14,21 +16,20 @@ fn hot_path(c: &mut Criterion) {
     let o = Options::default();
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
     let mut rtw = Rtw::new(&phys, &o);
-    let (y, _) = rtw_model::initial::initial_state(&mut rtw, &o, &mut Default::default())
-        .expect("standing start");
+    let (y, _) = initial_state(&mut rtw, &o, &mut Default::default()).expect("standing start");
     let mut dy = [0.0; N];
     c.bench_function("rhs", |b| {
         b.iter(|| rtw.dynamics(black_box(&y), &mut dy));
     });
-    let mut g = rtw_model::hybrid::Guards::default();
+    let mut g = Guards::default();
     c.bench_function("guards", |b| {
-        b.iter(|| rtw.guards(black_box(&y), &mut g));
+        b.iter(|| rtw.guards(0.0, black_box(&y), &mut g));
     });
     // One step of each method from the standing start, with the method's
     // full dense output (what a step with an event costs).
-    let mut dense = rtw_model::integrate::Dense::<N>::default();
+    let mut dense = Dense::<N>::default();
     for (method, name) in [
-        (Method::Rk4 { h: 1e-3 }, "step/rk4"),
+        (Method::Rk4, "step/rk4"),
         (Method::Dp54, "step/dp54"),
         (Method::Dop853, "step/dop853"),
     ] {
@@ -52,10 +53,7 @@ fn hot_path(c: &mut Criterion) {
 fn runs(c: &mut Criterion) {
     let mut group = c.benchmark_group("run_20s_fig7a");
     group.sample_size(20);
-    for (method, name) in [
-        (MethodChoice::Dp54, "dp54"),
-        (MethodChoice::Dop853, "dop853"),
-    ] {
+    for (method, name) in [(Method::Dp54, "dp54"), (Method::Dop853, "dop853")] {
         for rtol in [1e-6, 1e-8, 1e-10] {
             for s in [0.0, 0.85] {
                 let mut o = Options {

@@ -8,9 +8,10 @@
 //! period-2 branch at the period doubling. Prints one line per point:
 //! `branch φ stable max|μ| ω` and one per bifurcation.
 use nalgebra::DMatrix;
-use rtw_model::continuation::{self, Kind, MapEval, Options as Cont};
-use rtw_model::limit;
-use rtw_model::stepmap::{CycleOptions, Jacobian, SectionPoint, StepMap};
+use hybrid_ode::continuation::{self, Kind, MapEval, Options as Cont};
+use hybrid_ode::limit;
+use rtw_model::cycles::section::SectionPoint;
+use rtw_model::cycles::stepmap::{CycleOptions, Jacobian, StepMap};
 use rtw_model::{Options, Params};
 
 /// The step map's `n`-th power at the section point `template` with

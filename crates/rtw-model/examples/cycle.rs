@@ -3,7 +3,7 @@
 //! the period-1 fixed point by Newton (variational Jacobians), prints the
 //! multipliers, compares them with central differences of the map at three
 //! steps, and times one step, one variational step and one difference Jacobian.
-use rtw_model::stepmap::{CycleOptions, StepMap};
+use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
 use rtw_model::{Options, Params};
 
 fn main() {
@@ -51,7 +51,7 @@ fn main() {
             timing(&map, &p);
             for rel in [1e-4, 1e-5, 1e-6] {
                 let j = map.fd_jacobian(&p, rel).unwrap();
-                let mu = rtw_model::limit::multipliers(&j);
+                let mu = hybrid_ode::limit::multipliers(&j);
                 println!(
                     "fd {rel:e}: {:?}",
                     mu.iter()
@@ -68,7 +68,7 @@ fn main() {
     }
 }
 
-fn timing(map: &StepMap, p: &rtw_model::stepmap::SectionPoint) {
+fn timing(map: &StepMap, p: &rtw_model::cycles::section::SectionPoint) {
     let t = std::time::Instant::now();
     for _ in 0..20 {
         let _ = map.step(p);

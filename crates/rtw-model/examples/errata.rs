@@ -7,10 +7,10 @@
 //! `StringSet::potential`) and `modal`; the tests in `tests/modal.rs` assert
 //! the same relations.
 
-use rtw_model::geometry::{RodFrame, RodState};
 use rtw_model::modal;
 use rtw_model::options::Damping;
-use rtw_model::strings::StringSet;
+use rtw_model::plant::geometry::{RodFrame, RodState};
+use rtw_model::plant::strings::StringSet;
 use rtw_model::{Normalization, Params, Physical};
 use std::f64::consts::PI;
 

@@ -3,7 +3,7 @@
 //! (defaults: 0.85 dop853 1e-10 1), e.g. under
 //! `valgrind --tool=callgrind target/release/examples/profile` for repeatable
 //! instruction counts of the RHS against the whole run.
-use rtw_model::options::MethodChoice;
+use rtw_model::Method;
 use rtw_model::{Options, Params, simulate};
 
 fn main() {
@@ -12,9 +12,9 @@ fn main() {
     let mut o = Options::default();
     o.strings.rest_length_ratio = arg(0, "0.85").parse().expect("s: a number in [0, 1)");
     o.method = match arg(1, "dop853").as_str() {
-        "dp54" => MethodChoice::Dp54,
-        "dop853" => MethodChoice::Dop853,
-        "rk4" => MethodChoice::Rk4,
+        "dp54" => Method::Dp54,
+        "dop853" => Method::Dop853,
+        "rk4" => Method::Rk4,
         m => panic!("method: dp54, dop853 or rk4, not {m}"),
     };
     o.rtol = arg(2, "1e-10").parse().expect("rtol: a number in (0, 1)");

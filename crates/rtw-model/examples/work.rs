@@ -1,17 +1,14 @@
 //! Median wall time and integrator work of one 20 s run at the Fig. 7(a)
 //! point, per method and tolerance, as a Markdown table (medians of 9 runs):
 //! `cargo run --release -p rtw-model --example work`.
-use rtw_model::options::MethodChoice;
+use rtw_model::Method;
 use rtw_model::{Options, Params, simulate};
 
 fn main() {
     println!("| s | method | rtol | label | median ms | RHS evals | steps | rejected | events |");
     println!("|---|---|---|---|---|---|---|---|---|");
     for s in [0.0, 0.85] {
-        for (method, name) in [
-            (MethodChoice::Dp54, "dp54"),
-            (MethodChoice::Dop853, "dop853"),
-        ] {
+        for (method, name) in [(Method::Dp54, "dp54"), (Method::Dop853, "dop853")] {
             for rtol in [1e-6, 1e-8, 1e-10] {
                 let mut o = Options {
                     method,

@@ -90,10 +90,10 @@
 //!
 //! The module does no I/O.
 
-use crate::geometry::{RodFrame, RodState, rest_star};
 use crate::options::Damping;
 use crate::params::Physical;
-use crate::strings::StringSet;
+use crate::plant::geometry::{RodFrame, RodState, rest_star};
+use crate::plant::strings::StringSet;
 use nalgebra::{Complex, Matrix3, Matrix6, SMatrix, SymmetricEigen};
 use std::f64::consts::{FRAC_PI_3, PI};
 

@@ -24,27 +24,12 @@
 //! The field names are the keys of a scan config's `[simulation]` table
 //! (`initial.omega`, `strings.slack`, `contact.mu`, …); unknown keys are refused.
 
-use crate::hybrid::EngineOptions;
-use crate::integrate::Method;
 use crate::params::{Normalization, ParamError, check};
+use hybrid_ode::EngineOptions;
+/// The integration method, as chosen in a config (`"dp54"`, `"dop853"`,
+/// `"rk4"`): the engine's own [`hybrid_ode::Method`].
+pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
-
-/// Integration method as chosen in a config.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MethodChoice {
-    /// Dormand–Prince 5(4), adaptive: the default, at rtol 1e-4, chosen by
-    /// the work–precision benchmark (`cargo run --release -p rtw-bench`,
-    /// results/bench/work-precision.md): the cheapest setting whose scan
-    /// outcome fractions stay within 1 pp of DOP853 at rtol 1e-13 and whose
-    /// f_w errs by < 1 %. At this tolerance the step is mostly `h_max`-limited.
-    #[default]
-    Dp54,
-    /// Dormand–Prince 8(5,3), adaptive (the benchmark's reference method).
-    Dop853,
-    /// Classic RK4 with fixed step `rk4_step`.
-    Rk4,
-}
 
 /// The initial shape of the star (docs/model.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -90,9 +75,11 @@ pub enum Damping {
     Relative,
 }
 
+/// How the star starts (docs/model.md §6), as config keys `initial.*`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct InitialOptions {
+    /// How it stands before the push.
     pub shape: InitialShape,
     /// `settled` only: a star that rolls away as it is set down.
     pub cannot_stand: CannotStand,
@@ -112,6 +99,7 @@ impl Default for InitialOptions {
     }
 }
 
+/// The strings' law (docs/model.md §3, §9), as config keys `strings.*`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct StringOptions {
@@ -119,6 +107,7 @@ pub struct StringOptions {
     pub rest_length_ratio: f64,
     /// A slack string cannot push: tension max(0, T).
     pub slack: bool,
+    /// How the damper acts.
     pub damping: Damping,
 }
 
@@ -133,6 +122,7 @@ impl Default for StringOptions {
     }
 }
 
+/// The ground contact (docs/model.md §4), as config keys `contact.*`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ContactOptions {
@@ -221,8 +211,16 @@ impl LabelOptions {
 pub struct Options {
     /// Simulated time [s].
     pub t_max: f64,
-    pub method: MethodChoice,
+    /// Integration method. The default, DP5(4) at rtol 1e-4, was chosen by
+    /// the work–precision benchmark (`cargo run --release -p rtw-bench`,
+    /// results/bench/work-precision.md): the cheapest setting whose scan
+    /// outcome fractions stay within 1 pp of DOP853 at rtol 1e-13 and whose
+    /// f_w errs by < 1 %. At this tolerance the step is mostly `h_max`-limited.
+    /// DOP853 is the benchmark's reference; RK4 takes fixed steps `rk4_step`.
+    pub method: Method,
+    /// Relative tolerance of the adaptive methods.
     pub rtol: f64,
+    /// Absolute tolerance of the adaptive methods.
     pub atol: f64,
     /// Fixed step of RK4 [s].
     pub rk4_step: f64,
@@ -232,6 +230,7 @@ pub struct Options {
     pub max_steps: u64,
     /// Gravity [m/s²].
     pub g: f64,
+    /// How (f_n, ζ) map to (k, c).
     pub normalization: Normalization,
     /// The analysis window is the last `analysis_window` fraction of the run.
     pub analysis_window: f64,
@@ -259,9 +258,13 @@ pub struct Options {
     /// multiplier ([`Outcome::cycle`](crate::Outcome::cycle)). Costs a Newton
     /// solve with variational Jacobians at tight tolerance per periodic run.
     pub limit_cycle: bool,
+    /// The start.
     pub initial: InitialOptions,
+    /// The strings.
     pub strings: StringOptions,
+    /// The ground contact.
     pub contact: ContactOptions,
+    /// The gait labels' thresholds.
     pub labels: LabelOptions,
 }
 
@@ -269,7 +272,7 @@ impl Default for Options {
     fn default() -> Self {
         Self {
             t_max: 20.0,
-            method: MethodChoice::Dp54,
+            method: Method::Dp54,
             rtol: 1e-4,
             atol: 1e-6,
             rk4_step: 1e-4,
@@ -321,11 +324,8 @@ impl Options {
     /// The hybrid engine's settings for a run with these options.
     pub fn engine(&self) -> EngineOptions {
         EngineOptions {
-            method: match self.method {
-                MethodChoice::Dp54 => Method::Dp54,
-                MethodChoice::Dop853 => Method::Dop853,
-                MethodChoice::Rk4 => Method::Rk4 { h: self.rk4_step },
-            },
+            method: self.method,
+            rk4_step: self.rk4_step,
             rtol: self.rtol,
             atol: self.atol,
             h_max: self.h_max,

@@ -1,6 +1,12 @@
-//! What one run produces: the gait label and every metric of docs/model.md §5.
+//! What one run produces: the gait label and every metric of docs/model.md §5,
+//! and the rule that labels a gait (Table S1).
 
+use crate::options::LabelOptions;
 use serde::{Deserialize, Serialize};
+
+/// Longest gait period (in steps) the model looks for, on the touchdown
+/// return map and on the step map.
+pub const MAX_PERIOD: usize = 12;
 
 /// The outcome label of a run (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -21,6 +27,7 @@ pub enum Label {
 }
 
 impl Label {
+    /// Every label.
     pub const ALL: [Label; 6] = [
         Label::Skip,
         Label::Walk,
@@ -30,6 +37,7 @@ impl Label {
         Label::Diverged,
     ];
 
+    /// The label's name (`skip`, `walk`, …).
     pub fn as_str(self) -> &'static str {
         match self {
             Label::Skip => "skip",
@@ -138,6 +146,7 @@ impl FailureDetail {
         }
     }
 
+    /// The detail's name (`rod_down`, `com_low`, …).
     pub fn as_str(self) -> &'static str {
         match self {
             FailureDetail::RodDown => "rod_down",
@@ -220,6 +229,7 @@ pub enum Stance {
 }
 
 impl Stance {
+    /// The stance's name (`rest_shape`, `two_feet`, `three_feet`).
     pub fn as_str(self) -> &'static str {
         match self {
             Stance::RestShape => "rest_shape",
@@ -247,29 +257,38 @@ pub struct StepShares {
 /// includes gravity's potential: zero up to integration error.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Energy {
+    /// Total mechanical energy at the start.
     pub initial: f64,
+    /// Total mechanical energy at the end.
     pub last: f64,
     /// Potential energy of gravity released (E_grav,start − E_grav,end).
     pub gravity_released: f64,
+    /// Energy removed by resets (impacts, and the hair-width projections of
+    /// a tip onto the ground and of a re-sticking tip to rest).
     pub impact_loss: f64,
+    /// Energy dissipated by the string dampers.
     pub damping_loss: f64,
     /// Work of sliding friction (finite μ only).
     pub friction_loss: f64,
+    /// The balance's residual (zero up to integration error).
     pub balance_error: f64,
 }
 
 /// Integrator work over a run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct IntegratorWork {
+    /// Accepted steps.
     pub steps: u64,
+    /// Rejected trial steps.
     pub rejected: u64,
+    /// Right-hand-side evaluations.
     pub rhs_evals: u64,
     /// Events located (touchdowns, lift-offs, mode switches).
     pub events: u64,
 }
 
-impl From<crate::hybrid::Work> for IntegratorWork {
-    fn from(w: crate::hybrid::Work) -> Self {
+impl From<hybrid_ode::Work> for IntegratorWork {
+    fn from(w: hybrid_ode::Work) -> Self {
         Self {
             steps: w.steps,
             rejected: w.rejected,
@@ -282,7 +301,9 @@ impl From<crate::hybrid::Work> for IntegratorWork {
 /// Everything one run measures (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
+    /// The outcome label.
     pub label: Label,
+    /// Why a failed run failed (`None` for a stable gait).
     pub failure: Option<FailureDetail>,
     /// How the star stood before the push.
     pub start: Stance,
@@ -304,12 +325,14 @@ pub struct Outcome {
     pub mu_required: f64,
     /// Rod-seconds spent sliding over the whole run.
     pub slide_time: f64,
+    /// The energy bookkeeping.
     pub energy: Energy,
     /// Period of the gait on the touchdown return map (0: none found).
     pub period: u32,
     /// The gait's limit cycle on the step map, if `Options::limit_cycle`
     /// asked for it and Newton found one.
     pub cycle: Option<CycleSummary>,
+    /// Integrator work, the standing start's included.
     pub work: IntegratorWork,
 }
 
@@ -327,6 +350,7 @@ pub struct CycleSummary {
 /// One sample of a recorded trajectory, in full coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TraceSample {
+    /// Time (s).
     pub t: f64,
     /// Per rod a, b, c: centre x, y, angle θ.
     pub pose: [[f64; 3]; 3],
@@ -336,10 +360,121 @@ pub struct TraceSample {
     pub contact: [i8; 3],
     /// Number of rods on the ground (0 NLSP … 3 TLSP).
     pub contact_state: u8,
+    /// Kinetic energy (J).
     pub kinetic: f64,
+    /// Potential energy of gravity (J).
     pub gravity_potential: f64,
+    /// Elastic energy of the strings (J).
     pub string_potential: f64,
+    /// Energy dissipated by the dampers so far (J).
     pub damping_loss: f64,
+    /// Energy dissipated by sliding friction so far (J).
     pub friction_loss: f64,
+    /// Energy removed by resets so far (J).
     pub impact_loss: f64,
+}
+
+/// Counts of steps, of steps with flight and of steps with triple support.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct StepCounts {
+    steps: u64,
+    flight: u64,
+    triple: u64,
+}
+
+impl StepCounts {
+    pub(crate) fn shares(self) -> StepShares {
+        let n = self.steps.max(1) as f64;
+        StepShares {
+            steps: self.steps,
+            flight: self.flight as f64 / n,
+            triple: self.triple as f64 / n,
+        }
+    }
+
+    /// Counts one more step, with flight and triple support as `kind` says.
+    pub(crate) fn add(&mut self, (flight, triple): (bool, bool)) {
+        self.steps += 1;
+        self.flight += flight as u64;
+        self.triple += triple as u64;
+    }
+
+    pub(crate) fn since(self, earlier: StepCounts) -> StepCounts {
+        StepCounts {
+            steps: self.steps - earlier.steps,
+            flight: self.flight - earlier.flight,
+            triple: self.triple - earlier.triple,
+        }
+    }
+}
+
+/// Whether a step with `state_time` seconds per contact state has flight
+/// and whether it has triple support.
+pub(crate) fn step_kind(state_time: &[f64; 4], labels: &LabelOptions) -> (bool, bool) {
+    let total: f64 = state_time.iter().sum();
+    (
+        state_time[0] > labels.flight * total,
+        state_time[3] > labels.triple * total,
+    )
+}
+
+impl StepShares {
+    /// The step shares of steps given by their seconds per contact state.
+    pub fn of_steps<'a>(
+        steps: impl IntoIterator<Item = &'a [f64; 4]>,
+        labels: &LabelOptions,
+    ) -> StepShares {
+        let mut c = StepCounts::default();
+        for st in steps {
+            c.add(step_kind(st, labels));
+        }
+        c.shares()
+    }
+}
+
+impl Label {
+    /// The label of a stable gait, Table S1's row for the RTW: flight → skip,
+    /// else triple support → crawl, else walk. Flight counts when the
+    /// window's NLSP fraction exceeds `labels.flight` and at least
+    /// `labels.flight_steps` of the steps have flight; triple support likewise.
+    pub fn of_gait(f: &ContactFractions, steps: &StepShares, labels: &LabelOptions) -> Label {
+        if f.nlsp > labels.flight && steps.flight >= labels.flight_steps {
+            Label::Skip
+        } else if f.tlsp > labels.triple && steps.triple >= labels.triple_steps {
+            Label::Crawl
+        } else {
+            Label::Walk
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_follow_table_s1() {
+        let f = |n, s, d, t| ContactFractions {
+            nlsp: n,
+            slsp: s,
+            dlsp: d,
+            tlsp: t,
+        };
+        let any = LabelOptions::any();
+        let every = StepShares {
+            steps: 10,
+            flight: 1.0,
+            triple: 1.0,
+        };
+        let label = |f: ContactFractions, labels: &LabelOptions| Label::of_gait(&f, &every, labels);
+        assert_eq!(label(f(0.3, 0.7, 0.0, 0.0), &any), Label::Skip);
+        assert_eq!(label(f(0.005, 0.5, 0.495, 0.0), &any), Label::Walk);
+        assert_eq!(label(f(0.0, 0.4, 0.5, 0.1), &any), Label::Crawl);
+        // Flight wins over triple support.
+        assert_eq!(label(f(0.05, 0.4, 0.45, 0.1), &any), Label::Skip);
+        // Separate thresholds: 5 % triple support is a crawl at 0.04, not at 0.06.
+        let t = |triple| LabelOptions { triple, ..any };
+        assert_eq!(label(f(0.0, 0.5, 0.45, 0.05), &t(0.04)), Label::Crawl);
+        assert_eq!(label(f(0.0, 0.5, 0.45, 0.05), &t(0.06)), Label::Walk);
+    }
 }

@@ -8,12 +8,16 @@ use std::f64::consts::PI;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{field} = {value} is invalid: must be {range}")]
 pub struct ParamError {
+    /// The key of the field (`"alpha"`, `"contact.mu"`, …).
     pub field: &'static str,
+    /// The rejected value.
     pub value: f64,
+    /// The valid range, in words.
     pub range: &'static str,
 }
 
 impl ParamError {
+    /// The error for `value` of `field`, which must be `range`.
     pub fn new(field: &'static str, value: f64, range: &'static str) -> Self {
         Self {
             field,
@@ -89,19 +93,112 @@ impl Params {
         }
     }
 
-    /// docs/model.md §1: L > 0, ρ > 0, 0 ≤ α < 0.5, f_n > 0, ζ ≥ 0, |φ| < π/2, all finite.
+    /// docs/model.md §1: L > 0, ρ > 0, 0 ≤ α < 0.5, f_n > 0, ζ ≥ 0, |φ| < π/2,
+    /// all finite ([`Param::range`]); the first invalid input is named.
     pub fn validate(&self) -> Result<(), ParamError> {
-        check("length", self.length, "finite and > 0 (m)", |v| v > 0.0)?;
-        check("rho", self.rho, "finite and > 0 (kg/m)", |v| v > 0.0)?;
-        check("alpha", self.alpha, "in [0, 0.5)", |v| {
-            (0.0..0.5).contains(&v)
-        })?;
-        check("fn", self.f_n, "finite and > 0 (Hz)", |v| v > 0.0)?;
-        check("zeta", self.zeta, "finite and >= 0", |v| v >= 0.0)?;
-        check("phi", self.phi, "in (-pi/2, pi/2) rad", |v| {
-            v.abs() < PI / 2.0
-        })?;
-        Ok(())
+        Param::ALL
+            .iter()
+            .try_for_each(|param| param.check(param.get(self)))
+    }
+}
+
+/// One of the six normalized inputs, by name: the one vocabulary of a
+/// config's `params.*` keys, `--set`, a bifurcation sweep's `--param` and
+/// validation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Param {
+    /// Rod length `L` [m].
+    Length,
+    /// Mass per length `ρ` [kg/m].
+    Rho,
+    /// Connection ratio `α`.
+    Alpha,
+    /// Design eigen-frequency `f_n` [Hz].
+    Fn,
+    /// Damping ratio `ζ`.
+    Zeta,
+    /// Slope `φ` [rad].
+    Phi,
+}
+
+impl Param {
+    /// Every input, in the order of docs/model.md §1.
+    pub const ALL: [Param; 6] = [
+        Param::Length,
+        Param::Rho,
+        Param::Alpha,
+        Param::Fn,
+        Param::Zeta,
+        Param::Phi,
+    ];
+
+    /// The key: `length`, `rho`, `alpha`, `fn`, `zeta`, `phi`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::Length => "length",
+            Param::Rho => "rho",
+            Param::Alpha => "alpha",
+            Param::Fn => "fn",
+            Param::Zeta => "zeta",
+            Param::Phi => "phi",
+        }
+    }
+
+    /// The input named `name` ([`name`](Param::name)), if any.
+    pub fn parse(name: &str) -> Option<Param> {
+        Param::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// Its value in `p`.
+    pub fn get(self, p: &Params) -> f64 {
+        match self {
+            Param::Length => p.length,
+            Param::Rho => p.rho,
+            Param::Alpha => p.alpha,
+            Param::Fn => p.f_n,
+            Param::Zeta => p.zeta,
+            Param::Phi => p.phi,
+        }
+    }
+
+    /// Sets its value in `p` (unchecked: see [`check`](Param::check)).
+    pub fn set(self, p: &mut Params, value: f64) {
+        *match self {
+            Param::Length => &mut p.length,
+            Param::Rho => &mut p.rho,
+            Param::Alpha => &mut p.alpha,
+            Param::Fn => &mut p.f_n,
+            Param::Zeta => &mut p.zeta,
+            Param::Phi => &mut p.phi,
+        } = value;
+    }
+
+    /// The valid range, in words (with the unit).
+    pub fn range(self) -> &'static str {
+        match self {
+            Param::Length => "finite and > 0 (m)",
+            Param::Rho => "finite and > 0 (kg/m)",
+            Param::Alpha => "in [0, 0.5)",
+            Param::Fn => "finite and > 0 (Hz)",
+            Param::Zeta => "finite and >= 0",
+            Param::Phi => "in (-pi/2, pi/2) rad",
+        }
+    }
+
+    /// Whether `value` is valid: finite and in [`range`](Param::range).
+    pub fn admits(self, value: f64) -> bool {
+        value.is_finite()
+            && match self {
+                Param::Length | Param::Rho | Param::Fn => value > 0.0,
+                Param::Alpha => (0.0..0.5).contains(&value),
+                Param::Zeta => value >= 0.0,
+                Param::Phi => value.abs() < PI / 2.0,
+            }
+    }
+
+    /// `value` if it is valid, else the error naming this input and its range.
+    pub fn check(self, value: f64) -> Result<(), ParamError> {
+        check(self.name(), value, self.range(), |v| self.admits(v))
     }
 }
 
@@ -141,6 +238,7 @@ pub struct Physical {
 }
 
 impl Physical {
+    /// The physical parameters of `p` under `normalization` and gravity `g`.
     pub fn new(p: &Params, normalization: Normalization, g: f64) -> Self {
         let l = p.length;
         let m = p.rho * l;
@@ -216,6 +314,23 @@ mod tests {
         assert!((e.k - k / 3.0).abs() < 1e-9 * k);
         // Eigen damping is the supplementary one scaled by 5/9.
         assert!((e.c - c * 5.0 / 9.0).abs() < 1e-9 * c);
+    }
+
+    #[test]
+    fn every_param_round_trips_by_name_and_value() {
+        for (i, param) in Param::ALL.into_iter().enumerate() {
+            assert_eq!(Param::parse(param.name()), Some(param));
+            let mut p = Params::fig7a();
+            param.set(&mut p, 0.01 * (i + 1) as f64);
+            assert_eq!(param.get(&p), 0.01 * (i + 1) as f64);
+            // Only that field moved.
+            for other in Param::ALL.into_iter().filter(|&o| o != param) {
+                assert_eq!(other.get(&p), other.get(&Params::fig7a()));
+            }
+            let e = param.check(f64::NAN).unwrap_err();
+            assert_eq!((e.field, e.range), (param.name(), param.range()));
+        }
+        assert_eq!(Param::parse("mu"), None);
     }
 
     #[test]

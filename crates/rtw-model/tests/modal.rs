@@ -8,7 +8,7 @@ use rtw_model::modal::{
     s18_frequency, star_rest_forces,
 };
 use rtw_model::options::Damping;
-use rtw_model::strings::StringSet;
+use rtw_model::plant::strings::StringSet;
 use rtw_model::{Normalization, Params, Physical};
 use std::f64::consts::PI;
 

@@ -7,7 +7,7 @@
 //! `diverged`; a work budget at its lowest may end the run `diverged`, but only
 //! saying it ran out. Just outside each range, `validate` refuses.
 
-use rtw_model::options::MethodChoice;
+use rtw_model::Method;
 use rtw_model::outcome::FailureDetail;
 use rtw_model::{Label, Options, Params, simulate};
 
@@ -63,7 +63,7 @@ fn ranges() -> Vec<(&'static str, f64, f64, f64, f64, Set, Expect)> {
             0.0,
             f64::INFINITY,
             |o, v| {
-                o.method = MethodChoice::Rk4;
+                o.method = Method::Rk4;
                 o.rk4_step = v
             },
             Expect::Budget,

@@ -1,12 +1,13 @@
 //! Physics invariants of the RTW model, each against a conservation law or a
 //! closed form (the reference is stated at each assertion).
 
-use rtw_model::contact::RodMode;
-use rtw_model::geometry::{RodState, Tip, cross, perp, rest_star, scale, sub};
-use rtw_model::hybrid::{self, EngineOptions, Flow, Guards, HybridSystem};
-use rtw_model::integrate::Method;
-use rtw_model::options::{Damping, MethodChoice, Options};
-use rtw_model::rtw::{DISSIPATED, N, Rtw};
+use hybrid_ode::{EndReason, EngineOptions, Flow, Guards, HybridSystem, run};
+use rtw_model::options::{Damping, Method, Options};
+use rtw_model::plant::contact::RodMode;
+use rtw_model::plant::geometry::{RodState, Tip, cross, perp, rest_star, scale, sub};
+use rtw_model::plant::initial::initial_state;
+use rtw_model::plant::rtw::Rtw;
+use rtw_model::plant::slots::{self, DISSIPATED, N, OMEGA, VX, VY};
 use rtw_model::{Label, Params, Physical, simulate};
 
 /// The RTW's continuous dynamics in fixed modes, with no guards: for the
@@ -15,6 +16,7 @@ struct FixedModes(Rtw);
 
 impl HybridSystem<N> for FixedModes {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
         self.0.dynamics(y, dy);
@@ -70,7 +72,7 @@ fn flying_star(sys: &Rtw) -> [f64; N] {
 
 fn momenta(sys: &Rtw, y: &[f64; N]) -> ([f64; 2], f64) {
     let rods = sys.rods(y);
-    let m = sys.body.m;
+    let m = sys.body().m;
     let com = scale(
         1.0 / 3.0,
         [
@@ -88,7 +90,7 @@ fn momenta(sys: &Rtw, y: &[f64; N]) -> ([f64; 2], f64) {
     let vcom = scale(1.0 / (3.0 * m), p);
     let h = rods
         .iter()
-        .map(|r| sys.body.inertia * r.omega + m * cross(sub(r.c, com), sub(r.v, vcom)))
+        .map(|r| sys.body().inertia * r.omega + m * cross(sub(r.c, com), sub(r.v, vcom)))
         .sum();
     (p, h)
 }
@@ -101,8 +103,8 @@ fn flight_without_damping_conserves_energy() {
         let mut y = flying_star(&sys);
         let e0 = sys.total_energy(&y);
         let mut f = FixedModes(sys);
-        let end = hybrid::run(&mut f, 0.0, &mut y, 10.0, &tight());
-        assert_eq!(end.reason, hybrid::EndReason::TimeUp);
+        let end = run(&mut f, &mut (), 0.0, &mut y, 10.0, &tight());
+        assert_eq!(end.reason, EndReason::TimeUp);
         let e1 = f.0.total_energy(&y);
         assert!(
             ((e1 - e0) / e0).abs() < 1e-8,
@@ -125,7 +127,7 @@ fn flight_with_damping_conserves_angular_momentum_and_loses_energy() {
         let mut e_prev = f.0.total_energy(&y);
         let mut t = 0.0;
         for _ in 0..20 {
-            hybrid::run(&mut f, t, &mut y, t + 0.25, &tight());
+            run(&mut f, &mut (), t, &mut y, t + 0.25, &tight());
             t += 0.25;
             let e = f.0.total_energy(&y);
             // Dampers only remove energy; and the energy balance closes.
@@ -150,8 +152,8 @@ fn flight_with_damping_conserves_angular_momentum_and_loses_energy() {
             }
             // Linear momentum changes by exactly total mass × g × t.
             let want = [
-                p0[0] + 3.0 * phys.m * f.0.gravity[0] * t,
-                p0[1] + 3.0 * phys.m * f.0.gravity[1] * t,
+                p0[0] + 3.0 * phys.m * f.0.gravity()[0] * t,
+                p0[1] + 3.0 * phys.m * f.0.gravity()[1] * t,
             ];
             assert!((p[0] - want[0]).abs() < 1e-8 && (p[1] - want[1]).abs() < 1e-8);
         }
@@ -170,7 +172,7 @@ fn flight_with_damping_conserves_angular_momentum_and_loses_energy() {
 /// The star on its front foot: rod a in `mode`, the others free.
 fn grounded(mode: RodMode, s: f64) -> (Rtw, [f64; N]) {
     let (mut sys, _) = rtw(false, s, Damping::Along);
-    let half = sys.body.half_length;
+    let half = sys.body().half_length;
     let th = -std::f64::consts::FRAC_PI_3;
     let hub = scale(-half, [th.cos(), th.sin()]);
     let mut rods = rest_star(hub, th);
@@ -184,7 +186,7 @@ fn grounded(mode: RodMode, s: f64) -> (Rtw, [f64; N]) {
             r.v[0] += 0.7;
         }
     }
-    sys.modes = [mode, RodMode::Free, RodMode::Free];
+    sys.set_modes([mode, RodMode::Free, RodMode::Free]);
     let mut y = [0.0; N];
     sys.store(&rods, &mut y);
     (sys, y)
@@ -203,7 +205,7 @@ fn stick_and_frictionless_slide_conserve_energy() {
         let (sys, mut y) = grounded(mode, 0.0);
         let e0 = sys.total_energy(&y);
         let mut f = FixedModes(sys);
-        hybrid::run(&mut f, 0.0, &mut y, 1.0, &tight());
+        run(&mut f, &mut (), 0.0, &mut y, 1.0, &tight());
         let e1 = f.0.total_energy(&y);
         assert!(((e1 - e0) / e0).abs() < 1e-9, "{mode:?}: {e0} -> {e1}");
     }
@@ -219,7 +221,7 @@ fn sticking_lambda_is_m_cddot_minus_external_force_along_the_trajectory() {
     let at = |f: &mut FixedModes, t: f64| {
         let mut y = y0;
         if t > 0.0 {
-            hybrid::run(f, 0.0, &mut y, t, &tight());
+            run(f, &mut (), 0.0, &mut y, t, &tight());
         }
         y
     };
@@ -229,12 +231,12 @@ fn sticking_lambda_is_m_cddot_minus_external_force_along_the_trajectory() {
     let frames = f.0.frames(&ys[1]);
     let (loads, _) = f.0.loads(&frames);
     let lam =
-        f.0.body
-            .accel(f.0.modes[0], &frames[0], &loads[0], f.0.mu)
+        f.0.body()
+            .accel(f.0.modes()[0], &frames[0], &loads[0], f.0.mu())
             .lambda;
     for k in 0..2 {
         let cdd = (c[2][k] - 2.0 * c[1][k] + c[0][k]) / (h * h);
-        let want = f.0.body.m * cdd - loads[0].force[k];
+        let want = f.0.body().m * cdd - loads[0].force[k];
         // Central difference error O(h²)·c'''' ≈ 1e-6 · O(100).
         assert!(
             (lam[k] - want).abs() < 1e-3 * (1.0 + want.abs()),
@@ -250,14 +252,14 @@ fn touchdown_leaves_other_rods_untouched() {
     // Drop rod c's tip − onto the ground and apply the touchdown reset.
     let mut y2 = y;
     let mut rods = sys.rods(&y2);
-    let (p, _) = sys.body.tip_point(&rods[2], Tip::Minus);
+    let (p, _) = sys.body().tip_point(&rods[2], Tip::Minus);
     rods[2].c[1] -= p[1] + 1e-12;
     rods[2].v = [0.3, -0.6];
     sys.store(&rods, &mut y2);
     let before = y2;
     sys.touchdown(&mut y2, 2, Tip::Minus);
     assert_eq!(before[..12], y2[..12], "rods a and b must not change");
-    assert_ne!(sys.modes[2], RodMode::Free);
+    assert_ne!(sys.modes()[2], RodMode::Free);
 }
 
 fn fig7a_options() -> Options {
@@ -341,7 +343,7 @@ fn assert_sound(name: &str, p: Params, o: &Options) -> rtw_model::Outcome {
         "{name} at the default: {fast:?}"
     );
     let o = &Options {
-        method: MethodChoice::Dop853,
+        method: Method::Dop853,
         rtol: 1e-10,
         atol: 1e-12,
         ..*o
@@ -436,7 +438,7 @@ fn adopted_default_walks_at_fig7a_within_its_friction_cone() {
     // At the default (scan) accuracy, and at a tight one where the energy
     // balance is a physics check rather than a measure of integration error.
     let tight = Options {
-        method: rtw_model::options::MethodChoice::Dop853,
+        method: Method::Dop853,
         rtol: 1e-10,
         atol: 1e-12,
         ..o
@@ -481,11 +483,13 @@ fn static_start_is_an_equilibrium() {
     o.strings.rest_length_ratio = 0.85;
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
     let mut sys = Rtw::new(&phys, &o);
-    let (y, _) = rtw_model::initial::initial_state(&mut sys, &o, &mut Default::default()).unwrap();
+    let (y, _) = initial_state(&mut sys, &o, &mut Default::default()).unwrap();
     let mut dy = [0.0; N];
     sys.dynamics(&y, &mut dy);
     let acc: f64 = (0..3)
-        .map(|i| dy[6 * i + 5].abs() + dy[6 * i + 3].abs() + dy[6 * i + 4].abs())
+        .map(|i| {
+            dy[slots::at(i, OMEGA)].abs() + dy[slots::at(i, VX)].abs() + dy[slots::at(i, VY)].abs()
+        })
         .sum();
     assert!(acc < 1e-8, "accelerations at the static start: {dy:?}");
     let _: RodState = sys.rods(&y)[0];
@@ -517,8 +521,8 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
     o.strings.rest_length_ratio = 0.85;
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
     let mut sys = Rtw::new(&phys, &o);
-    let (y0, _) = rtw_model::initial::initial_state(&mut sys, &o, &mut Default::default()).unwrap();
-    let grounded: Vec<usize> = (0..3).filter(|&i| sys.modes[i].tip().is_some()).collect();
+    let (y0, _) = initial_state(&mut sys, &o, &mut Default::default()).unwrap();
+    let grounded: Vec<usize> = (0..3).filter(|&i| sys.modes()[i].tip().is_some()).collect();
     assert!(
         !grounded.is_empty(),
         "the static start stands on the ground"
@@ -528,14 +532,16 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
         let mut s = sys.clone();
         if slide {
             let rod = grounded[case % grounded.len()];
-            let tip = s.modes[rod].tip().unwrap();
-            s.modes[rod] = RodMode::Slide { tip, dir: 1.0 };
+            let mut modes = s.modes();
+            let tip = modes[rod].tip().unwrap();
+            modes[rod] = RodMode::Slide { tip, dir: 1.0 };
+            s.set_modes(modes);
         }
         // Generic velocities, so that every force term is non-zero.
         let mut y = y0;
         for i in 0..3 {
-            y[6 * i + 3] += 0.1 * (i as f64 + 1.0);
-            y[6 * i + 5] -= 0.3 * (i as f64 + 0.5);
+            y[slots::at(i, VX)] += 0.1 * (i as f64 + 1.0);
+            y[slots::at(i, OMEGA)] -= 0.3 * (i as f64 + 0.5);
         }
         let mut dy = [0.0; N];
         let at = s.dynamics(&y, &mut dy);
@@ -543,8 +549,8 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
         assert_eq!(lambda, s.contact_forces(&y), "case {case}");
         assert!(grounded.iter().all(|&i| lambda[i][1] != 0.0), "{lambda:?}");
         let (mut a, mut b) = (Guards::default(), Guards::default());
-        s.guards(&y, &mut a);
-        s.guards_at(&y, &at, &mut b);
+        s.guards(0.0, &y, &mut a);
+        s.guards_aux(0.0, &y, &at, &mut b);
         assert_eq!(a.len, b.len);
         for k in 0..a.len {
             assert_eq!(
@@ -556,7 +562,7 @@ fn forces_from_the_dynamics_give_the_guards_bit_for_bit() {
             // The root finder's one-guard evaluation: the same value.
             assert_eq!(
                 a.value[k].to_bits(),
-                s.guard(&y, k).to_bits(),
+                s.guard(0.0, &y, k).to_bits(),
                 "case {case} guard {k} ({:?})",
                 s.guard_kind(k)
             );

@@ -5,11 +5,12 @@
 //! acceleration vanishes, every foot presses on the ground and its force lies
 //! inside the friction cone.
 
-use rtw_model::hybrid::Work;
-use rtw_model::initial::{Start, initial_state};
+use hybrid_ode::Work;
 use rtw_model::options::{CannotStand, InitialShape, Options};
 use rtw_model::outcome::{FailureDetail, Stance};
-use rtw_model::rtw::{N, Rtw};
+use rtw_model::plant::initial::{Start, initial_state};
+use rtw_model::plant::rtw::Rtw;
+use rtw_model::plant::slots::{self, N, VELOCITIES};
 use rtw_model::{Label, Params, Physical, simulate};
 
 /// The paper-box sample (seed 20240501) that stands on three feet: soft
@@ -46,18 +47,16 @@ fn stand(p: &Params, o: &Options) -> (Rtw, Result<Start, FailureDetail>, Work) {
 fn statics(rtw: &Rtw, y: &[f64; N]) -> (f64, Vec<(f64, f64)>) {
     let mut dy = [0.0; N];
     let at = rtw.dynamics(y, &mut dy);
-    let g = rtw.gravity[0].hypot(rtw.gravity[1]);
-    let half = rtw.body.half_length;
+    let g = rtw.gravity()[0].hypot(rtw.gravity()[1]);
+    let half = rtw.body().half_length;
     let acc = (0..3)
         .map(|i| {
-            dy[6 * i + 3]
-                .abs()
-                .max(dy[6 * i + 4].abs())
-                .max(dy[6 * i + 5].abs() * half)
+            let [x, y, w] = VELOCITIES.map(|k| dy[slots::at(i, k)].abs());
+            x.max(y).max(w * half)
         })
         .fold(0.0, f64::max);
     let feet = (0..3)
-        .filter(|&i| rtw.modes[i].tip().is_some())
+        .filter(|&i| rtw.modes()[i].tip().is_some())
         .map(|i| (at.lambda[i][1], at.lambda[i][0].abs() / at.lambda[i][1]))
         .collect();
     (acc / g, feet)

@@ -1,5 +1,5 @@
 //! Bifurcation diagrams: one parameter swept with continuation on the step
-//! map ([`rtw_model::stepmap`]), a step quantity recorded after transients,
+//! map ([`rtw_model::cycles::stepmap`]), a step quantity recorded after transients,
 //! and the limit cycle's Floquet multipliers at every value.
 //!
 //! At each value, in sweep order, the map starts from the previous value's
@@ -28,11 +28,10 @@ use arrow::array::{
     StringArray,
 };
 use arrow::datatypes::{DataType, Field, Int32Type, Schema, SchemaRef};
+use hybrid_ode::limit;
 use parquet::file::metadata::KeyValue;
-use rtw_model::limit;
-use rtw_model::stepmap::{
-    CycleError, CycleOptions, LimitCycle, SectionPoint, Step, StepError, StepMap,
-};
+use rtw_model::cycles::section::SectionPoint;
+use rtw_model::cycles::stepmap::{CycleError, CycleOptions, LimitCycle, Step, StepError, StepMap};
 use rtw_model::{Label, Options, ParamError, Params};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -28,8 +28,8 @@
 //! range whose ends are valid only yields valid samples.
 
 use anyhow::{Context, Result, anyhow, bail};
-use rtw_model::options::{CannotStand, Damping, InitialShape, LabelOptions, MethodChoice};
-use rtw_model::{Normalization, Options, ParamError, Params};
+use rtw_model::options::{CannotStand, Damping, InitialShape, LabelOptions, Method};
+use rtw_model::{Normalization, Options, Param, ParamError, Params};
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -491,9 +491,7 @@ pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
 /// Checks one value of parameter `index` against docs/model.md §1 via
 /// [`Params::validate`] (the ranges live in rtw-model only).
 pub fn check_param(index: usize, value: f64) -> Result<(), ParamError> {
-    let mut p = Params::fig7a();
-    *param_mut(&mut p, index) = value;
-    p.validate()
+    Param::ALL[index].check(value)
 }
 
 /// The parameter of index `i` (order of [`PARAM_KEYS`]).
@@ -672,7 +670,7 @@ pub struct Variant {
     pub initial_cannot_stand: CannotStand,
     pub initial_omega: f64,
     pub labels: LabelOptions,
-    pub method: MethodChoice,
+    pub method: Method,
     pub rtol: f64,
     pub atol: f64,
     pub t_max: f64,
@@ -959,7 +957,7 @@ phi = { uniform = [0.05, 0.3] }
         assert_eq!(o.initial.omega, -3.0);
         assert!(o.contact.mu.is_infinite());
         assert!(o.strings.slack);
-        assert_eq!(o.method, MethodChoice::Dop853);
+        assert_eq!(o.method, Method::Dop853);
         assert_eq!(o.normalization, Normalization::Eigen);
         apply_set(&mut t, "contact.mu=0.8").unwrap();
         assert_eq!(

@@ -15,7 +15,7 @@
 //! Contacts of different rods never couple (strings carry no impulse), so
 //! every decision here is per rod.
 
-use crate::geometry::{RodFrame, RodState, Tip, V2, add, cross, perp, scale, sub};
+use crate::plant::geometry::{RodFrame, RodState, Tip, V2, add, cross, perp, scale, sub};
 
 /// A rod's contact mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,10 +23,18 @@ pub enum RodMode {
     /// 3 DOF (x, y, θ).
     Free,
     /// 1 DOF θ: tip pinned at a ground point.
-    Stick { tip: Tip },
+    Stick {
+        /// The tip on the ground.
+        tip: Tip,
+    },
     /// 2 DOF (x_tip, θ): tip on `y = 0`, moving along it. `dir` is the slip
     /// direction (±1) that friction opposes and that a re-stick must reverse.
-    Slide { tip: Tip, dir: f64 },
+    Slide {
+        /// The tip on the ground.
+        tip: Tip,
+        /// The slip direction, ±1.
+        dir: f64,
+    },
 }
 
 impl RodMode {
@@ -52,6 +60,7 @@ impl RodMode {
 /// Inertial constants of a rod.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RodBody {
+    /// Mass.
     pub m: f64,
     /// Inertia about the centre.
     pub inertia: f64,
@@ -62,7 +71,9 @@ pub struct RodBody {
 /// External (non-contact) load on a rod: net force and torque about its centre.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Load {
+    /// Net force.
     pub force: V2,
+    /// Torque about the rod's centre.
     pub torque: f64,
 }
 
@@ -372,7 +383,10 @@ pub enum ImpactKind {
     Stick,
     /// The tip's normal velocity stops; the tangential impulse is `κ` times
     /// the normal one (`κ = ±μ` sliding, 0 frictionless).
-    Slide { kappa: f64 },
+    Slide {
+        /// Tangential over normal impulse.
+        kappa: f64,
+    },
 }
 
 /// Result of a touchdown impact.
@@ -382,6 +396,7 @@ pub struct Impact {
     pub after: RodState,
     /// Impulse of the ground on the tip.
     pub impulse: V2,
+    /// Which impact it was.
     pub kind: ImpactKind,
 }
 

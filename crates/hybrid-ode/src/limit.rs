@@ -4,9 +4,9 @@
 //! A steady gait is a fixed point `z* = P(z*)` of its step map `P` (a period-n
 //! gait: of `Pⁿ`). Its Floquet multipliers are the eigenvalues of `∂P/∂z` at
 //! `z*`; the gait is (linearly) stable when all lie inside the unit circle.
-//! The maps themselves live with their systems ([`crate::stepmap`] for the
-//! RTW, [`crate::rimless`] for McGeer's wheel); this module only needs them as
-//! closures `z ↦ (P(z), ∂P/∂z)`.
+//! The maps themselves live with their systems ([`crate::rimless`] for
+//! McGeer's wheel; the RTW's step map in `rtw-model`); this module only needs
+//! them as closures `z ↦ (P(z), ∂P/∂z)`.
 //!
 //! Analysis code, not the hot path: it allocates (small `DMatrix`es).
 
@@ -15,23 +15,33 @@ use nalgebra::{Complex, DMatrix, DVector};
 /// A fixed point found by [`newton`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct FixedPoint {
+    /// The fixed point (the last iterate).
     pub z: Vec<f64>,
     /// `∂P/∂z` at `z` (the last Jacobian evaluated, at the converged point).
     pub jacobian: DMatrix<f64>,
     /// `max_k |P(z)_k − z_k| / scale_k` at `z`.
     pub residual: f64,
+    /// Newton iterations taken.
     pub iterations: u32,
 }
 
 /// Why [`newton`] gave up.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NewtonError {
+    /// The map is undefined at the iterate of this iteration.
     #[error("the map is undefined at an iterate (iteration {0})")]
     MapFailed(u32),
+    /// `∂P/∂z − I` is singular at an iterate.
     #[error("P − I is singular at an iterate (a multiplier at 1)")]
     Singular,
+    /// The iteration cap was reached.
     #[error("no convergence in {iterations} iterations (scaled residual {residual:.3e})")]
-    NoConvergence { iterations: u32, residual: f64 },
+    NoConvergence {
+        /// Iterations taken.
+        iterations: u32,
+        /// The scaled residual at the last iterate.
+        residual: f64,
+    },
 }
 
 /// Newton's method on `P(z) − z = 0`.

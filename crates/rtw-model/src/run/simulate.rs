@@ -1,16 +1,18 @@
 //! `simulate(params, options) -> Outcome`: one run of the RTW on the hybrid
-//! engine, with the statistics of docs/model.md §5 gathered as it goes.
+//! engine, with the statistics of docs/model.md §5 gathered as it goes by
+//! its observer, the [`Recorder`].
 
-use crate::gait::{self, GaitStats, Settled};
-use crate::geometry::V2;
-use crate::hybrid::{self, EndReason, Flow, Guards, HybridSystem, Work};
-use crate::initial::initial_state;
-use crate::integrate::Dense;
+use crate::cycles::section::SectionLog;
+use crate::cycles::stepmap::cycle_of_run;
 use crate::options::Options;
 use crate::outcome::{Energy, FailureDetail, Label, Outcome, Stance, TraceSample};
-use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
-use crate::stepmap::{SectionLog, cycle_of_run};
-use crate::{Params, Physical};
+use crate::params::{Params, Physical};
+use crate::plant::geometry::V2;
+use crate::plant::initial::initial_state;
+use crate::plant::rtw::{AtState, Rtw, Transition};
+use crate::plant::slots::{DISSIPATED, FRICTION, N};
+use crate::run::gait::{GaitStats, Settled};
+use hybrid_ode::{Dense, EndReason, Flow, Observer, StepEnd, Work, run};
 
 /// Simulates one RTW run.
 ///
@@ -30,9 +32,10 @@ pub fn simulate_traced(
     simulate_inner(params, options, Some(trace))
 }
 
-/// One run: the RTW, its statistics, and what ends it.
-struct Run<'a> {
-    rtw: Rtw,
+/// What one run records — gait statistics, energy lost in impacts, the trace,
+/// the section crossings — and when it ends early (a stall, a settled gait):
+/// the run's observer.
+struct Recorder<'a> {
     stats: GaitStats,
     stall_time: f64,
     failure: Option<FailureDetail>,
@@ -53,18 +56,21 @@ struct Run<'a> {
     settled: Option<Settled>,
     /// The latest section crossings (`Options::limit_cycle` only).
     sections: Option<Box<SectionLog>>,
+    /// Downhill position of the centre of mass and total energy just before
+    /// the reset that follows (taken where a step ends at an event).
+    before_reset: (f64, f64),
 }
 
-impl Run<'_> {
-    fn sample(&self, t: f64, y: &[f64; N]) -> TraceSample {
-        let rods = self.rtw.rods(y);
-        let (kinetic, gravity_potential, string_potential) = self.rtw.energy(y);
+impl Recorder<'_> {
+    fn sample(&self, rtw: &Rtw, t: f64, y: &[f64; N]) -> TraceSample {
+        let rods = rtw.rods(y);
+        let (kinetic, gravity_potential, string_potential) = rtw.energy(y);
         TraceSample {
             t,
             pose: std::array::from_fn(|i| [rods[i].c[0], rods[i].c[1], rods[i].theta]),
             vel: std::array::from_fn(|i| [rods[i].v[0], rods[i].v[1], rods[i].omega]),
-            contact: std::array::from_fn(|i| self.rtw.modes[i].code()),
-            contact_state: self.rtw.contact_state() as u8,
+            contact: std::array::from_fn(|i| rtw.modes[i].code()),
+            contact_state: rtw.contact_state() as u8,
             kinetic,
             gravity_potential,
             string_potential,
@@ -74,26 +80,19 @@ impl Run<'_> {
         }
     }
 
-    fn emit(&mut self, t: f64, y: &[f64; N]) {
-        let s = self.sample(t, y);
+    fn emit(&mut self, rtw: &Rtw, t: f64, y: &[f64; N]) {
+        let s = self.sample(rtw, t, y);
         if let Some(trace) = self.trace.as_mut() {
             trace(&s);
         }
     }
 }
 
-impl HybridSystem<N> for Run<'_> {
-    /// Frames and contact forces λ of the rods.
-    type Aux = AtState;
-
-    crate::rtw::delegate_rtw_flow!();
-
-    fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Flow {
-        let com_x = self.rtw.centre_of_mass(y)[0];
-        let before = self.rtw.total_energy(y);
-        let transition = self.rtw.reset(y, index);
-        self.impact_loss += before - self.rtw.total_energy(y);
-        let flow = match transition {
+impl Observer<N, Rtw> for Recorder<'_> {
+    fn on_transition(&mut self, rtw: &Rtw, t: f64, y: &[f64; N], tr: &Transition) -> Flow {
+        let (com_x, before) = self.before_reset;
+        self.impact_loss += before - rtw.total_energy(y);
+        let flow = match *tr {
             Transition::Touchdown {
                 rod,
                 tip,
@@ -101,7 +100,7 @@ impl HybridSystem<N> for Run<'_> {
             } => {
                 self.stats.on_touchdown(t, rod, tip, omega_after);
                 if let Some(log) = self.sections.as_mut() {
-                    log.on_touchdown(&self.rtw.modes, y, rod, tip);
+                    log.on_touchdown(&rtw.modes, y, rod, tip);
                 }
                 if self.stop_when_settled {
                     let mu = std::mem::take(&mut self.mu_since_touchdown);
@@ -120,52 +119,51 @@ impl HybridSystem<N> for Run<'_> {
             }
         };
         if self.trace.is_some() {
-            self.emit(t, y);
+            self.emit(rtw, t, y);
         }
         flow
     }
 
-    fn observes_interior(&self) -> bool {
+    fn reads_interior(&self, _: &Rtw, _t0: f64, t1: f64) -> bool {
         // Interior points are read only to sample a trace at `trace_dt` and
-        // once, at the window start.
-        (self.trace.is_some() && self.trace_dt > 0.0) || self.stats.window_com_x.is_none()
-    }
-
-    fn observes_interior_on(&self, _t0: f64, t1: f64) -> bool {
-        // The steps on which `observe_step` evaluates `dense` inside: those
-        // that reach the next trace sample or the window's start.
+        // once, at the window's start: on the steps that reach them.
         (self.trace.is_some() && self.trace_dt > 0.0 && self.next_trace <= t1)
             || (self.stats.window_com_x.is_none() && t1 >= self.stats.window_start)
     }
 
-    fn observe(&mut self, dense: &Dense<N>) -> Flow {
-        self.observe_step(dense, None)
-    }
-
-    fn observe_aux(&mut self, dense: &Dense<N>, at: &AtState) -> Flow {
-        self.observe_step(dense, Some(&at.lambda))
+    fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, end: StepEnd<'_, AtState>) -> Flow {
+        let lambda_end = match end {
+            StepEnd::Step { aux } => Some(&aux.lambda),
+            StepEnd::Event { .. } => None,
+        };
+        let flow = self.observe_step(rtw, dense, lambda_end);
+        if flow == Flow::Continue && matches!(end, StepEnd::Event { .. }) {
+            let y = &dense.y1;
+            self.before_reset = (rtw.centre_of_mass(y)[0], rtw.total_energy(y));
+        }
+        flow
     }
 }
 
-impl Run<'_> {
+impl Recorder<'_> {
     /// Statistics of one step (or of the part of it before an event);
     /// `lambda_end`: the contact forces at `dense.y1`, if already known.
-    fn observe_step(&mut self, dense: &Dense<N>, lambda_end: Option<&[V2; 3]>) -> Flow {
+    fn observe_step(&mut self, rtw: &Rtw, dense: &Dense<N>, lambda_end: Option<&[V2; 3]>) -> Flow {
         let (t0, t1) = (dense.t0, dense.t1);
         self.stats
-            .on_interval(t0, t1, self.rtw.contact_state(), self.rtw.sliding());
+            .on_interval(t0, t1, rtw.contact_state(), rtw.sliding());
         if self.stats.window_com_x.is_none() && t1 >= self.stats.window_start {
             let mut y = [0.0; N];
             dense.eval(self.stats.window_start.max(t0), &mut y);
-            self.stats.window_com_x = Some(self.rtw.centre_of_mass(&y)[0]);
+            self.stats.window_com_x = Some(rtw.centre_of_mass(&y)[0]);
         }
         // `mu_required` describes the gait: count it over the window only
         // (or, with an early stop, over the settled window).
         let in_window = t1 >= self.stats.window_start;
-        if (in_window || self.stop_when_settled) && self.rtw.contact_state() > 0 {
+        if (in_window || self.stop_when_settled) && rtw.contact_state() > 0 {
             let mu = match lambda_end {
-                Some(lambda) => self.rtw.friction_ratio_of(lambda),
-                None => self.rtw.friction_ratio(&dense.y1),
+                Some(lambda) => rtw.friction_ratio_of(lambda),
+                None => rtw.friction_ratio(&dense.y1),
             };
             if in_window {
                 self.mu_required = self.mu_required.max(mu);
@@ -178,12 +176,12 @@ impl Run<'_> {
                 while self.next_trace <= t1 {
                     let t = self.next_trace;
                     dense.eval(t, &mut y);
-                    self.emit(t, &y);
+                    self.emit(rtw, t, &y);
                     self.next_trace += self.trace_dt;
                 }
             } else {
                 let y1 = dense.y1;
-                self.emit(t1, &y1);
+                self.emit(rtw, t1, &y1);
             }
         }
         if t1 - self.stats.last_touchdown > self.stall_time {
@@ -211,8 +209,7 @@ fn simulate_inner(
         Err(detail) => return failed_at_start(detail, standing),
     };
     let window_start = options.t_max * (1.0 - options.analysis_window);
-    let mut run = Run {
-        rtw,
+    let mut rec = Recorder {
         stats: GaitStats::new(window_start, options.labels),
         stall_time: options.stall_time,
         failure: None,
@@ -225,25 +222,33 @@ fn simulate_inner(
         mu_since_touchdown: 0.0,
         settled: None,
         sections: options.limit_cycle.then(Box::default),
+        before_reset: (0.0, 0.0),
     };
-    let e0 = run.rtw.total_energy(&y);
-    let g0 = run.rtw.energy(&y).1;
-    if run.trace.is_some() {
-        run.emit(0.0, &y);
-        run.next_trace = options.trace_dt;
+    let e0 = rtw.total_energy(&y);
+    let g0 = rtw.energy(&y).1;
+    if rec.trace.is_some() {
+        rec.emit(&rtw, 0.0, &y);
+        rec.next_trace = options.trace_dt;
     }
-    let end = hybrid::run(&mut run, 0.0, &mut y, options.t_max, &options.engine());
+    let end = run(
+        &mut rtw,
+        &mut rec,
+        0.0,
+        &mut y,
+        options.t_max,
+        &options.engine(),
+    );
 
-    let (_, g1, _) = run.rtw.energy(&y);
-    let e1 = run.rtw.total_energy(&y);
+    let (_, g1, _) = rtw.energy(&y);
+    let e1 = rtw.total_energy(&y);
     let energy = Energy {
         initial: e0,
         last: e1,
         gravity_released: g0 - g1,
-        impact_loss: run.impact_loss,
+        impact_loss: rec.impact_loss,
         damping_loss: y[DISSIPATED],
         friction_loss: y[FRICTION],
-        balance_error: e1 + run.impact_loss + y[DISSIPATED] + y[FRICTION] - e0,
+        balance_error: e1 + rec.impact_loss + y[DISSIPATED] + y[FRICTION] - e0,
     };
     let numerical = match end.reason {
         EndReason::TimeUp | EndReason::Stopped => None,
@@ -253,10 +258,10 @@ fn simulate_inner(
         EndReason::Zeno => Some(FailureDetail::Zeno),
     };
     let window = (options.t_max - window_start).max(f64::MIN_POSITIVE);
-    let stats = &run.stats;
+    let stats = &rec.stats;
     // What the analysis window measures: over the last `analysis_window` of
     // the run, or over the settled gait's whole periods after an early stop.
-    let (fractions, step_shares, f_w, f_w_newfoot, speed, mu_required, period) = match run.settled {
+    let (fractions, step_shares, f_w, f_w_newfoot, speed, mu_required, period) = match rec.settled {
         Some(s) => (
             s.fractions,
             s.step_shares,
@@ -273,24 +278,24 @@ fn simulate_inner(
             stats.window_newfoot as f64 / window,
             match stats.window_com_x {
                 Some(x0) if end.reason == EndReason::TimeUp => {
-                    (run.rtw.centre_of_mass(&y)[0] - x0) / window
+                    (rtw.centre_of_mass(&y)[0] - x0) / window
                 }
                 _ => 0.0,
             },
-            run.mu_required,
+            rec.mu_required,
             stats.period(),
         ),
     };
-    let failure = numerical.or(run.failure).or_else(|| {
+    let failure = numerical.or(rec.failure).or_else(|| {
         // Over the window the star must roll at least half a rod downhill
         // (for a settled gait: at the same mean speed).
         (speed * window < 0.5 * phys.length).then_some(FailureDetail::NoProgress)
     });
     let label = match failure {
-        None => gait::label(&fractions, &step_shares, &options.labels),
+        None => Label::of_gait(&fractions, &step_shares, &options.labels),
         Some(detail) => detail.label(),
     };
-    let cycle = match &run.sections {
+    let cycle = match &rec.sections {
         Some(log) if label.is_stable() => cycle_of_run(params, options, log),
         _ => None,
     };

@@ -21,13 +21,13 @@
 //!   whichever feet the star needs. A star that cannot stand falls while
 //!   settling or never comes to rest, and the failure says which.
 
-use crate::contact::RodMode;
-use crate::geometry::{RodFrame, RodState, Tip, perp, rest_star, scale, sub};
-use crate::hybrid::{self, EndReason, Flow, Guards, HybridSystem, Work};
-use crate::integrate::Dense;
 use crate::options::{CannotStand, InitialShape, Options};
 use crate::outcome::{FailureDetail, Stance};
-use crate::rtw::{AtState, N, Rtw, Transition};
+use crate::plant::contact::RodMode;
+use crate::plant::geometry::{RodFrame, RodState, Tip, perp, rest_star, scale, sub};
+use crate::plant::rtw::{AtState, Rtw, Transition};
+use crate::plant::slots::{self, N, OMEGA, THETA, VELOCITIES, VX, VY, X, Y};
+use hybrid_ode::{Dense, EndReason, Flow, Observer, StepEnd, Work, run};
 use nalgebra::{SMatrix, SVector};
 use std::f64::consts::PI;
 
@@ -111,7 +111,7 @@ fn push(rtw: &mut Rtw, mut rods: [RodState; 3], feet: [Option<Tip>; 3], omega: f
     rtw.body.slots(
         rtw.modes[front],
         &rods[front],
-        &mut y[6 * front..6 * front + 6],
+        slots::rod_mut(&mut y, front),
     );
     for (i, tip) in (0..3)
         .filter(|&i| i != front)
@@ -127,7 +127,7 @@ fn push(rtw: &mut Rtw, mut rods: [RodState; 3], feet: [Option<Tip>; 3], omega: f
                 .body
                 .choose_mode(&rods[i], tip, v_tip[0] == 0.0, &loads[i], rtw.mu);
             rtw.body
-                .slots(rtw.modes[i], &rods[i], &mut y[6 * i..6 * i + 6]);
+                .slots(rtw.modes[i], &rods[i], slots::rod_mut(&mut y, i));
         }
     }
     y
@@ -152,10 +152,9 @@ const REST_TOL: f64 = 1e-9;
 /// far less, one that tips over onto the next foot moves it L/2).
 const AWAY: f64 = 0.25;
 
-/// The star being set down: the RTW with the relaxation's damping, stopped
-/// when it is at rest or falls.
+/// Watches the star being set down (the RTW with the relaxation's damping):
+/// stops the run when it is at rest, rolls away or falls.
 struct Settling {
-    rtw: Rtw,
     failure: Option<FailureDetail>,
     at_rest: bool,
     /// It rolled or slid away from its feet ([`AWAY`]).
@@ -168,13 +167,20 @@ struct Settling {
     away: f64,
 }
 
-impl HybridSystem<N> for Settling {
-    type Aux = AtState;
+/// The largest of a rod velocity's (or acceleration's) components, angular
+/// ones at the tip, over the three rods of `v`.
+fn largest_rate(v: &[f64; N], half: f64) -> f64 {
+    (0..3)
+        .map(|i| {
+            let [x, y, w] = VELOCITIES.map(|k| v[slots::at(i, k)].abs());
+            x.max(y).max(w * half)
+        })
+        .fold(0.0, f64::max)
+}
 
-    crate::rtw::delegate_rtw_flow!();
-
-    fn reset(&mut self, _t: f64, y: &mut [f64; N], index: usize) -> Flow {
-        match self.rtw.reset(y, index) {
+impl Observer<N, Rtw> for Settling {
+    fn on_transition(&mut self, _: &Rtw, _t: f64, _y: &[f64; N], tr: &Transition) -> Flow {
+        match *tr {
             Transition::Failure(FailureDetail::RodDown) => {
                 self.failure = Some(FailureDetail::StandingRodDown);
                 Flow::Stop
@@ -191,39 +197,23 @@ impl HybridSystem<N> for Settling {
         }
     }
 
-    fn observes_interior(&self) -> bool {
+    fn reads_interior(&self, _: &Rtw, _t0: f64, _t1: f64) -> bool {
         false
     }
 
-    fn observe(&mut self, dense: &Dense<N>) -> Flow {
+    fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, _: StepEnd<'_, AtState>) -> Flow {
         let y = &dense.y1;
-        if (self.rtw.centre_of_mass(y)[0] - self.com_x0).abs() > self.away {
+        if (rtw.centre_of_mass(y)[0] - self.com_x0).abs() > self.away {
             self.rolled_away = true;
             return Flow::Stop;
         }
-        let half = self.rtw.body.half_length;
-        let speed = (0..3)
-            .map(|i| {
-                y[6 * i + 3]
-                    .abs()
-                    .max(y[6 * i + 4].abs())
-                    .max(y[6 * i + 5].abs() * half)
-            })
-            .fold(0.0, f64::max);
-        if speed > REST_TOL * self.speed_scale {
+        let half = rtw.body.half_length;
+        if largest_rate(y, half) > REST_TOL * self.speed_scale {
             return Flow::Continue;
         }
         let mut dy = [0.0; N];
-        self.rtw.dynamics(y, &mut dy);
-        let accel = (0..3)
-            .map(|i| {
-                dy[6 * i + 3]
-                    .abs()
-                    .max(dy[6 * i + 4].abs())
-                    .max(dy[6 * i + 5].abs() * half)
-            })
-            .fold(0.0, f64::max);
-        self.at_rest = accel <= REST_TOL * self.accel_scale;
+        rtw.dynamics(y, &mut dy);
+        self.at_rest = largest_rate(&dy, half) <= REST_TOL * self.accel_scale;
         if self.at_rest {
             Flow::Stop
         } else {
@@ -243,7 +233,6 @@ fn settle(
     work: &mut Work,
 ) -> Result<Option<Standing>, FailureDetail> {
     let mut sys = Settling {
-        rtw: rtw.clone(),
         failure: None,
         at_rest: false,
         rolled_away: false,
@@ -252,25 +241,25 @@ fn settle(
         com_x0: 0.0,
         away: AWAY * 2.0 * rtw.body.half_length,
     };
+    let mut relaxing = rtw.clone();
     let string_rate = (rtw.strings.k / rtw.body.m).sqrt();
-    sys.rtw.relax = RELAX_DAMPING * string_rate;
-    sys.rtw.modes = [RodMode::Free; 3];
+    relaxing.relax = RELAX_DAMPING * string_rate;
+    relaxing.modes = [RodMode::Free; 3];
     let mut y = [0.0; N];
-    sys.rtw.store(&star, &mut y);
-    sys.com_x0 = sys.rtw.centre_of_mass(&y)[0];
+    relaxing.store(&star, &mut y);
+    sys.com_x0 = relaxing.centre_of_mass(&y)[0];
     // Both feet are set down at rest: the mode-choice rule at rest.
-    let (loads, _) = sys.rtw.loads(&frames(&star));
+    let (loads, _) = relaxing.loads(&frames(&star));
     for (i, tip) in [FRONT, REAR] {
-        sys.rtw.modes[i] = sys
-            .rtw
+        relaxing.modes[i] = relaxing
             .body
-            .choose_mode(&star[i], tip, true, &loads[i], sys.rtw.mu);
-        sys.rtw
+            .choose_mode(&star[i], tip, true, &loads[i], relaxing.mu);
+        relaxing
             .body
-            .slots(sys.rtw.modes[i], &star[i], &mut y[6 * i..6 * i + 6]);
+            .slots(relaxing.modes[i], &star[i], slots::rod_mut(&mut y, i));
     }
     let t_max = SETTLE_PERIODS * 2.0 * PI / string_rate;
-    let end = hybrid::run(&mut sys, 0.0, &mut y, t_max, &opts.engine());
+    let end = run(&mut relaxing, &mut sys, 0.0, &mut y, t_max, &opts.engine());
     *work += end.work;
     if let Some(failure) = sys.failure {
         return Err(failure);
@@ -286,13 +275,13 @@ fn settle(
             return Err(FailureDetail::NoStandingEquilibrium);
         }
     }
-    let mut rods = sys.rtw.rods(&y);
+    let mut rods = relaxing.rods(&y);
     // At rest up to REST_TOL: the push starts from exactly zero velocity.
     for r in rods.iter_mut() {
         r.v = [0.0, 0.0];
         r.omega = 0.0;
     }
-    Ok(Some((rods, sys.rtw.modes.map(RodMode::tip))))
+    Ok(Some((rods, relaxing.modes.map(RodMode::tip))))
 }
 
 /// The static equilibrium standing on the two feet, near the rest shape:
@@ -313,13 +302,22 @@ fn static_equilibrium(rtw: &Rtw, star: [RodState; 3]) -> Option<[RodState; 3]> {
     ];
     sys.mu = f64::INFINITY;
     // (slot of the unknown, slot of its equation's acceleration)
-    const DOF: [(usize, usize); 6] = [(2, 5), (6, 9), (7, 10), (8, 11), (12, 15), (14, 17)];
+    let dof = |rod: usize, (q, rate): (usize, usize)| (slots::at(rod, q), slots::at(rod, rate));
+    let (along_x, along_y, turn) = ((X, VX), (Y, VY), (THETA, OMEGA));
+    let dofs: [(usize, usize); 6] = [
+        dof(0, turn),
+        dof(1, along_x),
+        dof(1, along_y),
+        dof(1, turn),
+        dof(2, along_x),
+        dof(2, turn),
+    ];
     let mut y = [0.0; N];
     sys.store(&star, &mut y);
     let residual = |y: &[f64; N]| {
         let mut dy = [0.0; N];
         sys.dynamics(y, &mut dy);
-        SVector::<f64, 6>::from_fn(|k, _| dy[DOF[k].1])
+        SVector::<f64, 6>::from_fn(|k, _| dy[dofs[k].1])
     };
     let scale_acc = rtw.gravity[1].abs().max(1e-12);
     for _ in 0..50 {
@@ -342,7 +340,7 @@ fn static_equilibrium(rtw: &Rtw, star: [RodState; 3]) -> Option<[RodState; 3]> {
             return (standing && above).then_some(rods);
         }
         let mut jac = SMatrix::<f64, 6, 6>::zeros();
-        for (k, &(slot, _)) in DOF.iter().enumerate() {
+        for (k, &(slot, _)) in dofs.iter().enumerate() {
             let h = 1e-7 * (1.0 + y[slot].abs());
             let mut yp = y;
             let mut ym = y;
@@ -354,7 +352,7 @@ fn static_equilibrium(rtw: &Rtw, star: [RodState; 3]) -> Option<[RodState; 3]> {
         // Damped: never move an angle by more than 0.2 rad at once.
         let biggest = step.iter().fold(0.0f64, |a, s| a.max(s.abs()));
         let damp = if biggest > 0.2 { 0.2 / biggest } else { 1.0 };
-        for (k, &(slot, _)) in DOF.iter().enumerate() {
+        for (k, &(slot, _)) in dofs.iter().enumerate() {
             y[slot] += damp * step[k];
         }
         if !y.iter().all(|v| v.is_finite()) {

@@ -2,7 +2,7 @@
 //! in closed form.
 
 use nalgebra::{Complex, DMatrix};
-use rtw_model::continuation::*;
+use hybrid_ode::continuation::*;
 
 fn eig(j: &DMatrix<f64>) -> Vec<Complex<f64>> {
     let mut mu: Vec<Complex<f64>> = j.complex_eigenvalues().iter().copied().collect();
@@ -251,9 +251,9 @@ fn the_fold_curve_of_a_two_parameter_map_is_the_closed_form() {
 
 #[test]
 fn the_rimless_wheels_branch_and_its_existence_limit_in_the_slope_are_the_closed_form() {
-    use rtw_model::hybrid::EngineOptions;
-    use rtw_model::integrate::Method;
-    use rtw_model::rimless::RimlessWheel;
+    use hybrid_ode::EngineOptions;
+    use hybrid_ode::Method;
+    use hybrid_ode::rimless::RimlessWheel;
     // McGeer's wheel, 8 spokes, l = 1 m: the fixed point of the post-impact
     // rate is ω*(γ) = cot 2α · sqrt(4 (g/l) sin α sin γ) with multiplier
     // cos² 2α whatever γ (so no fold): the branch ends where the fixed-point

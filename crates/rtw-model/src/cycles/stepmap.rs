@@ -1,101 +1,32 @@
-//! The RTW's step map: a Poincaré section at each touchdown of a new foot,
-//! reduced by the star's symmetry, and its Jacobian.
-//!
-//! **Section.** The state just after the impact of a foot other than the
-//! stance foot and the one behind it, when the foot stays on the ground (a
-//! touch-and-go, or a foot that lands again after a bounce, is not a step).
-//!
-//! **Symmetry.** A 60° turn maps the spokes a+ → b+ → c+ → a− → b− → c− → a+
-//! ([`SPOKES`]'s order): a relabelling of the rods, where a rod turned by π is
-//! the same rod with its tips swapped. The gait is also invariant under a
-//! shift along the slope. So every section point is stored *canonically*:
-//! rods relabelled so that the landing foot is a+ (spoke `j` of the old labels
-//! becomes spoke 0; the old rod of spoke `(i + j) mod 6` becomes rod `i`,
-//! turned by π when that spoke is a − tip), shifted so that the landing foot
-//! is at `x = 0`, angles wrapped to `(−π, π]`, dissipated energies zeroed.
-//! A steady walk is then a fixed point of the map; the same physical posture
-//! one step later has the same canonical coordinates.
-//!
-//! **Coordinates.** The state's slots are minimal coordinates in each rod's
-//! mode ([`crate::contact`]): a sticking rod has (contact x, θ, ω), a sliding
-//! one (tip x, θ, tip ẋ, ω), a free one all six. The map's coordinates `z`
-//! are those slots of the three rods in the section's modes, without a+'s
-//! contact x (zero by the shift). The section's own constraints (the landing
-//! foot on the ground, at rest after a sticking impact) are thus built in and
-//! the map has no trivial multipliers. A map is smooth only between points of
-//! the same *mode pattern* (which rods touch, how); [`StepMap::step`] reports
-//! the pattern it lands in, and a fixed point must keep its own.
+//! The RTW's step map on its section ([`crate::cycles::section`]), its
+//! Jacobian, and the limit cycles it finds.
 //!
 //! **Jacobian.** By the variational equations integrated alongside the step,
 //! through every impact and mode switch with its saltation matrix
-//! ([`crate::variational`]), then through the relabelling (linear); or by
-//! central differences of the map ([`crate::limit::fd_jacobian`]). The tests
+//! ([`hybrid_ode::variational`]), then through the relabelling (linear); or by
+//! central differences of the map ([`hybrid_ode::limit::fd_jacobian`]). The tests
 //! check one against the other.
 
-use crate::contact::RodMode;
-use crate::geometry::{SPOKES, Tip};
-use crate::hybrid::{self, EndReason, EngineOptions, Flow, Guards, HybridSystem};
-use crate::initial::initial_state;
-use crate::integrate::{Dense, Method};
-use crate::limit::{self, FixedPoint, NewtonError};
-use crate::options::{LabelOptions, Options};
-use crate::outcome::{ContactFractions, FailureDetail, Label};
+use crate::cycles::section::{
+    STANCE_SPOKE, SectionLog, SectionPoint, canonical, canonical_jacobian, new_foot, source,
+};
+use crate::options::{LabelOptions, Method, Options};
+use crate::outcome::{
+    ContactFractions, CycleSummary, FailureDetail, Label, MAX_PERIOD, StepShares,
+};
 use crate::params::{Params, Physical};
-use crate::rtw::{AtState, DISSIPATED, FRICTION, N, Rtw, Transition};
-use crate::variational::Variational;
+use crate::plant::initial::initial_state;
+use crate::plant::rtw::{AtState, Rtw, Transition};
+use crate::plant::slots::{self, DISSIPATED, FRICTION, N, X};
+use hybrid_ode::limit::{self, FixedPoint, NewtonError};
+use hybrid_ode::{Dense, EndReason, EngineOptions, Flow, Observer, StepEnd, Variational, run};
 use nalgebra::{Complex, DMatrix};
-use std::f64::consts::PI;
 
 /// Dimension of the RTW state with its sensitivity.
 const M: usize = N + N * N;
 
-/// Canonical spoke of the stance foot, and of the foot behind it (c−).
-const STANCE_SPOKE: usize = 0;
-const BEHIND_SPOKE: usize = 5;
-
-/// A point on the section, in canonical labels (see the module doc).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SectionPoint {
-    pub modes: [RodMode; 3],
-    pub y: [f64; N],
-}
-
-impl SectionPoint {
-    /// The state slots that are the map's coordinates in this point's modes.
-    pub fn coordinate_slots(&self) -> Vec<usize> {
-        let mut slots = Vec::with_capacity(N);
-        for (i, mode) in self.modes.iter().enumerate() {
-            let own: &[usize] = match mode {
-                RodMode::Free => &[0, 1, 2, 3, 4, 5],
-                RodMode::Stick { .. } => &[0, 2, 5],
-                RodMode::Slide { .. } => &[0, 2, 3, 5],
-            };
-            // a+'s contact x is zero by the shift.
-            let skip = usize::from(i == 0 && *mode != RodMode::Free);
-            slots.extend(own[skip..].iter().map(|s| 6 * i + s));
-        }
-        slots
-    }
-
-    /// The map's coordinates of this point.
-    pub fn coords(&self) -> Vec<f64> {
-        self.coordinate_slots().iter().map(|&s| self.y[s]).collect()
-    }
-
-    /// This point with its coordinates replaced by `z` (same modes).
-    pub fn with_coords(&self, z: &[f64]) -> SectionPoint {
-        let mut p = *self;
-        for (&s, &v) in self.coordinate_slots().iter().zip(z) {
-            p.y[s] = v;
-        }
-        p
-    }
-
-    /// The landing rod's angular velocity just after the impact.
-    pub fn omega(&self) -> f64 {
-        self.y[5]
-    }
-}
+/// The RTW with its sensitivity, over one step.
+type Sensitivity = Variational<Rtw, StepLog, N>;
 
 /// One application of the map.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,8 +44,8 @@ pub struct Step {
 impl Step {
     /// The gait label of `steps` together (docs/model.md §5).
     pub fn label(steps: &[Step], labels: &LabelOptions) -> Label {
-        let shares = crate::gait::step_shares(steps.iter().map(|s| &s.state_time), labels);
-        crate::gait::label(&Step::fractions(steps), &shares, labels)
+        let shares = StepShares::of_steps(steps.iter().map(|s| &s.state_time), labels);
+        Label::of_gait(&Step::fractions(steps), &shares, labels)
     }
 
     /// Contact-state fractions of `steps` together.
@@ -138,60 +69,40 @@ impl Step {
 /// Why a step did not reach the section.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum StepError {
+    /// The run failed (a rod lay down, the centre of mass sank).
     #[error("the run failed: {}", .0.as_str())]
     Failure(FailureDetail),
+    /// No new foot landed within the step horizon.
     #[error("no new foot landed within the step horizon")]
     NoNewFoot,
+    /// The landing foot did not stay on the ground.
     #[error("the landing foot did not stay on the ground")]
     LandingFootLeft,
+    /// The integration ended otherwise (step underflow, work budget, …).
     #[error("the integration ended: {0:?}")]
     Numerical(EndReason),
 }
 
-/// The RTW between two section crossings, as a hybrid system.
-#[derive(Clone, Debug)]
-struct StepRun {
-    rtw: Rtw,
-    /// The stance foot and the one behind it, in this run's labels: their
-    /// touchdowns are not steps.
-    stance: (usize, Tip),
-    behind: (usize, Tip),
+/// Watches the RTW between two section crossings: stops where a new foot
+/// lands and stays ([`new_foot`], from the canonical stance a+), and times
+/// the contact states on the way.
+#[derive(Clone, Debug, Default)]
+struct StepLog {
     landed: Option<usize>,
     state_time: [f64; 4],
     failure: Option<FailureDetail>,
 }
 
-impl StepRun {
-    fn new(rtw: Rtw) -> Self {
-        Self {
-            rtw,
-            stance: SPOKES[STANCE_SPOKE],
-            behind: SPOKES[BEHIND_SPOKE],
-            landed: None,
-            state_time: [0.0; 4],
-            failure: None,
-        }
-    }
-}
-
-impl HybridSystem<N> for StepRun {
-    type Aux = AtState;
-
-    crate::rtw::delegate_rtw_flow!();
-
-    fn reset(&mut self, _t: f64, y: &mut [f64; N], index: usize) -> Flow {
-        match self.rtw.reset(y, index) {
+impl Observer<N, Rtw> for StepLog {
+    fn on_transition(&mut self, rtw: &Rtw, _t: f64, _y: &[f64; N], tr: &Transition) -> Flow {
+        match *tr {
             Transition::Touchdown { rod, tip, .. } => {
-                // A touch-and-go (the foot leaves the ground at once) is not
-                // a step either: the step ends where the foot stays.
-                if (rod, tip) == self.stance
-                    || (rod, tip) == self.behind
-                    || self.rtw.modes[rod] == RodMode::Free
-                {
-                    Flow::Continue
-                } else {
-                    self.landed = SPOKES.iter().position(|&s| s == (rod, tip));
-                    Flow::Stop
+                match new_foot(STANCE_SPOKE, &rtw.modes(), rod, tip) {
+                    Some(j) => {
+                        self.landed = Some(j);
+                        Flow::Stop
+                    }
+                    None => Flow::Continue,
                 }
             }
             Transition::ModeChange { .. } => Flow::Continue,
@@ -202,157 +113,13 @@ impl HybridSystem<N> for StepRun {
         }
     }
 
-    fn reset_replaying(&mut self, t: f64, y: &mut [f64; N], index: usize, nominal: &Self) -> Flow {
-        self.rtw.replay = nominal.rtw.last_choice;
-        let flow = self.reset(t, y, index);
-        self.rtw.replay = None;
-        flow
-    }
-
-    fn observe(&mut self, dense: &Dense<N>) -> Flow {
-        self.state_time[self.rtw.contact_state()] += dense.t1 - dense.t0;
+    fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, _: StepEnd<'_, AtState>) -> Flow {
+        self.state_time[rtw.contact_state()] += dense.t1 - dense.t0;
         Flow::Continue
     }
 
-    fn observes_interior(&self) -> bool {
+    fn reads_interior(&self, _: &Rtw, _t0: f64, _t1: f64) -> bool {
         false
-    }
-}
-
-/// Old rod of new rod `i` when spoke `j` becomes a+, and whether it is turned by π.
-#[inline]
-fn source(j: usize, i: usize) -> (usize, bool) {
-    let s = (i + j) % 6;
-    (s % 3, s >= 3)
-}
-
-/// The turned rod's mode: the same contact on its other tip's label.
-fn turned(mode: RodMode) -> RodMode {
-    match mode {
-        RodMode::Free => RodMode::Free,
-        RodMode::Stick { tip } => RodMode::Stick { tip: tip.other() },
-        RodMode::Slide { tip, dir } => RodMode::Slide {
-            tip: tip.other(),
-            dir,
-        },
-    }
-}
-
-/// `θ` wrapped to `(−π, π]`.
-#[inline]
-fn wrap(theta: f64) -> f64 {
-    let w = theta.rem_euclid(2.0 * PI);
-    if w > PI { w - 2.0 * PI } else { w }
-}
-
-/// The canonical section point of the state `y` (in modes `modes`) just after
-/// spoke `j` landed; `None` if the landing rod is not on the ground.
-fn canonical(modes: &[RodMode; 3], y: &[f64; N], j: usize) -> Option<SectionPoint> {
-    let (o0, _) = source(j, 0);
-    if modes[o0] == RodMode::Free {
-        return None;
-    }
-    let x0 = y[6 * o0];
-    let mut p = SectionPoint {
-        modes: [RodMode::Free; 3],
-        y: [0.0; N],
-    };
-    for i in 0..3 {
-        let (o, flip) = source(j, i);
-        p.y[6 * i..6 * i + 6].copy_from_slice(&y[6 * o..6 * o + 6]);
-        p.y[6 * i] -= x0;
-        if flip {
-            p.y[6 * i + 2] += PI;
-        }
-        p.y[6 * i + 2] = wrap(p.y[6 * i + 2]);
-        p.modes[i] = if flip { turned(modes[o]) } else { modes[o] };
-    }
-    p.y[DISSIPATED] = 0.0;
-    p.y[FRICTION] = 0.0;
-    Some(p)
-}
-
-/// `∂(canonical y)/∂y` for landing spoke `j`: a permutation of the rods' slots
-/// minus the landing foot's x from every rod's x slot (the π turns and the
-/// wrapping add constants).
-fn canonical_jacobian(j: usize) -> [[f64; N]; N] {
-    let mut c = [[0.0; N]; N];
-    let (o0, _) = source(j, 0);
-    for i in 0..3 {
-        let (o, _) = source(j, i);
-        for s in 0..6 {
-            c[6 * i + s][6 * o + s] += 1.0;
-        }
-        c[6 * i][6 * o0] -= 1.0;
-    }
-    c
-}
-
-impl SectionPoint {
-    /// The canonical section point just after `tip` of `rod` landed, the
-    /// state `y` in modes `modes` (the run's labels); `None` if the rod did
-    /// not stay on the ground.
-    pub fn after_touchdown(
-        modes: &[RodMode; 3],
-        y: &[f64; N],
-        rod: usize,
-        tip: Tip,
-    ) -> Option<SectionPoint> {
-        let j = SPOKES.iter().position(|&s| s == (rod, tip))?;
-        canonical(modes, y, j)
-    }
-}
-
-/// Longest history a [`SectionLog`] keeps: two of the longest periods, and one.
-const LOG_LEN: usize = 2 * crate::gait::MAX_PERIOD + 1;
-
-/// The latest section crossings of a simulation, in a fixed ring (no
-/// allocation in the run): where the limit-cycle analysis of a run starts.
-#[derive(Clone, Debug)]
-pub struct SectionLog {
-    ring: [SectionPoint; LOG_LEN],
-    len: usize,
-    /// Spoke of the stance foot, in the run's labels (a+ at the start).
-    stance: usize,
-}
-
-impl Default for SectionLog {
-    fn default() -> Self {
-        Self {
-            ring: [SectionPoint {
-                modes: [RodMode::Free; 3],
-                y: [0.0; N],
-            }; LOG_LEN],
-            len: 0,
-            stance: STANCE_SPOKE,
-        }
-    }
-}
-
-impl SectionLog {
-    /// Records the touchdown of `tip` of `rod` (state `y` just after it, in
-    /// `modes`) if it crosses the section: a new foot that stays down.
-    pub fn on_touchdown(&mut self, modes: &[RodMode; 3], y: &[f64; N], rod: usize, tip: Tip) {
-        let Some(j) = SPOKES.iter().position(|&s| s == (rod, tip)) else {
-            return;
-        };
-        let behind = (self.stance + BEHIND_SPOKE) % 6;
-        if j == self.stance || j == behind {
-            return;
-        }
-        if let Some(p) = canonical(modes, y, j) {
-            self.ring[self.len % LOG_LEN] = p;
-            self.len += 1;
-            self.stance = j;
-        }
-    }
-
-    /// The recorded crossings, oldest first (at most the ring's length).
-    pub fn latest(&self) -> Vec<SectionPoint> {
-        let n = self.len.min(LOG_LEN);
-        (self.len - n..self.len)
-            .map(|k| self.ring[k % LOG_LEN])
-            .collect()
     }
 }
 
@@ -364,11 +131,7 @@ pub const RUN_PERIOD_TOL: f64 = 1e-3;
 /// The limit cycle a finished run settled into: its period recognised on the
 /// run's latest section crossings, then Newton on `Pⁿ(z) = z` from the last
 /// one. `None` when no period shows or Newton fails.
-pub fn cycle_of_run(
-    params: &Params,
-    options: &Options,
-    log: &SectionLog,
-) -> Option<crate::outcome::CycleSummary> {
+pub fn cycle_of_run(params: &Params, options: &Options, log: &SectionLog) -> Option<CycleSummary> {
     // Differences: 4× cheaper than the variational equations here, and as
     // good for a scan column (the tests check the two against each other).
     let cycle = CycleOptions {
@@ -379,7 +142,7 @@ pub fn cycle_of_run(
     let hist = log.latest();
     let n = map.period_of(&hist, cycle.max_period, RUN_PERIOD_TOL)?;
     let lc = map.solve(hist.last()?, n, &cycle).ok()?;
-    Some(crate::outcome::CycleSummary {
+    Some(CycleSummary {
         period: n as u32,
         floquet_max: lc.floquet_max(),
         residual: lc.fixed_point.residual,
@@ -392,7 +155,9 @@ pub struct CycleOptions {
     /// Integrator of the map (tighter than a scan's: the fixed point and its
     /// multipliers are only as good as the map).
     pub method: Method,
+    /// Relative tolerance of the map's integration.
     pub rtol: f64,
+    /// Absolute tolerance of the map's integration.
     pub atol: f64,
     /// Steps iterated from the start before looking for a period.
     pub settle_steps: usize,
@@ -402,6 +167,7 @@ pub struct CycleOptions {
     pub period_tol: f64,
     /// Newton stops when the scaled residual `|Pⁿ(z) − z|` is below this.
     pub newton_tol: f64,
+    /// Newton's iteration cap.
     pub newton_max_iter: u32,
     /// Longest step (s) before the map gives up ([`StepError::NoNewFoot`]).
     pub step_horizon: f64,
@@ -418,7 +184,10 @@ pub enum Jacobian {
     /// Central differences of the map with steps `rel · scale` (2 steps per
     /// coordinate: about 25 steps' work at Fig. 7(a)). The tests check it
     /// against the variational Jacobian to 6 digits at `rel` = 1e-5 and 1e-6.
-    Differences { rel: f64 },
+    Differences {
+        /// Difference step, relative to each coordinate's scale.
+        rel: f64,
+    },
 }
 
 impl Default for CycleOptions {
@@ -428,7 +197,7 @@ impl Default for CycleOptions {
             rtol: 1e-11,
             atol: 1e-13,
             settle_steps: 60,
-            max_period: crate::gait::MAX_PERIOD,
+            max_period: MAX_PERIOD,
             period_tol: 1e-4,
             newton_tol: 1e-9,
             newton_max_iter: 12,
@@ -470,7 +239,7 @@ impl StepMap {
         let unit = [l, l, 1.0, (g * l).sqrt(), (g * l).sqrt(), (g / l).sqrt()];
         let mut slot_scale = [0.0; N];
         for i in 0..3 {
-            slot_scale[6 * i..6 * i + 6].copy_from_slice(&unit);
+            slots::rod_mut(&mut slot_scale, i).copy_from_slice(&unit);
         }
         slot_scale[DISSIPATED] = phys.m * g * l;
         slot_scale[FRICTION] = phys.m * g * l;
@@ -506,16 +275,16 @@ impl StepMap {
         self.run_step(rtw, p.y)
     }
 
-    fn run_step(&self, rtw: Rtw, mut y: [f64; N]) -> Result<Step, StepError> {
-        let mut run = StepRun::new(rtw);
-        let end = hybrid::run(&mut run, 0.0, &mut y, self.horizon, &self.engine);
-        let j = finish(&run, end.reason)?;
-        let to = canonical(&run.rtw.modes, &y, j).ok_or(StepError::LandingFootLeft)?;
+    fn run_step(&self, mut rtw: Rtw, mut y: [f64; N]) -> Result<Step, StepError> {
+        let mut log = StepLog::default();
+        let end = run(&mut rtw, &mut log, 0.0, &mut y, self.horizon, &self.engine);
+        let j = finish(&log, end.reason)?;
+        let to = canonical(&rtw.modes, &y, j).ok_or(StepError::LandingFootLeft)?;
         Ok(Step {
             to,
             time: end.t,
-            state_time: run.state_time,
-            advance: y[6 * source(j, 0).0],
+            state_time: log.state_time,
+            advance: y[slots::at(source(j, 0).0, X)],
         })
     }
 
@@ -524,17 +293,17 @@ impl StepMap {
     pub fn step_with_jacobian(&self, p: &SectionPoint) -> Result<(Step, DMatrix<f64>), StepError> {
         let mut rtw = self.rtw.clone();
         rtw.modes = p.modes;
-        let mut var = Variational::new(StepRun::new(rtw), self.slot_scale);
-        let mut z: [f64; M] = Variational::<StepRun, N>::initial(&p.y);
-        let end = hybrid::run(&mut var, 0.0, &mut z, self.horizon, &self.engine);
-        let j = finish(&var.sys, end.reason)?;
-        let y = Variational::<StepRun, N>::state(&z);
-        let to = canonical(&var.sys.rtw.modes, &y, j).ok_or(StepError::LandingFootLeft)?;
+        let mut var = Variational::new(rtw, StepLog::default(), self.slot_scale);
+        let mut z: [f64; M] = Sensitivity::initial(&p.y);
+        let end = var.run(0.0, &mut z, self.horizon, &self.engine);
+        let j = finish(&var.observer, end.reason)?;
+        let y = Sensitivity::state(&z);
+        let to = canonical(&var.sys.modes, &y, j).ok_or(StepError::LandingFootLeft)?;
         let c = canonical_jacobian(j);
         let (rows, cols) = (to.coordinate_slots(), p.coordinate_slots());
         let jac = DMatrix::from_fn(rows.len(), cols.len(), |r, k| {
             (0..N)
-                .map(|m| c[rows[r]][m] * Variational::<StepRun, N>::sensitivity(&z, m, cols[k]))
+                .map(|m| c[rows[r]][m] * Sensitivity::sensitivity(&z, m, cols[k]))
                 .sum()
         });
         Ok((
@@ -542,7 +311,7 @@ impl StepMap {
                 to,
                 time: end.t,
                 state_time: [0.0; 4],
-                advance: y[6 * source(j, 0).0],
+                advance: y[slots::at(source(j, 0).0, X)],
             },
             jac,
         ))
@@ -563,7 +332,7 @@ impl StepMap {
 }
 
 /// The landing spoke of a finished step run, or why there is none.
-fn finish(run: &StepRun, reason: EndReason) -> Result<usize, StepError> {
+fn finish(run: &StepLog, reason: EndReason) -> Result<usize, StepError> {
     if let Some(detail) = run.failure {
         return Err(StepError::Failure(detail));
     }
@@ -610,10 +379,13 @@ impl LimitCycle {
 /// Why no limit cycle was found.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CycleError {
+    /// A step of the map failed.
     #[error("a step failed: {0}")]
     Step(#[from] StepError),
+    /// No period up to this one showed after the settling steps.
     #[error("no period ≤ {0} on the step map after the settling steps")]
     NoPeriod(usize),
+    /// Newton did not converge.
     #[error("Newton: {0}")]
     Newton(#[from] NewtonError),
 }
@@ -734,35 +506,5 @@ impl StepMap {
             fixed_point,
             multipliers,
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn relabelling_is_a_sixty_degree_turn() {
-        // Landing spoke j becomes a+: new rod i is old spoke (i + j) mod 6.
-        assert_eq!(source(0, 0), (0, false));
-        assert_eq!(source(1, 0), (1, false));
-        assert_eq!(source(1, 2), (0, true));
-        assert_eq!(source(4, 0), (1, true));
-        // Six turns come back to the start: j and j + 6 agree.
-        for j in 0..6 {
-            for i in 0..3 {
-                assert_eq!(source(j, i), source(j + 6, i));
-            }
-        }
-    }
-
-    #[test]
-    fn wrap_keeps_angles_in_the_half_open_circle() {
-        for &t in &[0.0, 1.0, -1.0, PI, -PI, 3.0 * PI, 7.5, -7.5] {
-            let w = wrap(t);
-            assert!(w > -PI - 1e-12 && w <= PI + 1e-12, "{t} -> {w}");
-            let k = (t - w) / (2.0 * PI);
-            assert!((k - k.round()).abs() < 1e-12);
-        }
     }
 }

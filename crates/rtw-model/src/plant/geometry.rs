@@ -9,18 +9,22 @@ use std::f64::consts::PI;
 /// A plain 2-vector (the hot path wants no more than this).
 pub type V2 = [f64; 2];
 
+/// `a + b`.
 #[inline]
 pub fn add(a: V2, b: V2) -> V2 {
     [a[0] + b[0], a[1] + b[1]]
 }
+/// `a − b`.
 #[inline]
 pub fn sub(a: V2, b: V2) -> V2 {
     [a[0] - b[0], a[1] - b[1]]
 }
+/// `s a`.
 #[inline]
 pub fn scale(s: f64, a: V2) -> V2 {
     [s * a[0], s * a[1]]
 }
+/// `a · b`.
 #[inline]
 pub fn dot(a: V2, b: V2) -> f64 {
     a[0] * b[0] + a[1] * b[1]
@@ -39,7 +43,9 @@ pub fn perp(a: V2) -> V2 {
 /// One end of a rod: `+` at `c + (L/2) e`, `−` at `c − (L/2) e`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Tip {
+    /// The tip at `c + (L/2) e`.
     Plus,
+    /// The tip at `c − (L/2) e`.
     Minus,
 }
 
@@ -53,6 +59,7 @@ impl Tip {
         }
     }
 
+    /// The rod's other tip.
     #[inline]
     pub fn other(self) -> Tip {
         match self {
@@ -67,23 +74,29 @@ impl Tip {
 pub struct RodState {
     /// Centre.
     pub c: V2,
+    /// Angle θ.
     pub theta: f64,
     /// Centre velocity.
     pub v: V2,
+    /// Angular velocity ω.
     pub omega: f64,
 }
 
 /// A rod's kinematic quantities that every force evaluation needs once.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RodFrame {
+    /// Centre.
     pub c: V2,
+    /// Centre velocity.
     pub v: V2,
+    /// Angular velocity ω.
     pub omega: f64,
     /// Unit vector along the rod.
     pub e: V2,
 }
 
 impl RodFrame {
+    /// The frame of `s` (one `sin_cos`).
     #[inline]
     pub fn new(s: &RodState) -> Self {
         let (sin, cos) = s.theta.sin_cos();

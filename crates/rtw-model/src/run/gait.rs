@@ -1,13 +1,11 @@
 //! Run statistics over the analysis window and the gait label (docs/model.md §5).
 
-use crate::geometry::Tip;
 use crate::options::LabelOptions;
-use crate::outcome::{ContactFractions, Label, StepShares};
+use crate::outcome::{ContactFractions, MAX_PERIOD, StepCounts, StepShares, step_kind};
+use crate::plant::geometry::Tip;
 
 /// How many touchdowns the return map keeps (a fixed ring: no allocation).
 const RETURN_MAP_LEN: usize = 64;
-/// Longest period searched for on the touchdown return map.
-pub const MAX_PERIOD: usize = 12;
 /// Relative tolerance of the period test (a chaotic gait misses it by O(1)).
 const PERIOD_TOL: f64 = 1e-3;
 /// Returns a run's latest touchdowns must repeat over before an early stop
@@ -49,40 +47,6 @@ pub struct Settled {
     pub speed: f64,
     pub mu_required: f64,
     pub step_shares: StepShares,
-}
-
-/// Counts of steps, of steps with flight and of steps with triple support.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct StepCounts {
-    steps: u64,
-    flight: u64,
-    triple: u64,
-}
-
-impl StepCounts {
-    fn shares(self) -> StepShares {
-        let n = self.steps.max(1) as f64;
-        StepShares {
-            steps: self.steps,
-            flight: self.flight as f64 / n,
-            triple: self.triple as f64 / n,
-        }
-    }
-
-    /// Counts one more step, with flight and triple support as `kind` says.
-    fn add(&mut self, (flight, triple): (bool, bool)) {
-        self.steps += 1;
-        self.flight += flight as u64;
-        self.triple += triple as u64;
-    }
-
-    fn since(self, earlier: StepCounts) -> StepCounts {
-        StepCounts {
-            steps: self.steps - earlier.steps,
-            flight: self.flight - earlier.flight,
-            triple: self.triple - earlier.triple,
-        }
-    }
 }
 
 /// Statistics gathered as a run goes.
@@ -299,76 +263,10 @@ fn find_period(len: usize, at: impl Fn(usize) -> (f64, f64)) -> u32 {
         .map_or(0, |n| n as u32)
 }
 
-/// Whether a step with `state_time` seconds per contact state has flight
-/// and whether it has triple support.
-fn step_kind(state_time: &[f64; 4], labels: &LabelOptions) -> (bool, bool) {
-    let total: f64 = state_time.iter().sum();
-    (
-        state_time[0] > labels.flight * total,
-        state_time[3] > labels.triple * total,
-    )
-}
-
-/// The step shares of steps given by their seconds per contact state.
-pub fn step_shares<'a>(
-    steps: impl IntoIterator<Item = &'a [f64; 4]>,
-    labels: &LabelOptions,
-) -> StepShares {
-    let mut c = StepCounts::default();
-    for st in steps {
-        c.add(step_kind(st, labels));
-    }
-    c.shares()
-}
-
-/// Table S1's row for the RTW: flight → skip, else triple support → crawl,
-/// else walk. Flight counts when the window's NLSP fraction exceeds
-/// `labels.flight` and at least `labels.flight_steps` of the steps have
-/// flight; triple support likewise.
-pub fn label(f: &ContactFractions, steps: &StepShares, labels: &LabelOptions) -> Label {
-    if f.nlsp > labels.flight && steps.flight >= labels.flight_steps {
-        Label::Skip
-    } else if f.tlsp > labels.triple && steps.triple >= labels.triple_steps {
-        Label::Crawl
-    } else {
-        Label::Walk
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn labels_follow_table_s1() {
-        let f = |n, s, d, t| ContactFractions {
-            nlsp: n,
-            slsp: s,
-            dlsp: d,
-            tlsp: t,
-        };
-        let any = LabelOptions::any();
-        let every = StepShares {
-            steps: 10,
-            flight: 1.0,
-            triple: 1.0,
-        };
-        assert_eq!(label(&f(0.3, 0.7, 0.0, 0.0), &every, &any), Label::Skip);
-        assert_eq!(label(&f(0.005, 0.5, 0.495, 0.0), &every, &any), Label::Walk);
-        assert_eq!(label(&f(0.0, 0.4, 0.5, 0.1), &every, &any), Label::Crawl);
-        // Flight wins over triple support.
-        assert_eq!(label(&f(0.05, 0.4, 0.45, 0.1), &every, &any), Label::Skip);
-        // Separate thresholds: 5 % triple support is a crawl at 0.04, not at 0.06.
-        let t = |triple| LabelOptions { triple, ..any };
-        assert_eq!(
-            label(&f(0.0, 0.5, 0.45, 0.05), &every, &t(0.04)),
-            Label::Crawl
-        );
-        assert_eq!(
-            label(&f(0.0, 0.5, 0.45, 0.05), &every, &t(0.06)),
-            Label::Walk
-        );
-    }
+    use crate::outcome::Label;
 
     /// Runs a constructed timeline: each entry is (seconds per contact state
     /// in order, whether the touchdown that ends it is a bounce). Touchdowns
@@ -413,13 +311,22 @@ mod tests {
         assert!((f.nlsp - 0.1 / 3.3).abs() < 1e-12, "{f:?}");
         assert_eq!(shares.steps, 8);
         assert!((shares.flight - 0.25).abs() < 1e-15);
-        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Walk);
-        assert_eq!(label(&f, &shares, &LabelOptions::any()), Label::Skip);
+        assert_eq!(
+            Label::of_gait(&f, &shares, &LabelOptions::default()),
+            Label::Walk
+        );
+        assert_eq!(
+            Label::of_gait(&f, &shares, &LabelOptions::any()),
+            Label::Skip
+        );
         // Flight in every step is a skip under both rules.
         let steps = [hop; 8].map(|p| (p, false));
         let (f, shares) = timeline(&steps, LabelOptions::default());
         assert_eq!(shares.flight, 1.0);
-        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Skip);
+        assert_eq!(
+            Label::of_gait(&f, &shares, &LabelOptions::default()),
+            Label::Skip
+        );
     }
 
     #[test]
@@ -458,11 +365,20 @@ mod tests {
         let mostly = [crawl, crawl, walk, crawl].map(|p| (p, false));
         let (f, shares) = timeline(&mostly, LabelOptions::default());
         assert!((shares.triple - 0.75).abs() < 1e-15);
-        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Crawl);
+        assert_eq!(
+            Label::of_gait(&f, &shares, &LabelOptions::default()),
+            Label::Crawl
+        );
         let rarely = [walk, crawl, walk, walk].map(|p| (p, false));
         let (f, shares) = timeline(&rarely, LabelOptions::default());
-        assert_eq!(label(&f, &shares, &LabelOptions::default()), Label::Walk);
-        assert_eq!(label(&f, &shares, &LabelOptions::any()), Label::Crawl);
+        assert_eq!(
+            Label::of_gait(&f, &shares, &LabelOptions::default()),
+            Label::Walk
+        );
+        assert_eq!(
+            Label::of_gait(&f, &shares, &LabelOptions::any()),
+            Label::Crawl
+        );
     }
 
     #[test]

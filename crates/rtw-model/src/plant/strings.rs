@@ -6,19 +6,23 @@
 //! string plus the isotropic damper `−c (Ṗ − Q̇)` (damping `relative`); with
 //! `slack` a string cannot push.
 
-use crate::geometry::{RodFrame, SPOKES, V2, add, cross, dot, scale, sub};
 use crate::options::Damping;
+use crate::plant::geometry::{RodFrame, SPOKES, V2, add, cross, dot, scale, sub};
 
 /// String constants of one RTW.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StringSet {
+    /// Stiffness k.
     pub k: f64,
+    /// Damping c.
     pub c: f64,
     /// Connection radius r (centre to connection point).
     pub r: f64,
     /// Natural length ℓ₀ = s r.
     pub rest_length: f64,
+    /// A slack string cannot push.
     pub slack: bool,
+    /// How the damper acts.
     pub damping: Damping,
 }
 
@@ -26,7 +30,9 @@ pub struct StringSet {
 /// the strings dissipate.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StringLoads {
+    /// Net string force on each rod.
     pub force: [V2; 3],
+    /// Net string torque on each rod, about its centre.
     pub torque: [f64; 3],
     /// Rate of energy dissipation by the dampers (≥ 0 without slack).
     pub dissipation: f64,
@@ -121,7 +127,7 @@ impl StringSet {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::RodState;
+    use crate::plant::geometry::RodState;
 
     fn frames(c: [V2; 3], th: [f64; 3], v: [V2; 3], w: [f64; 3]) -> [RodFrame; 3] {
         std::array::from_fn(|i| {

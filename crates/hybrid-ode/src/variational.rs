@@ -36,30 +36,71 @@
 //! vector field, and this projection removes it: a Poincaré map's Jacobian
 //! does not depend on them, only on the `R_y f⁻ w` part.)
 //!
+//! Whether a reset ends the run is the observer's call (a step map stops at
+//! its section), so [`Variational`] carries the wrapped system's observer and
+//! asks its [`Observer::on_transition`] at each reset; its
+//! [`Observer::on_step`] is not called (the wrapped run only needs the
+//! motion and its sensitivity). [`Variational::run`] runs the pair.
+//!
 //! The wrapped system must be autonomous (`f`, guards and resets not
-//! depending on `t`): true of the RTW and the rimless wheel. Its `observe` is
-//! not called (the wrapped run only needs the motion and its sensitivity).
+//! depending on `t`): true of the RTW and the rimless wheel.
 
-use crate::hybrid::{Flow, Guards, HybridSystem};
+use crate::engine::{EngineOptions, RunEnd, run};
+use crate::system::{EndsRun, Flow, Guards, HybridSystem, Observer};
 
 /// Relative step of the central differences: `ε^{1/3}`, which balances the
 /// truncation error `O(h²)` against rounding `O(ε/h)`.
 pub const DIFF_STEP: f64 = 6.055_454_452_393_343e-6;
 
 /// A system `S` with state `y ∈ ℝᴺ` and its sensitivity `Φ ∈ ℝᴺˣᴺ`, as a
-/// hybrid system of dimension `M = N + N·N` (checked at construction).
+/// hybrid system of dimension `M = N + N·N` (checked by
+/// [`initial`](Variational::initial)), with the observer `O` that decides
+/// where the wrapped run ends. Its transitions are that observer's verdicts.
 #[derive(Clone, Debug)]
-pub struct Variational<S, const N: usize> {
+pub struct Variational<S, O, const N: usize> {
+    /// The wrapped system.
     pub sys: S,
+    /// The wrapped system's observer (only its transitions are observed).
+    pub observer: O,
     /// Scale of each state slot for the difference steps: slot `j` is
     /// perturbed by `DIFF_STEP · max(|y_j|, scale[j])`.
     pub scale: [f64; N],
 }
 
-impl<S: HybridSystem<N> + Clone, const N: usize> Variational<S, N> {
-    /// Wraps `sys`; `scale` as in [`Variational::scale`].
-    pub fn new(sys: S, scale: [f64; N]) -> Self {
-        Self { sys, scale }
+/// Ends a [`Variational`] run where the wrapped observer said so.
+struct FollowVerdicts;
+
+impl<S, O, const N: usize, const M: usize> Observer<M, Variational<S, O, N>> for FollowVerdicts
+where
+    S: HybridSystem<N> + Clone,
+    O: Observer<N, S>,
+{
+    fn reads_interior(&self, _system: &Variational<S, O, N>, _t0: f64, _t1: f64) -> bool {
+        false
+    }
+}
+
+impl<S: HybridSystem<N> + Clone, O: Observer<N, S>, const N: usize> Variational<S, O, N> {
+    /// Wraps `sys` watched by `observer`; `scale` as in [`Variational::scale`].
+    pub fn new(sys: S, observer: O, scale: [f64; N]) -> Self {
+        Self {
+            sys,
+            observer,
+            scale,
+        }
+    }
+
+    /// Integrates the augmented state `z` (from [`initial`](Self::initial))
+    /// from `t0` to `t_end` on the engine ([`run`](crate::run)), until then
+    /// or until a reset the wrapped observer stops at.
+    pub fn run<const M: usize>(
+        &mut self,
+        t0: f64,
+        z: &mut [f64; M],
+        t_end: f64,
+        opts: &EngineOptions,
+    ) -> RunEnd {
+        run(self, &mut FollowVerdicts, t0, z, t_end, opts)
     }
 
     /// The augmented initial state `[y, Φ₀]` with `Φ₀ = I`.
@@ -144,10 +185,11 @@ impl<S: HybridSystem<N> + Clone, const N: usize> Variational<S, N> {
     }
 }
 
-impl<S: HybridSystem<N> + Clone, const N: usize, const M: usize> HybridSystem<M>
-    for Variational<S, N>
+impl<S: HybridSystem<N> + Clone, O: Observer<N, S>, const N: usize, const M: usize> HybridSystem<M>
+    for Variational<S, O, N>
 {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, t: f64, z: &[f64; M], dz: &mut [f64; M]) {
         let y = Self::state(z);
@@ -183,7 +225,13 @@ impl<S: HybridSystem<N> + Clone, const N: usize, const M: usize> HybridSystem<M>
         let g_y = self.guard_gradient(t, &y_minus, index);
         let mut after = self.sys.clone();
         let mut y_plus = y_minus;
-        let flow = after.reset(t, &mut y_plus, index);
+        let transition = after.reset(t, &mut y_plus, index);
+        let verdict = self.observer.on_transition(&after, t, &y_plus, &transition);
+        let flow = if transition.ends_run() {
+            Flow::Stop
+        } else {
+            verdict
+        };
         let r_y = self.reset_jacobian(t, &y_minus, index, &after);
         self.sys = after;
 
@@ -217,9 +265,5 @@ impl<S: HybridSystem<N> + Clone, const N: usize, const M: usize> HybridSystem<M>
             z[N + i * N..N + i * N + N].copy_from_slice(&phi[i]);
         }
         flow
-    }
-
-    fn observes_interior(&self) -> bool {
-        false
     }
 }

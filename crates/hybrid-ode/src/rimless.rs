@@ -1,5 +1,5 @@
 //! McGeer's rigid rimless wheel on the generic engine: a closed-form check of
-//! [`hybrid::run`](crate::hybrid::run).
+//! [`run`](crate::run).
 //!
 //! A hub of point mass on `n` massless spokes of length `l`, the angle between
 //! neighbouring spokes `2α` (`α = π/n`), rolls down a slope of angle `γ` under
@@ -44,9 +44,10 @@
 //! when `γ < α` needs `ω² > 2(g/l)(1 − cos(α − γ))`.)
 //!
 //! `tests/rimless.rs` checks `ω*`, `cos² 2α` and the reset against simulations
-//! through [`hybrid::run`](crate::hybrid::run).
+//! through [`run`](crate::run).
 
-use crate::hybrid::{Crossing, EndReason, EngineOptions, Flow, Guards, HybridSystem, RunEnd, run};
+use crate::engine::{EndReason, EngineOptions, RunEnd, run};
+use crate::system::{Crossing, EndsRun, Flow, Guards, HybridSystem, Observer};
 use crate::variational::Variational;
 
 /// Index of the touchdown guard `θ − (γ + α)` (rising).
@@ -65,6 +66,32 @@ pub struct RimlessWheel {
     pub gamma: f64,
     /// Gravity (m/s²).
     pub g: f64,
+}
+
+/// What a reset of the wheel did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Stride {
+    /// The next spoke touched down: `θ̇` just before and just after the impact.
+    Touchdown {
+        /// `θ̇⁻`.
+        rate_minus: f64,
+        /// `θ̇⁺ = θ̇⁻ cos 2α`.
+        rate_plus: f64,
+    },
+    /// The wheel rolled back onto the previous spoke: the run ends.
+    RolledBack,
+}
+
+impl EndsRun for Stride {
+    fn ends_run(&self) -> bool {
+        *self == Stride::RolledBack
+    }
+}
+
+/// The observer of a walk: counts touchdowns, keeps the latest impact, and
+/// stops after a number of them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Walk {
     /// Stop the run after this many touchdowns (0: never).
     pub stop_after: u64,
     /// Touchdowns so far.
@@ -79,16 +106,11 @@ pub struct RimlessWheel {
     pub rolled_back: bool,
 }
 
-impl RimlessWheel {
-    /// A wheel with spokes `l`, half inter-spoke angle `alpha`, on slope
-    /// `gamma`, under gravity `g`, with no touchdown yet.
-    pub fn new(l: f64, alpha: f64, gamma: f64, g: f64) -> Self {
+impl Walk {
+    /// A walk of `steps` touchdowns (0: unbounded), none yet.
+    pub fn stopping_after(steps: u64) -> Self {
         Self {
-            l,
-            alpha,
-            gamma,
-            g,
-            stop_after: 0,
+            stop_after: steps,
             impacts: 0,
             last_rate_minus: f64::NAN,
             last_rate_plus: f64::NAN,
@@ -96,7 +118,43 @@ impl RimlessWheel {
             rolled_back: false,
         }
     }
+}
 
+impl Observer<2, RimlessWheel> for Walk {
+    fn on_transition(&mut self, _: &RimlessWheel, t: f64, _: &[f64; 2], stride: &Stride) -> Flow {
+        match *stride {
+            Stride::RolledBack => {
+                self.rolled_back = true;
+                Flow::Stop
+            }
+            Stride::Touchdown {
+                rate_minus,
+                rate_plus,
+            } => {
+                self.last_rate_minus = rate_minus;
+                self.last_rate_plus = rate_plus;
+                self.last_impact_time = t;
+                self.impacts += 1;
+                if self.stop_after > 0 && self.impacts >= self.stop_after {
+                    Flow::Stop
+                } else {
+                    Flow::Continue
+                }
+            }
+        }
+    }
+
+    fn reads_interior(&self, _: &RimlessWheel, _t0: f64, _t1: f64) -> bool {
+        false
+    }
+}
+
+impl RimlessWheel {
+    /// A wheel with spokes `l`, half inter-spoke angle `alpha`, on slope
+    /// `gamma`, under gravity `g`.
+    pub fn new(l: f64, alpha: f64, gamma: f64, g: f64) -> Self {
+        Self { l, alpha, gamma, g }
+    }
     /// A wheel with `n` spokes (`α = π/n`).
     pub fn with_spokes(n: u32, l: f64, gamma: f64, g: f64) -> Self {
         Self::new(l, core::f64::consts::PI / n as f64, gamma, g)
@@ -180,60 +238,55 @@ impl RimlessWheel {
         1000.0 * (self.l / self.g).sqrt()
     }
 
-    /// The step-to-step map by simulation: starts a copy of the wheel (counts
-    /// cleared) at `θ = γ − α`, `θ̇ = omega`, runs it through
-    /// [`hybrid::run`](crate::hybrid::run) up to the first touchdown, and
-    /// returns the post-impact rate. `None` if the wheel rolled back, the run
-    /// ended otherwise (time horizon [`RimlessWheel::stance_horizon`], step
-    /// underflow, …).
+    /// The step-to-step map by simulation: starts the wheel at `θ = γ − α`,
+    /// `θ̇ = omega`, runs it through [`run`](crate::run) up to the first
+    /// touchdown, and returns the post-impact rate. `None` if the wheel
+    /// rolled back, the run ended otherwise (time horizon
+    /// [`RimlessWheel::stance_horizon`], step underflow, …).
     pub fn step_map(&self, omega: f64, opts: &EngineOptions) -> Option<f64> {
-        let mut w = Self {
-            stop_after: 1,
-            ..Self::new(self.l, self.alpha, self.gamma, self.g)
-        };
+        let mut w = *self;
+        let mut walk = Walk::stopping_after(1);
         let mut y = w.initial_state(omega);
-        let end = run(&mut w, 0.0, &mut y, self.stance_horizon(), opts);
-        (end.reason == EndReason::Stopped && w.impacts == 1).then_some(y[1])
+        let end = run(&mut w, &mut walk, 0.0, &mut y, self.stance_horizon(), opts);
+        (end.reason == EndReason::Stopped && walk.impacts == 1).then_some(y[1])
     }
 
     /// [`step_map`](Self::step_map) and its derivative `dP/dω`, by the
     /// variational equations integrated through the stance and the touchdown's
     /// saltation ([`Variational`]): the same machinery as the RTW's step map.
     pub fn step_map_with_slope(&self, omega: f64, opts: &EngineOptions) -> Option<(f64, f64)> {
-        let w = Self {
-            stop_after: 1,
-            ..Self::new(self.l, self.alpha, self.gamma, self.g)
-        };
         let rate = (self.g / self.l).sqrt();
-        let mut var = Variational::new(w, [1.0, rate]);
-        let mut z: [f64; 6] = Variational::<Self, 2>::initial(&w.initial_state(omega));
-        let end = run(&mut var, 0.0, &mut z, self.stance_horizon(), opts);
+        let mut var = Variational::new(*self, Walk::stopping_after(1), [1.0, rate]);
+        let mut z: [f64; 6] = Variational::<Self, Walk, 2>::initial(&self.initial_state(omega));
+        let end = var.run(0.0, &mut z, self.stance_horizon(), opts);
         // Column 1 of Φ: the response to the post-impact rate (θ is fixed
         // by the section).
-        (end.reason == EndReason::Stopped && var.sys.impacts == 1)
-            .then(|| (z[1], Variational::<Self, 2>::sensitivity(&z, 1, 1)))
+        (end.reason == EndReason::Stopped && var.observer.impacts == 1)
+            .then(|| (z[1], Variational::<Self, Walk, 2>::sensitivity(&z, 1, 1)))
     }
 
     /// Runs the wheel from `θ = γ − α`, `θ̇ = omega` at `t = 0` for `steps`
-    /// touchdowns (or up to `t_end`) in one [`hybrid::run`](crate::hybrid::run):
-    /// sets `stop_after = impacts + steps`. Returns the run's end; `y` is the
-    /// final state, `self.last_rate_plus` the last post-impact rate.
+    /// touchdowns (or up to `t_end`) in one [`run`](crate::run). Returns the
+    /// run's end and its [`Walk`] (`walk.last_rate_plus` is the last
+    /// post-impact rate); `y` is the final state.
     pub fn walk(
-        &mut self,
+        &self,
         omega: f64,
         steps: u64,
         t_end: f64,
         opts: &EngineOptions,
         y: &mut [f64; 2],
-    ) -> RunEnd {
-        self.stop_after = self.impacts + steps;
+    ) -> (RunEnd, Walk) {
+        let mut walk = Walk::stopping_after(steps);
         *y = self.initial_state(omega);
-        run(self, 0.0, y, t_end, opts)
+        let end = run(&mut { *self }, &mut walk, 0.0, y, t_end, opts);
+        (end, walk)
     }
 }
 
 impl HybridSystem<2> for RimlessWheel {
     type Aux = ();
+    type Transition = Stride;
 
     #[inline]
     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
@@ -248,24 +301,15 @@ impl HybridSystem<2> for RimlessWheel {
         out.push(y[0] - self.stance_start(), Crossing::Falling);
     }
 
-    fn reset(&mut self, t: f64, y: &mut [f64; 2], index: usize) -> Flow {
+    fn reset(&mut self, _t: f64, y: &mut [f64; 2], index: usize) -> Stride {
         if index == GUARD_ROLLBACK {
-            self.rolled_back = true;
-            return Flow::Stop;
+            return Stride::RolledBack;
         }
-        self.last_rate_minus = y[1];
+        let rate_minus = y[1];
         self.impact(y);
-        self.last_rate_plus = y[1];
-        self.last_impact_time = t;
-        self.impacts += 1;
-        if self.stop_after > 0 && self.impacts >= self.stop_after {
-            Flow::Stop
-        } else {
-            Flow::Continue
+        Stride::Touchdown {
+            rate_minus,
+            rate_plus: y[1],
         }
-    }
-
-    fn observes_interior(&self) -> bool {
-        false
     }
 }

@@ -2,61 +2,24 @@
 //! three rods in their contact modes, the guards that end a mode, and the
 //! resets (touchdown, lift-off, re-stick, slip, failure).
 //!
-//! State: three rods × six slots (meaning per mode: see [`crate::contact`])
-//! and, in slots [`DISSIPATED`] and [`FRICTION`], the energy the string
-//! dampers and sliding friction have dissipated, integrated alongside the
-//! motion for the energy balance.
+//! State: three rods × six slots and two dissipated energies
+//! ([`crate::plant::slots`]). [`Rtw`] is the one [`HybridSystem`] of the
+//! model; what a run records is its observer's business
+//! ([`crate::run::simulate`], [`crate::cycles::stepmap`],
+//! [`crate::plant::initial`]'s settling).
 
-use crate::contact::{ImpactKind, Load, RodBody, RodMode};
-use crate::geometry::{RodFrame, RodState, Tip, V2, add, scale};
-use crate::hybrid::{Crossing, Guards};
 use crate::options::Options;
 use crate::outcome::FailureDetail;
 use crate::params::Physical;
-use crate::strings::StringSet;
-
-/// State dimension: 3 rods × 6 slots + two dissipated energies.
-pub const N: usize = 20;
-/// Slot of the energy dissipated by the string dampers.
-pub const DISSIPATED: usize = 18;
-/// Slot of the energy dissipated by sliding friction (finite μ).
-pub const FRICTION: usize = 19;
-
-/// The continuous dynamics and guards of a `HybridSystem<N>` that wraps an
-/// [`Rtw`] in a field `rtw` with `type Aux = AtState` (a simulation run, a
-/// step of the step map): every one forwards to the RTW.
-macro_rules! delegate_rtw_flow {
-    () => {
-        #[inline]
-        fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
-            self.rtw.dynamics(y, dy);
-        }
-
-        #[inline]
-        fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
-            *at = self.rtw.dynamics(y, dy);
-        }
-
-        #[inline]
-        fn guards(&self, _t: f64, y: &[f64; N], out: &mut Guards) {
-            self.rtw.guards(y, out);
-        }
-
-        #[inline]
-        fn guard(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
-            self.rtw.guard(y, index)
-        }
-
-        #[inline]
-        fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
-            self.rtw.guards_at(y, at, out);
-        }
-    };
-}
-pub(crate) use delegate_rtw_flow;
+use crate::plant::contact::{ImpactKind, Load, RodBody, RodMode};
+use crate::plant::geometry::{RodFrame, RodState, Tip, V2, add, scale};
+use crate::plant::slots::{self, DISSIPATED, FRICTION, N, OMEGA, THETA, VX};
+use crate::plant::strings::StringSet;
+use hybrid_ode::{Crossing, EndsRun, Guards, HybridSystem};
 
 /// What a guard watches.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(missing_docs)] // the fields: the rod (0, 1, 2 for a, b, c) and its tip
 pub enum GuardKind {
     /// A free rod's tip reaches the ground moving down.
     Touchdown { rod: usize, tip: Tip },
@@ -72,25 +35,38 @@ pub enum GuardKind {
     ComLow,
 }
 
-/// What a reset did, for the run's statistics.
+/// What a reset did, for the run's observer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Transition {
     /// A touchdown of `tip` of `rod`, with the rod's angular velocity just after.
     Touchdown {
+        /// The landing rod.
         rod: usize,
+        /// Its landing tip.
         tip: Tip,
+        /// Its angular velocity just after the impact.
         omega_after: f64,
     },
     /// Any other change of a rod's mode.
-    ModeChange { rod: usize },
-    /// A failure that ends the run.
+    ModeChange {
+        /// The rod.
+        rod: usize,
+    },
+    /// A failure that ends the run: a rod lay down or the centre of mass sank.
     Failure(FailureDetail),
+}
+
+impl EndsRun for Transition {
+    fn ends_run(&self) -> bool {
+        matches!(self, Transition::Failure(_))
+    }
 }
 
 /// What [`Rtw::dynamics`] computed at a state on the way that the guards
 /// also need there.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct AtState {
+    /// The rods' frames.
     pub frames: [RodFrame; 3],
     /// Contact forces λ of the rods (zero when free).
     pub lambda: [V2; 3],
@@ -99,44 +75,48 @@ pub struct AtState {
 /// The discrete choices a reset made: the rod's new mode and, at a
 /// touchdown, the kind of impact.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Choice {
-    pub mode: RodMode,
-    pub impact: Option<ImpactKind>,
+pub(crate) struct Choice {
+    mode: RodMode,
+    impact: Option<ImpactKind>,
 }
 
 /// The RTW: its constants and its current contact modes.
 #[derive(Clone, Debug)]
 pub struct Rtw {
-    pub body: RodBody,
-    pub strings: StringSet,
+    /// The rods' inertial constants.
+    pub(crate) body: RodBody,
+    /// The strings.
+    pub(crate) strings: StringSet,
     /// Gravity in the slope frame, g (sin φ, −cos φ).
-    pub gravity: V2,
+    pub(crate) gravity: V2,
     /// Friction coefficient (infinite: no slip, frictionless slide).
-    pub mu: f64,
-    pub modes: [RodMode; 3],
+    pub(crate) mu: f64,
+    /// The rods' contact modes.
+    pub(crate) modes: [RodMode; 3],
     /// Touchdown is declared at this tip height (slightly below 0).
-    pub touchdown_height: f64,
+    pub(crate) touchdown_height: f64,
     /// A re-stick needs the sliding tip's velocity to reverse by more than this.
-    pub restick_speed: f64,
+    pub(crate) restick_speed: f64,
     /// Collapse when the centre of mass height falls below this.
-    pub collapse_height: f64,
+    pub(crate) collapse_height: f64,
     /// `mu_required` counts a sticking rod only while its normal force
     /// exceeds this: 5 % of a rod's weight.
-    pub mu_floor: f64,
+    pub(crate) mu_floor: f64,
     /// The choices of the last reset that made any.
-    pub last_choice: Option<Choice>,
+    pub(crate) last_choice: Option<Choice>,
     /// When set, resets replay these choices instead of making their own: the
     /// derivative of a reset (the variational equations' saltation) is taken
     /// with its discrete choices fixed, as they are at the event itself.
-    pub replay: Option<Choice>,
+    pub(crate) replay: Option<Choice>,
     /// Rate γ [1/s] of a velocity damping `−γ m v`, `−γ I ω` on every rod,
-    /// used only while the star is being set down ([`crate::initial`]'s
+    /// used only while the star is being set down ([`crate::plant::initial`]'s
     /// dynamic relaxation). It vanishes at rest, so the state it settles to
     /// is a static equilibrium of the real forces. Zero in every run.
-    pub relax: f64,
+    pub(crate) relax: f64,
 }
 
 impl Rtw {
+    /// The RTW of `phys` with the modelling choices of `opts`, every rod free.
     pub fn new(phys: &Physical, opts: &Options) -> Self {
         let (sin, cos) = phys.phi.sin_cos();
         let gravity = [phys.g * sin, -phys.g * cos];
@@ -170,23 +150,23 @@ impl Rtw {
     /// Per-rod frames (full coordinates plus unit vectors) of state `y`.
     #[inline]
     pub fn frames(&self, y: &[f64; N]) -> [RodFrame; 3] {
-        std::array::from_fn(|i| self.body.frame(self.modes[i], &y[6 * i..6 * i + 6]))
+        std::array::from_fn(|i| self.body.frame(self.modes[i], slots::rod(y, i)))
     }
 
     /// Full coordinates of the rods.
     pub fn rods(&self, y: &[f64; N]) -> [RodState; 3] {
-        std::array::from_fn(|i| self.body.rod_state(self.modes[i], &y[6 * i..6 * i + 6]))
+        std::array::from_fn(|i| self.body.rod_state(self.modes[i], slots::rod(y, i)))
     }
 
     /// [`rods`](Self::rods) from the frames of `y` (no trigonometry again).
     fn rods_of(y: &[f64; N], frames: &[RodFrame; 3]) -> [RodState; 3] {
-        std::array::from_fn(|i| frames[i].state(y[6 * i + 2]))
+        std::array::from_fn(|i| frames[i].state(y[slots::at(i, THETA)]))
     }
 
     /// Writes the rods back into `y` in the current modes.
     pub fn store(&self, rods: &[RodState; 3], y: &mut [f64; N]) {
         for (i, r) in rods.iter().enumerate() {
-            self.body.slots(self.modes[i], r, &mut y[6 * i..6 * i + 6]);
+            self.body.slots(self.modes[i], r, slots::rod_mut(y, i));
         }
     }
 
@@ -222,10 +202,10 @@ impl Rtw {
             let a = self
                 .body
                 .accel(self.modes[i], &frames[i], &loads[i], self.mu);
-            dy[6 * i..6 * i + 6].copy_from_slice(&a.deriv);
+            slots::rod_mut(dy, i).copy_from_slice(&a.deriv);
             if let RodMode::Slide { .. } = self.modes[i] {
                 // Power of friction on the sliding tip (λ_x opposes ẋ_t).
-                friction -= a.lambda[0] * y[6 * i + 3];
+                friction -= a.lambda[0] * y[slots::at(i, VX)];
             }
             lambda[i] = a.lambda;
         }
@@ -286,41 +266,12 @@ impl Rtw {
         visit(GuardKind::ComLow);
     }
 
-    /// Guard values at `y`. All fire on a falling crossing of zero.
-    pub fn guards(&self, y: &[f64; N], out: &mut Guards) {
-        let frames = self.frames(y);
-        let lambda = self.contact_forces_of(&frames);
-        self.guards_of(y, &frames, &lambda, out);
-    }
-
-    /// [`guards`](Self::guards) at `y` from what [`dynamics`](Self::dynamics)
-    /// returned at `y`.
-    pub fn guards_at(&self, y: &[f64; N], at: &AtState, out: &mut Guards) {
-        self.guards_of(y, &at.frames, &at.lambda, out);
-    }
-
     fn guards_of(&self, y: &[f64; N], frames: &[RodFrame; 3], lambda: &[V2; 3], out: &mut Guards) {
         out.clear();
         self.guard_kinds(|kind| {
             let value = self.guard_value(kind, y, |rod| frames[rod], |rod| lambda[rod]);
             out.push(value, Crossing::Falling);
         });
-    }
-
-    /// Guard `index` alone at `y`, bit for bit its value in
-    /// [`guards`](Self::guards), computing only what it needs: a tip height
-    /// needs one rod's frame (one `sin_cos`), a contact force the string
-    /// loads and that rod's constraint equations.
-    pub fn guard(&self, y: &[f64; N], index: usize) -> f64 {
-        let frame = |rod: usize| self.body.frame(self.modes[rod], &y[6 * rod..6 * rod + 6]);
-        let lambda = |rod: usize| {
-            let frames = self.frames(y);
-            let (loads, _) = self.loads(&frames);
-            self.body
-                .accel(self.modes[rod], &frames[rod], &loads[rod], self.mu)
-                .lambda
-        };
-        self.guard_value(self.guard_kind(index), y, frame, lambda)
     }
 
     /// The value of guard `kind` at `y`, given each rod's frame and contact
@@ -346,7 +297,7 @@ impl Rtw {
                 let RodMode::Slide { dir, .. } = self.modes[rod] else {
                     unreachable!("restick guard on a sliding rod")
                 };
-                y[6 * rod + 3] * dir + self.restick_speed
+                y[slots::at(rod, VX)] * dir + self.restick_speed
             }
             GuardKind::Slip { rod } => {
                 let l = lambda(rod);
@@ -369,34 +320,6 @@ impl Rtw {
             k += 1;
         });
         found.expect("guard index in range")
-    }
-
-    /// Applies the reset of guard `index` at state `y`.
-    pub fn reset(&mut self, y: &mut [f64; N], index: usize) -> Transition {
-        match self.guard_kind(index) {
-            GuardKind::Touchdown { rod, tip } => self.touchdown(y, rod, tip),
-            GuardKind::LiftOff { rod } => {
-                let tip = self.modes[rod].tip().expect("grounded rod");
-                let at_rest = matches!(self.modes[rod], RodMode::Stick { .. });
-                self.rechoose(y, rod, tip, at_rest, Some(self.modes[rod]));
-                Transition::ModeChange { rod }
-            }
-            GuardKind::Restick { rod } => {
-                let tip = self.modes[rod].tip().expect("grounded rod");
-                // The tip's velocity has just reversed: it is at rest up to
-                // `restick_speed`, which the reset drops.
-                y[6 * rod + 3] = 0.0;
-                self.rechoose(y, rod, tip, true, None);
-                Transition::ModeChange { rod }
-            }
-            GuardKind::Slip { rod } => {
-                let tip = self.modes[rod].tip().expect("grounded rod");
-                self.rechoose(y, rod, tip, true, Some(self.modes[rod]));
-                Transition::ModeChange { rod }
-            }
-            GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
-            GuardKind::ComLow => Transition::Failure(FailureDetail::CentreOfMassLow),
-        }
     }
 
     /// Re-applies the mode-choice rule to a grounded rod; `leaving`: the mode
@@ -429,7 +352,7 @@ impl Rtw {
             impact: None,
         });
         self.body
-            .slots(self.modes[rod], &rods[rod], &mut y[6 * rod..6 * rod + 6]);
+            .slots(self.modes[rod], &rods[rod], slots::rod_mut(y, rod));
     }
 
     /// Touchdown of a free rod's tip: the impact, then the mode choice.
@@ -460,11 +383,11 @@ impl Rtw {
             impact: Some(impact.kind),
         });
         self.body
-            .slots(self.modes[rod], &after, &mut y[6 * rod..6 * rod + 6]);
+            .slots(self.modes[rod], &after, slots::rod_mut(y, rod));
         Transition::Touchdown {
             rod,
             tip,
-            omega_after: y[6 * rod + 5],
+            omega_after: y[slots::at(rod, OMEGA)],
         }
     }
 
@@ -533,5 +456,121 @@ impl Rtw {
             .iter()
             .filter(|m| matches!(m, RodMode::Slide { .. }))
             .count()
+    }
+}
+
+impl Rtw {
+    /// The rods' inertial constants.
+    pub fn body(&self) -> &RodBody {
+        &self.body
+    }
+
+    /// Gravity in the slope frame, g (sin φ, −cos φ).
+    pub fn gravity(&self) -> V2 {
+        self.gravity
+    }
+
+    /// The friction coefficient μ (infinite: no slip, frictionless slide).
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// The rods' contact modes.
+    pub fn modes(&self) -> [RodMode; 3] {
+        self.modes
+    }
+
+    /// Puts the rods in `modes` (the state's slots must be read in them).
+    pub fn set_modes(&mut self, modes: [RodMode; 3]) {
+        self.modes = modes;
+    }
+}
+
+/// The RTW as a hybrid system: the dynamics of its modes, every guard firing
+/// on a falling crossing of zero, and the resets of [`GuardKind`]. It is
+/// autonomous (`t` is not used).
+impl HybridSystem<N> for Rtw {
+    /// Frames and contact forces λ of the rods.
+    type Aux = AtState;
+    type Transition = Transition;
+
+    #[inline]
+    fn rhs(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N]) {
+        self.dynamics(y, dy);
+    }
+
+    #[inline]
+    fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
+        *at = self.dynamics(y, dy);
+    }
+
+    #[inline]
+    fn guards(&self, _t: f64, y: &[f64; N], out: &mut Guards) {
+        let frames = self.frames(y);
+        let lambda = self.contact_forces_of(&frames);
+        self.guards_of(y, &frames, &lambda, out);
+    }
+
+    /// Guard `index` alone at `y`, computing only what it needs: a tip height
+    /// needs one rod's frame (one `sin_cos`), a contact force the string
+    /// loads and that rod's constraint equations.
+    #[inline]
+    fn guard(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
+        let frame = |rod: usize| self.body.frame(self.modes[rod], slots::rod(y, rod));
+        let lambda = |rod: usize| {
+            let frames = self.frames(y);
+            let (loads, _) = self.loads(&frames);
+            self.body
+                .accel(self.modes[rod], &frames[rod], &loads[rod], self.mu)
+                .lambda
+        };
+        self.guard_value(self.guard_kind(index), y, frame, lambda)
+    }
+
+    /// The guards at `y` from what [`dynamics`](Rtw::dynamics) returned there.
+    #[inline]
+    fn guards_aux(&self, _t: f64, y: &[f64; N], at: &AtState, out: &mut Guards) {
+        self.guards_of(y, &at.frames, &at.lambda, out);
+    }
+
+    fn reset(&mut self, _t: f64, y: &mut [f64; N], index: usize) -> Transition {
+        match self.guard_kind(index) {
+            GuardKind::Touchdown { rod, tip } => self.touchdown(y, rod, tip),
+            GuardKind::LiftOff { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                let at_rest = matches!(self.modes[rod], RodMode::Stick { .. });
+                self.rechoose(y, rod, tip, at_rest, Some(self.modes[rod]));
+                Transition::ModeChange { rod }
+            }
+            GuardKind::Restick { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                // The tip's velocity has just reversed: it is at rest up to
+                // `restick_speed`, which the reset drops.
+                y[slots::at(rod, VX)] = 0.0;
+                self.rechoose(y, rod, tip, true, None);
+                Transition::ModeChange { rod }
+            }
+            GuardKind::Slip { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                self.rechoose(y, rod, tip, true, Some(self.modes[rod]));
+                Transition::ModeChange { rod }
+            }
+            GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
+            GuardKind::ComLow => Transition::Failure(FailureDetail::CentreOfMassLow),
+        }
+    }
+
+    /// The reset with the new mode and the kind of impact `nominal` chose.
+    fn reset_replaying(
+        &mut self,
+        t: f64,
+        y: &mut [f64; N],
+        index: usize,
+        nominal: &Self,
+    ) -> Transition {
+        self.replay = nominal.last_choice;
+        let transition = self.reset(t, y, index);
+        self.replay = None;
+        transition
     }
 }

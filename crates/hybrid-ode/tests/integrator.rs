@@ -1,10 +1,11 @@
 //! Orders of convergence, tolerance, dense output and event location of the
 //! Runge–Kutta methods and the hybrid engine, each against a closed form.
 
-use rtw_model::hybrid::{
-    Crossing, EndReason, EngineOptions, Flow, Guards, HybridSystem, RunEnd, run,
+use hybrid_ode::integrate::{fixed_step_solve, step_with_dense};
+use hybrid_ode::{
+    Crossing, Dense, EndReason, EngineOptions, Flow, Guards, HybridSystem, Method, Observer,
+    RunEnd, StepEnd, run,
 };
-use rtw_model::integrate::{Dense, Method, fixed_step_solve, step_with_dense};
 
 // ---------------------------------------------------------------------------
 // Helpers
@@ -74,7 +75,7 @@ fn check_order(method: Method, ns: &[u64], order: f64) -> f64 {
 
 #[test]
 fn rk4_global_error_falls_at_order_4() {
-    check_order(Method::Rk4 { h: 0.0 }, &[40, 80, 160, 320], 4.0);
+    check_order(Method::Rk4, &[40, 80, 160, 320], 4.0);
 }
 
 #[test]
@@ -109,7 +110,7 @@ fn dense_local_error(method: Method, h: f64) -> f64 {
 #[test]
 fn dense_output_local_error_falls_at_dense_order_plus_one() {
     for (method, hs) in [
-        (Method::Rk4 { h: 0.0 }, vec![0.2, 0.1, 0.05, 0.025]),
+        (Method::Rk4, vec![0.2, 0.1, 0.05, 0.025]),
         (Method::Dp54, vec![0.2, 0.1, 0.05, 0.025]),
         (Method::Dop853, vec![0.32, 0.16, 0.08]),
     ] {
@@ -126,7 +127,7 @@ fn dense_output_local_error_falls_at_dense_order_plus_one() {
 
 #[test]
 fn dense_output_interpolates_the_end_points() {
-    for method in [Method::Rk4 { h: 0.0 }, Method::Dp54, Method::Dop853] {
+    for method in [Method::Rk4, Method::Dp54, Method::Dop853] {
         let mut d = Dense::<2>::default();
         step_with_dense(method, osc, 1.0, &[0.3, -0.7], 0.25, &mut d);
         let mut out = [0.0; 2];
@@ -147,15 +148,12 @@ fn dense_output_interpolates_the_end_points() {
 /// The oscillator as a hybrid system without guards; its observer measures
 /// the dense output's error at each step's midpoint against the exact local
 /// flow from the step's start, relative to the step tolerance there.
-struct Oscillator {
-    rtol: f64,
-    atol: f64,
-    worst_mid_ratio: f64,
-    steps: u64,
-}
+/// The harmonic oscillator as a system without events.
+struct Oscillator;
 
 impl HybridSystem<2> for Oscillator {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         osc(t, y, dy);
@@ -166,7 +164,18 @@ impl HybridSystem<2> for Oscillator {
     fn reset(&mut self, _t: f64, _y: &mut [f64; 2], _index: usize) -> Flow {
         unreachable!()
     }
-    fn observe(&mut self, d: &Dense<2>) -> Flow {
+}
+
+/// Checks each step's dense output at its midpoint against the exact flow.
+struct Midpoints {
+    rtol: f64,
+    atol: f64,
+    worst_mid_ratio: f64,
+    steps: u64,
+}
+
+impl Observer<2, Oscillator> for Midpoints {
+    fn on_step(&mut self, _: &Oscillator, d: &Dense<2>, _: StepEnd<'_, ()>) -> Flow {
         let tm = 0.5 * (d.t0 + d.t1);
         let mut ym = [0.0; 2];
         d.eval(tm, &mut ym);
@@ -189,6 +198,7 @@ fn adaptive_opts(method: Method, rtol: f64) -> EngineOptions {
         event_time_tol: 1e-13,
         zeno_events: 50,
         zeno_window: 1e-9,
+        rk4_step: 0.01,
     }
 }
 
@@ -198,7 +208,7 @@ fn adaptive_runs_meet_the_tolerance() {
     // rtol 1e-10 over 3 periods.
     for method in [Method::Dp54, Method::Dop853] {
         let opts = adaptive_opts(method, 1e-10);
-        let mut sys = Oscillator {
+        let mut sys = Midpoints {
             rtol: opts.rtol,
             atol: opts.atol,
             worst_mid_ratio: 0.0,
@@ -206,7 +216,7 @@ fn adaptive_runs_meet_the_tolerance() {
         };
         let mut y = [1.0, 0.0];
         let t_end = 6.0 * std::f64::consts::PI;
-        let end = run(&mut sys, 0.0, &mut y, t_end, &opts);
+        let end = run(&mut Oscillator, &mut sys, 0.0, &mut y, t_end, &opts);
         assert_eq!(end.reason, EndReason::TimeUp);
         assert_eq!(end.t, t_end, "the last step is clamped to t_end");
         let err = dist(&y, &osc_flow(&[1.0, 0.0], t_end));
@@ -232,14 +242,14 @@ fn adaptive_dense_output_is_accurate_between_steps() {
     for method in [Method::Dp54, Method::Dop853] {
         for rtol in [1e-6, 1e-9] {
             let opts = adaptive_opts(method, rtol);
-            let mut sys = Oscillator {
+            let mut sys = Midpoints {
                 rtol: opts.rtol,
                 atol: opts.atol,
                 worst_mid_ratio: 0.0,
                 steps: 0,
             };
             let mut y = [1.0, 0.0];
-            run(&mut sys, 0.0, &mut y, 20.0, &opts);
+            run(&mut Oscillator, &mut sys, 0.0, &mut y, 20.0, &opts);
             println!(
                 "{method:?} rtol {rtol:e}: worst midpoint dense error / step tolerance = {:.3}",
                 sys.worst_mid_ratio
@@ -252,18 +262,13 @@ fn adaptive_dense_output_is_accurate_between_steps() {
 #[test]
 fn rk4_runs_fixed_steps_and_clamps_the_last() {
     let opts = EngineOptions {
-        method: Method::Rk4 { h: 0.3 },
+        method: Method::Rk4,
+        rk4_step: 0.3,
         h_max: 1.0,
         ..EngineOptions::default()
     };
-    let mut sys = Oscillator {
-        rtol: 1.0,
-        atol: 1.0,
-        worst_mid_ratio: 0.0,
-        steps: 0,
-    };
     let mut y = [1.0, 0.0];
-    let end = run(&mut sys, 0.0, &mut y, 1.0, &opts);
+    let end = run(&mut Oscillator, &mut (), 0.0, &mut y, 1.0, &opts);
     assert_eq!(end.reason, EndReason::TimeUp);
     assert_eq!(end.t, 1.0);
     // Steps 0.3, 0.3, 0.3, 0.1.
@@ -300,6 +305,7 @@ impl Ball {
 
 impl HybridSystem<2> for Ball {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, _t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         dy[0] = y[1];
@@ -348,7 +354,7 @@ fn falling_ball_event_time_is_exact() {
         };
         let mut ball = Ball::new(0.0, 1);
         let mut y = [h0, 0.0];
-        let end = run(&mut ball, 0.0, &mut y, 10.0, &opts);
+        let end = run(&mut ball, &mut (), 0.0, &mut y, 10.0, &opts);
         assert_eq!(end.reason, EndReason::Stopped);
         let exact = (2.0 * h0 / g).sqrt();
         let err = (ball.times[0] - exact).abs();
@@ -371,7 +377,7 @@ fn bouncing_ball_event_times_match_the_closed_form() {
         };
         let mut ball = Ball::new(e, 5);
         let mut y = [h0, 0.0];
-        let end = run(&mut ball, 0.0, &mut y, 100.0, &opts);
+        let end = run(&mut ball, &mut (), 0.0, &mut y, 100.0, &opts);
         assert_eq!(end.reason, EndReason::Stopped);
         assert_eq!(end.work.events, 5);
         for k in 1..=5 {
@@ -391,13 +397,14 @@ fn rk4_locates_events_on_its_hermite_interpolant() {
     // parabola, and RK4 integrates y'' = −g exactly, so the event is exact.
     let (h0, g) = (1.7, 9.81);
     let opts = EngineOptions {
-        method: Method::Rk4 { h: 0.07 },
+        method: Method::Rk4,
+        rk4_step: 0.07,
         h_max: 1.0,
         ..EngineOptions::default()
     };
     let mut ball = Ball::new(0.5, 3);
     let mut y = [h0, 0.0];
-    let end = run(&mut ball, 0.0, &mut y, 100.0, &opts);
+    let end = run(&mut ball, &mut (), 0.0, &mut y, 100.0, &opts);
     assert_eq!(end.reason, EndReason::Stopped);
     for k in 1..=3 {
         let err = (ball.times[k - 1] - ball_impact_time(g, h0, 0.5, k)).abs();
@@ -420,7 +427,7 @@ fn infinitely_many_bounces_end_as_zeno() {
     };
     let mut ball = Ball::new(e, usize::MAX);
     let mut y = [1.0, 0.0];
-    let end = run(&mut ball, 0.0, &mut y, 100.0, &opts);
+    let end = run(&mut ball, &mut (), 0.0, &mut y, 100.0, &opts);
     assert_eq!(end.reason, EndReason::Zeno, "{end:?}");
     // The gap from impact k to k+1 is 2 e^k v1/g; the first below 0.05 s is
     // k0 = 13 (0.903·0.8^13 = 0.049). Impacts k0, k0+1, … then form a run
@@ -448,6 +455,7 @@ struct SineGuard {
 
 impl HybridSystem<2> for SineGuard {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, t: f64, y: &[f64; 2], dy: &mut [f64; 2]) {
         osc(t, y, dy);
@@ -475,7 +483,7 @@ fn sine_events(crossing: Crossing, method: Method) -> Vec<f64> {
     };
     // x(0) = 0 exactly: the guard starts at 0 and must not fire at t = 0.
     let mut y = [0.0, 1.0];
-    let end = run(&mut sys, 0.0, &mut y, 10.0, &opts);
+    let end = run(&mut sys, &mut (), 0.0, &mut y, 10.0, &opts);
     assert_eq!(end.reason, EndReason::TimeUp);
     sys.times[..sys.n].to_vec()
 }
@@ -484,7 +492,7 @@ fn sine_events(crossing: Crossing, method: Method) -> Vec<f64> {
 fn guard_directions_and_zero_start() {
     use std::f64::consts::PI;
     // Closed form: x = sin t crosses 0 at kπ, falling at odd k, rising at even k.
-    for method in [Method::Dp54, Method::Dop853, Method::Rk4 { h: 0.01 }] {
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
         let tol = if method.is_adaptive() { 1e-9 } else { 1e-7 };
         let falling = sine_events(Crossing::Falling, method);
         let rising = sine_events(Crossing::Rising, method);
@@ -508,6 +516,7 @@ struct TwoGuards {
 
 impl HybridSystem<1> for TwoGuards {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) {
         dy[0] = 1.0;
@@ -526,15 +535,16 @@ impl HybridSystem<1> for TwoGuards {
 
 #[test]
 fn the_earliest_of_several_crossings_fires() {
-    for method in [Method::Dp54, Method::Dop853, Method::Rk4 { h: 0.5 }] {
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
         let mut sys = TwoGuards { first: None };
         let opts = EngineOptions {
             method,
             h_max: 1.0,
+            rk4_step: 0.5,
             ..EngineOptions::default()
         };
         let mut y = [0.0];
-        let end = run(&mut sys, 0.0, &mut y, 2.0, &opts);
+        let end = run(&mut sys, &mut (), 0.0, &mut y, 2.0, &opts);
         assert_eq!(end.reason, EndReason::Stopped);
         let (i, t) = sys.first.unwrap();
         assert_eq!(i, 1, "{method:?}");
@@ -553,6 +563,7 @@ struct CountedGuards {
 
 impl HybridSystem<1> for CountedGuards {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, t: f64, y: &[f64; 1], dy: &mut [f64; 1]) {
         self.inner.rhs(t, y, dy);
@@ -584,10 +595,11 @@ fn root_finding_evaluates_one_guard_at_a_time() {
     // later guard at the earliest event so far); the whole set is evaluated
     // at step ends only. A system's own one-guard evaluation must give the
     // same event, bit for bit, as the default through `guards`.
-    for method in [Method::Dp54, Method::Dop853, Method::Rk4 { h: 0.5 }] {
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
         let opts = EngineOptions {
             method,
             h_max: 1.0,
+            rk4_step: 0.5,
             ..EngineOptions::default()
         };
         let mut found = Vec::new();
@@ -599,7 +611,7 @@ fn root_finding_evaluates_one_guard_at_a_time() {
                 guard_calls: Default::default(),
             };
             let mut y = [0.0];
-            let end = run(&mut sys, 0.0, &mut y, 2.0, &opts);
+            let end = run(&mut sys, &mut (), 0.0, &mut y, 2.0, &opts);
             assert_eq!(end.reason, EndReason::Stopped);
             // One set at the start, one at each accepted step's end.
             assert_eq!(sys.guards_calls.get(), 1 + end.work.steps, "{method:?}");
@@ -623,6 +635,7 @@ struct Blowup;
 
 impl HybridSystem<1> for Blowup {
     type Aux = ();
+    type Transition = Flow;
 
     fn rhs(&self, _t: f64, y: &[f64; 1], dy: &mut [f64; 1]) {
         dy[0] = if y[0] > 1.0 { f64::NAN } else { 1.0 };
@@ -637,13 +650,14 @@ impl HybridSystem<1> for Blowup {
 
 #[test]
 fn non_finite_values_end_the_run() {
-    for method in [Method::Dp54, Method::Dop853, Method::Rk4 { h: 0.01 }] {
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
         let opts = EngineOptions {
             method,
+            rk4_step: 0.01,
             ..EngineOptions::default()
         };
         let mut y = [0.0];
-        let end: RunEnd = run(&mut Blowup, 0.0, &mut y, 5.0, &opts);
+        let end: RunEnd = run(&mut Blowup, &mut (), 0.0, &mut y, 5.0, &opts);
         assert_eq!(end.reason, EndReason::NonFinite, "{method:?}");
         assert!(end.t <= 1.0 + 1e-9 && end.t > 0.9, "{method:?}: {}", end.t);
         assert!(y[0].is_finite());
@@ -656,20 +670,15 @@ fn work_budget_and_observer_stop() {
         max_steps: 10,
         ..EngineOptions::default()
     };
-    let mut sys = Oscillator {
-        rtol: 1.0,
-        atol: 1.0,
-        worst_mid_ratio: 0.0,
-        steps: 0,
-    };
     let mut y = [1.0, 0.0];
-    let end = run(&mut sys, 0.0, &mut y, 100.0, &opts);
+    let end = run(&mut Oscillator, &mut (), 0.0, &mut y, 100.0, &opts);
     assert_eq!(end.reason, EndReason::WorkBudget);
     assert_eq!(end.work.steps + end.work.rejected, 10);
 
-    struct StopAt(f64);
-    impl HybridSystem<1> for StopAt {
+    struct Clock;
+    impl HybridSystem<1> for Clock {
         type Aux = ();
+        type Transition = Flow;
 
         fn rhs(&self, _t: f64, _y: &[f64; 1], dy: &mut [f64; 1]) {
             dy[0] = 1.0;
@@ -680,7 +689,10 @@ fn work_budget_and_observer_stop() {
         fn reset(&mut self, _t: f64, _y: &mut [f64; 1], _i: usize) -> Flow {
             Flow::Continue
         }
-        fn observe(&mut self, d: &Dense<1>) -> Flow {
+    }
+    struct StopAt(f64);
+    impl Observer<1, Clock> for StopAt {
+        fn on_step(&mut self, _: &Clock, d: &Dense<1>, _: StepEnd<'_, ()>) -> Flow {
             if d.t1 >= self.0 {
                 Flow::Stop
             } else {
@@ -690,6 +702,7 @@ fn work_budget_and_observer_stop() {
     }
     let mut y = [0.0];
     let end = run(
+        &mut Clock,
         &mut StopAt(0.5),
         0.0,
         &mut y,

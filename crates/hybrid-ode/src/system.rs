@@ -1,0 +1,237 @@
+//! What the engine integrates, and who watches it.
+//!
+//! A hybrid system is written, as in Drake's rimless-wheel example, as three
+//! named pieces over the [`HybridSystem`] trait:
+//!
+//! * **continuous dynamics** — [`HybridSystem::rhs`], `ẏ = f(t, y)` in the
+//!   current mode (the mode lives inside the system value);
+//! * **guards** — [`HybridSystem::guards`], scalar functions of the state,
+//!   each with a crossing direction; an event fires where one crosses zero;
+//! * **resets** — [`HybridSystem::reset`], applied at the located event time,
+//!   may change the mode and jump the state, and say what they did (a
+//!   [`HybridSystem::Transition`]).
+//!
+//! What a run records — statistics, a trace, a Poincaré section, a stopping
+//! rule — is not the system's business: it is an [`Observer`], handed to
+//! [`run`](crate::run) beside the system (as rapier's step takes an
+//! `EventHandler` and the `differential-equations` crate a `Solout`). It sees
+//! every step's dense output ([`Observer::on_step`]) and every transition
+//! ([`Observer::on_transition`]), and may end the run. One system thus
+//! serves a simulation, a step map and a settling run, each with its own
+//! observer.
+
+use crate::dense::Dense;
+
+/// Capacity of a [`Guards`] set. Fixed so that guard evaluation never allocates.
+pub const MAX_GUARDS: usize = 16;
+
+/// The direction in which a guard must cross zero to fire.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Crossing {
+    /// From `g > 0` to `g <= 0` (e.g. a tip height reaching the ground).
+    Falling,
+    /// From `g < 0` to `g >= 0`.
+    Rising,
+    /// Either direction.
+    Either,
+}
+
+/// Values of a system's guard functions at one state, in a fixed-capacity set.
+#[derive(Clone, Copy, Debug)]
+pub struct Guards {
+    /// Guard values; only the first [`len`](Guards::len) are live.
+    pub value: [f64; MAX_GUARDS],
+    /// The crossing direction of each guard.
+    pub crossing: [Crossing; MAX_GUARDS],
+    /// Number of guards.
+    pub len: usize,
+}
+
+impl Default for Guards {
+    fn default() -> Self {
+        Self {
+            value: [0.0; MAX_GUARDS],
+            crossing: [Crossing::Either; MAX_GUARDS],
+            len: 0,
+        }
+    }
+}
+
+impl Guards {
+    /// Removes every guard.
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Adds a guard; its index is the number of guards pushed before it.
+    ///
+    /// # Panics
+    /// With more than [`MAX_GUARDS`] guards.
+    pub fn push(&mut self, value: f64, crossing: Crossing) {
+        assert!(self.len < MAX_GUARDS, "more than MAX_GUARDS guards");
+        self.value[self.len] = value;
+        self.crossing[self.len] = crossing;
+        self.len += 1;
+    }
+}
+
+/// Whether the run goes on after a transition or an observed step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on integrating.
+    Continue,
+    /// End the run ([`EndReason::Stopped`](crate::EndReason::Stopped)).
+    Stop,
+}
+
+/// What a reset reports: whether it ends the run by itself (a failure the
+/// system detected), whatever the observer says.
+pub trait EndsRun {
+    /// `true` if the run cannot go on after this transition.
+    fn ends_run(&self) -> bool;
+}
+
+/// A system whose resets only say whether the run goes on reports a [`Flow`].
+impl EndsRun for Flow {
+    fn ends_run(&self) -> bool {
+        *self == Flow::Stop
+    }
+}
+
+/// A hybrid dynamical system with an `N`-dimensional state: the plant.
+pub trait HybridSystem<const N: usize> {
+    /// By-products of the right-hand side that the guards (or an observer)
+    /// also need at the same state, such as constraint forces; `()` if none.
+    type Aux: Copy + Default;
+
+    /// What a reset did, handed to the [`Observer`]; [`Flow`] for a system
+    /// with nothing more to say.
+    type Transition: Copy + EndsRun;
+
+    /// Continuous dynamics of the current mode: writes `ẏ = f(t, y)` into `dy`.
+    fn rhs(&self, t: f64, y: &[f64; N], dy: &mut [f64; N]);
+
+    /// [`rhs`](HybridSystem::rhs) that also writes its by-products at `y` into
+    /// `aux`. The engine calls it where it evaluates the guards at the same
+    /// state next: the last stage of a trial step (FSAL: `f(t + h, y_new)`),
+    /// the start and each restart. The default leaves `aux` alone.
+    #[inline]
+    fn rhs_aux(&self, t: f64, y: &[f64; N], dy: &mut [f64; N], _aux: &mut Self::Aux) {
+        self.rhs(t, y, dy);
+    }
+
+    /// Guard functions of the current mode, evaluated at `(t, y)`. The set of
+    /// guards (count and meaning of each index) may depend on the mode but not
+    /// on `(t, y)`: the engine compares values of the same index across a step.
+    fn guards(&self, t: f64, y: &[f64; N], out: &mut Guards);
+
+    /// Guard `index` alone at `(t, y)`: must equal, bit for bit, the value
+    /// [`guards`](HybridSystem::guards) gives it there. The root finder calls
+    /// it at every iterate, where only the guard being located matters, so a
+    /// system whose guards are cheap one by one (a tip height needs one rod's
+    /// `sin_cos`, not every string force) should override it. The default
+    /// evaluates all guards and keeps one.
+    #[inline]
+    fn guard(&self, t: f64, y: &[f64; N], index: usize) -> f64 {
+        let mut g = Guards::default();
+        self.guards(t, y, &mut g);
+        g.value[index]
+    }
+
+    /// [`guards`](HybridSystem::guards) at a state where `rhs_aux` has just
+    /// written `aux`; must give the same values, bit for bit. The default
+    /// ignores `aux`.
+    #[inline]
+    fn guards_aux(&self, t: f64, y: &[f64; N], _aux: &Self::Aux, out: &mut Guards) {
+        self.guards(t, y, out);
+    }
+
+    /// The reset of guard `index`, applied at its located event time `t` with
+    /// `y` the state there: may change the mode and jump `y`.
+    fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Self::Transition;
+
+    /// The reset of guard `index` at `y`, making every discrete choice (a new
+    /// mode, a kind of impact) as `nominal` made it in its latest reset.
+    /// Differentiating a reset needs its choices fixed: at an event the state
+    /// sits on the boundary between them (a lift-off at zero normal force).
+    /// The default is [`reset`](HybridSystem::reset), right for systems
+    /// whose resets make no choice.
+    fn reset_replaying(
+        &mut self,
+        t: f64,
+        y: &mut [f64; N],
+        index: usize,
+        _nominal: &Self,
+    ) -> Self::Transition
+    where
+        Self: Sized,
+    {
+        self.reset(t, y, index)
+    }
+}
+
+/// How an observed step ended.
+#[derive(Clone, Copy, Debug)]
+pub enum StepEnd<'a, A> {
+    /// At an ordinary step end, where [`HybridSystem::rhs_aux`] wrote `aux`
+    /// at `dense.y1`.
+    Step {
+        /// The right-hand side's by-products at the step's end.
+        aux: &'a A,
+    },
+    /// At an event of guard `guard`: the step was cut there and its reset
+    /// follows (the system is still in its mode before it).
+    Event {
+        /// Index of the guard that fired.
+        guard: usize,
+    },
+}
+
+/// Watches a run of the system `P`: what a run records, apart from what the
+/// system is. Every hook may end the run with [`Flow::Stop`]; the defaults
+/// do nothing. `()` is the observer that watches nothing.
+pub trait Observer<const N: usize, P: HybridSystem<N>> {
+    /// Called after every accepted step `[dense.t0, dense.t1]`, and after the
+    /// part of a step that ends at an event (before its reset), with the
+    /// dense output of that step and the system as it was on it.
+    /// Statistics, recording and run-level checks go here.
+    #[inline]
+    fn on_step(&mut self, _system: &P, _dense: &Dense<N>, _end: StepEnd<'_, P::Aux>) -> Flow {
+        Flow::Continue
+    }
+
+    /// Called after every reset, with the system and the state `y` after it
+    /// and what the reset did. The run ends if this returns [`Flow::Stop`] or
+    /// the transition [ends it](EndsRun::ends_run) by itself.
+    #[inline]
+    fn on_transition(
+        &mut self,
+        _system: &P,
+        _t: f64,
+        _y: &[f64; N],
+        _transition: &P::Transition,
+    ) -> Flow {
+        Flow::Continue
+    }
+
+    /// Whether [`on_step`](Observer::on_step) evaluates the dense output of
+    /// the step `[t0, t1]` strictly inside it (`Dense::eval` at
+    /// `t ∈ (t0, t1)`), asked before the step is handed over. An observer
+    /// that reads only `t0, t1, y0, y1` there returns `false`, and the engine
+    /// hands it a cheaper interpolant (cubic Hermite): DOP853 then skips the
+    /// 3 extra stages of its 7th-order dense output (20 % fewer right-hand-side
+    /// evaluations). Event location always uses the method's full dense
+    /// output. The default is `true`.
+    #[inline]
+    fn reads_interior(&self, _system: &P, _t0: f64, _t1: f64) -> bool {
+        true
+    }
+}
+
+/// The observer that watches nothing (and reads no interior).
+impl<const N: usize, P: HybridSystem<N>> Observer<N, P> for () {
+    #[inline]
+    fn reads_interior(&self, _system: &P, _t0: f64, _t1: f64) -> bool {
+        false
+    }
+}

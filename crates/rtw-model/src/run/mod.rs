@@ -1,0 +1,9 @@
+//! One run of the RTW and what it records.
+//!
+//! | module | what it computes |
+//! |---|---|
+//! | [`simulate`](mod@simulate) | `simulate(params, options) -> Outcome`: the plant run with its recorder |
+//! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
+
+pub(crate) mod gait;
+pub mod simulate;
