@@ -23,11 +23,12 @@
 use crate::config;
 use crate::output::{self, kv};
 use anyhow::{Result, bail};
-use arrow::array::{
+use arrow_array::types::Int32Type;
+use arrow_array::{
     ArrayRef, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array, RecordBatch,
     StringArray,
 };
-use arrow::datatypes::{DataType, Field, Int32Type, Schema, SchemaRef};
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use parquet::file::metadata::KeyValue;
 use rtw_model::limit;
 use rtw_model::stepmap::{

@@ -15,7 +15,7 @@
 //! count); `-` for what is not a quantity (ids, labels, text, flags).
 
 use crate::{bifurcation, output};
-use arrow::datatypes::{DataType, Field, SchemaRef};
+use arrow_schema::{DataType, Field, SchemaRef};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 

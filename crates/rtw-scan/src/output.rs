@@ -16,11 +16,13 @@ use crate::cluster::{Failure, FailureClusters};
 use crate::config::{ScanConfig, Variant};
 use crate::dictionary;
 use anyhow::{Context, Result, anyhow, bail};
-use arrow::array::{
-    Array, ArrayRef, AsArray, DictionaryArray, Float64Array, Int8Array, Int32Array, Int64Array,
-    RecordBatch, StringArray,
+use arrow_array::cast::AsArray;
+use arrow_array::types::{Float64Type, Int8Type, Int32Type, Int64Type};
+use arrow_array::{
+    Array, ArrayRef, DictionaryArray, Float64Array, Int8Array, Int32Array, Int64Array, RecordBatch,
+    StringArray,
 };
-use arrow::datatypes::{DataType, Field, Float64Type, Int32Type, Int64Type, Schema, SchemaRef};
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use parquet::arrow::ArrowWriter;
 use parquet::arrow::arrow_reader::{ParquetRecordBatchReader, ParquetRecordBatchReaderBuilder};
 use parquet::basic::{Compression, ZstdLevel};
@@ -1025,7 +1027,7 @@ impl ContentHash {
                 DataType::Int8 => words(
                     h,
                     &mut col
-                        .as_primitive::<arrow::datatypes::Int8Type>()
+                        .as_primitive::<Int8Type>()
                         .iter()
                         .map(|v| v.map(|x| x as u64)),
                 ),

@@ -15,7 +15,7 @@ use crate::output::{
     self, META_CONFIG, META_VERSION, META_WALL_TIME, READ_BATCH_ROWS, write_atomic,
 };
 use anyhow::{Context, Result, anyhow, bail};
-use arrow::array::RecordBatch;
+use arrow_array::RecordBatch;
 use rtw_model::Label;
 use serde::Serialize;
 use std::fmt::Write as _;

@@ -35,8 +35,9 @@ use crate::output::{
 use crate::sample::Sampler;
 use crate::shard::Shard;
 use anyhow::{Context, Result, anyhow, bail};
-use arrow::array::{AsArray, RecordBatch};
-use arrow::datatypes::Int64Type;
+use arrow_array::RecordBatch;
+use arrow_array::cast::AsArray;
+use arrow_array::types::Int64Type;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use rtw_model::{Label, Options, Outcome, Params, Physical};
