@@ -1,12 +1,12 @@
 #![doc = include_str!("../README.md")]
 #![warn(missing_docs)]
 
+pub mod continuation;
 pub mod counting;
 pub mod dense;
 pub mod engine;
 mod events;
 pub mod integrate;
-pub mod continuation;
 pub mod limit;
 pub mod rimless;
 pub mod system;

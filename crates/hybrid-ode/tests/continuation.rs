@@ -1,8 +1,8 @@
 //! The continuation against maps whose branches and bifurcations are known
 //! in closed form.
 
-use nalgebra::{Complex, DMatrix};
 use hybrid_ode::continuation::*;
+use nalgebra::{Complex, DMatrix};
 
 fn eig(j: &DMatrix<f64>) -> Vec<Complex<f64>> {
     let mut mu: Vec<Complex<f64>> = j.complex_eigenvalues().iter().copied().collect();

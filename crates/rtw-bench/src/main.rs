@@ -16,7 +16,7 @@ use rtw_bench::{
 use rtw_model::Method;
 use rtw_model::{Label, Options, Outcome, Params, simulate, simulate_traced};
 use rtw_scan::config;
-use rtw_scan::sample::Sampler;
+use rtw_scan::scan::sample::Sampler;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

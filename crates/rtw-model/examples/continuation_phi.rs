@@ -7,9 +7,9 @@
 //! differences), locates the bifurcations on it, and switches onto the
 //! period-2 branch at the period doubling. Prints one line per point:
 //! `branch φ stable max|μ| ω` and one per bifurcation.
-use nalgebra::DMatrix;
 use hybrid_ode::continuation::{self, Kind, MapEval, Options as Cont};
 use hybrid_ode::limit;
+use nalgebra::DMatrix;
 use rtw_model::cycles::section::SectionPoint;
 use rtw_model::cycles::stepmap::{CycleOptions, Jacobian, StepMap};
 use rtw_model::{Options, Params};

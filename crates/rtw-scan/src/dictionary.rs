@@ -1,85 +1,62 @@
 //! The data dictionary: the unit and meaning of every column of every Parquet
-//! file rtw-scan writes.
+//! file rtw-scan writes, gathered from the column tables of [`crate::io`]
+//! and `bifurcation` (this module sits above both).
 //!
-//! Each column's unit and description live beside its definition (the scan
-//! table [`output::COLUMNS`], the trace and assignment schemas in
-//! [`output`], the bifurcation schemas in [`bifurcation`]) and are written to
-//! the Arrow field metadata under the keys [`UNIT`] and [`DESCRIPTION`], so a
-//! reader finds them in the file itself (pyarrow:
-//! `pq.read_schema(path).field("fn").metadata`). [`markdown`] renders the
-//! same schemas as docs/data-dictionary.md
+//! Each column's unit and description live beside its definition and are
+//! written to the Arrow field metadata (`io::table`). [`markdown`]
+//! renders the same schemas as docs/data-dictionary.md
 //! (`cargo run -p rtw-scan --example data_dictionary > docs/data-dictionary.md`;
 //! a test keeps the committed page equal to it).
-//!
-//! Units: SI symbols; `1` for a dimensionless number (a ratio, a fraction, a
-//! count); `-` for what is not a quantity (ids, labels, text, flags).
 
-use crate::{bifurcation, output};
-use arrow::datatypes::{DataType, Field, SchemaRef};
-use std::collections::HashMap;
+use crate::analysis::assignments;
+use crate::bifurcation::files::{points_schema, steps_schema};
+use crate::io::table::{DESCRIPTION, UNIT};
+use crate::io::{scan_rows, trace};
+use arrow_schema::{DataType, Field, SchemaRef};
 use std::fmt::Write as _;
 
-/// Field-metadata key of a column's unit.
-pub const UNIT: &str = "unit";
-/// Field-metadata key of a column's meaning.
-pub const DESCRIPTION: &str = "description";
-
-/// A column with its unit and meaning in the field metadata.
-pub fn field(
-    name: impl Into<String>,
-    ty: DataType,
-    nullable: bool,
-    unit: &str,
-    description: &str,
-) -> Field {
-    Field::new(name, ty, nullable).with_metadata(HashMap::from([
-        (UNIT.to_string(), unit.to_string()),
-        (DESCRIPTION.to_string(), description.to_string()),
-    ]))
-}
-
 /// One kind of Parquet file rtw-scan writes.
-pub struct ParquetOutput {
+pub(crate) struct ParquetOutput {
     /// Which files (name pattern and the command that writes them).
-    pub files: &'static str,
+    files: &'static str,
     /// What one row is.
-    pub row: &'static str,
-    pub schema: SchemaRef,
+    row: &'static str,
+    schema: SchemaRef,
 }
 
 /// Every kind of Parquet file rtw-scan writes, with its schema.
-pub fn outputs() -> Vec<ParquetOutput> {
+pub(crate) fn outputs() -> Vec<ParquetOutput> {
     vec![
         ParquetOutput {
             files: "`samples.parquet` (`run`, `merge`) and `part-K.parquet` (`run --shard K/N`)",
             row: "one sample of a scan",
-            schema: output::schema(),
+            schema: scan_rows::schema(),
         },
         ParquetOutput {
             files: "trace file (`simulate --trace FILE`)",
             row: "one recorded instant of a run (every `trace_dt` seconds, or every step)",
-            schema: output::trace_schema(),
+            schema: trace::trace_schema(),
         },
         ParquetOutput {
             files: "assignments file (`cluster --assignments FILE`)",
             row: "one failed sample and its k-means cluster",
-            schema: output::assignments_schema(),
+            schema: assignments::assignments_schema(),
         },
         ParquetOutput {
             files: "`FILE.parquet` (`bifurcation --out FILE.parquet`)",
             row: "one value of the swept parameter",
-            schema: bifurcation::points_schema(),
+            schema: points_schema(),
         },
         ParquetOutput {
             files: "`FILE.steps.parquet` (`bifurcation --out FILE.parquet`)",
             row: "one recorded step at one value",
-            schema: bifurcation::steps_schema(),
+            schema: steps_schema(),
         },
     ]
 }
 
 /// A field's unit and description, if its metadata has both (non-empty).
-pub fn unit_and_description(f: &Field) -> Option<(&str, &str)> {
+pub(crate) fn unit_and_description(f: &Field) -> Option<(&str, &str)> {
     let get = |key| {
         f.metadata()
             .get(key)

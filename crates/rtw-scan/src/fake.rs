@@ -13,7 +13,7 @@ use std::time::Duration;
 
 /// The fake outcome of `p`; sleeps `delay` first (to make runs slow enough
 /// to interrupt in tests).
-pub fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
+pub(crate) fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
     if !delay.is_zero() {
         std::thread::sleep(delay);
     }

@@ -2,23 +2,25 @@
 //!
 //! Seeded, parallel parameter scans of the RTW model (`rtw-model`), streamed
 //! to Parquet, with outcome statistics and failure clustering. The binary
-//! `rtw-scan` is a thin shell over [`cli::main`].
+//! `rtw-scan` is a thin shell over [`main`].
 //!
-//! A scan flows through the modules in this order:
+//! The folders are the layers, each using only the ones above it in this
+//! table (and `hash`, the fixed hash functions):
 //!
 //! | module | role |
 //! |---|---|
-//! | [`config`] | TOML config → validated [`config::ScanConfig`] (errors name the key) |
-//! | [`sample`] | sample id → parameters, from (seed, id) only |
-//! | [`run`] | parallel chunks, durable parts, resume, panics → `diverged` rows |
-//! | [`shard`] | `--shard K/N` id ranges; `merge` checks and joins the parts |
-//! | [`output`] | the row schema; Parquet, JSON and text forms; trace files |
-//! | [`dictionary`] | every Parquet column's unit and meaning (field metadata, docs/data-dictionary.md) |
-//! | [`cluster`] | k-means++ of (a bounded sample of) the failures, silhouette, naming by kind |
-//! | [`report`] | shares with Wilson intervals, paper numbers, summary files |
-//! | [`bifurcation`] | one parameter swept with continuation on the step map: `bifurcation` |
-//! | [`cli`] | the `run`, `merge`, `simulate`, `bifurcation`, `cluster`, `summary` subcommands |
-//! | [`fake`] | a deterministic stand-in simulator for testing the machinery |
+//! | [`config`] | TOML → validated [`config::ScanConfig`]: schema, variant and `--set` layers, the parameter vocabulary, hashing |
+//! | [`io`] | column tables; Parquet written atomically with a content hash and read back checked; traces, assignments |
+//! | [`scan`] | sample ids → parameters → rows: parallel chunks, resume, shards, progress, locks |
+//! | `analysis` | k-means of the failures, shares with Wilson intervals, summary files |
+//! | `bifurcation` | one parameter swept with continuation on the step map: its files and summary |
+//! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
+//! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `cluster`, `summary` subcommands |
+//!
+//! The public API is what the binary, `rtw-bench` and the tests use; the
+//! rest is private to the crate. The deterministic stand-in simulator
+//! `fake` (hidden flag `--fake-sim`) exists only with the `fake-sim` feature,
+//! which the crate's own tests turn on.
 //!
 //! ## Usage
 //!
@@ -36,14 +38,17 @@
 //! Parquet file is checked from Python (pandas, polars, pyarrow) by
 //! `scripts/check_parquet.py`.
 
-pub mod bifurcation;
-pub mod cli;
-pub mod cluster;
+#![warn(missing_docs)]
+
+pub(crate) mod analysis;
+pub(crate) mod bifurcation;
+mod cli;
 pub mod config;
 pub mod dictionary;
-pub mod fake;
-pub mod output;
-pub mod report;
-pub mod run;
-pub mod sample;
-pub mod shard;
+#[cfg(any(test, feature = "fake-sim"))]
+pub(crate) mod fake;
+pub(crate) mod hash;
+pub mod io;
+pub mod scan;
+
+pub use cli::main;

@@ -1,5 +1,5 @@
 //! `rtw-scan`: see `rtw-scan --help` and the crate docs of [`rtw_scan`].
 
 fn main() -> std::process::ExitCode {
-    rtw_scan::cli::main()
+    rtw_scan::main()
 }

@@ -506,12 +506,12 @@ fn values_outside_their_range_are_refused_naming_file_column_and_row() {
     let samples = out.join("samples.parquet");
     // The same rows and metadata with alpha of row 7 set to 0.7, written
     // through rtw-scan's own writer (so the content hash matches).
-    let input = rtw_scan::output::open(&samples, 1000).unwrap();
+    let input = rtw_scan::io::open(&samples, 1000).unwrap();
     let meta: Vec<_> = input
         .metadata
         .iter()
         .filter(|(k, _)| k.starts_with("rtw.") && k.as_str() != "rtw.content_hash")
-        .map(|(k, v)| rtw_scan::output::kv(k, v.clone()))
+        .map(|(k, v)| rtw_scan::io::kv(k, v.clone()))
         .collect();
     let batch: RecordBatch = input.reader.map(|b| b.unwrap()).next().unwrap();
     let i = batch.schema().index_of("alpha").unwrap();
@@ -526,7 +526,7 @@ fn values_outside_their_range_are_refused_naming_file_column_and_row() {
     cols[i] = Arc::new(Float64Array::from(values));
     let bad = dir.path().join("bad.parquet");
     let batch = RecordBatch::try_new(batch.schema(), cols).unwrap();
-    rtw_scan::output::write_file(&bad, &batch, meta).unwrap();
+    rtw_scan::io::write_file(&bad, &batch, meta).unwrap();
     run_err(
         &["summary", s(&bad)],
         &["bad.parquet", "alpha", "row 7", "0.7", "[0, 0.5)"],

@@ -8,7 +8,7 @@ mod common;
 
 use arrow::array::{Array, ArrayRef, Int64Array, RecordBatch};
 use common::*;
-use rtw_scan::output;
+use rtw_scan::io as output;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};

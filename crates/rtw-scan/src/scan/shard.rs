@@ -11,11 +11,14 @@
 //! 0..n−1 once each) and concatenates them into `DIR/samples.parquet`.
 
 use crate::config::{self, ScanConfig};
-use crate::output::{
+use crate::io::files;
+use crate::io::metadata::{
     self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_SHARDS, META_TOTAL_ROWS, META_VERSION,
-    META_WALL_TIME,
+    META_WALL_TIME, kv,
 };
-use crate::run::concat_scan_files;
+use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
+use crate::io::scan_files::concat_scan_files;
+use crate::scan::lock::Lock;
 use anyhow::{Context, Result, anyhow, bail};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -25,9 +28,9 @@ use std::str::FromStr;
 
 /// Shard `index` (0-based) of `count`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Shard {
-    pub index: u64,
-    pub count: u64,
+pub(crate) struct Shard {
+    pub(crate) index: u64,
+    pub(crate) count: u64,
 }
 
 impl FromStr for Shard {
@@ -69,7 +72,7 @@ impl fmt::Display for Shard {
 impl Shard {
     /// The sample ids of this shard among `total`: the contiguous range
     /// `⌊K·total/N⌋..⌊(K+1)·total/N⌋` (shard sizes differ by at most one).
-    pub fn ids(&self, total: u64) -> Result<Range<u64>> {
+    pub(crate) fn ids(&self, total: u64) -> Result<Range<u64>> {
         if self.count > total {
             bail!(
                 "--shard {self}: N = {} is more than the scan's {total} samples (each shard needs at least one)",
@@ -82,12 +85,12 @@ impl Shard {
     }
 
     /// `part-K.parquet`.
-    pub fn part_name(&self) -> String {
+    pub(crate) fn part_name(&self) -> String {
         part_name(self.index)
     }
 
     /// `.partial-K`: the shard's unfinished chunks.
-    pub fn partial_name(&self) -> String {
+    pub(crate) fn partial_name(&self) -> String {
         format!(".partial-{}", self.index)
     }
 }
@@ -122,7 +125,7 @@ impl Part {
 }
 
 fn read_part(path: &Path, k: u64) -> Result<Part> {
-    let input = output::open(path, 1)?;
+    let input = parquet::open(path, 1)?;
     let name = part_name(k);
     let get = |key: &str| {
         input.metadata.get(key).cloned().ok_or_else(|| {
@@ -168,10 +171,10 @@ fn describe(p: &Part) -> String {
 
 /// What [`merge_parts`] did.
 #[derive(Debug)]
-pub struct Merged {
-    pub samples: PathBuf,
-    pub shards: u64,
-    pub rows: u64,
+pub(crate) struct Merged {
+    pub(crate) samples: PathBuf,
+    pub(crate) shards: u64,
+    pub(crate) rows: u64,
 }
 
 /// Checks the `part-K.parquet` files in `dir` and concatenates them into
@@ -180,7 +183,7 @@ pub struct Merged {
 /// when their `sample_id`s are not exactly 0..n−1 once each, when a part is
 /// corrupt, or (unless `force`) when `dir/samples.parquet` holds another
 /// scan; nothing is written then.
-pub fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
+pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
     let entries = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read directory {}", dir.display()))?;
     let mut found = BTreeMap::new();
@@ -283,9 +286,9 @@ pub fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
     }
 
     let samples = dir.join("samples.parquet");
-    let _lock = output::Lock::acquire(&samples, &format!("writing {}", samples.display()))?;
+    let _lock = Lock::acquire(&samples, &format!("writing {}", samples.display()))?;
     if !force && samples.exists() {
-        let theirs = output::open(&samples, 1).map(|i| i.metadata);
+        let theirs = parquet::open(&samples, 1).map(|i| i.metadata);
         if theirs
             .as_ref()
             .map_or(true, |m| m.get(META_CONFIG_HASH) != Some(&first.hash))
@@ -296,29 +299,29 @@ pub fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
                 samples.display(),
                 theirs.map_or_else(
                     |e| format!("not a readable scan ({e:#})"),
-                    |m| output::scan_label_of(&m)
+                    |m| metadata::scan_label_of(&m)
                 ),
                 describe(first)
             );
         }
     }
     for f in ["samples.parquet", "summary.json", "summary.md"] {
-        output::remove_stray_temps(&dir.join(f))?;
+        files::remove_stray_temps(&dir.join(f))?;
     }
-    let mut metadata = output::scan_metadata(&cfg);
+    let mut metadata = metadata::scan_metadata(&cfg);
     for kv in &mut metadata {
         // The parts' version, which need not be the merging binary's.
         if kv.key == META_VERSION {
             kv.value = Some(first.version.clone());
         }
     }
-    metadata.push(output::kv(META_SHARDS, n.to_string()));
+    metadata.push(kv(META_SHARDS, n.to_string()));
     let paths: Vec<PathBuf> = parts.iter().map(|p| p.path.clone()).collect();
     concat_scan_files(
         &paths,
         0..total,
         &samples,
-        output::MAX_ROW_GROUP_ROWS,
+        MAX_ROW_GROUP_ROWS,
         metadata,
         META_WALL_TIME,
     )

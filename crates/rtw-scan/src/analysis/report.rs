@@ -7,15 +7,18 @@
 //! config stored in its metadata), so `rtw-scan summary FILE` and the end of
 //! `rtw-scan run` are the same code.
 
-use crate::cluster::{
+use crate::analysis::clusters::{
     CLUSTER_MAX_POINTS, ClusterTally, Failure, FailureClusters, FailureSample, cluster_failures,
 };
-use crate::config::{self, ScanConfig, Variant};
-use crate::output::{
-    self, META_CONFIG, META_VERSION, META_WALL_TIME, READ_BATCH_ROWS, write_atomic,
-};
+use crate::config::variant::Variant;
+use crate::config::{self, ScanConfig};
+use crate::io::files::write_atomic;
+use crate::io::metadata::{META_CONFIG, META_VERSION, META_WALL_TIME};
+use crate::io::parquet::{self, READ_BATCH_ROWS};
+use crate::io::scan_files::{self, f64_column, i64_column, label_column};
+use crate::io::scan_rows::label_index;
 use anyhow::{Context, Result, anyhow, bail};
-use arrow::array::RecordBatch;
+use arrow_array::RecordBatch;
 use rtw_model::Label;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -26,13 +29,13 @@ const Z95: f64 = 1.959_963_984_540_054;
 
 /// The article's shares for the 1000-sample scan (supplementary, Section 2),
 /// in % of all samples.
-pub const PAPER_STABLE: f64 = 73.7;
-pub const PAPER_SKIP: f64 = 35.9;
-pub const PAPER_WALK: f64 = 32.0;
-pub const PAPER_CRAWL: f64 = 5.8;
+pub(crate) const PAPER_STABLE: f64 = 73.7;
+pub(crate) const PAPER_SKIP: f64 = 35.9;
+pub(crate) const PAPER_WALK: f64 = 32.0;
+pub(crate) const PAPER_CRAWL: f64 = 5.8;
 
 /// Wilson score interval of a binomial proportion `k / n`, as fractions.
-pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
+pub(crate) fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
     if n == 0 {
         return (0.0, 1.0);
     }
@@ -47,15 +50,15 @@ pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
 
 /// A share of all samples.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Share {
-    pub outcome: String,
-    pub count: u64,
+pub(crate) struct Share {
+    pub(crate) outcome: String,
+    pub(crate) count: u64,
     /// % of all samples.
-    pub percent: f64,
+    pub(crate) percent: f64,
     /// 95 % Wilson score interval, in %.
-    pub ci95: [f64; 2],
+    pub(crate) ci95: [f64; 2],
     /// The article's value, in % (paper scan only).
-    pub paper_percent: Option<f64>,
+    pub(crate) paper_percent: Option<f64>,
 }
 
 impl Share {
@@ -75,29 +78,29 @@ impl Share {
 /// rows. Its size does not grow with the scan: the failures are kept as a
 /// bounded sample ([`FailureSample`], at most [`CLUSTER_MAX_POINTS`]), and a
 /// clustering of a sample counts every failure in a second pass over the file.
-pub struct ScanData {
-    pub path: PathBuf,
-    pub config: ScanConfig,
-    pub version: String,
-    pub rows: u64,
+pub(crate) struct ScanData {
+    pub(crate) path: PathBuf,
+    pub(crate) config: ScanConfig,
+    pub(crate) version: String,
+    pub(crate) rows: u64,
     /// Rows per label, in [`Label::ALL`] order.
-    pub counts: [u64; 6],
+    pub(crate) counts: [u64; 6],
     /// The failures k-means runs on: all of them when they fit, else a
     /// seeded random sample (seeded with the scan seed).
-    pub failures: FailureSample,
+    pub(crate) failures: FailureSample,
     /// Sum of the per-sample wall times.
-    pub sample_time_s: f64,
+    pub(crate) sample_time_s: f64,
     /// Elapsed time of the run (summed over resumed sessions), when recorded.
-    pub wall_time_s: Option<f64>,
+    pub(crate) wall_time_s: Option<f64>,
 }
 
 /// The failures (collapse, stall) among a batch's rows; `labels` is its
 /// decoded `outcome` column.
 fn batch_failures(batch: &RecordBatch, labels: &[Label]) -> Result<Vec<Failure>> {
-    let sample_id = output::i64_column(batch, "sample_id")?;
-    let alpha = output::f64_column(batch, "alpha")?;
-    let f_n = output::f64_column(batch, "fn")?;
-    let phi = output::f64_column(batch, "phi")?;
+    let sample_id = i64_column(batch, "sample_id")?;
+    let alpha = f64_column(batch, "alpha")?;
+    let f_n = f64_column(batch, "fn")?;
+    let phi = f64_column(batch, "phi")?;
     Ok(labels
         .iter()
         .enumerate()
@@ -113,8 +116,8 @@ fn batch_failures(batch: &RecordBatch, labels: &[Label]) -> Result<Vec<Failure>>
 }
 
 /// Reads a scan's Parquet file: stored config, label counts, failures.
-pub fn read_scan(path: &Path) -> Result<ScanData> {
-    let input = output::open(path, READ_BATCH_ROWS)?;
+pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
+    let input = parquet::open(path, READ_BATCH_ROWS)?;
     let text = input.metadata.get(META_CONFIG).ok_or_else(|| {
         anyhow!(
             "{} has no `{META_CONFIG}` metadata: not written by rtw-scan run",
@@ -143,11 +146,11 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
     for batch in input.reader {
         let batch = batch.with_context(|| format!("reading {}", path.display()))?;
         let ctx = || format!("{}", path.display());
-        output::check_scan_values(&batch, path, data.rows)?;
-        let labels = output::label_column(&batch).with_context(ctx)?;
-        let wall = output::f64_column(&batch, "wall_time_s").with_context(ctx)?;
+        scan_files::check_scan_values(&batch, path, data.rows)?;
+        let labels = label_column(&batch).with_context(ctx)?;
+        let wall = f64_column(&batch, "wall_time_s").with_context(ctx)?;
         for (i, label) in labels.iter().enumerate() {
-            data.counts[output::label_index(*label)] += 1;
+            data.counts[label_index(*label)] += 1;
             data.sample_time_s += wall.value(i);
         }
         for f in batch_failures(&batch, &labels).with_context(ctx)? {
@@ -161,7 +164,7 @@ pub fn read_scan(path: &Path) -> Result<ScanData> {
 impl ScanData {
     /// k-means of the failures with `k` (default: the config's); sizes and
     /// cross-table count every failure, also when k-means ran on a sample.
-    pub fn clusters(&self, k: Option<usize>) -> Result<Option<FailureClusters>> {
+    pub(crate) fn clusters(&self, k: Option<usize>) -> Result<Option<FailureClusters>> {
         let k = k.unwrap_or(self.config.cluster.k as usize);
         let points = self.failures.points();
         if self.failures.is_subset() && k > points.len() {
@@ -198,7 +201,7 @@ impl ScanData {
     /// (made by [`ScanData::clusters`]), batch by batch in `sample_id`
     /// order: k-means' own assignment when it saw every failure, else each
     /// failure's nearest centre, in a second pass over the file.
-    pub fn for_each_assigned(
+    pub(crate) fn for_each_assigned(
         &self,
         fc: &FailureClusters,
         mut visit: impl FnMut(&[Failure], &[usize]) -> Result<()>,
@@ -206,11 +209,11 @@ impl ScanData {
         if !self.failures.is_subset() {
             return visit(&self.failures.points(), &fc.assignment);
         }
-        let input = output::open(&self.path, READ_BATCH_ROWS)?;
+        let input = parquet::open(&self.path, READ_BATCH_ROWS)?;
         for batch in input.reader {
             let ctx = || format!("{}", self.path.display());
             let batch = batch.with_context(ctx)?;
-            let labels = output::label_column(&batch).with_context(ctx)?;
+            let labels = label_column(&batch).with_context(ctx)?;
             let failures = batch_failures(&batch, &labels).with_context(ctx)?;
             let clusters: Vec<usize> = failures.iter().map(|f| fc.cluster_of(f)).collect();
             visit(&failures, &clusters)?;
@@ -221,31 +224,31 @@ impl ScanData {
 
 /// The summary of one scan.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Summary {
-    pub name: Option<String>,
-    pub file: String,
-    pub version: String,
-    pub seed: u64,
-    pub samples: u64,
-    pub variant: Variant,
+pub(crate) struct Summary {
+    pub(crate) name: Option<String>,
+    pub(crate) file: String,
+    pub(crate) version: String,
+    pub(crate) seed: u64,
+    pub(crate) samples: u64,
+    pub(crate) variant: Variant,
     /// Whether this is the article's scan (its numbers are then given beside ours).
-    pub paper_scan: bool,
+    pub(crate) paper_scan: bool,
     /// Per label: skip, walk, crawl, collapse, stall, diverged.
-    pub outcomes: Vec<Share>,
+    pub(crate) outcomes: Vec<Share>,
     /// skip + walk + crawl.
-    pub stable: Share,
+    pub(crate) stable: Share,
     /// collapse + stall.
-    pub failed: Share,
-    pub cluster_k: usize,
+    pub(crate) failed: Share,
+    pub(crate) cluster_k: usize,
     /// `None` when there are fewer failures than clusters.
-    pub clusters: Option<FailureClusters>,
-    pub wall_time_s: Option<f64>,
-    pub samples_per_s: Option<f64>,
-    pub sample_time_s: f64,
+    pub(crate) clusters: Option<FailureClusters>,
+    pub(crate) wall_time_s: Option<f64>,
+    pub(crate) samples_per_s: Option<f64>,
+    pub(crate) sample_time_s: f64,
 }
 
 /// Summarizes a scan file (`k` overrides the config's cluster count).
-pub fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
+pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
     let data = read_scan(path)?;
     let n = data.rows;
     let paper = data.config.is_paper_scan();
@@ -306,7 +309,7 @@ pub fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
 /// Refuses to let the summary of `samples` replace `dir/summary.json` and
 /// `summary.md` when they are the summary of another file (the summary of a
 /// part beside the merged scan's, say), or are not rtw-scan summaries.
-pub fn check_summary_target(dir: &Path, samples: &Path) -> Result<()> {
+pub(crate) fn check_summary_target(dir: &Path, samples: &Path) -> Result<()> {
     let json = dir.join("summary.json");
     if !json.exists() {
         return Ok(());
@@ -332,7 +335,7 @@ pub fn check_summary_target(dir: &Path, samples: &Path) -> Result<()> {
 }
 
 /// Writes `summary.json` and `summary.md` into `dir`.
-pub fn write_summary(dir: &Path, summary: &Summary) -> Result<()> {
+pub(crate) fn write_summary(dir: &Path, summary: &Summary) -> Result<()> {
     write_atomic(
         &dir.join("summary.json"),
         serde_json::to_string_pretty(summary)?.as_bytes(),
@@ -360,7 +363,11 @@ fn share_row(s: &Share, paper: bool, bold: bool) -> String {
 }
 
 /// The cluster table in Markdown.
-pub fn clusters_markdown(k: usize, clusters: Option<&FailureClusters>, failures: usize) -> String {
+pub(crate) fn clusters_markdown(
+    k: usize,
+    clusters: Option<&FailureClusters>,
+    failures: usize,
+) -> String {
     let Some(fc) = clusters else {
         return format!(
             "## Failure clusters\n\nNot computed: {failures} failed samples (collapse or stall), fewer than k = {k}.\n"
@@ -400,7 +407,7 @@ pub fn clusters_markdown(k: usize, clusters: Option<&FailureClusters>, failures:
 
 impl Summary {
     /// The summary as Markdown (also what `run` and `summary` print).
-    pub fn to_markdown(&self) -> String {
+    pub(crate) fn to_markdown(&self) -> String {
         let mut md = String::new();
         let dir_name = Path::new(&self.file)
             .parent()
@@ -481,7 +488,8 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::run::{ProgressMode, RunSettings, run_scan};
+    use crate::scan::progress::ProgressMode;
+    use crate::scan::run::{RunSettings, run_scan};
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
 
@@ -519,8 +527,8 @@ phi = { uniform = [0.05, 0.12] }
         };
         run_scan(&cfg, &settings, &sim, &AtomicBool::new(false)).unwrap();
         let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
-        let collapses = data.counts[output::label_index(Label::Collapse)] as usize;
-        let stalls = data.counts[output::label_index(Label::Stall)] as usize;
+        let collapses = data.counts[label_index(Label::Collapse)] as usize;
+        let stalls = data.counts[label_index(Label::Stall)] as usize;
         assert_eq!(data.failures.seen(), collapses + stalls);
         assert!(
             data.failures.seen() > CLUSTER_MAX_POINTS,
@@ -537,7 +545,7 @@ phi = { uniform = [0.05, 0.12] }
         );
         // The cross-table adds up to the label counts: every failure is
         // counted once, not only the clustered ones.
-        let sum = |g: fn(&crate::cluster::FailureCluster) -> usize| -> usize {
+        let sum = |g: fn(&crate::analysis::clusters::FailureCluster) -> usize| -> usize {
             fc.clusters.iter().map(g).sum()
         };
         assert_eq!((sum(|c| c.collapse), sum(|c| c.stall)), (collapses, stalls));

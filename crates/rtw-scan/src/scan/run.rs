@@ -21,45 +21,45 @@
 //! contiguous id range of shard K: its chunks live in `DIR/.partial-K` and
 //! its rows end up in `DIR/part-K.parquet`, with the shard and the config
 //! hash in the file's metadata, so shards can run at once into one directory
-//! and be resumed the same way; [`crate::shard::merge_parts`] joins them.
+//! and be resumed the same way; [`crate::scan::shard::merge_parts`] joins them.
 //!
 //! The simulator is a parameter, so tests can inject a fake one. A sample
 //! whose simulation panics becomes a `diverged` row with the panic message in
 //! `message`; the scan never aborts for one sample.
 
 use crate::config::ScanConfig;
-use crate::output::{
-    self, MAX_ROW_GROUP_ROWS, META_CHUNK_WALL_TIME, META_CONFIG, META_CONFIG_HASH, META_SHARD,
-    META_TOTAL_ROWS, META_WALL_TIME, ParquetFile, READ_BATCH_ROWS, Row, schema,
+use crate::io::files;
+use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS};
+use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
+use crate::io::scan_files::concat_scan_files;
+use crate::io::scan_rows::{self, Row};
+use crate::scan::checkpoint::{
+    Layout, Manifest, chunk_labels, chunks_on_disk, is_complete, read_manifest,
+    refuse_other_results, remove_stray_files,
 };
-use crate::sample::Sampler;
-use crate::shard::Shard;
+use crate::scan::lock::Lock;
+use crate::scan::panic::catch_panic;
+use crate::scan::progress::{Progress, ProgressMode};
+use crate::scan::sample::Sampler;
+use crate::scan::shard::Shard;
 use anyhow::{Context, Result, anyhow, bail};
-use arrow::array::{AsArray, RecordBatch};
-use arrow::datatypes::Int64Type;
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use rtw_model::{Label, Options, Outcome, Params, Physical};
-use serde::{Deserialize, Serialize};
-use std::cell::{Cell, RefCell};
-use std::io::IsTerminal;
+use rtw_model::{Options, Outcome, Params, Physical};
 use std::num::NonZeroUsize;
-use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Mutex, Once};
-use std::time::{Duration, Instant};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
 
 /// Rows per chunk unless told otherwise.
-pub const DEFAULT_CHUNK_SIZE: usize = 256;
+pub(crate) const DEFAULT_CHUNK_SIZE: usize = 256;
 
 /// Most worker threads per core accepted by `--threads`: more only adds
 /// switching (10 000 threads took 98 s for 6 samples), and a huge count
 /// would start threads until the system stops it.
-pub const MAX_THREADS_PER_CORE: usize = 4;
+pub(crate) const MAX_THREADS_PER_CORE: usize = 4;
 
 /// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores.
-pub fn check_threads(threads: Option<NonZeroUsize>) -> Result<()> {
+pub(crate) fn check_threads(threads: Option<NonZeroUsize>) -> Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, NonZeroUsize::get);
     let cap = MAX_THREADS_PER_CORE * cores;
     match threads {
@@ -71,39 +71,28 @@ pub fn check_threads(threads: Option<NonZeroUsize>) -> Result<()> {
 }
 
 /// A simulator: `rtw_model::simulate` or a test double.
-pub type Simulator<'a> = &'a (dyn Fn(&Params, &Options) -> Outcome + Sync);
-
-/// How progress is shown on stderr.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ProgressMode {
-    /// A bar when stderr is a terminal, else plain lines.
-    Auto,
-    /// Plain lines every 5 s or 10 %.
-    Lines,
-    /// Nothing.
-    Quiet,
-}
+pub(crate) type Simulator<'a> = &'a (dyn Fn(&Params, &Options) -> Outcome + Sync);
 
 /// How to run a scan (the config says what to run).
 #[derive(Clone, Debug)]
-pub struct RunSettings {
-    pub out_dir: PathBuf,
+pub(crate) struct RunSettings {
+    pub(crate) out_dir: PathBuf,
     /// Worker threads (`None`: one per core).
-    pub threads: Option<NonZeroUsize>,
-    pub resume: bool,
+    pub(crate) threads: Option<NonZeroUsize>,
+    pub(crate) resume: bool,
     /// Rows per chunk; a resumed run keeps the size it was started with.
-    pub chunk_size: NonZeroUsize,
-    pub progress: ProgressMode,
+    pub(crate) chunk_size: NonZeroUsize,
+    pub(crate) progress: ProgressMode,
     /// Run only this shard's id range, into `part-K.parquet`.
-    pub shard: Option<Shard>,
+    pub(crate) shard: Option<Shard>,
     /// Write even over another scan's results (or its unfinished run) in
     /// the output directory.
-    pub force: bool,
+    pub(crate) force: bool,
 }
 
 /// How a scan ended.
 #[derive(Clone, Debug, PartialEq)]
-pub enum RunStatus {
+pub(crate) enum RunStatus {
     /// `samples` (or the shard's part file) is complete with `rows` rows;
     /// `computed` rows were simulated in this session.
     Complete {
@@ -119,49 +108,8 @@ pub enum RunStatus {
     },
 }
 
-/// What `.partial/manifest.json` records to make a resume safe.
-#[derive(Debug, PartialEq, Serialize, Deserialize)]
-struct Manifest {
-    version: String,
-    config: String,
-    chunk_size: usize,
-    rows: u64,
-    /// The shard (`K/N`) this run computes; absent for a whole scan.
-    #[serde(default)]
-    shard: Option<String>,
-}
-
-/// Where a scan (or one shard of it) writes.
-pub struct Layout {
-    /// `samples.parquet`, or `part-K.parquet` for shard K.
-    pub samples: PathBuf,
-    /// `.partial`, or `.partial-K` for shard K (shards share a directory).
-    pub partial: PathBuf,
-}
-
-impl Layout {
-    pub fn new(out_dir: &Path, shard: Option<Shard>) -> Self {
-        match shard {
-            None => Self {
-                samples: out_dir.join("samples.parquet"),
-                partial: out_dir.join(".partial"),
-            },
-            Some(s) => Self {
-                samples: out_dir.join(s.part_name()),
-                partial: out_dir.join(s.partial_name()),
-            },
-        }
-    }
-    fn manifest(&self) -> PathBuf {
-        self.partial.join("manifest.json")
-    }
-    fn chunk(&self, c: u64) -> PathBuf {
-        self.partial.join(format!("chunk-{c:05}.parquet"))
-    }
-}
-
 /// Runs (or resumes) a scan into `settings.out_dir`.
-pub fn run_scan(
+pub(crate) fn run_scan(
     cfg: &ScanConfig,
     settings: &RunSettings,
     sim: Simulator,
@@ -180,7 +128,7 @@ pub fn run_scan(
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output directory {}", out.display()))?;
     let layout = Layout::new(out, settings.shard);
-    let _lock = output::Lock::acquire(
+    let _lock = Lock::acquire(
         &layout.samples,
         &format!("writing {}", layout.samples.display()),
     )?;
@@ -188,10 +136,10 @@ pub fn run_scan(
         refuse_other_results(out, cfg, settings.shard)?;
     }
     // Temporary files of a killed run, merge or summary of this very result.
-    output::remove_stray_temps(&layout.samples)?;
+    files::remove_stray_temps(&layout.samples)?;
     if settings.shard.is_none() {
         for f in ["summary.json", "summary.md"] {
-            output::remove_stray_temps(&out.join(f))?;
+            files::remove_stray_temps(&out.join(f))?;
         }
     }
 
@@ -241,17 +189,17 @@ pub fn run_scan(
             rows,
             shard: shard_text.clone(),
         };
-        output::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
+        files::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
         settings.chunk_size.get()
     };
 
     let cs = chunk_size as u64;
     let chunks = rows.div_ceil(cs);
     let range = |c: u64| ids.start + c * cs..(ids.start + (c + 1) * cs).min(ids.end);
-    let mut metadata = output::scan_metadata(cfg);
+    let mut metadata = metadata::scan_metadata(cfg);
     if let Some(s) = &shard_text {
-        metadata.push(output::kv(META_SHARD, s.clone()));
-        metadata.push(output::kv(META_TOTAL_ROWS, total.to_string()));
+        metadata.push(metadata::kv(META_SHARD, s.clone()));
+        metadata.push(metadata::kv(META_TOTAL_ROWS, total.to_string()));
     }
 
     // Chunks already on disk (resume), with their labels for the progress
@@ -313,11 +261,11 @@ pub fn run_scan(
             break;
         };
         let mut meta = metadata.clone();
-        meta.push(output::kv(
+        meta.push(metadata::kv(
             META_CHUNK_WALL_TIME,
             started.elapsed().as_secs_f64().to_string(),
         ));
-        output::write_file(&layout.chunk(c), &output::to_batch(&chunk), meta)?;
+        parquet::write_file(&layout.chunk(c), &scan_rows::to_batch(&chunk), meta)?;
         done.insert(c);
         computed += chunk.len() as u64;
     }
@@ -350,219 +298,9 @@ pub fn run_scan(
     })
 }
 
-/// Concatenates scan files (a run's chunks, or a scan's shard parts), in
-/// order, into `dest` with `metadata` and [`META_WALL_TIME`] = the sum of the
-/// inputs' `wall_key` values. The rows are cut into row groups of
-/// `row_group_rows` regardless of where one input ends and the next begins,
-/// so the result does not depend on the chunk size or the shard count.
-/// Streams [`READ_BATCH_ROWS`] rows at a time (memory stays flat in the row
-/// count: at most one row group is buffered) and checks on the way that the
-/// `sample_id`s run through `ids` exactly once, in order; on any error `dest`
-/// is left as it was.
-pub fn concat_scan_files(
-    inputs: &[PathBuf],
-    ids: std::ops::Range<u64>,
-    dest: &Path,
-    row_group_rows: usize,
-    metadata: Vec<parquet::file::metadata::KeyValue>,
-    wall_key: &str,
-) -> Result<()> {
-    let props = output::writer_properties(&schema(), row_group_rows, metadata);
-    let mut file = ParquetFile::create(dest, schema(), props)?;
-    let mut wall = 0.0;
-    let mut next = ids.start;
-    for path in inputs {
-        let input = output::open(path, READ_BATCH_ROWS)?;
-        let first_row = next;
-        wall += input
-            .metadata
-            .get(wall_key)
-            .and_then(|v| v.parse::<f64>().ok())
-            .unwrap_or(0.0);
-        for batch in input.reader {
-            let batch = batch.with_context(|| format!("reading {}", path.display()))?;
-            let col = batch
-                .column_by_name("sample_id")
-                .and_then(|c| c.as_primitive_opt::<Int64Type>())
-                .ok_or_else(|| anyhow!("{}: no Int64 sample_id column", path.display()))?;
-            for id in col.iter() {
-                let id = id.ok_or_else(|| anyhow!("{}: null sample_id", path.display()))? as u64;
-                if id < next {
-                    bail!(
-                        "{}: sample_id {id} is already in an earlier file (or twice in this one): \
-                         the files overlap",
-                        path.display()
-                    );
-                }
-                if id > next {
-                    bail!(
-                        "{}: sample_id {id} where {next} was expected: sample_ids {next}..{} are in no file",
-                        path.display(),
-                        id - 1
-                    );
-                }
-                next += 1;
-            }
-            if next > ids.end {
-                bail!(
-                    "{}: sample_id {} is beyond the scan's last id {}",
-                    path.display(),
-                    next - 1,
-                    ids.end.saturating_sub(1)
-                );
-            }
-            output::check_scan_values(&batch, path, next - batch.num_rows() as u64 - first_row)?;
-            file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
-        }
-    }
-    if next != ids.end {
-        bail!(
-            "sample_ids {next}..{} are in no file",
-            ids.end.saturating_sub(1)
-        );
-    }
-    file.append_metadata(META_WALL_TIME, wall.to_string());
-    file.finish()
-}
-
-/// Checks a chunk file (config, row count, ids) and returns its labels.
-fn chunk_labels(path: &Path, ids: std::ops::Range<u64>, config: &str) -> Result<Vec<Label>> {
-    let input = output::open(path, ids.end.saturating_sub(ids.start) as usize)?;
-    if input.metadata.get(META_CONFIG).map(String::as_str) != Some(config) {
-        bail!("written for another config");
-    }
-    if input.rows as u64 != ids.end - ids.start {
-        bail!("{} rows, expected {}", input.rows, ids.end - ids.start);
-    }
-    let mut labels = Vec::new();
-    let mut next = ids.start;
-    for batch in input.reader {
-        let batch = batch?;
-        let col = batch
-            .column_by_name("sample_id")
-            .and_then(|c| c.as_primitive_opt::<Int64Type>())
-            .ok_or_else(|| anyhow!("no Int64 sample_id column"))?;
-        for id in col.iter() {
-            if id != Some(next as i64) {
-                bail!("sample_id {id:?} where {next} was expected");
-            }
-            next += 1;
-        }
-        output::check_scan_values(&batch, path, labels.len() as u64)?;
-        labels.extend(output::label_column(&batch)?);
-    }
-    Ok(labels)
-}
-
-/// The chunk numbers of the `chunk-NNNNN.parquet` files in `partial`.
-fn chunks_on_disk(partial: &Path) -> Result<Vec<u64>> {
-    let mut found = Vec::new();
-    for entry in
-        std::fs::read_dir(partial).with_context(|| format!("cannot read {}", partial.display()))?
-    {
-        let name = entry?.file_name();
-        let name = name.to_string_lossy();
-        if let Some(c) = name
-            .strip_prefix("chunk-")
-            .and_then(|n| n.strip_suffix(".parquet"))
-            .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
-            .and_then(|n| n.parse().ok())
-        {
-            found.push(c);
-        }
-    }
-    found.sort_unstable();
-    Ok(found)
-}
-
-/// Refuses to run into a directory that holds another scan's results: a
-/// `samples.parquet` or `part-K.parquet` of another config (hash), or, for a
-/// shard, the parts of another split of this scan.
-fn refuse_other_results(out: &Path, cfg: &ScanConfig, shard: Option<Shard>) -> Result<()> {
-    let hash = cfg.hash();
-    let ours = output::scan_label(&hash, cfg.name.as_deref(), cfg.seed);
-    let mut names: Vec<String> = std::fs::read_dir(out)
-        .with_context(|| format!("cannot read {}", out.display()))?
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n == "samples.parquet" || crate::shard::part_index(n).is_some())
-        .collect();
-    names.sort();
-    for name in names {
-        let path = out.join(&name);
-        let meta = match output::open(&path, 1) {
-            Ok(i) => i.metadata,
-            Err(e) => bail!(
-                "{} holds {name}, which is not a scan rtw-scan can read ({e:#}); this run is {ours}: \
-                 choose another --out, or pass --force to replace it",
-                out.display()
-            ),
-        };
-        if meta.get(META_CONFIG_HASH) != Some(&hash) {
-            bail!(
-                "{} holds another scan's results: {name} is {}; this run is {ours}. Choose another \
-                 --out, or pass --force to replace them",
-                out.display(),
-                output::scan_label_of(&meta)
-            );
-        }
-        let theirs = meta.get(META_SHARD).and_then(|t| t.parse::<Shard>().ok());
-        if let (Some(s), Some(t)) = (shard, theirs)
-            && s.count != t.count
-        {
-            bail!(
-                "{} holds the parts of a {}-shard split of this scan ({name} is shard {t}); this run \
-                 is shard {s}, and merge joins the parts of one split only. Use --shard K/{}, another \
-                 --out, or pass --force",
-                out.display(),
-                t.count,
-                t.count
-            );
-        }
-    }
-    Ok(())
-}
-
-fn read_manifest(path: &Path) -> Result<Manifest> {
-    let text = std::fs::read_to_string(path).with_context(|| {
-        format!(
-            "cannot read {}: delete its directory to start over",
-            path.display()
-        )
-    })?;
-    serde_json::from_str(&text).with_context(|| format!("{} is corrupt", path.display()))
-}
-
-/// Removes everything in `.partial` that is neither the manifest nor a chunk
-/// (temporary files of a killed run).
-fn remove_stray_files(partial: &Path) -> Result<()> {
-    for entry in std::fs::read_dir(partial)? {
-        let entry = entry?;
-        let name = entry.file_name();
-        let name = name.to_string_lossy();
-        let keep =
-            name == "manifest.json" || (name.starts_with("chunk-") && name.ends_with(".parquet"));
-        if !keep {
-            std::fs::remove_file(entry.path())
-                .with_context(|| format!("cannot remove {}", entry.path().display()))?;
-        }
-    }
-    Ok(())
-}
-
-/// Does `samples` exist, complete, for this very config (and shard)?
-fn is_complete(samples: &Path, config: &str, shard: Option<&str>) -> bool {
-    output::open(samples, 1)
-        .map(|i| {
-            i.metadata.get(META_CONFIG).map(String::as_str) == Some(config)
-                && i.metadata.get(META_SHARD).map(String::as_str) == shard
-        })
-        .unwrap_or(false)
-}
-
 /// Runs one sample: derived parameters, the simulation (panics caught) and
 /// its wall time. Used by scans and by `rtw-scan simulate`.
-pub fn run_one(
+pub(crate) fn run_one(
     sample_id: u64,
     params: Params,
     options: &Options,
@@ -587,202 +325,18 @@ pub fn run_one(
     }
 }
 
-thread_local! {
-    static CAPTURING: Cell<bool> = const { Cell::new(false) };
-    static CAUGHT: RefCell<Option<String>> = const { RefCell::new(None) };
-}
-
-fn payload_text(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = payload.downcast_ref::<&str>() {
-        s.to_string()
-    } else if let Some(s) = payload.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "non-string panic payload".into()
-    }
-}
-
-/// Runs `f`, turning a panic into `Err("panicked at FILE:LINE:COL: MESSAGE")`
-/// without printing it (other threads' panics still print as usual).
-pub fn catch_panic<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    static HOOK: Once = Once::new();
-    HOOK.call_once(|| {
-        let default = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            if CAPTURING.get() {
-                let at = info
-                    .location()
-                    .map(|l| format!(" at {}:{}:{}", l.file(), l.line(), l.column()))
-                    .unwrap_or_default();
-                CAUGHT.set(Some(format!(
-                    "panicked{at}: {}",
-                    payload_text(info.payload())
-                )));
-            } else {
-                default(info);
-            }
-        }));
-    });
-    let was = CAPTURING.replace(true);
-    let result = catch_unwind(AssertUnwindSafe(f));
-    CAPTURING.set(was);
-    result.map_err(|payload| {
-        CAUGHT
-            .take()
-            .unwrap_or_else(|| format!("panicked: {}", payload_text(&*payload)))
-    })
-}
-
-/// Progress on stderr: a bar on a terminal, plain lines otherwise.
-struct Progress {
-    bar: Option<ProgressBar>,
-    lines: Option<Mutex<LineState>>,
-    counts: [AtomicU64; 6],
-    done: AtomicU64,
-    previous: AtomicU64,
-    total: u64,
-    started: Instant,
-}
-
-struct LineState {
-    last: Instant,
-    decile: u64,
-    /// `done` at the last line printed.
-    printed: u64,
-}
-
-impl Progress {
-    const EVERY: Duration = Duration::from_secs(5);
-
-    fn new(total: u64, mode: ProgressMode) -> Self {
-        let terminal = std::io::stderr().is_terminal();
-        let bar = (mode == ProgressMode::Auto && terminal).then(|| {
-            let bar = ProgressBar::new(total);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "{elapsed_precise} [{wide_bar}] {pos}/{len} {per_sec} ETA {eta}\n{msg}",
-                )
-                .expect("valid template")
-                .progress_chars("=> "),
-            );
-            bar.enable_steady_tick(Duration::from_millis(200));
-            bar
-        });
-        let lines = (mode == ProgressMode::Lines || (mode == ProgressMode::Auto && !terminal))
-            .then(|| {
-                Mutex::new(LineState {
-                    last: Instant::now(),
-                    decile: 0,
-                    printed: 0,
-                })
-            });
-        Self {
-            bar,
-            lines,
-            counts: Default::default(),
-            done: AtomicU64::new(0),
-            previous: AtomicU64::new(0),
-            total,
-            started: Instant::now(),
-        }
-    }
-
-    fn count(&self, label: Label) {
-        let i = output::label_index(label);
-        self.counts[i].fetch_add(1, Ordering::Relaxed);
-        self.done.fetch_add(1, Ordering::Relaxed);
-    }
-
-    /// A row found on disk (resume).
-    fn record_previous(&self, label: Label) {
-        self.count(label);
-        self.previous.fetch_add(1, Ordering::Relaxed);
-        if let Some(bar) = &self.bar {
-            bar.inc(1);
-            bar.reset_eta();
-        }
-    }
-
-    /// A row just computed.
-    fn record(&self, label: Label) {
-        self.count(label);
-        if let Some(bar) = &self.bar {
-            bar.inc(1);
-            bar.set_message(self.counts_text());
-        }
-        if let Some(lines) = &self.lines {
-            let mut st = lines.lock().expect("progress lock");
-            let done = self.done.load(Ordering::Relaxed);
-            let decile = done * 10 / self.total.max(1);
-            if st.last.elapsed() >= Self::EVERY || decile > st.decile {
-                st.last = Instant::now();
-                st.decile = decile;
-                st.printed = done;
-                eprintln!("{}", self.line());
-            }
-        }
-    }
-
-    fn counts_text(&self) -> String {
-        Label::ALL
-            .iter()
-            .zip(&self.counts)
-            .map(|(l, c)| format!("{l} {}", c.load(Ordering::Relaxed)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
-
-    fn line(&self) -> String {
-        let done = self.done.load(Ordering::Relaxed);
-        let new = done - self.previous.load(Ordering::Relaxed);
-        let secs = self.started.elapsed().as_secs_f64();
-        let rate = new as f64 / secs.max(1e-9);
-        let eta = if rate > 0.0 {
-            format!("{:.0} s", (self.total - done) as f64 / rate)
-        } else {
-            "?".into()
-        };
-        format!(
-            "[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2} samples/s, ETA {eta} | {}",
-            self.total,
-            100.0 * done as f64 / self.total.max(1) as f64,
-            self.counts_text()
-        )
-    }
-
-    fn println(&self, msg: &str) {
-        match &self.bar {
-            Some(bar) => bar.println(msg),
-            None if self.lines.is_some() => eprintln!("{msg}"),
-            None => {}
-        }
-    }
-
-    fn finish(&self, complete: bool) {
-        if let Some(bar) = &self.bar {
-            bar.set_message(self.counts_text());
-            if complete {
-                bar.finish()
-            } else {
-                bar.abandon()
-            }
-        }
-        if let Some(lines) = &self.lines {
-            let st = lines.lock().expect("progress lock");
-            if st.printed != self.done.load(Ordering::Relaxed) {
-                eprintln!("{}", self.line());
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::config::parse;
     use crate::fake;
-    use arrow::array::Array;
+    use crate::io::scan_rows::schema;
+    use arrow::array::{Array, AsArray, RecordBatch};
+    use rtw_model::Label;
     use rtw_model::outcome::FailureDetail;
+    use std::path::Path;
+    use std::sync::atomic::AtomicU64;
+    use std::time::Duration;
 
     const CFG: &str = r#"
 seed = 11
@@ -816,7 +370,7 @@ t_max = 2.0
 
     /// Every row of a samples file with wall time zeroed.
     fn rows_without_wall_time(path: &Path) -> RecordBatch {
-        let input = output::open(path, 1 << 20).unwrap();
+        let input = parquet::open(path, 1 << 20).unwrap();
         let batches: Vec<RecordBatch> = input.reader.map(|b| b.unwrap()).collect();
         let b = arrow::compute::concat_batches(&schema(), &batches).unwrap();
         let i = b.schema().index_of("wall_time_s").unwrap();
@@ -860,7 +414,7 @@ t_max = 2.0
     fn row_groups(path: &Path) -> Vec<i64> {
         let f = std::fs::File::open(path).unwrap();
         let meta =
-            parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(f).unwrap();
+            ::parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(f).unwrap();
         meta.metadata()
             .row_groups()
             .iter()
@@ -888,7 +442,7 @@ t_max = 2.0
             s.shard = Some(Shard { index, count: 3 });
             run_scan(&cfg, &s, &fake_sim, &stop).unwrap();
         }
-        crate::shard::merge_parts(c.path(), false).unwrap();
+        crate::scan::shard::merge_parts(c.path(), false).unwrap();
         let cap = MAX_ROW_GROUP_ROWS as i64;
         for dir in [&a, &b, &c] {
             assert_eq!(
@@ -913,8 +467,8 @@ t_max = 2.0
         let stop = AtomicBool::new(false);
         run_scan(&cfg, &settings(dir.path(), 2, 16), &fake_sim, &stop).unwrap();
         let b = rows_without_wall_time(&dir.path().join("samples.parquet"));
-        let labels = output::label_column(&b).unwrap();
-        let rho = output::f64_column(&b, "rho").unwrap();
+        let labels = crate::io::scan_files::label_column(&b).unwrap();
+        let rho = crate::io::scan_files::f64_column(&b, "rho").unwrap();
         let msg = b.column_by_name("message").unwrap().as_string::<i32>();
         let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
         let mut panicked = 0;
@@ -1002,16 +556,5 @@ t_max = 2.0
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
         );
-    }
-
-    #[test]
-    fn catch_panic_reports_message_and_location() {
-        let e = catch_panic(|| -> u8 { panic!("kaboom {}", 7) }).unwrap_err();
-        assert!(
-            e.starts_with("panicked at ") && e.ends_with("kaboom 7"),
-            "{e}"
-        );
-        assert!(e.contains("run.rs"), "{e}");
-        assert_eq!(catch_panic(|| 5), Ok(5));
     }
 }

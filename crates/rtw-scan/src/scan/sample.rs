@@ -1,16 +1,18 @@
 //! Sample `i` of a scan → its [`Params`], reproducibly.
 //!
 //! Rows are numbered `sample_id = grid_point × samples + draw`. The grid
-//! point is the mixed-radix index over the grid axes in [`PARAM_KEYS`] order
+//! point is the mixed-radix index over the grid axes in [`Input::ALL`] order
 //! (the last grid axis varies fastest). The uniform axes of sample `i` come
 //! from ChaCha8 seeded with the scan's seed on stream `i`: one `u ∈ [0, 1)`
 //! is drawn for each of the six parameters in order (whether it is uniform or
 //! not), so a value depends only on (seed, i, its own range). Any subset,
 //! shard, resume or thread count reproduces the same rows.
 //!
-//! [`PARAM_KEYS`]: crate::config::PARAM_KEYS
+//! [`Input::ALL`]: crate::config::params::Input::ALL
 
-use crate::config::{Axis, ScanConfig, linspace_point, param_mut};
+use crate::config::ScanConfig;
+use crate::config::axis::{Axis, linspace_point};
+use crate::config::params::Input;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::Params;
@@ -71,7 +73,7 @@ impl Sampler {
         let mut grid = id / self.samples;
         let mut p = rtw_model::Params::fig7a();
         for (i, source) in self.sources.iter().enumerate().rev() {
-            *param_mut(&mut p, i) = match source {
+            let v = match source {
                 Source::Fixed(v) => *v,
                 Source::Uniform(lo, hi) => (lo + u[i] * (hi - lo)).clamp(*lo, *hi),
                 Source::Grid(points) => {
@@ -86,6 +88,7 @@ impl Sampler {
                     v
                 }
             };
+            Input::ALL[i].set(&mut p, v);
         }
         p
     }

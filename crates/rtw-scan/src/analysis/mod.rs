@@ -1,0 +1,14 @@
+//! What a finished scan says: outcome shares and their intervals, and the
+//! failures clustered.
+//!
+//! | module | role |
+//! |---|---|
+//! | [`kmeans`] | k-means++ with restarts, silhouette |
+//! | [`clusters`] | (a bounded sample of) the failures clustered, named by kind, counted exactly |
+//! | [`assignments`] | `cluster --assignments` files: each failure and its cluster |
+//! | [`report`] | shares with Wilson intervals, paper numbers, `summary.json`/`summary.md` |
+
+pub(crate) mod assignments;
+pub(crate) mod clusters;
+pub(crate) mod kmeans;
+pub(crate) mod report;

@@ -1,0 +1,139 @@
+//! `bifurcation`: one parameter swept with continuation on the step map.
+
+use crate::bifurcation::files::{check_outputs, summary_path, write};
+use crate::bifurcation::summary::{period_str, summary_markdown};
+use crate::bifurcation::sweep::{Sweep, run_sweep};
+use crate::config::layers::simulation_options;
+use crate::config::params::SweepParam;
+use crate::io::files::write_atomic;
+use anyhow::Result;
+use clap::Args;
+use rtw_model::Params;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub(super) struct BifurcationArgs {
+    /// The swept parameter: length, rho, alpha, fn, zeta, phi or s (strings.rest_length_ratio).
+    #[arg(long, default_value = "phi")]
+    param: String,
+    /// First value of the sweep.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02)]
+    from: f64,
+    /// Last value of the sweep (from > to sweeps downwards).
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35)]
+    to: f64,
+    /// Number of values, from and to included.
+    #[arg(long, default_value_t = 121)]
+    points: usize,
+    /// Base point: rod length L [m] (default: Fig. 7(a)).
+    #[arg(long)]
+    length: Option<f64>,
+    /// Base point: mass per length ρ [kg/m].
+    #[arg(long)]
+    rho: Option<f64>,
+    /// Base point: connection ratio α.
+    #[arg(long)]
+    alpha: Option<f64>,
+    /// Base point: eigen-frequency f_n [Hz].
+    #[arg(long = "fn", value_name = "FN")]
+    f_n: Option<f64>,
+    /// Base point: damping ratio ζ.
+    #[arg(long)]
+    zeta: Option<f64>,
+    /// Base point: slope φ [rad].
+    #[arg(long, allow_negative_numbers = true)]
+    phi: Option<f64>,
+    /// Take the [simulation] options of this config file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Layer a model variant file (configs/variants/*.toml) over them.
+    #[arg(long, value_name = "FILE")]
+    variant: Option<PathBuf>,
+    /// Override one simulation option (repeatable), e.g. strings.rest_length_ratio=0.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Steps iterated at each value before recording.
+    #[arg(long, default_value_t = 200)]
+    transient: usize,
+    /// Steps recorded at each value (periods up to record/2, at most 12, are detected).
+    #[arg(long, default_value_t = 48)]
+    record: usize,
+    /// Per-value output (FILE.steps.parquet and FILE.md are written beside it) [default: runs/bifurcation/PARAM.parquet].
+    #[arg(long, value_name = "FILE.parquet")]
+    out: Option<PathBuf>,
+    /// Write even over files that are not this sweep's kind.
+    #[arg(long)]
+    force: bool,
+    /// Print no per-value progress.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub(super) fn cmd_bifurcation(a: BifurcationArgs) -> Result<ExitCode> {
+    let d = Params::fig7a();
+    let base = Params {
+        length: a.length.unwrap_or(d.length),
+        rho: a.rho.unwrap_or(d.rho),
+        alpha: a.alpha.unwrap_or(d.alpha),
+        f_n: a.f_n.unwrap_or(d.f_n),
+        zeta: a.zeta.unwrap_or(d.zeta),
+        phi: a.phi.unwrap_or(d.phi),
+    };
+    let options = simulation_options(a.config.as_deref(), a.variant.as_deref(), &a.set)?;
+    let param = SweepParam::parse(&a.param)?;
+    let sweep = Sweep::new(
+        param,
+        a.from,
+        a.to,
+        a.points,
+        base,
+        options,
+        a.transient,
+        a.record,
+    )?;
+    let out = a
+        .out
+        .unwrap_or_else(|| Path::new("runs/bifurcation").join(format!("{}.parquet", param.name())));
+    check_outputs(&out, a.force)?;
+    sweep_and_write(&sweep, &out, a.quiet)
+}
+
+/// Runs the checked sweep (progress on stderr), writes both Parquet files
+/// and the summary (`FILE.md`), and prints the summary.
+fn sweep_and_write(sweep: &Sweep, out: &Path, quiet: bool) -> Result<ExitCode> {
+    let t0 = Instant::now();
+    let n = sweep.values.len();
+    let (points, steps) = run_sweep(sweep, |i, r| {
+        if quiet {
+            return;
+        }
+        eprintln!(
+            "rtw-scan: {} = {:.5} ({}/{n}): {} period {} max|mu| {}{} [{:.2} s]",
+            sweep.param.name(),
+            r.value,
+            i + 1,
+            r.label.as_str(),
+            period_str(r.period),
+            r.floquet_max.map_or("-".into(), |m| format!("{m:.4}")),
+            if r.restarted { " (restarted)" } else { "" },
+            r.wall_time_s,
+        );
+    });
+    let wall = t0.elapsed().as_secs_f64();
+    let sp = write(out, sweep, &points, &steps, wall)?;
+    let md = summary_markdown(sweep, &points, wall);
+    write_atomic(&summary_path(out), md.as_bytes())?;
+    if !quiet {
+        eprintln!(
+            "rtw-scan: {} values in {}, {} recorded steps in {}",
+            points.len(),
+            out.display(),
+            steps.len(),
+            sp.display()
+        );
+    }
+    print!("{md}");
+    Ok(ExitCode::SUCCESS)
+}

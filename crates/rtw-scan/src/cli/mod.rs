@@ -1,0 +1,175 @@
+//! The command line, a thin layer: clap arguments → validated settings →
+//! calls into config, scan, io, analysis and bifurcation. One file per
+//! subcommand family; this one holds the command tree, the exit codes and
+//! the signal handling.
+
+mod analysis;
+mod bifurcation;
+mod run;
+mod simulate;
+
+use crate::io::files;
+use analysis::{ClusterArgs, SummaryArgs};
+use anyhow::{Context, Result};
+use bifurcation::BifurcationArgs;
+use clap::{Parser, Subcommand};
+use run::{MergeArgs, RunArgs};
+use simulate::SimulateArgs;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Exit code of a command stopped by SIGINT (Ctrl-C), SIGTERM (what Slurm
+/// and `kill` send) or SIGHUP (a closed terminal): 128 + SIGINT, for all three.
+pub(super) const EXIT_INTERRUPTED: u8 = 130;
+
+/// The exit codes every command documents in its `--help`.
+const EXIT_CODES: &str = "Exit status:\n  \
+    0    success\n  \
+    1    error: bad input (named with its valid range), a refusal to overwrite (see --force), a corrupt \
+or unreadable file, an I/O failure\n  \
+    2    bad command line (unknown flag, missing argument)\n  \
+    130  interrupted by SIGINT (Ctrl-C), SIGTERM or SIGHUP; a scan keeps its finished chunks (finish it \
+with --resume), any other command leaves no partial file";
+
+/// The exit codes of `simulate`, which also fails when the run does not finish.
+const EXIT_CODES_SIMULATE: &str = "Exit status:\n  \
+    0    the simulation finished (whatever its outcome label)\n  \
+    1    error: bad input, a refusal to overwrite (see --force), an oversized trace (see --trace-limit), \
+or a simulation that did not finish (a `diverged` run: numerical failure or panic)\n  \
+    2    bad command line\n  \
+    130  interrupted by SIGINT, SIGTERM or SIGHUP (no partial trace is left)";
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "rtw-scan",
+    version,
+    about = "Seeded, parallel parameter scans of the RTW model, streamed to Parquet, with failure clustering.",
+    long_about = "Seeded, parallel parameter scans of the rimless wheel-like tensegrity (RTW) model, streamed to \
+                  Parquet, with outcome statistics and k-means clustering of the failures.\n\n\
+                  A scan's rows depend only on (seed, sample_id): any thread count, an interrupted and resumed \
+                  run, or a subset gives the same rows."
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scan from a TOML config: writes DIR/samples.parquet, DIR/summary.json, DIR/summary.md.
+    #[command(long_about = "Run a scan from a TOML config.\n\n\
+        Writes DIR/samples.parquet (one row per sample: inputs, derived parameters, outcome, every metric, \
+        integrator work, wall time), DIR/summary.json and DIR/summary.md, and prints the summary. Finished chunks \
+        are kept in DIR/.partial while the run goes on, so an interrupted run (Ctrl-C, kill) loses at most the \
+        chunk in progress: finish it with --resume. A sample that panics or fails numerically becomes a \
+        `diverged` row; the scan goes on.\n\n\
+        Config keys: seed, samples, name (optional); [params] length, rho, alpha, fn, zeta, phi, each a number, \
+        { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
+        grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
+        every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...).\n\n\
+        A run refuses to write into a directory holding another scan's results (another config hash, or \
+        another --shard split) unless --force, and one process at a time writes a result (a lock file names \
+        it). SIGINT, SIGTERM and SIGHUP stop it like Ctrl-C: the samples in flight finish, the finished chunks \
+        are kept, exit status 130; a second signal quits at once. Progress goes to stderr, the summary to stdout.",
+        after_help = EXIT_CODES)]
+    Run(RunArgs),
+    /// Merge the shards of a scan (DIR/part-K.parquet from `run --shard K/N`) into DIR/samples.parquet and its summary.
+    #[command(
+        long_about = "Merge the shards of a scan into DIR/samples.parquet, DIR/summary.json and DIR/summary.md.\n\n\
+        The parts DIR/part-K.parquet written by `rtw-scan run CONFIG --shard K/N --out DIR` must all come from one \
+        config (same config hash) and one rtw-scan version, with the same N, every shard 0..N-1 present and their \
+        sample_ids exactly 0..n-1 once each; otherwise merge refuses, naming what is missing or mismatched, and \
+        writes nothing. The merged rows are the rows of a single-machine run of the config. The parts are kept \
+        (polars.scan_parquet(\"DIR/part-*.parquet\") reads them directly). A corrupt part (its rows do not \
+        match their content hash) is refused, and so is a DIR/samples.parquet of another scan unless --force.",
+        after_help = EXIT_CODES
+    )]
+    Merge(MergeArgs),
+    /// Simulate one RTW and print its outcome and every metric.
+    #[command(
+        long_about = "Simulate one RTW and print its outcome and every metric.\n\n\
+        The simulation options come from the [simulation] table of --config (default: the adopted model, docs/model.md §9) and \
+        then the --set overrides, e.g. --set initial.omega=-3 --set contact.mu=0.8 --set strings.slack=true \
+        --set method=dop853. Values are read as TOML values (inf, true, \"text\"); a value that is not one is taken \
+        as a string.",
+        after_help = EXIT_CODES_SIMULATE
+    )]
+    Simulate(SimulateArgs),
+    /// Sweep one parameter with continuation on the step map: recorded steps, period, Floquet multipliers.
+    #[command(
+        long_about = "Sweep one parameter with continuation on the step map (a bifurcation diagram).\n\n\
+        At each value, in order, the map starts from the previous value's last section point (the first value, \
+        and a value where that fails, from the initial state: column `restarted`), runs --transient steps, records \
+        --record steps (post-impact angular velocity of the new stance rod, step time), detects the period, and \
+        solves a periodic gait by Newton for its Floquet multipliers (DOP853, rtol 1e-11). Writes FILE.parquet \
+        (one row per value) and FILE.steps.parquet (one row per recorded step), and prints a summary. The base \
+        point is Fig. 7(a); the simulation options are taken as by `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Bifurcation(BifurcationArgs),
+    /// Cluster the failed samples of a finished scan (k-means on standardized α, f_n, φ).
+    #[command(after_help = EXIT_CODES)]
+    Cluster(ClusterArgs),
+    /// Recompute a finished scan's summary: prints it and rewrites summary.json and summary.md beside the file.
+    #[command(after_help = EXIT_CODES)]
+    Summary(SummaryArgs),
+}
+
+/// Parses the command line, runs it, and turns errors into a message and
+/// exit code 1.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Err(e) = install_signal_handler() {
+        eprintln!("error: {e:#}");
+        return ExitCode::FAILURE;
+    }
+    let result = match cli.command {
+        Command::Run(a) => run::cmd_run(a),
+        Command::Merge(a) => run::cmd_merge(a),
+        Command::Simulate(a) => simulate::cmd_simulate(a),
+        Command::Bifurcation(a) => bifurcation::cmd_bifurcation(a),
+        Command::Cluster(a) => analysis::cmd_cluster(a),
+        Command::Summary(a) => analysis::cmd_summary(a),
+    };
+    result.unwrap_or_else(|e| {
+        eprintln!("error: {e:#}");
+        ExitCode::FAILURE
+    })
+}
+
+/// Set by the first signal of a `run`, which then stops after the samples
+/// in flight.
+pub(super) static STOP: AtomicBool = AtomicBool::new(false);
+/// Whether the command in progress stops gracefully on a first signal
+/// (`run`); every other command removes its temporary files and exits.
+pub(super) static GRACEFUL: AtomicBool = AtomicBool::new(false);
+
+/// SIGINT, SIGTERM and SIGHUP (ctrlc's `termination` feature) all end a
+/// command the same way, with [`EXIT_INTERRUPTED`].
+fn install_signal_handler() -> Result<()> {
+    ctrlc::set_handler(|| {
+        if GRACEFUL.load(Ordering::SeqCst) {
+            if !STOP.swap(true, Ordering::SeqCst) {
+                eprintln!(
+                    "rtw-scan: interrupted: finishing the samples in flight (interrupt again to quit at once)"
+                );
+                return;
+            }
+            eprintln!("rtw-scan: second interrupt, exiting now");
+        }
+        files::remove_live_files();
+        std::process::exit(EXIT_INTERRUPTED.into());
+    })
+    .context("cannot install the signal handler")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn cli_is_well_formed() {
+        Cli::command().debug_assert();
+    }
+}

@@ -1,0 +1,171 @@
+//! `simulate`: one run, its row printed, its trace written.
+
+use crate::config::layers::simulation_options;
+use crate::io::metadata::{FileKind, META_OPTIONS, META_PARAMS, META_VERSION, kv};
+use crate::io::scan_rows::{self, JsonRow};
+use crate::io::trace::{self, TraceWriter};
+use crate::io::{destination, files};
+use crate::scan::run::run_one;
+use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
+use rtw_model::{Options, Outcome, Params};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Args, Debug)]
+pub(super) struct SimulateArgs {
+    /// Rod length L [m].
+    #[arg(long)]
+    length: f64,
+    /// Mass per length ρ [kg/m].
+    #[arg(long)]
+    rho: f64,
+    /// Connection ratio α, in [0, 0.5).
+    #[arg(long)]
+    alpha: f64,
+    /// Eigen-frequency f_n [Hz].
+    #[arg(long = "fn", value_name = "FN")]
+    f_n: f64,
+    /// Damping ratio ζ.
+    #[arg(long)]
+    zeta: f64,
+    /// Slope φ [rad].
+    #[arg(long, allow_negative_numbers = true)]
+    phi: f64,
+    /// Take the [simulation] options of this config file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Override one simulation option (repeatable), e.g. contact.mu=0.8.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Print one JSON object: `outcome` (the label) and every metric, flattened, with the derived parameters.
+    #[arg(long)]
+    json: bool,
+    /// Write the time series (one row per trace sample) to this Parquet file.
+    #[arg(long, value_name = "FILE.parquet")]
+    trace: Option<PathBuf>,
+    /// Refuse a trace whose size before compression (samples × bytes per sample, estimated from
+    /// t_max / trace_dt, or max_steps when trace_dt = 0) exceeds this, e.g. 500MB, 10GB.
+    #[arg(long, value_name = "SIZE", default_value = "2GB", value_parser = trace::parse_size)]
+    trace_limit: u64,
+    /// Write the trace even over a file that is not a trace.
+    #[arg(long)]
+    force: bool,
+    /// Testing only: use the fake simulator.
+    #[cfg(feature = "fake-sim")]
+    #[arg(long, hide = true)]
+    fake_sim: bool,
+}
+
+/// The simulation options of `simulate`: the config's [simulation] table, then `--set`.
+fn simulate_options(config_file: Option<&Path>, sets: &[String]) -> Result<Options> {
+    simulation_options(config_file, None, sets)
+}
+
+pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
+    let params = Params::new(a.length, a.rho, a.alpha, a.f_n, a.zeta, a.phi)
+        .map_err(|e| anyhow!("--{}: {} is invalid: must be {}", e.field, e.value, e.range))?;
+    let options = simulate_options(a.config.as_deref(), &a.set)?;
+    let mut trace = match &a.trace {
+        Some(path) => {
+            destination::check_destination(path, FileKind::Trace, &[], "--trace", a.force)?;
+            let rows = trace::trace_rows_bound(&options);
+            let bytes = rows as f64 * trace::trace_row_bytes() as f64;
+            if bytes > a.trace_limit as f64 {
+                bail!(
+                    "--trace {}: about {} ({rows} samples × {} bytes: t_max {} s / trace_dt {} s{}) is more \
+                     than --trace-limit {}: raise trace_dt (--set trace_dt=...), lower t_max, or raise --trace-limit",
+                    path.display(),
+                    trace::human_bytes(bytes),
+                    trace::trace_row_bytes(),
+                    options.t_max,
+                    options.trace_dt,
+                    if options.trace_dt > 0.0 {
+                        String::new()
+                    } else {
+                        format!(
+                            ", i.e. one per step, up to max_steps = {}",
+                            options.max_steps
+                        )
+                    },
+                    trace::human_bytes(a.trace_limit as f64)
+                );
+            }
+            files::remove_stray_temps(path)?;
+            let meta = vec![
+                kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+                kv(META_PARAMS, serde_json::to_string(&params)?),
+                kv(META_OPTIONS, toml::to_string(&options)?),
+            ];
+            Some(
+                TraceWriter::create(path, meta, a.trace_limit)
+                    .with_context(|| format!("trace {}", path.display()))?,
+            )
+        }
+        None => None,
+    };
+    let mut trace_error = None;
+    let row = run_one(0, params, &options, |p: &Params, o: &Options| -> Outcome {
+        #[cfg(feature = "fake-sim")]
+        if a.fake_sim {
+            return crate::fake::simulate(p, o, std::time::Duration::ZERO);
+        }
+        match trace.as_mut() {
+            Some(w) => rtw_model::simulate_traced(p, o, &mut |s| {
+                if trace_error.is_none() {
+                    trace_error = w.push(s).err();
+                }
+            }),
+            None => rtw_model::simulate(p, o),
+        }
+    });
+    if let Some(e) = trace_error {
+        return Err(e.context("writing the trace"));
+    }
+    if let (Some(w), Some(path)) = (trace, &a.trace) {
+        let n = w.finish()?;
+        eprintln!(
+            "rtw-scan: trace of {n} samples written to {}",
+            path.display()
+        );
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&JsonRow(&row))?);
+    } else {
+        print!("{}", scan_rows::to_text(&row));
+    }
+    match &row.message {
+        Some(m) => {
+            eprintln!("error: the simulation did not finish: {m}");
+            Ok(ExitCode::FAILURE)
+        }
+        None => Ok(ExitCode::SUCCESS),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn simulate_options_layer_config_and_sets() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("c.toml");
+        std::fs::write(
+            &f,
+            "seed = 1\n[simulation]\nt_max = 5.0\ncontact.mu = 0.5\n",
+        )
+        .unwrap();
+        let o = simulate_options(
+            Some(&f),
+            &["contact.mu=0.8".into(), "initial.omega=-3".into()],
+        )
+        .unwrap();
+        assert_eq!((o.t_max, o.contact.mu, o.initial.omega), (5.0, 0.8, -3.0));
+        let e = simulate_options(None, &["contact.mu=2".into()]).unwrap_err();
+        assert!(
+            format!("{e:#}").contains("simulation.contact.mu: 2 is invalid"),
+            "{e:#}"
+        );
+    }
+}

@@ -1,0 +1,248 @@
+//! The layers of a config, from low level to high: TOML text → tables; a
+//! variant file's `[simulation]` keys over the config's; the `--set
+//! KEY=VALUE` overrides over both; then [`super::parse`] validates the
+//! result. Every error names the file and the key path.
+
+use super::raw::{from_value, parse_table, read_text};
+use super::{ScanConfig, options_from_table, parse_value};
+use anyhow::{Context, Result, anyhow, bail};
+use rtw_model::Options;
+use serde::Deserialize;
+use std::path::Path;
+
+/// A model variant file (`configs/variants/*.toml`): a name, what it tests,
+/// and the `[simulation]` keys it changes. Layered over a scan config by
+/// `rtw-scan run CONFIG --variant FILE`, so one parameter box is scanned
+/// under every variant without copying its `[params]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawVariant {
+    name: String,
+    #[serde(default)]
+    #[allow(dead_code)] // documentation for the reader of the file
+    description: String,
+    #[serde(default)]
+    simulation: toml::Table,
+}
+
+/// Loads a scan config, layers a variant file's `[simulation]` keys over its
+/// own (the variant wins; the scan is then named `NAME+VARIANT`), then the
+/// `--set KEY=VALUE` overrides, and validates the result. Errors name the
+/// file and the key.
+pub(crate) fn load_layered(
+    path: &Path,
+    variant: Option<&Path>,
+    sets: &[String],
+) -> Result<ScanConfig> {
+    let (mut table, mut simulation) = read_split(path)?;
+    let suffix = layer_variant_and_sets(&mut simulation, variant, sets)?;
+    table.insert("simulation".into(), simulation.into());
+    if let Some(suffix) = suffix {
+        let base = match table.get("name") {
+            Some(toml::Value::String(n)) => n.clone(),
+            _ => path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        };
+        table.insert("name".into(), format!("{base}+{suffix}").into());
+    }
+    let what = if variant.is_some() || !sets.is_empty() {
+        "config (with variant and --set)"
+    } else {
+        "config"
+    };
+    parse_value(table).with_context(|| format!("{what} {}", path.display()))
+}
+
+/// Layers a variant file's `[simulation]` keys (the variant wins), then the
+/// `--set KEY=VALUE` overrides, over the `[simulation]` table `simulation`;
+/// returns the variant's name. Errors name the file and the key.
+fn layer_variant_and_sets(
+    simulation: &mut toml::Table,
+    variant: Option<&Path>,
+    sets: &[String],
+) -> Result<Option<String>> {
+    let mut name = None;
+    if let Some(vpath) = variant {
+        let vt = parse_table(&read_text(vpath, "variant")?)
+            .with_context(|| format!("variant {}", vpath.display()))?;
+        let v: RawVariant = from_value(toml::Value::Table(vt), "")
+            .with_context(|| format!("variant {}", vpath.display()))?;
+        merge_tables(simulation, v.simulation);
+        name = Some(v.name);
+    }
+    for s in sets {
+        apply_set(simulation, s)?;
+    }
+    Ok(name)
+}
+
+/// The simulation options of a single model (`simulate`, `bifurcation`):
+/// the `[simulation]` table of `config_file` (default: the adopted model, docs/model.md §9),
+/// then a variant file, then the `--set` overrides, validated.
+pub(crate) fn simulation_options(
+    config_file: Option<&Path>,
+    variant: Option<&Path>,
+    sets: &[String],
+) -> Result<Options> {
+    let mut table = match config_file {
+        Some(path) => read_split(path)?.1,
+        None => toml::Table::new(),
+    };
+    layer_variant_and_sets(&mut table, variant, sets)?;
+    options_from_table(table, "simulation")
+}
+
+/// Reads a config file into its top-level table and, taken out of it, its
+/// `[simulation]` table (empty when absent). Errors name the file.
+pub(crate) fn read_split(path: &Path) -> Result<(toml::Table, toml::Table)> {
+    let mut table = parse_table(&read_text(path, "config")?)
+        .with_context(|| format!("config {}", path.display()))?;
+    let simulation = match table.remove("simulation") {
+        None => toml::Table::new(),
+        Some(toml::Value::Table(s)) => s,
+        Some(_) => bail!("config {}: `simulation` is not a table", path.display()),
+    };
+    Ok((table, simulation))
+}
+
+/// Deep-merges `over` into `base`: nested tables merge key by key, any other
+/// value replaces the one in `base`.
+fn merge_tables(base: &mut toml::Table, over: toml::Table) {
+    for (k, v) in over {
+        match (base.get_mut(&k), v) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge_tables(b, o),
+            (_, v) => {
+                base.insert(k, v);
+            }
+        }
+    }
+}
+
+/// Applies `KEY=VALUE` overrides to a table. `KEY` is a dotted path
+/// (`contact.mu`); `VALUE` is read as a TOML value (`true`, `inf`, `-3`,
+/// `"dop853"`), or taken as a bare string when it is not one (`dop853`).
+pub(crate) fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
+    let (key, value) = assignment
+        .split_once('=')
+        .ok_or_else(|| anyhow!("--set {assignment:?}: expected KEY=VALUE"))?;
+    let (key, value) = (key.trim(), value.trim());
+    if value.contains(['\n', '\r']) {
+        bail!(
+            "--set {key}: the value contains a newline: give one KEY=VALUE per --set (repeat --set for more)"
+        );
+    }
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        bail!("--set {assignment:?}: empty key segment in {key:?}");
+    }
+    let parsed = format!("v = {value}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::String(value.to_string()));
+    let (last, path) = parts.split_last().expect("split yields at least one part");
+    let mut t = table;
+    for (depth, part) in path.iter().enumerate() {
+        let entry = t
+            .entry(part.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        t = entry.as_table_mut().ok_or_else(|| {
+            anyhow!(
+                "--set {key}: `{}` is not a table",
+                parts[..=depth].join(".")
+            )
+        })?;
+    }
+    t.insert(last.to_string(), parsed);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::load;
+    use crate::config::tests::BASE;
+    use rtw_model::Method;
+    use rtw_model::Normalization;
+
+    #[test]
+    fn variant_and_sets_layer_over_the_config() {
+        let dir = tempfile::tempdir().unwrap();
+        let cfg = dir.path().join("base.toml");
+        let text = format!(
+            "name = \"box\"\n{BASE}\n[simulation]\nt_max = 5.0\nstrings.slack = true\ncontact.mu = 0.5\n"
+        );
+        std::fs::write(&cfg, text).unwrap();
+        let var = dir.path().join("v.toml");
+        std::fs::write(
+            &var,
+            "name = \"pre\"\ndescription = \"prestress\"\n[simulation]\nstrings.rest_length_ratio = 0.85\ncontact.mu = 0.8\n",
+        )
+        .unwrap();
+        let c = load_layered(&cfg, Some(&var), &["initial.omega=-3".into()]).unwrap();
+        assert_eq!(c.name.as_deref(), Some("box+pre"));
+        // The variant's keys win, the config's other keys stay (deep merge).
+        assert_eq!(c.simulation.strings.rest_length_ratio, 0.85);
+        assert!(c.simulation.strings.slack);
+        assert_eq!(c.simulation.contact.mu, 0.8);
+        assert_eq!(c.simulation.t_max, 5.0);
+        assert_eq!(c.simulation.initial.omega, -3.0);
+        // Without a variant the file loads as it is.
+        assert_eq!(load_layered(&cfg, None, &[]).unwrap(), load(&cfg).unwrap());
+        // A bad variant key is named.
+        std::fs::write(
+            &var,
+            "name = \"x\"\n[simulation]\nstrings.rest_length_ratio = 1.5\n",
+        )
+        .unwrap();
+        let e = format!("{:#}", load_layered(&cfg, Some(&var), &[]).unwrap_err());
+        assert!(
+            e.contains("simulation.strings.rest_length_ratio: 1.5 is invalid"),
+            "{e}"
+        );
+        std::fs::write(&var, "name = \"x\"\nseed = 3\n").unwrap();
+        let e = format!("{:#}", load_layered(&cfg, Some(&var), &[]).unwrap_err());
+        assert!(
+            e.contains("unknown key `seed`") && e.contains("v.toml"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn set_overrides_parse_toml_values_or_bare_strings() {
+        let mut t = toml::Table::new();
+        for s in [
+            "initial.omega=-3",
+            "contact.mu=inf",
+            "strings.slack=true",
+            "method=dop853",
+            "normalization=\"eigen\"",
+        ] {
+            apply_set(&mut t, s).unwrap();
+        }
+        let o = options_from_table(t.clone(), "simulation").unwrap();
+        assert_eq!(o.initial.omega, -3.0);
+        assert!(o.contact.mu.is_infinite());
+        assert!(o.strings.slack);
+        assert_eq!(o.method, Method::Dop853);
+        assert_eq!(o.normalization, Normalization::Eigen);
+        apply_set(&mut t, "contact.mu=0.8").unwrap();
+        assert_eq!(
+            options_from_table(t.clone(), "simulation")
+                .unwrap()
+                .contact
+                .mu,
+            0.8
+        );
+        assert!(apply_set(&mut t, "method.x=1").is_err());
+        assert!(apply_set(&mut t, "novalue").is_err());
+        apply_set(&mut t, "contact.nope=1").unwrap();
+        let e = format!("{:#}", options_from_table(t, "simulation").unwrap_err());
+        assert!(
+            e.contains("simulation.contact.nope: unknown key `nope`"),
+            "{e}"
+        );
+    }
+}

@@ -1,0 +1,128 @@
+//! The parameter vocabulary of rtw-scan, in one place: the six inputs a
+//! scan samples ([`Input`], the `[params]` keys and the first Parquet
+//! columns) and the parameters a bifurcation sweep can vary ([`SweepParam`]:
+//! the inputs and `s`). Config parsing, `--set`, sweeps and the checks of
+//! values read back from files all name, read, write and validate a
+//! parameter through these types.
+//!
+//! The inputs are rtw-model's [`rtw_model::Param`] (their names, ranges and
+//! checks live there only); `s` is checked through [`Options::validate`].
+
+use anyhow::{Result, bail};
+use rtw_model::{Options, ParamError, Params};
+
+/// One of the six inputs of docs/model.md §1: rtw-model's own vocabulary
+/// (name, get, set, valid range), in the order used everywhere (grid
+/// product, sampling, columns, the index of `ScanConfig::params`).
+pub use rtw_model::Param as Input;
+
+/// A parameter a bifurcation sweep can vary: an input of docs/model.md §1 or
+/// `s`, the strings' rest-length ratio (`strings.rest_length_ratio`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SweepParam {
+    /// One of the six inputs.
+    Input(Input),
+    /// `strings.rest_length_ratio`, named `s`.
+    RestLengthRatio,
+}
+
+impl SweepParam {
+    /// Every sweepable parameter, the inputs first.
+    pub const ALL: [SweepParam; 7] = [
+        Self::Input(Input::Length),
+        Self::Input(Input::Rho),
+        Self::Input(Input::Alpha),
+        Self::Input(Input::Fn),
+        Self::Input(Input::Zeta),
+        Self::Input(Input::Phi),
+        Self::RestLengthRatio,
+    ];
+
+    /// Parses a name of [`Self::ALL`]; the error names `--param` and the choices.
+    pub fn parse(name: &str) -> Result<Self> {
+        match Self::ALL.into_iter().find(|p| p.name() == name) {
+            Some(p) => Ok(p),
+            None => bail!(
+                "--param: unknown parameter `{name}`: must be one of {}",
+                Self::ALL.map(Self::name).join(", ")
+            ),
+        }
+    }
+
+    /// The name of `--param` and of the sweep files' `param` column.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Input(i) => i.name(),
+            Self::RestLengthRatio => "s",
+        }
+    }
+
+    /// The parameters and options at value `v` of this parameter, the rest
+    /// from `base` and `options`; an invalid `v` is named by
+    /// [`Params::validate`] or [`Options::validate`].
+    pub fn at(
+        self,
+        base: &Params,
+        options: &Options,
+        v: f64,
+    ) -> Result<(Params, Options), ParamError> {
+        let (mut p, mut o) = (*base, *options);
+        match self {
+            Self::Input(i) => i.set(&mut p, v),
+            Self::RestLengthRatio => o.strings.rest_length_ratio = v,
+        }
+        p.validate()?;
+        o.validate()?;
+        Ok((p, o))
+    }
+
+    /// Checks a bound of a sweep given with `flag`.
+    pub(crate) fn check(self, base: &Params, options: &Options, v: f64, flag: &str) -> Result<()> {
+        match self.at(base, options, v) {
+            Ok(_) => Ok(()),
+            Err(e) => bail!(
+                "{flag}: {v} is invalid for --param {}: {} must be {}",
+                self.name(),
+                e.field,
+                e.range
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inputs_read_back_what_they_set_and_name_the_params_fields() {
+        let mut p = Params::fig7a();
+        for (k, i) in Input::ALL.into_iter().enumerate() {
+            i.set(&mut p, 0.01 * (k + 1) as f64);
+        }
+        assert_eq!(
+            Input::ALL.map(|i| i.get(&p)),
+            [0.01, 0.02, 0.03, 0.04, 0.05, 0.06]
+        );
+        assert_eq!(
+            (p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi),
+            (0.01, 0.02, 0.03, 0.04, 0.05, 0.06)
+        );
+        // An out-of-range value is named by rtw-model with the field's name.
+        let e = Input::Phi.check(2.0).unwrap_err();
+        assert_eq!(e.field, "phi");
+        assert!(Input::Alpha.check(0.2).is_ok());
+    }
+
+    #[test]
+    fn sweep_params_parse_and_name_each_other() {
+        for p in SweepParam::ALL {
+            assert_eq!(SweepParam::parse(p.name()).unwrap(), p);
+        }
+        let e = SweepParam::parse("mu").unwrap_err().to_string();
+        assert!(
+            e.contains("--param") && e.contains("`mu`") && e.contains("phi, s"),
+            "{e}"
+        );
+    }
+}

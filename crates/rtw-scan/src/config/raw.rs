@@ -1,0 +1,53 @@
+//! The lowest layer of a config: a file read as UTF-8 text, the text as a
+//! TOML table, a table deserialized with every error naming its key path.
+
+use anyhow::{Context, Result, anyhow};
+use serde::Deserialize;
+use std::path::Path;
+
+/// Reads a UTF-8 text file, with errors naming what it is (`config`,
+/// `variant`) and the path.
+pub(crate) fn read_text(path: &Path, what: &str) -> Result<String> {
+    let bytes =
+        std::fs::read(path).with_context(|| format!("cannot read {what} {}", path.display()))?;
+    String::from_utf8(bytes).map_err(|e| {
+        anyhow!(
+            "{what} {} is not valid UTF-8 (invalid byte at offset {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
+
+/// Parses TOML text into a table, keeping toml's line-and-column message.
+pub(crate) fn parse_table(text: &str) -> Result<toml::Table> {
+    text.parse::<toml::Table>()
+        .map_err(|e| anyhow!("invalid TOML: {}", e.to_string().trim_end()))
+}
+
+/// Deserializes `value` into `T`, naming the key path (`prefix` + the path
+/// inside `value`) in any error.
+pub(crate) fn from_value<'de, T: Deserialize<'de>>(value: toml::Value, prefix: &str) -> Result<T> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        let key = match (prefix.is_empty(), path == ".") {
+            (true, _) => path,
+            (false, true) => prefix.to_string(),
+            (false, false) => format!("{prefix}.{path}"),
+        };
+        // toml's own message may end with "in `table`" lines: the path says it.
+        let inner = e.into_inner().to_string();
+        let inner = inner
+            .lines()
+            .filter(|l| !l.starts_with("in `"))
+            .collect::<Vec<_>>()
+            .join("\n")
+            .replace("unknown field", "unknown key")
+            .replace("missing field", "missing key");
+        if key == "." || key.is_empty() {
+            anyhow!("{inner}")
+        } else {
+            anyhow!("{key}: {inner}")
+        }
+    })
+}

@@ -1,0 +1,130 @@
+//! Files that appear whole or not at all: every result is written to a
+//! temporary file beside it, synced and renamed into place; the temporary
+//! files (and lock files) a process holds are known, so a signal that ends
+//! it at once can remove them.
+
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+
+/// A temporary file next to `dest` (same directory, so a rename moves it
+/// into place atomically), named `.NAME.XXXXXX.tmp`, with the usual
+/// permissions (0666 less the umask) rather than tempfile's 0600.
+pub(crate) fn temp_file_for(dest: &Path) -> Result<Temp> {
+    let file = named_temp_for(dest)?;
+    let guard = Registered::new(file.path().to_path_buf());
+    Ok(Temp { file, guard })
+}
+
+/// A temporary file, known to [`remove_live_files`] until it is dropped or
+/// moved into place.
+pub(crate) struct Temp {
+    pub(crate) file: tempfile::NamedTempFile,
+    guard: Registered,
+}
+
+impl Temp {
+    pub(crate) fn persist(self, dest: &Path) -> Result<()> {
+        let Temp { file, guard } = self;
+        file.persist(dest)
+            .with_context(|| format!("cannot move the finished file to {}", dest.display()))?;
+        drop(guard);
+        Ok(())
+    }
+}
+
+/// Files that exist only while a command runs (temporary files, locks):
+/// removed by [`remove_live_files`] when a signal ends the process at once.
+static LIVE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Registers a path in [`LIVE`] for as long as it lives.
+pub(crate) struct Registered(PathBuf);
+
+impl Registered {
+    pub(crate) fn new(path: PathBuf) -> Self {
+        if let Ok(mut live) = LIVE.lock() {
+            live.push(path.clone());
+        }
+        Self(path)
+    }
+}
+
+impl Drop for Registered {
+    fn drop(&mut self) {
+        if let Ok(mut live) = LIVE.lock()
+            && let Some(i) = live.iter().rposition(|p| *p == self.0)
+        {
+            live.swap_remove(i);
+        }
+    }
+}
+
+/// Removes every temporary and lock file this process has open: called by
+/// the signal handler before it exits, since a process ending in
+/// `std::process::exit` runs no destructors.
+pub(crate) fn remove_live_files() {
+    let live = match LIVE.try_lock() {
+        Ok(live) => live.clone(),
+        // Held by a thread that will never resume: read it anyway.
+        Err(std::sync::TryLockError::Poisoned(p)) => p.into_inner().clone(),
+        Err(std::sync::TryLockError::WouldBlock) => {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            LIVE.lock().map(|l| l.clone()).unwrap_or_default()
+        }
+    };
+    for p in live {
+        let _ = std::fs::remove_file(p);
+    }
+}
+
+/// Removes the temporary files `.NAME.XXXXXX.tmp` that an earlier, killed
+/// writer of `dest` left beside it (never anything else). Call it only while
+/// no other process can be writing `dest` (under its [`Lock`]).
+pub(crate) fn remove_stray_temps(dest: &Path) -> Result<()> {
+    let dir = dest
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let Some(name) = dest.file_name().and_then(|n| n.to_str()) else {
+        return Ok(());
+    };
+    let prefix = format!(".{name}.");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries.flatten() {
+        let n = entry.file_name();
+        let n = n.to_string_lossy();
+        if n.starts_with(&prefix) && n.ends_with(".tmp") && n.len() == prefix.len() + 10 {
+            std::fs::remove_file(entry.path())
+                .with_context(|| format!("cannot remove {}", entry.path().display()))?;
+        }
+    }
+    Ok(())
+}
+
+fn named_temp_for(dest: &Path) -> Result<tempfile::NamedTempFile> {
+    let dir = dest
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = dest.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    builder
+        .tempfile_in(dir)
+        .with_context(|| format!("cannot create a file in {}", dir.display()))
+}
+
+/// Writes `bytes` to `path` through a temporary file and a rename.
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write;
+    let mut tmp = temp_file_for(path)?;
+    tmp.file
+        .write_all(bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.file.as_file().sync_all()?;
+    tmp.persist(path)
+}

@@ -1,0 +1,123 @@
+//! What rtw-scan writes beside the rows of its Parquet files: the metadata
+//! keys, a scan's metadata, the kind of file they tell, and the refusal to
+//! write one kind of file over another.
+
+use crate::config::variant::Variant;
+use crate::config::{self, ScanConfig};
+use parquet::file::metadata::KeyValue;
+use std::collections::BTreeMap;
+
+/// Metadata key: the resolved scan config as TOML.
+pub(crate) const META_CONFIG: &str = "rtw.config";
+/// Metadata key: rtw-scan's version.
+pub(crate) const META_VERSION: &str = "rtw.version";
+/// Metadata key: the scan seed.
+pub(crate) const META_SEED: &str = "rtw.seed";
+/// Metadata key: one-line model variant summary ([`crate::config::Variant`]).
+pub(crate) const META_VARIANT: &str = "rtw.variant";
+/// Metadata key: seconds spent computing the rows (summed over resumed
+/// sessions and, in a merged file, over the shards).
+pub(crate) const META_WALL_TIME: &str = "rtw.wall_time_s";
+/// Metadata key: seconds spent computing one chunk (chunk files only).
+pub(crate) const META_CHUNK_WALL_TIME: &str = "rtw.chunk_wall_time_s";
+/// Metadata key: [`ScanConfig::hash`] of the config in [`META_CONFIG`].
+pub(crate) const META_CONFIG_HASH: &str = "rtw.config_hash";
+/// Metadata key: the shard a part file holds, `K/N` (part files only).
+pub(crate) const META_SHARD: &str = "rtw.shard";
+/// Metadata key: the rows of the whole scan, all shards together (part files only).
+pub(crate) const META_TOTAL_ROWS: &str = "rtw.total_rows";
+/// Metadata key: how many shards a merged file was made of.
+pub(crate) const META_SHARDS: &str = "rtw.shards";
+/// Metadata key: [`ContentHash`] of the file's rows, written with them and
+/// checked by every read ([`open`]), so a corrupt page is refused.
+pub(crate) const META_CONTENT_HASH: &str = "rtw.content_hash";
+
+/// Metadata key of an assignments file: the clustering (centres, sizes,
+/// cross-table) as JSON, exactly what `cluster --json` prints.
+pub(crate) const META_CLUSTERS: &str = "rtw.clusters";
+/// Metadata key: the swept parameter of a bifurcation file.
+pub(crate) const META_PARAM: &str = "rtw.bifurcation.param";
+/// Metadata key: the parameters of a trace, the base point of a sweep (JSON
+/// of the six inputs).
+pub(crate) const META_PARAMS: &str = "rtw.params";
+/// Metadata key: the resolved simulation options of a trace or a sweep (TOML).
+pub(crate) const META_OPTIONS: &str = "rtw.options";
+/// Metadata key: a sweep's step map settings (integrator, tolerances, periods).
+pub(crate) const META_CYCLE: &str = "rtw.cycle";
+/// Metadata key: a sweep's steps iterated before recording (`--transient`).
+pub(crate) const META_TRANSIENT: &str = "rtw.bifurcation.transient";
+/// Metadata key: a sweep's steps recorded at each value (`--record`).
+pub(crate) const META_RECORD: &str = "rtw.bifurcation.record";
+
+/// A key-value metadata entry.
+pub fn kv(key: &str, value: String) -> KeyValue {
+    KeyValue::new(key.to_string(), value)
+}
+
+/// The file metadata of a scan's Parquet files: config, its hash, version,
+/// seed, variant.
+pub(crate) fn scan_metadata(cfg: &ScanConfig) -> Vec<KeyValue> {
+    vec![
+        kv(META_CONFIG, cfg.to_toml()),
+        kv(META_CONFIG_HASH, cfg.hash()),
+        kv(META_VERSION, env!("CARGO_PKG_VERSION").to_string()),
+        kv(META_SEED, cfg.seed.to_string()),
+        kv(META_VARIANT, Variant::of(&cfg.simulation).to_string()),
+    ]
+}
+
+/// What an rtw-scan Parquet file holds, told by the metadata it carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FileKind {
+    /// Scan rows: `samples.parquet`, `part-K.parquet`, chunks (`rtw.config`).
+    Scan,
+    /// `cluster --assignments` (`rtw.clusters`).
+    Assignments,
+    /// `simulate --trace` (`rtw.params` and `rtw.options`).
+    Trace,
+    /// `bifurcation` per-value and per-step files (`rtw.bifurcation.param`).
+    Bifurcation,
+}
+
+impl FileKind {
+    /// The kind of a file with metadata `meta`, if rtw-scan wrote it.
+    pub(crate) fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
+        if meta.contains_key(META_PARAM) {
+            Some(Self::Bifurcation)
+        } else if meta.contains_key(META_CLUSTERS) {
+            Some(Self::Assignments)
+        } else if meta.contains_key(META_CONFIG) {
+            Some(Self::Scan)
+        } else if meta.contains_key("rtw.options") {
+            Some(Self::Trace)
+        } else {
+            None
+        }
+    }
+
+    pub(crate) fn describe(self) -> &'static str {
+        match self {
+            Self::Scan => "a scan (rows of `rtw-scan run`)",
+            Self::Assignments => "cluster assignments (`cluster --assignments`)",
+            Self::Trace => "a trace (`simulate --trace`)",
+            Self::Bifurcation => "a bifurcation sweep (`bifurcation`)",
+        }
+    }
+}
+
+/// A scan named for messages: `config hash H (name N, seed S)`.
+pub(crate) fn scan_label(hash: &str, name: Option<&str>, seed: u64) -> String {
+    match name {
+        Some(n) => format!("config hash {hash} (name {n}, seed {seed})"),
+        None => format!("config hash {hash} (seed {seed})"),
+    }
+}
+
+/// [`scan_label`] of a scan file from its metadata.
+pub(crate) fn scan_label_of(meta: &BTreeMap<String, String>) -> String {
+    let hash = meta.get(META_CONFIG_HASH).map_or("(none)", String::as_str);
+    match meta.get(META_CONFIG).map(|c| config::parse(c)) {
+        Some(Ok(c)) => scan_label(hash, c.name.as_deref(), c.seed),
+        _ => format!("config hash {hash}"),
+    }
+}

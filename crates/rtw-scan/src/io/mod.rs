@@ -1,0 +1,30 @@
+//! Files: the column tables and Parquet forms of what rtw-scan writes, read
+//! back checked; files that appear whole or not at all.
+//!
+//! | module | role |
+//! |---|---|
+//! | `table` | a file's columns listed once (name, unit, meaning, getter) → schema and batches |
+//! | `scan_rows` | the scan row and its table; its JSON and text forms |
+//! | `scan_files` | scan batches read back and checked; chunks and parts concatenated |
+//! | `parquet` | Parquet files written atomically with a content hash, read back verified |
+//! | `content_hash` | the hash of a table's values, independent of batches and pages |
+//! | `metadata` | the metadata keys, a scan's metadata, the kind of a file |
+//! | `destination` | the refusal to write one kind of file over another |
+//! | `files` | temporary files renamed into place; cleanup on a signal |
+//! | `trace` | `simulate --trace` files and their size bound |
+//!
+//! Public: what a reader of rtw-scan's files needs, re-exported here.
+
+pub(crate) mod content_hash;
+pub(crate) mod destination;
+pub(crate) mod files;
+pub(crate) mod metadata;
+pub(crate) mod parquet;
+pub(crate) mod scan_files;
+pub(crate) mod scan_rows;
+pub(crate) mod table;
+pub(crate) mod trace;
+
+pub use metadata::kv;
+pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
+pub use scan_rows::schema;

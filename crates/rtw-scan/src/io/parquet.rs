@@ -1,0 +1,222 @@
+//! Parquet files written whole or not at all, and read back checked.
+//!
+//! Files are written through [`ParquetFile`]: to a temporary file in the
+//! destination's directory, closed, synced and renamed into place, so a file
+//! at its final name is always complete, with the [`ContentHash`] of its rows
+//! in its metadata; [`open`] checks that hash as the rows are read.
+//! Compression is zstd.
+
+use crate::io::content_hash::ContentHash;
+use crate::io::files::{Temp, temp_file_for};
+use crate::io::metadata::{META_CONTENT_HASH, kv};
+use anyhow::{Context, Result, anyhow};
+use arrow_array::RecordBatch;
+use arrow_schema::{Schema, SchemaRef};
+use parquet::arrow::ArrowWriter;
+use parquet::arrow::arrow_reader::{ParquetRecordBatchReader, ParquetRecordBatchReaderBuilder};
+use parquet::basic::{Compression, ZstdLevel};
+use parquet::file::metadata::KeyValue;
+use parquet::file::properties::WriterProperties;
+use parquet::schema::types::ColumnPath;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+
+/// Most rows per row group of a file rtw-scan writes whole (samples, part
+/// and assignments files). One row group per 256-row chunk made the footer
+/// grow with N (391 row groups at 100k rows, held in memory by the writer
+/// and again by every reader); with this cap a 100k-row file has 13. The
+/// writer buffers at most one row group, and since a column's 8192 numbers
+/// (64 kB) fit in one page, a reader decompresses at most one row group's
+/// worth of each column at a time: larger groups (16384 was measured) cost
+/// a few MB more peak memory in `run` and `summary` for nothing.
+pub(crate) const MAX_ROW_GROUP_ROWS: usize = 8192;
+
+/// Rows per batch when a scan file is read back (merge, checks, summary,
+/// clustering): bounds the decoded rows in memory whatever the row groups.
+pub(crate) const READ_BATCH_ROWS: usize = 4096;
+
+/// Writer properties for files of `schema`: zstd, row groups of at most
+/// `max_rows`, the given key-value metadata, and dictionary encoding only for
+/// the string and label columns. Numbers are plain-encoded: a scan's floats
+/// are all distinct, so a dictionary would not shrink them, yet each
+/// column's dictionary builder holds every value of the row group in memory
+/// (about 10 MB more at 16k-row groups of scan rows). Pages keep their
+/// default size limit: with smaller pages a column's page is compressed
+/// before the row group ends, and every column then holds its own zstd
+/// context (about 0.5 MB each) at once (measured: 12 MB more at 10k rows).
+pub(crate) fn writer_properties(
+    schema: &Schema,
+    max_rows: usize,
+    metadata: Vec<KeyValue>,
+) -> WriterProperties {
+    schema
+        .fields()
+        .iter()
+        .filter(|f| f.data_type().is_numeric())
+        .fold(WriterProperties::builder(), |b, f| {
+            b.set_column_dictionary_enabled(ColumnPath::from(f.name().as_str()), false)
+        })
+        .set_compression(Compression::ZSTD(
+            ZstdLevel::try_new(3).expect("valid zstd level"),
+        ))
+        .set_max_row_group_row_count(Some(max_rows.max(1)))
+        .set_key_value_metadata(Some(metadata))
+        .build()
+}
+
+/// A Parquet file being written under a temporary name next to `dest`;
+/// [`ParquetFile::finish`] closes, syncs and renames it, with the
+/// [`ContentHash`] of every row written in its metadata. Dropped unfinished,
+/// the temporary file is removed.
+pub(crate) struct ParquetFile {
+    tmp: Temp,
+    writer: ArrowWriter<File>,
+    dest: PathBuf,
+    hash: ContentHash,
+}
+
+impl ParquetFile {
+    pub(crate) fn create(dest: &Path, schema: SchemaRef, props: WriterProperties) -> Result<Self> {
+        let tmp = temp_file_for(dest)?;
+        let file = tmp
+            .file
+            .reopen()
+            .with_context(|| format!("cannot open {}", tmp.file.path().display()))?;
+        let hash = ContentHash::new(schema.fields().len());
+        let writer = ArrowWriter::try_new(file, schema, Some(props))?;
+        Ok(Self {
+            tmp,
+            writer,
+            dest: dest.to_path_buf(),
+            hash,
+        })
+    }
+
+    pub(crate) fn write(&mut self, batch: &RecordBatch) -> Result<()> {
+        self.hash.update(batch)?;
+        self.writer
+            .write(batch)
+            .with_context(|| format!("writing {}", self.dest.display()))
+    }
+
+    pub(crate) fn append_metadata(&mut self, key: &str, value: String) {
+        self.writer
+            .append_key_value_metadata(KeyValue::new(key.to_string(), value));
+    }
+
+    /// Closes the writer, syncs the data and moves the file to its name.
+    pub(crate) fn finish(self) -> Result<()> {
+        let Self {
+            tmp,
+            mut writer,
+            dest,
+            hash,
+        } = self;
+        writer.append_key_value_metadata(kv(META_CONTENT_HASH, hash.value()));
+        writer
+            .close()
+            .with_context(|| format!("closing {}", dest.display()))?;
+        tmp.file.as_file().sync_all()?;
+        tmp.persist(&dest)
+    }
+}
+
+/// Writes `batch` as one complete Parquet file at `dest` (atomically).
+pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> Result<()> {
+    let props = writer_properties(&batch.schema(), batch.num_rows(), metadata);
+    let mut f = ParquetFile::create(dest, batch.schema(), props)?;
+    f.write(batch)?;
+    f.finish()
+}
+
+/// An open Parquet file: its key-value metadata and a batch reader.
+pub struct ParquetInput {
+    /// The file's key-value metadata (`rtw.config`, `rtw.seed`, ...).
+    pub metadata: BTreeMap<String, String>,
+    /// Its row count, from the footer.
+    pub rows: i64,
+    /// Its rows, batch by batch, checked against the content hash.
+    pub reader: VerifiedReader,
+}
+
+/// The batches of a Parquet file, checked: a page that does not decode, and
+/// (once the last batch has been read) rows that do not hash to the file's
+/// `rtw.content_hash`, are errors naming the file. Files without the key
+/// (written before it existed) are read unchecked.
+pub struct VerifiedReader {
+    inner: ParquetRecordBatchReader,
+    path: PathBuf,
+    hash: ContentHash,
+    expected: Option<String>,
+    done: bool,
+}
+
+impl Iterator for VerifiedReader {
+    type Item = Result<RecordBatch>;
+
+    fn next(&mut self) -> Option<Result<RecordBatch>> {
+        if self.done {
+            return None;
+        }
+        let corrupt = |why: String| {
+            anyhow!(
+                "{} is corrupt: {why}; restore it or rerun what made it",
+                self.path.display()
+            )
+        };
+        match self.inner.next() {
+            Some(Ok(batch)) => {
+                if let Err(e) = self.hash.update(&batch) {
+                    self.done = true;
+                    return Some(Err(corrupt(format!("{e:#}"))));
+                }
+                Some(Ok(batch))
+            }
+            Some(Err(e)) => {
+                self.done = true;
+                Some(Err(corrupt(format!("a page does not decode ({e})"))))
+            }
+            None => {
+                self.done = true;
+                let got = self.hash.value();
+                match &self.expected {
+                    Some(want) if *want != got => Some(Err(corrupt(format!(
+                        "its rows hash to {got}, not to the {want} written with them \
+                         (`{META_CONTENT_HASH}`)"
+                    )))),
+                    _ => None,
+                }
+            }
+        }
+    }
+}
+
+/// Opens a Parquet file for reading, with errors naming the path; its
+/// batches are checked against its content hash ([`VerifiedReader`]).
+pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let builder = ParquetRecordBatchReaderBuilder::try_new(file)
+        .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
+    let meta = builder.metadata().file_metadata();
+    let rows = meta.num_rows();
+    let metadata: BTreeMap<String, String> = meta
+        .key_value_metadata()
+        .into_iter()
+        .flatten()
+        .filter_map(|kv| Some((kv.key.clone(), kv.value.clone()?)))
+        .collect();
+    let columns = builder.schema().fields().len();
+    let inner = builder.with_batch_size(batch_size.max(1)).build()?;
+    Ok(ParquetInput {
+        rows,
+        reader: VerifiedReader {
+            inner,
+            path: path.to_path_buf(),
+            hash: ContentHash::new(columns),
+            expected: metadata.get(META_CONTENT_HASH).cloned(),
+            done: false,
+        },
+        metadata,
+    })
+}

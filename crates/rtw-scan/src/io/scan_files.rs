@@ -1,0 +1,188 @@
+//! Scan files read back: typed columns, the values every reader relies on,
+//! and the concatenation of a run's chunks or a scan's shard parts into one
+//! file.
+
+use crate::config::params::Input;
+use crate::io::metadata::META_WALL_TIME;
+use crate::io::parquet::{self, ParquetFile, READ_BATCH_ROWS};
+use crate::io::scan_rows::{COLUMNS, schema};
+use ::parquet::file::metadata::KeyValue;
+use anyhow::{Context, Result, anyhow, bail};
+use arrow_array::cast::AsArray;
+use arrow_array::types::{Float64Type, Int32Type, Int64Type};
+use arrow_array::{Array, Float64Array, Int64Array, RecordBatch};
+use rtw_model::Label;
+use std::path::{Path, PathBuf};
+
+/// Checks the values of a batch of scan rows that every reader relies on:
+/// each input parameter inside its range (docs/model.md §1), the derived
+/// parameters finite. `first_row` is the batch's first row in the file; an
+/// error names the file, the column and the row.
+pub(crate) fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64) -> Result<()> {
+    for input in Input::ALL {
+        let key = input.name();
+        let col = f64_column(batch, key).with_context(|| path.display().to_string())?;
+        for (r, v) in col.iter().enumerate() {
+            let bad = match v {
+                None => Some("null: must be a number".to_string()),
+                Some(v) => input.check(v).err().map(|e| {
+                    // Corrupt bits are often huge or tiny: keep them readable.
+                    let shown = if v != 0.0 && !(1e-6..1e6).contains(&v.abs()) {
+                        format!("{v:e}")
+                    } else {
+                        v.to_string()
+                    };
+                    format!("{shown} is invalid: must be {}", e.range)
+                }),
+            };
+            if let Some(why) = bad {
+                bail!(
+                    "{}: column `{key}`, row {}: {why}; the file is corrupt or was not written by rtw-scan",
+                    path.display(),
+                    first_row + r as u64
+                );
+            }
+        }
+    }
+    for c in COLUMNS.iter().filter(|c| c.group == "derived") {
+        let col = f64_column(batch, c.name).with_context(|| path.display().to_string())?;
+        if let Some(r) = col.iter().position(|v| !v.is_some_and(f64::is_finite)) {
+            bail!(
+                "{}: column `{}`, row {}: {:?} is invalid: must be a finite number; the file is corrupt",
+                path.display(),
+                c.name,
+                first_row + r as u64,
+                col.iter().nth(r).flatten()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A `Float64` column of a scan batch, by name.
+pub(crate) fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
+    let col = batch
+        .column_by_name(name)
+        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
+    col.as_primitive_opt::<Float64Type>()
+        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Float64", col.data_type()))
+}
+
+/// An `Int64` column of a scan batch, by name.
+pub(crate) fn i64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Int64Array> {
+    let col = batch
+        .column_by_name(name)
+        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
+    col.as_primitive_opt::<Int64Type>()
+        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Int64", col.data_type()))
+}
+
+/// The `outcome` column of a scan batch, decoded to labels.
+pub(crate) fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
+    let col = batch
+        .column_by_name("outcome")
+        .ok_or_else(|| anyhow!("column `outcome` is missing"))?;
+    let decode = |s: &str| {
+        s.parse::<Label>()
+            .map_err(|e| anyhow!("column `outcome`: {e}"))
+    };
+    if let Some(dict) = col.as_dictionary_opt::<Int32Type>() {
+        let values = dict
+            .values()
+            .as_string_opt::<i32>()
+            .ok_or_else(|| anyhow!("column `outcome`: dictionary values are not strings"))?;
+        let table: Vec<Label> = values
+            .iter()
+            .map(|v| decode(v.unwrap_or("")))
+            .collect::<Result<_>>()?;
+        dict.keys()
+            .iter()
+            .map(|k| {
+                k.and_then(|k| table.get(k as usize).copied())
+                    .ok_or_else(|| anyhow!("column `outcome`: null or bad key"))
+            })
+            .collect()
+    } else if let Some(s) = col.as_string_opt::<i32>() {
+        s.iter().map(|v| decode(v.unwrap_or(""))).collect()
+    } else {
+        bail!(
+            "column `outcome` is {}, expected a string dictionary",
+            col.data_type()
+        )
+    }
+}
+
+/// Concatenates scan files (a run's chunks, or a scan's shard parts), in
+/// order, into `dest` with `metadata` and [`META_WALL_TIME`] = the sum of the
+/// inputs' `wall_key` values. The rows are cut into row groups of
+/// `row_group_rows` regardless of where one input ends and the next begins,
+/// so the result does not depend on the chunk size or the shard count.
+/// Streams [`READ_BATCH_ROWS`] rows at a time (memory stays flat in the row
+/// count: at most one row group is buffered) and checks on the way that the
+/// `sample_id`s run through `ids` exactly once, in order; on any error `dest`
+/// is left as it was.
+pub(crate) fn concat_scan_files(
+    inputs: &[PathBuf],
+    ids: std::ops::Range<u64>,
+    dest: &Path,
+    row_group_rows: usize,
+    metadata: Vec<KeyValue>,
+    wall_key: &str,
+) -> Result<()> {
+    let props = parquet::writer_properties(&schema(), row_group_rows, metadata);
+    let mut file = ParquetFile::create(dest, schema(), props)?;
+    let mut wall = 0.0;
+    let mut next = ids.start;
+    for path in inputs {
+        let input = parquet::open(path, READ_BATCH_ROWS)?;
+        let first_row = next;
+        wall += input
+            .metadata
+            .get(wall_key)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0);
+        for batch in input.reader {
+            let batch = batch.with_context(|| format!("reading {}", path.display()))?;
+            let col = batch
+                .column_by_name("sample_id")
+                .and_then(|c| c.as_primitive_opt::<Int64Type>())
+                .ok_or_else(|| anyhow!("{}: no Int64 sample_id column", path.display()))?;
+            for id in col.iter() {
+                let id = id.ok_or_else(|| anyhow!("{}: null sample_id", path.display()))? as u64;
+                if id < next {
+                    bail!(
+                        "{}: sample_id {id} is already in an earlier file (or twice in this one): \
+                         the files overlap",
+                        path.display()
+                    );
+                }
+                if id > next {
+                    bail!(
+                        "{}: sample_id {id} where {next} was expected: sample_ids {next}..{} are in no file",
+                        path.display(),
+                        id - 1
+                    );
+                }
+                next += 1;
+            }
+            if next > ids.end {
+                bail!(
+                    "{}: sample_id {} is beyond the scan's last id {}",
+                    path.display(),
+                    next - 1,
+                    ids.end.saturating_sub(1)
+                );
+            }
+            check_scan_values(&batch, path, next - batch.num_rows() as u64 - first_row)?;
+            file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
+        }
+    }
+    if next != ids.end {
+        bail!(
+            "sample_ids {next}..{} are in no file",
+            ids.end.saturating_sub(1)
+        );
+    }
+    file.append_metadata(META_WALL_TIME, wall.to_string());
+    file.finish()
+}

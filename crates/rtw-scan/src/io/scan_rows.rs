@@ -1,0 +1,608 @@
+//! Scan rows and their Parquet, JSON and text forms.
+//!
+//! One table, [`COLUMNS`], defines every column of a scan row: its name,
+//! type, nullability, unit, meaning and how to read it from a [`Row`]. The
+//! Parquet schema, the record batches, `simulate --json` and the `simulate`
+//! text table are all generated from it, so they cannot drift apart.
+//! `outcome` is a dictionary column with signed `Int32` keys over the fixed
+//! label list [`Label::ALL`] (pandas and polars read it as categorical);
+//! floats are `Float64`, counts `Int64`.
+
+use crate::io::table::{self, Column, Get};
+use arrow_array::RecordBatch;
+use arrow_schema::SchemaRef;
+use rtw_model::outcome::FailureDetail;
+use rtw_model::{Label, Outcome, Params, Physical};
+use serde::ser::{Serialize, SerializeMap, Serializer};
+use std::sync::LazyLock;
+
+/// One scan row: a sample's inputs, derived parameters and outcome.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Row {
+    pub(crate) sample_id: u64,
+    pub(crate) params: Params,
+    pub(crate) physical: Physical,
+    /// `None` when the simulation panicked (the row is then `diverged`).
+    pub(crate) outcome: Option<Outcome>,
+    /// Why a sample became `diverged` without an outcome (panic message).
+    pub(crate) message: Option<String>,
+    pub(crate) wall_time_s: f64,
+}
+
+impl Row {
+    pub(crate) fn label(&self) -> Label {
+        self.outcome.map_or(Label::Diverged, |o| o.label)
+    }
+}
+
+/// A float column of `group`.
+const fn float(
+    name: &'static str,
+    group: &'static str,
+    nullable: bool,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column<Row> {
+    Column {
+        name,
+        group,
+        nullable,
+        unit,
+        description,
+        get: Get::F64(get),
+    }
+}
+const fn input(
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column<Row> {
+    float(name, "input", false, unit, description, get)
+}
+const fn derived(
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column<Row> {
+    float(name, "derived", false, unit, description, get)
+}
+/// Null when the sample panicked.
+const fn metric(
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<f64>,
+) -> Column<Row> {
+    float(name, "metric", true, unit, description, get)
+}
+const fn count(
+    name: &'static str,
+    group: &'static str,
+    description: &'static str,
+    get: fn(&Row) -> Option<i64>,
+) -> Column<Row> {
+    Column {
+        name,
+        group,
+        nullable: true,
+        unit: "1",
+        description,
+        get: Get::I64(get),
+    }
+}
+
+/// Every column of a scan row, in file order. Metrics and counts are null in
+/// a row whose sample panicked (its `message` says why).
+pub(crate) static COLUMNS: &[Column<Row>] = &[
+    Column {
+        name: "sample_id",
+        group: "id",
+        nullable: false,
+        unit: "-",
+        description: "sample index; the row depends only on (seed, sample_id)",
+        get: Get::I64(|r| Some(r.sample_id as i64)),
+    },
+    input("length", "m", "rod length L", |r| Some(r.params.length)),
+    input("rho", "kg/m", "mass per length ρ of a rod", |r| {
+        Some(r.params.rho)
+    }),
+    input(
+        "alpha",
+        "1",
+        "connection ratio α: each string end sits α·L from a rod's tip",
+        |r| Some(r.params.alpha),
+    ),
+    input(
+        "fn",
+        "Hz",
+        "eigen-frequency f_n of the normalization (docs/model.md §1; the true mode is √3·f_n, §7)",
+        |r| Some(r.params.f_n),
+    ),
+    input("zeta", "1", "damping ratio ζ of the normalization", |r| {
+        Some(r.params.zeta)
+    }),
+    input("phi", "rad", "slope angle φ", |r| Some(r.params.phi)),
+    derived("m", "kg", "rod mass m = ρ L", |r| Some(r.physical.m)),
+    derived(
+        "l_c",
+        "m",
+        "connection offset from each tip l_c = α L",
+        |r| Some(r.physical.l_c),
+    ),
+    derived(
+        "inertia",
+        "kg·m²",
+        "rod inertia about its centre I = m L²/12",
+        |r| Some(r.physical.inertia),
+    ),
+    derived("r", "m", "connection radius r = L/2 − l_c", |r| {
+        Some(r.physical.r)
+    }),
+    derived("k", "N/m", "string stiffness k", |r| Some(r.physical.k)),
+    derived("c", "N·s/m", "string damping coefficient c", |r| {
+        Some(r.physical.c)
+    }),
+    Column {
+        name: "outcome",
+        group: "outcome",
+        nullable: false,
+        unit: "-",
+        description: "gait (skip, walk, crawl) or failure (collapse, stall, diverged), docs/model.md §5",
+        get: Get::Label {
+            index: |r| label_index(r.label()),
+            names: label_names,
+        },
+    },
+    Column {
+        name: "failure",
+        group: "outcome",
+        nullable: true,
+        unit: "-",
+        description: "why the run failed (rod_down, com_low, no_standing_equilibrium, standing_rod_down, \
+                      standing_com_low, standing_rolls_away, no_touchdown, no_progress, non_finite, \
+                      step_underflow, work_budget, zeno); null for a gait",
+        get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())),
+    },
+    Column {
+        name: "message",
+        group: "outcome",
+        nullable: true,
+        unit: "-",
+        description: "the error message of a sample that panicked (outcome diverged), else what its \
+                      failure means in words; null for a gait",
+        // A panic's message, else what the failure means in words.
+        get: Get::Str(|r| {
+            r.message.as_deref().or_else(|| {
+                r.outcome
+                    .and_then(|o| o.failure)
+                    .map(FailureDetail::describe)
+            })
+        }),
+    },
+    Column {
+        name: "start",
+        group: "outcome",
+        nullable: true,
+        unit: "-",
+        description: "how the star stood before the push: two_feet, three_feet (static equilibrium), \
+                      rest_shape (not in equilibrium), docs/model.md §6",
+        get: Get::Str(|r| r.outcome.map(|o| o.start.as_str())),
+    },
+    metric(
+        "t_end",
+        "s",
+        "simulated time at the end of the run (t_max unless it failed or settled early)",
+        |r| r.outcome.map(|o| o.t_end),
+    ),
+    metric(
+        "nlsp",
+        "1",
+        "fraction of the analysis window with no foot on the ground (flight)",
+        |r| r.outcome.map(|o| o.fractions.nlsp),
+    ),
+    metric(
+        "slsp",
+        "1",
+        "fraction of the analysis window with one rod on the ground",
+        |r| r.outcome.map(|o| o.fractions.slsp),
+    ),
+    metric(
+        "dlsp",
+        "1",
+        "fraction of the analysis window with two rods on the ground",
+        |r| r.outcome.map(|o| o.fractions.dlsp),
+    ),
+    metric(
+        "tlsp",
+        "1",
+        "fraction of the analysis window with three rods on the ground",
+        |r| r.outcome.map(|o| o.fractions.tlsp),
+    ),
+    count(
+        "window_steps",
+        "metric",
+        "whole steps (one new foot's touchdown to the next) in the analysis window",
+        |r| r.outcome.map(|o| o.step_shares.steps as i64),
+    ),
+    metric(
+        "flight_steps",
+        "1",
+        "share of the window's steps whose own flight fraction exceeds labels.flight (docs/model.md §5)",
+        |r| r.outcome.map(|o| o.step_shares.flight),
+    ),
+    metric(
+        "triple_steps",
+        "1",
+        "share of the window's steps whose own triple-support fraction exceeds labels.triple",
+        |r| r.outcome.map(|o| o.step_shares.triple),
+    ),
+    count(
+        "touchdowns",
+        "metric",
+        "touchdowns over the whole run",
+        |r| r.outcome.map(|o| o.touchdowns as i64),
+    ),
+    metric(
+        "f_w",
+        "Hz",
+        "step frequency: touchdowns per second over the analysis window",
+        |r| r.outcome.map(|o| o.f_w),
+    ),
+    metric(
+        "f_w_newfoot",
+        "Hz",
+        "touchdowns of a tip other than the one that rod last landed on, per second over the analysis window",
+        |r| r.outcome.map(|o| o.f_w_newfoot),
+    ),
+    metric(
+        "speed",
+        "m/s",
+        "mean downhill speed of the centre of mass over the analysis window",
+        |r| r.outcome.map(|o| o.speed),
+    ),
+    metric(
+        "mu_required",
+        "1",
+        "largest |λ_x|/λ_y while a rod sticks with λ_y > 0.05 m g, over the analysis window (docs/model.md §4)",
+        |r| r.outcome.map(|o| o.mu_required),
+    ),
+    metric(
+        "slide_time",
+        "s",
+        "rod-seconds spent sliding over the whole run",
+        |r| r.outcome.map(|o| o.slide_time),
+    ),
+    metric(
+        "energy_initial",
+        "J",
+        "total energy at the start (kinetic, string and gravity potential)",
+        |r| r.outcome.map(|o| o.energy.initial),
+    ),
+    metric(
+        "energy_last",
+        "J",
+        "total energy at the end of the run",
+        |r| r.outcome.map(|o| o.energy.last),
+    ),
+    metric(
+        "energy_gravity_released",
+        "J",
+        "potential energy of gravity released over the run",
+        |r| r.outcome.map(|o| o.energy.gravity_released),
+    ),
+    metric(
+        "energy_impact_loss",
+        "J",
+        "energy lost in touchdown impacts",
+        |r| r.outcome.map(|o| o.energy.impact_loss),
+    ),
+    metric(
+        "energy_damping_loss",
+        "J",
+        "energy dissipated by the string dampers",
+        |r| r.outcome.map(|o| o.energy.damping_loss),
+    ),
+    metric(
+        "energy_friction_loss",
+        "J",
+        "work of sliding friction (finite μ only)",
+        |r| r.outcome.map(|o| o.energy.friction_loss),
+    ),
+    metric(
+        "energy_balance_error",
+        "J",
+        "energy_last + the three losses − energy_initial: zero up to integration error",
+        |r| r.outcome.map(|o| o.energy.balance_error),
+    ),
+    // From the step map's Newton solution when the run asked for its limit
+    // cycle (`limit_cycle = true`) and one was found, else from the
+    // touchdown return times.
+    count(
+        "period",
+        "metric",
+        "period of the gait in steps (0: none found); from the step map with limit_cycle = true, \
+         else from the touchdown return map",
+        |r| {
+            r.outcome
+                .map(|o| i64::from(o.cycle.map_or(o.period, |c| c.period)))
+        },
+    ),
+    metric(
+        "floquet_max",
+        "1",
+        "largest Floquet multiplier modulus of the gait's limit cycle (< 1: stable); null unless limit_cycle = true found one",
+        |r| r.outcome.and_then(|o| o.cycle).map(|c| c.floquet_max),
+    ),
+    metric(
+        "cycle_residual",
+        "1",
+        "scaled Newton residual |Pⁿ(z) − z| of the limit cycle's fixed point; null as floquet_max",
+        |r| r.outcome.and_then(|o| o.cycle).map(|c| c.residual),
+    ),
+    count("steps", "work", "accepted integrator steps", |r| {
+        r.outcome.map(|o| o.work.steps as i64)
+    }),
+    count("rejected", "work", "rejected integrator steps", |r| {
+        r.outcome.map(|o| o.work.rejected as i64)
+    }),
+    count(
+        "rhs_evals",
+        "work",
+        "right-hand-side evaluations (the machine-independent work)",
+        |r| r.outcome.map(|o| o.work.rhs_evals as i64),
+    ),
+    count(
+        "events",
+        "work",
+        "events located (touchdowns, lift-offs, mode switches)",
+        |r| r.outcome.map(|o| o.work.events as i64),
+    ),
+    Column {
+        name: "wall_time_s",
+        group: "work",
+        nullable: false,
+        unit: "s",
+        description: "wall-clock time of this sample's simulation (machine-dependent)",
+        get: Get::F64(|r| Some(r.wall_time_s)),
+    },
+];
+
+static SCHEMA: LazyLock<SchemaRef> = LazyLock::new(|| table::schema(COLUMNS));
+
+/// The Arrow schema of scan rows.
+pub fn schema() -> SchemaRef {
+    SCHEMA.clone()
+}
+
+/// Position of a label in [`Label::ALL`]: its dictionary key in the
+/// `outcome` column and its slot in per-label counts.
+pub(crate) fn label_index(label: Label) -> usize {
+    Label::ALL
+        .iter()
+        .position(|l| *l == label)
+        .expect("every label is in Label::ALL")
+}
+
+/// The values of the `outcome` dictionary, in key order.
+fn label_names() -> Vec<&'static str> {
+    Label::ALL.iter().map(|l| l.as_str()).collect()
+}
+
+/// Rows → one record batch in [`schema`].
+pub(crate) fn to_batch(rows: &[Row]) -> RecordBatch {
+    table::batch(COLUMNS, schema(), rows)
+}
+
+/// A row as one flat JSON object, keys in column order (`outcome` is the
+/// label string; absent metrics and non-finite floats are `null`).
+pub(crate) struct JsonRow<'a>(pub(crate) &'a Row);
+
+impl Serialize for JsonRow<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let r = self.0;
+        let mut map = s.serialize_map(Some(COLUMNS.len()))?;
+        for c in COLUMNS {
+            match &c.get {
+                Get::F64(g) => map.serialize_entry(c.name, &g(r).filter(|v| v.is_finite()))?,
+                Get::I64(g) => map.serialize_entry(c.name, &g(r))?,
+                Get::Bool(g) => map.serialize_entry(c.name, &g(r))?,
+                Get::Str(g) => map.serialize_entry(c.name, &g(r))?,
+                Get::Label { index, names } => map.serialize_entry(c.name, names()[index(r)])?,
+            }
+        }
+        map.end()
+    }
+}
+
+/// A row as a readable two-column table, grouped by section.
+pub(crate) fn to_text(r: &Row) -> String {
+    let mut out = String::new();
+    let mut group = "";
+    for c in COLUMNS {
+        if c.group != group {
+            group = c.group;
+            out.push_str(&format!("[{group}]\n"));
+        }
+        let value = match &c.get {
+            Get::F64(g) => g(r).map(|v| format!("{v:.6}")),
+            Get::I64(g) => g(r).map(|v| v.to_string()),
+            Get::Bool(g) => g(r).map(|v| v.to_string()),
+            Get::Str(g) => g(r).map(str::to_string),
+            Get::Label { index, names } => Some(names()[index(r)].to_string()),
+        };
+        out.push_str(&format!(
+            "  {:<24} {}\n",
+            c.name,
+            value.as_deref().unwrap_or("-")
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::io::metadata::META_SEED;
+    use crate::io::parquet::{open, write_file};
+    use crate::io::scan_files::{f64_column, label_column};
+    use crate::io::table::label_type;
+    use ::parquet::file::metadata::KeyValue;
+    use arrow_array::Array;
+    use arrow_array::cast::AsArray;
+    use rtw_model::Normalization;
+    use rtw_model::outcome::{ContactFractions, Energy, FailureDetail, IntegratorWork};
+
+    pub(crate) fn outcome(label: Label) -> Outcome {
+        Outcome {
+            label,
+            failure: (label == Label::Stall).then_some(FailureDetail::NoTouchdown),
+            start: rtw_model::outcome::Stance::TwoFeet,
+            t_end: 20.0,
+            fractions: ContactFractions {
+                nlsp: 0.1,
+                slsp: 0.5,
+                dlsp: 0.4,
+                tlsp: 0.0,
+            },
+            step_shares: rtw_model::outcome::StepShares {
+                steps: 30,
+                flight: 0.4,
+                triple: 0.0,
+            },
+            touchdowns: 40,
+            f_w: 3.2,
+            f_w_newfoot: 2.9,
+            speed: 0.8,
+            mu_required: 7.5,
+            slide_time: 0.01,
+            energy: Energy::default(),
+            period: 1,
+            cycle: Some(rtw_model::CycleSummary {
+                period: 1,
+                floquet_max: 0.8,
+                residual: 1e-10,
+            }),
+            work: IntegratorWork {
+                steps: 100,
+                rejected: 3,
+                rhs_evals: 700,
+                events: 50,
+            },
+        }
+    }
+
+    pub(crate) fn row(id: u64, outcome: Option<Outcome>) -> Row {
+        let params = Params::fig7a();
+        Row {
+            sample_id: id,
+            params,
+            physical: Physical::new(&params, Normalization::Supplementary, 9.81),
+            outcome,
+            message: outcome.is_none().then(|| "boom".to_string()),
+            wall_time_s: 0.25,
+        }
+    }
+
+    #[test]
+    fn batch_has_every_column_and_signed_dictionary_keys() {
+        let rows = vec![
+            row(0, Some(outcome(Label::Walk))),
+            row(1, None),
+            row(2, Some(outcome(Label::Stall))),
+        ];
+        let b = to_batch(&rows);
+        assert_eq!(b.num_rows(), 3);
+        assert_eq!(b.num_columns(), COLUMNS.len());
+        assert_eq!(
+            b.schema().field_with_name("outcome").unwrap().data_type(),
+            &label_type()
+        );
+        assert_eq!(
+            label_column(&b).unwrap(),
+            vec![Label::Walk, Label::Diverged, Label::Stall]
+        );
+        let t_end = f64_column(&b, "t_end").unwrap();
+        assert!(t_end.is_valid(0) && t_end.is_null(1));
+        let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
+        assert!(failure.is_null(0));
+        assert_eq!(failure.value(2), "no_touchdown");
+        let message = b.column_by_name("message").unwrap().as_string::<i32>();
+        assert_eq!(message.value(1), "boom");
+    }
+
+    #[test]
+    fn parquet_round_trip_keeps_types_and_metadata() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.parquet");
+        let rows: Vec<Row> = (0..5).map(|i| row(i, Some(outcome(Label::Skip)))).collect();
+        write_file(
+            &path,
+            &to_batch(&rows),
+            vec![KeyValue::new(META_SEED.into(), "7".to_string())],
+        )
+        .unwrap();
+        let input = open(&path, 100).unwrap();
+        assert_eq!(input.rows, 5);
+        assert_eq!(input.metadata[META_SEED], "7");
+        let batches: Vec<RecordBatch> = input.reader.collect::<Result<_, _>>().unwrap();
+        assert_eq!(batches[0].schema().fields(), schema().fields());
+        assert_eq!(batches[0], to_batch(&rows));
+        // Nothing but the file is left in the directory.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn json_is_flat_and_ordered() {
+        let r = row(4, Some(outcome(Label::Walk)));
+        let s = serde_json::to_string(&JsonRow(&r)).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&s).unwrap();
+        assert_eq!(v["outcome"], "walk");
+        assert_eq!(v["slsp"], 0.5);
+        assert_eq!(v["steps"], 100);
+        assert_eq!(v["k"].as_f64().unwrap().round(), 500.0);
+        assert!(v["failure"].is_null());
+        assert!(s.starts_with("{\"sample_id\":4,\"length\":0.8"));
+        let d = serde_json::to_value(JsonRow(&row(1, None))).unwrap();
+        assert_eq!(d["outcome"], "diverged");
+        assert_eq!(d["message"], "boom");
+        assert!(d["t_end"].is_null());
+        let text = to_text(&r);
+        // Every field of Outcome has a column: nested structs flatten to
+        // their field names (`energy` with an `energy_` prefix).
+        let o = serde_json::to_value(r.outcome.unwrap()).unwrap();
+        for (k, val) in o.as_object().unwrap() {
+            let names: Vec<String> = match val.as_object() {
+                Some(inner) if k == "energy" => {
+                    inner.keys().map(|f| format!("energy_{f}")).collect()
+                }
+                Some(inner) if k == "step_shares" => inner
+                    .keys()
+                    .map(|f| match f.as_str() {
+                        "steps" => "window_steps".into(),
+                        _ => format!("{f}_steps"),
+                    })
+                    .collect(),
+                Some(inner) if k == "cycle" => inner
+                    .keys()
+                    .map(|f| match f.as_str() {
+                        "residual" => "cycle_residual".into(),
+                        _ => f.clone(),
+                    })
+                    .collect(),
+                Some(inner) => inner.keys().cloned().collect(),
+                None if k == "label" => vec!["outcome".into()],
+                None => vec![k.clone()],
+            };
+            for n in names {
+                assert!(
+                    COLUMNS.iter().any(|c| c.name == n),
+                    "Outcome field {n} has no column"
+                );
+            }
+        }
+        assert!(text.contains("[metric]") && text.contains("outcome") && text.contains("walk"));
+    }
+}

@@ -1,0 +1,254 @@
+//! Trace files (`simulate --trace`): a run's time series, streamed to
+//! Parquet, and the size it may reach.
+
+use crate::io::parquet::{ParquetFile, writer_properties};
+use crate::io::table;
+use anyhow::{Result, bail};
+use arrow_array::{ArrayRef, Float64Array, Int8Array, RecordBatch};
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
+use parquet::file::metadata::KeyValue;
+use rtw_model::TraceSample;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Writes a trajectory ([`TraceSample`]s) to Parquet in row groups of
+/// `BATCH` samples, so a long trace never sits in memory.
+pub(crate) struct TraceWriter {
+    file: ParquetFile,
+    schema: SchemaRef,
+    buffer: Vec<TraceSample>,
+    rows: u64,
+    max_rows: u64,
+}
+
+enum TraceGet {
+    F64(Box<dyn Fn(&TraceSample) -> f64>),
+    I8(Box<dyn Fn(&TraceSample) -> i8>),
+}
+
+/// A scalar field of a trace sample.
+type TraceScalar = fn(&TraceSample) -> f64;
+
+/// One column of a trace file: name, unit, description, value.
+type TraceColumn = (String, &'static str, String, TraceGet);
+
+fn trace_columns() -> Vec<TraceColumn> {
+    use TraceGet::{F64, I8};
+    let mut cols: Vec<TraceColumn> = vec![(
+        "t".into(),
+        "s",
+        "time since the start of the run".into(),
+        F64(Box::new(|s| s.t)),
+    )];
+    for (rod, name) in ["a", "b", "c"].into_iter().enumerate() {
+        let pose = [
+            (
+                "x",
+                "m",
+                "centre's position along the slope (downhill positive)",
+            ),
+            (
+                "y",
+                "m",
+                "centre's height above the ground, along the slope normal",
+            ),
+            ("theta", "rad", "angle from the slope's x axis"),
+        ];
+        for (j, (q, unit, what)) in pose.into_iter().enumerate() {
+            cols.push((
+                format!("{q}_{name}"),
+                unit,
+                format!("rod {name}: {what}"),
+                F64(Box::new(move |s| s.pose[rod][j])),
+            ));
+        }
+        let vel = [
+            ("vx", "m/s", "centre's velocity along x"),
+            ("vy", "m/s", "centre's velocity along y"),
+            ("omega", "rad/s", "angular velocity"),
+        ];
+        for (j, (q, unit, what)) in vel.into_iter().enumerate() {
+            cols.push((
+                format!("{q}_{name}"),
+                unit,
+                format!("rod {name}: {what}"),
+                F64(Box::new(move |s| s.vel[rod][j])),
+            ));
+        }
+        cols.push((
+            format!("contact_{name}"),
+            "-",
+            format!(
+                "rod {name}'s contact mode: 0 free, +1/−1 stick on tip ±, +2/−2 slide on tip ±"
+            ),
+            I8(Box::new(move |s| s.contact[rod])),
+        ));
+    }
+    cols.push((
+        "contact_state".into(),
+        "1",
+        "rods on the ground: 0 NLSP (flight), 1 SLSP, 2 DLSP, 3 TLSP".into(),
+        I8(Box::new(|s| s.contact_state as i8)),
+    ));
+    let scalars: [(&str, &str, TraceScalar); 5] = [
+        ("kinetic", "kinetic energy", |s| s.kinetic),
+        ("gravity_potential", "potential energy of gravity", |s| {
+            s.gravity_potential
+        }),
+        ("string_potential", "elastic energy of the strings", |s| {
+            s.string_potential
+        }),
+        (
+            "damping_loss",
+            "energy dissipated by the dampers so far",
+            |s| s.damping_loss,
+        ),
+        ("impact_loss", "energy lost in impacts so far", |s| {
+            s.impact_loss
+        }),
+    ];
+    for (n, what, g) in scalars {
+        cols.push((n.into(), "J", what.into(), F64(Box::new(g))));
+    }
+    cols
+}
+
+/// The schema of a trace file (`simulate --trace`).
+pub(crate) fn trace_schema() -> SchemaRef {
+    let fields: Vec<Field> = trace_columns()
+        .into_iter()
+        .map(|(n, unit, description, g)| {
+            let ty = match g {
+                TraceGet::F64(_) => DataType::Float64,
+                TraceGet::I8(_) => DataType::Int8,
+            };
+            table::field(n, ty, false, unit, &description)
+        })
+        .collect();
+    Arc::new(Schema::new(fields))
+}
+
+/// Bytes of one trace sample before compression (the sum of its columns'
+/// widths): the unit of `simulate --trace`'s size estimate and limit.
+pub(crate) fn trace_row_bytes() -> u64 {
+    trace_columns()
+        .iter()
+        .map(|(_, _, _, g)| match g {
+            TraceGet::F64(_) => 8,
+            TraceGet::I8(_) => 1,
+        })
+        .sum()
+}
+
+/// Most samples a trace of a run with `options` can have: one every
+/// `trace_dt` over `t_max`, or with `trace_dt = 0` one per step, at most the
+/// work budget `max_steps`.
+pub(crate) fn trace_rows_bound(options: &rtw_model::Options) -> u64 {
+    if options.trace_dt > 0.0 {
+        (options.t_max / options.trace_dt).min(u64::MAX as f64 / 2.0) as u64 + 2
+    } else {
+        options.max_steps.saturating_add(1)
+    }
+}
+
+/// A byte count in decimal units (`2.0 GB`).
+pub(crate) fn human_bytes(b: f64) -> String {
+    let units = ["B", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let mut v = b;
+    let mut u = 0;
+    while v >= 1000.0 && u + 1 < units.len() {
+        v /= 1000.0;
+        u += 1;
+    }
+    format!("{v:.1} {}", units[u])
+}
+
+/// Parses a size such as `2GB`, `500 MB`, `1e9` (bytes), `64kB`; decimal units.
+pub(crate) fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
+    let (num, unit) = t.split_at(split);
+    let factor = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 1.0,
+        "kb" | "k" => 1e3,
+        "mb" | "m" => 1e6,
+        "gb" | "g" => 1e9,
+        "tb" | "t" => 1e12,
+        _ => {
+            return Err(format!(
+                "`{s}`: unknown unit `{unit}`: use B, kB, MB, GB or TB"
+            ));
+        }
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a size such as 2GB or 500MB"))?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!("`{s}`: must be a size > 0"));
+    }
+    Ok((v * factor).min(u64::MAX as f64) as u64)
+}
+
+impl TraceWriter {
+    const BATCH: usize = 8192;
+
+    /// A trace of at most `limit` bytes before compression: a sample past it
+    /// is an error (the estimate made before the run is an upper bound, this
+    /// is the backstop).
+    pub(crate) fn create(dest: &Path, metadata: Vec<KeyValue>, limit: u64) -> Result<Self> {
+        let schema = trace_schema();
+        let props = writer_properties(&schema, Self::BATCH, metadata);
+        let file = ParquetFile::create(dest, schema.clone(), props)?;
+        Ok(Self {
+            file,
+            schema,
+            buffer: Vec::with_capacity(Self::BATCH),
+            rows: 0,
+            max_rows: limit / trace_row_bytes(),
+        })
+    }
+
+    /// Buffers one sample, writing a row group when the buffer is full.
+    pub(crate) fn push(&mut self, s: &TraceSample) -> Result<()> {
+        if self.rows + self.buffer.len() as u64 >= self.max_rows {
+            bail!(
+                "the trace reached its limit of {} samples ({}); raise --trace-limit or trace_dt",
+                self.max_rows,
+                human_bytes((self.max_rows * trace_row_bytes()) as f64)
+            );
+        }
+        self.buffer.push(*s);
+        if self.buffer.len() >= Self::BATCH {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<()> {
+        if self.buffer.is_empty() {
+            return Ok(());
+        }
+        let arrays: Vec<ArrayRef> = trace_columns()
+            .into_iter()
+            .map(|(_, _, _, g)| match g {
+                TraceGet::F64(g) => {
+                    Arc::new(self.buffer.iter().map(&g).collect::<Float64Array>()) as ArrayRef
+                }
+                TraceGet::I8(g) => Arc::new(self.buffer.iter().map(&g).collect::<Int8Array>()),
+            })
+            .collect();
+        self.file
+            .write(&RecordBatch::try_new(self.schema.clone(), arrays)?)?;
+        self.rows += self.buffer.len() as u64;
+        self.buffer.clear();
+        Ok(())
+    }
+
+    /// Writes what is buffered and moves the file into place; returns the row count.
+    pub(crate) fn finish(mut self) -> Result<u64> {
+        self.flush()?;
+        self.file.finish()?;
+        Ok(self.rows)
+    }
+}

@@ -1,0 +1,88 @@
+//! One writer per result: a lock file beside it.
+
+use crate::io::files::Registered;
+use anyhow::{Context, Result, bail};
+use std::fs::File;
+use std::path::{Path, PathBuf};
+
+/// An exclusive lock on writing one result (`DIR/.NAME.lock` for `DIR/NAME`),
+/// held by one process at a time; the file names the holder's PID. The
+/// operating system releases it when the process ends, however it ends, so a
+/// killed run never leaves a stale lock; the file itself is removed on drop.
+pub(crate) struct Lock {
+    _file: File,
+    path: PathBuf,
+    _live: Registered,
+}
+
+impl Lock {
+    /// The lock file of the result `dest`.
+    pub(crate) fn path_for(dest: &Path) -> PathBuf {
+        let name = dest.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        dest.with_file_name(format!(".{name}.lock"))
+    }
+
+    /// Takes the lock of `dest`, or says which process holds it; `doing`
+    /// says what the holder is doing ("running this scan in DIR").
+    pub(crate) fn acquire(dest: &Path, doing: &str) -> Result<Self> {
+        use std::io::Write;
+        let path = Self::path_for(dest);
+        loop {
+            let mut file = std::fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+                .with_context(|| format!("cannot create the lock file {}", path.display()))?;
+            match file.try_lock() {
+                Ok(()) => {}
+                Err(std::fs::TryLockError::WouldBlock) => {
+                    let pid = std::fs::read_to_string(&path).unwrap_or_default();
+                    let pid = pid.trim();
+                    let pid = if pid.is_empty() { "?" } else { pid };
+                    bail!(
+                        "another rtw-scan (PID {pid}) is {doing} (it holds {}): wait for it to \
+                         finish, or stop it (kill -INT {pid}); what it leaves unfinished, --resume finishes",
+                        path.display()
+                    );
+                }
+                Err(std::fs::TryLockError::Error(e)) => {
+                    return Err(e).with_context(|| format!("cannot lock {}", path.display()));
+                }
+            }
+            // The last holder removes the file as it lets go: if that
+            // happened between our open and our lock, we hold a file that is
+            // no longer at `path`; try again with the one that is.
+            if same_file(&file, &path) {
+                file.set_len(0)?;
+                writeln!(file, "{}", std::process::id())?;
+                return Ok(Self {
+                    _file: file,
+                    _live: Registered::new(path.clone()),
+                    path,
+                });
+            }
+        }
+    }
+}
+
+impl Drop for Lock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+#[cfg(unix)]
+fn same_file(file: &File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (file.metadata(), std::fs::metadata(path)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_file(_: &File, path: &Path) -> bool {
+    path.exists()
+}
