@@ -178,7 +178,7 @@ const LN_FACOLD_MIN: f64 = -9.210340371976182;
 ///
 /// 1. the guards are evaluated at the step's end and compared with their
 ///    values at its start (same index): guard `i` fires when it crosses in its
-///    [`Crossing`] direction, strictly from the other side (a guard exactly 0
+///    [`Crossing`](crate::Crossing) direction, strictly from the other side (a guard exactly 0
 ///    at the start does not fire, so a reset that leaves its guard at 0 is not
 ///    re-triggered);
 /// 2. for each guard that crossed, its root on the step's dense output is

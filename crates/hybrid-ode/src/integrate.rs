@@ -13,7 +13,7 @@
 //!   step and a cubic Hermite interpolant built from `y0, y1, f0, f1`.
 //!
 //! The adaptive step-size control and the event-driven step loop live in
-//! [`crate::engine`]; the coefficients in [`crate::tableau`]; the
+//! [`crate::engine`]; the coefficients in `tableau`; the
 //! interpolant in [`crate::dense`]. This module provides the one-step
 //! kernels and a fixed-step driver ([`fixed_step_solve`]) used to measure
 //! orders of convergence.

@@ -1,5 +1,5 @@
 //! McGeer's rigid rimless wheel on the generic engine: a closed-form check of
-//! [`run`](crate::run).
+//! [`run`].
 //!
 //! A hub of point mass on `n` massless spokes of length `l`, the angle between
 //! neighbouring spokes `2α` (`α = π/n`), rolls down a slope of angle `γ` under
@@ -44,7 +44,7 @@
 //! when `γ < α` needs `ω² > 2(g/l)(1 − cos(α − γ))`.)
 //!
 //! `tests/rimless.rs` checks `ω*`, `cos² 2α` and the reset against simulations
-//! through [`run`](crate::run).
+//! through [`run`].
 
 use crate::engine::{EndReason, EngineOptions, RunEnd, run};
 use crate::system::{Crossing, EndsRun, Flow, Guards, HybridSystem, Observer};
@@ -239,7 +239,7 @@ impl RimlessWheel {
     }
 
     /// The step-to-step map by simulation: starts the wheel at `θ = γ − α`,
-    /// `θ̇ = omega`, runs it through [`run`](crate::run) up to the first
+    /// `θ̇ = omega`, runs it through [`run`] up to the first
     /// touchdown, and returns the post-impact rate. `None` if the wheel
     /// rolled back, the run ended otherwise (time horizon
     /// [`RimlessWheel::stance_horizon`], step underflow, …).
@@ -266,7 +266,7 @@ impl RimlessWheel {
     }
 
     /// Runs the wheel from `θ = γ − α`, `θ̇ = omega` at `t = 0` for `steps`
-    /// touchdowns (or up to `t_end`) in one [`run`](crate::run). Returns the
+    /// touchdowns (or up to `t_end`) in one [`run`]. Returns the
     /// run's end and its [`Walk`] (`walk.last_rate_plus` is the last
     /// post-impact rate); `y` is the final state.
     pub fn walk(

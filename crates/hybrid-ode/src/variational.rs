@@ -91,7 +91,7 @@ impl<S: HybridSystem<N> + Clone, O: Observer<N, S>, const N: usize> Variational<
     }
 
     /// Integrates the augmented state `z` (from [`initial`](Self::initial))
-    /// from `t0` to `t_end` on the engine ([`run`](crate::run)), until then
+    /// from `t0` to `t_end` on the engine ([`run`]), until then
     /// or until a reset the wrapped observer stops at.
     pub fn run<const M: usize>(
         &mut self,

@@ -209,7 +209,7 @@ impl LabelOptions {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Options {
-    /// Simulated time [s].
+    /// Simulated time (s).
     pub t_max: f64,
     /// Integration method. The default, DP5(4) at rtol 1e-4, was chosen by
     /// the work–precision benchmark (`cargo run --release -p rtw-bench`,
@@ -222,9 +222,9 @@ pub struct Options {
     pub rtol: f64,
     /// Absolute tolerance of the adaptive methods.
     pub atol: f64,
-    /// Fixed step of RK4 [s].
+    /// Fixed step of RK4 (s).
     pub rk4_step: f64,
-    /// Largest adaptive step [s].
+    /// Largest adaptive step (s).
     pub h_max: f64,
     /// Work budget (accepted + rejected steps) before `diverged`.
     pub max_steps: u64,
@@ -236,7 +236,7 @@ pub struct Options {
     pub analysis_window: f64,
     /// Collapse when the centre of mass falls below this × h₀.
     pub collapse_height_ratio: f64,
-    /// Stall when no touchdown happens for this long [s].
+    /// Stall when no touchdown happens for this long (s).
     pub stall_time: f64,
     /// Touchdown is declared at tip height −touchdown_offset·L (guard against
     /// re-triggering a touchdown at a tip released at y = 0); in (0, 1e-6].
@@ -244,7 +244,7 @@ pub struct Options {
     /// Sample the trajectory every `trace_dt` seconds when recording (0: every step).
     pub trace_dt: f64,
     /// End a run once its gait has settled: the latest
-    /// [`SETTLE_RETURNS`](crate::gait::SETTLE_RETURNS) touchdown returns
+    /// 36 (`SETTLE_RETURNS`) touchdown returns
     /// repeat with a period (the test of `period`). Its statistics are then
     /// taken over a whole number of periods ending there instead of over the
     /// last `analysis_window` of `t_max`. On by default: on the 200-sample
@@ -254,7 +254,7 @@ pub struct Options {
     /// A chaotic gait never settles and runs to `t_max`.
     pub stop_when_settled: bool,
     /// After a stable run, find its gait's limit cycle on the step map
-    /// ([`crate::stepmap`]): the period from the map and the largest Floquet
+    /// ([`crate::cycles::stepmap`]): the period from the map and the largest Floquet
     /// multiplier ([`Outcome::cycle`](crate::Outcome::cycle)). Costs a Newton
     /// solve with variational Jacobians at tight tolerance per periodic run.
     pub limit_cycle: bool,

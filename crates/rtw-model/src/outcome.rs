@@ -336,7 +336,7 @@ pub struct Outcome {
     pub work: IntegratorWork,
 }
 
-/// A run's limit cycle on the step map ([`crate::stepmap`]).
+/// A run's limit cycle on the step map ([`crate::cycles::stepmap`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CycleSummary {
     /// Period in steps (new-foot touchdowns).

@@ -44,17 +44,17 @@ pub(crate) fn check(
 /// The six normalized inputs of one sample (docs/model.md §1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Params {
-    /// Rod length `L` [m].
+    /// Rod length `L` (m).
     pub length: f64,
     /// Mass per length `ρ` [kg/m].
     pub rho: f64,
     /// Connection ratio `α = l_c / L` [-].
     pub alpha: f64,
-    /// Design eigen-frequency `f_n` of the approximate model (S18) [Hz].
+    /// Design eigen-frequency `f_n` of the approximate model (S18) (Hz).
     pub f_n: f64,
     /// Damping ratio `ζ` [-].
     pub zeta: f64,
-    /// Slope `φ` [rad].
+    /// Slope `φ` (rad).
     pub phi: f64,
 }
 
@@ -107,17 +107,17 @@ impl Params {
 /// validation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Param {
-    /// Rod length `L` [m].
+    /// Rod length `L` (m).
     Length,
     /// Mass per length `ρ` [kg/m].
     Rho,
     /// Connection ratio `α`.
     Alpha,
-    /// Design eigen-frequency `f_n` [Hz].
+    /// Design eigen-frequency `f_n` (Hz).
     Fn,
     /// Damping ratio `ζ`.
     Zeta,
-    /// Slope `φ` [rad].
+    /// Slope `φ` (rad).
     Phi,
 }
 

@@ -190,7 +190,7 @@ impl Default for SectionLog {
 
 impl SectionLog {
     /// Records the touchdown of `tip` of `rod` (state `y` just after it, in
-    /// `modes`) if it crosses the section ([`new_foot`]).
+    /// `modes`) if it crosses the section (`new_foot`).
     pub fn on_touchdown(&mut self, modes: &[RodMode; 3], y: &[f64; N], rod: usize, tip: Tip) {
         let Some(j) = new_foot(self.stance, modes, rod, tip) else {
             return;

@@ -1,6 +1,6 @@
 //! `simulate(params, options) -> Outcome`: one run of the RTW on the hybrid
 //! engine, with the statistics of docs/model.md §5 gathered as it goes by
-//! its observer, the [`Recorder`].
+//! its observer, the `Recorder`.
 
 use crate::cycles::section::SectionLog;
 use crate::cycles::stepmap::cycle_of_run;
