@@ -1,0 +1,219 @@
+//! Curves of folds and period doublings in two parameters: the boundary of
+//! the region of a parameter plane where a fixed point exists (fold) or is
+//! stable against period doubling.
+
+use super::{Bifurcation, End, Error, Kind, Options};
+use nalgebra::{Complex, DMatrix, DVector};
+
+/// A map with two parameters and its derivatives at `(z, p)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapEval2 {
+    /// `P(z; p)`.
+    pub value: Vec<f64>,
+    /// `∂P/∂z`.
+    pub dz: DMatrix<f64>,
+    /// `∂P/∂p₁` and `∂P/∂p₂`.
+    pub dp: [Vec<f64>; 2],
+}
+
+/// A point of a curve of bifurcations in two parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePoint {
+    /// The fixed point on the bifurcation.
+    pub z: Vec<f64>,
+    /// The two parameters.
+    pub p: [f64; 2],
+    /// Its multipliers (one on +1 for a fold, on −1 for a period doubling).
+    pub multipliers: Vec<Complex<f64>>,
+}
+
+/// A curve of folds or period doublings in the parameter plane: the
+/// boundary of the region where a fixed point exists (fold) or is stable
+/// against period doubling.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// Fold or period doubling.
+    pub kind: Kind,
+    /// Its points in order of arclength.
+    pub points: Vec<CurvePoint>,
+    /// Why it ended.
+    pub end: End,
+}
+
+/// Settings of a two-parameter continuation: `p_min`/`p_max`/`p_scale` of
+/// `base` apply to the first parameter, these to the second.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options2 {
+    /// Steps, tolerances, first-parameter range and scales.
+    pub base: Options,
+    /// The curve ends once the second parameter leaves this range.
+    pub p2_range: (f64, f64),
+    /// Scale of the second parameter.
+    pub p2_scale: f64,
+    /// Step of the central differences of the test function (scaled units).
+    pub fd_step: f64,
+}
+
+/// The augmented system at a point: `F`, its Jacobian and `∂P/∂z`.
+type Augmented = (DVector<f64>, DMatrix<f64>, DMatrix<f64>);
+
+/// Continues a located fold or period doubling (`at`, found at second
+/// parameter `p2`) in both parameters: the curve where `P(z; p₁, p₂) = z`
+/// and `det(∂P/∂z ∓ I) = 0` (− for a fold, + for a period doubling), first
+/// towards larger `p₂` if `direction > 0`.
+pub fn continue_curve<F>(
+    mut map: F,
+    at: &Bifurcation,
+    p2: f64,
+    direction: f64,
+    opts: &Options2,
+    multipliers: &dyn Fn(&DMatrix<f64>) -> Vec<Complex<f64>>,
+) -> Result<Curve, Error>
+where
+    F: FnMut(&[f64], [f64; 2]) -> Option<MapEval2>,
+{
+    let sign = match at.kind {
+        Kind::Fold => -1.0,
+        Kind::PeriodDoubling => 1.0,
+        other => return Err(Error::UnsupportedKind(other)),
+    };
+    let n = at.point.z.len();
+    let o = &opts.base;
+    let zs = if o.z_scale.is_empty() {
+        vec![1.0; n]
+    } else {
+        o.z_scale.clone()
+    };
+    let (ps1, ps2) = (o.p_scale, opts.p2_scale);
+    let unscale = |x: &DVector<f64>| -> (Vec<f64>, [f64; 2]) {
+        (
+            (0..n).map(|k| x[k] * zs[k]).collect(),
+            [x[n] * ps1, x[n + 1] * ps2],
+        )
+    };
+    // F(x) = [(P − z)/zs; det(J ∓ I)] and its Jacobian (n + 1) × (n + 2).
+    let mut system = |x: &DVector<f64>,
+                      with_jacobian: bool|
+     -> Option<(DVector<f64>, DMatrix<f64>, DMatrix<f64>)> {
+        let (z, p) = unscale(x);
+        let e = map(&z, p)?;
+        let test = |j: &DMatrix<f64>| (j + DMatrix::<f64>::identity(n, n) * sign).determinant();
+        let mut f = DVector::from_fn(n + 1, |k, _| {
+            if k < n {
+                (e.value[k] - z[k]) / zs[k]
+            } else {
+                0.0
+            }
+        });
+        f[n] = test(&e.dz);
+        if !f.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let mut jac = DMatrix::zeros(n + 1, n + 2);
+        if with_jacobian {
+            for r in 0..n {
+                for c in 0..n {
+                    let d = e.dz[(r, c)] - if r == c { 1.0 } else { 0.0 };
+                    jac[(r, c)] = d * zs[c] / zs[r];
+                }
+                jac[(r, n)] = e.dp[0][r] * ps1 / zs[r];
+                jac[(r, n + 1)] = e.dp[1][r] * ps2 / zs[r];
+            }
+            for c in 0..n + 2 {
+                let mut xp = x.clone();
+                xp[c] += opts.fd_step;
+                let (zp, pp) = unscale(&xp);
+                let fp = test(&map(&zp, pp)?.dz);
+                xp[c] -= 2.0 * opts.fd_step;
+                let (zm, pm) = unscale(&xp);
+                let fm = test(&map(&zm, pm)?.dz);
+                jac[(n, c)] = (fp - fm) / (2.0 * opts.fd_step);
+            }
+        }
+        Some((f, jac, e.dz))
+    };
+    let correct = |system: &mut dyn FnMut(&DVector<f64>, bool) -> Option<Augmented>,
+                   x0: &DVector<f64>,
+                   t: &DVector<f64>,
+                   ds: f64|
+     -> Option<Augmented> {
+        let mut x = x0 + t * ds;
+        for _ in 0..=o.max_iter {
+            let (f, jac, dz) = system(&x, true)?;
+            let arc = t.dot(&(&x - x0)) - ds;
+            let scale_f = f.rows(0, n).amax();
+            if scale_f <= o.tol && arc.abs() <= o.tol && f[n].abs() <= o.tol.sqrt() * 1e-3 {
+                return Some((x, jac, dz));
+            }
+            let mut a = jac.insert_row(n + 1, 0.0);
+            a.set_row(n + 1, &t.transpose());
+            let mut r = -f.insert_row(n + 1, 0.0);
+            r[n + 1] = -arc;
+            let dx = a.lu().solve(&r)?;
+            if !dx.iter().all(|v| v.is_finite()) {
+                return None;
+            }
+            x += dx;
+        }
+        None
+    };
+    let tangent = |jac: &DMatrix<f64>, t: &DVector<f64>| -> Option<DVector<f64>> {
+        let mut a = jac.clone().insert_row(n + 1, 0.0);
+        a.set_row(n + 1, &t.transpose());
+        let mut rhs = DVector::zeros(n + 2);
+        rhs[n + 1] = 1.0;
+        let tau = a.lu().solve(&rhs)?;
+        let norm = tau.norm();
+        (norm.is_finite() && norm > 0.0).then(|| tau / norm)
+    };
+    // The start: the bifurcation corrected at fixed p₂, then the tangent
+    // oriented towards `direction` in p₂.
+    let mut e2 = DVector::zeros(n + 2);
+    e2[n + 1] = 1.0;
+    let guess = DVector::from_fn(n + 2, |k, _| match k {
+        k if k < n => at.point.z[k] / zs[k],
+        k if k == n => at.point.p / ps1,
+        _ => p2 / ps2,
+    });
+    let (mut x, jac0, dz0) = correct(&mut system, &guess, &e2, 0.0).ok_or(Error::NoStart)?;
+    let mut t = tangent(&jac0, &(e2 * direction.signum())).ok_or(Error::SingularStart)?;
+    let point = |x: &DVector<f64>, dz: &DMatrix<f64>| {
+        let (z, p) = unscale(x);
+        CurvePoint {
+            z,
+            p,
+            multipliers: multipliers(dz),
+        }
+    };
+    let mut points = vec![point(&x, &dz0)];
+    let mut ds = o.ds;
+    let end = loop {
+        if points.len() >= o.max_points {
+            break End::MaxPoints;
+        }
+        let step = correct(&mut system, &x, &t, ds)
+            .and_then(|(xn, jac, dz)| Some((tangent(&jac, &t)?, xn, dz)));
+        let Some((tn, xn, dz)) = step else {
+            ds *= 0.5;
+            if ds < o.ds_min {
+                break End::StepTooSmall;
+            }
+            continue;
+        };
+        let pt = point(&xn, &dz);
+        let [p1, p2] = pt.p;
+        points.push(pt);
+        if !(o.p_min..=o.p_max).contains(&p1) || !(opts.p2_range.0..=opts.p2_range.1).contains(&p2)
+        {
+            break End::ParameterRange;
+        }
+        ds = (ds * 1.5).min(o.ds_max);
+        x = xn;
+        t = tn;
+    };
+    Ok(Curve {
+        kind: at.kind,
+        points,
+        end,
+    })
+}
