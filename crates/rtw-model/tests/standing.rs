@@ -143,3 +143,16 @@ fn a_star_that_rolls_away_collapses_or_is_pushed_as_asked() {
     assert!(out.t_end > 0.0, "pushed, it runs");
     assert_ne!(out.failure, Some(FailureDetail::StandingRollsAway));
 }
+
+#[test]
+fn a_numerical_failure_while_settling_is_diverged_not_a_collapse() {
+    // The soft star must settle (integration work) before it stands; with a
+    // work budget of 10 steps the settling runs out of it: a numerical
+    // failure, which is `diverged` (docs/model.md §5), never a physical
+    // `collapse`.
+    let mut o = settled(-2.0);
+    o.max_steps = 10;
+    let out = simulate(&soft(), &o);
+    assert_eq!(out.failure, Some(FailureDetail::WorkBudget));
+    assert_eq!(out.label, Label::Diverged, "{out:?}");
+}

@@ -326,7 +326,9 @@ fn simulate_inner(
 /// The outcome of a run that could not start, after `work` trying.
 fn failed_at_start(detail: FailureDetail, work: Work) -> Outcome {
     Outcome {
-        label: Label::Collapse,
+        // A star that cannot stand is a collapse; a numerical failure while
+        // it was being set down is `diverged`, like any other.
+        label: detail.label(),
         failure: Some(detail),
         start: Stance::RestShape,
         t_end: 0.0,
