@@ -346,11 +346,14 @@ impl Options {
         // Fig. 7(a) walk is still judged a walk (or, for g and initial.omega,
         // still gives a physical outcome): tests/option_ranges.rs. Below g =
         // 0.1 the standing equilibrium is not found (its tolerance scales
-        // with g); a window under 10 % of t_max holds too few returns to
+        // with g); at g = f64::MAX the start overflows, so g stops at 1000
+        // (100 Earth gravities); a window under 10 % of t_max holds too few returns to
         // judge a gait; a stall time under 1 s is shorter than a step; a
         // collapse height above 0.75 h₀ is reached by a walking gait; at
         // |ω₀| ≫ 50 rad/s the state overflows.
-        check("g", self.g, "finite and >= 0.1 (m/s^2)", |v| v >= 0.1)?;
+        check("g", self.g, "in [0.1, 1000] (m/s^2)", |v| {
+            (0.1..=1000.0).contains(&v)
+        })?;
         check(
             "analysis_window",
             self.analysis_window,

@@ -176,22 +176,29 @@ impl Param {
     /// The valid range, in words (with the unit).
     pub fn range(self) -> &'static str {
         match self {
-            Param::Length => "finite and > 0 (m)",
-            Param::Rho => "finite and > 0 (kg/m)",
-            Param::Alpha => "in [0, 0.5)",
-            Param::Fn => "finite and > 0 (Hz)",
-            Param::Zeta => "finite and >= 0",
+            Param::Length => "in [1e-3, 1e3] (m)",
+            Param::Rho => "in [1e-3, 1e3] (kg/m)",
+            Param::Alpha => "in [0, 0.49]",
+            Param::Fn => "in [1e-2, 1e2] (Hz)",
+            Param::Zeta => "in [0, 10]",
             Param::Phi => "in (-pi/2, pi/2) rad",
         }
     }
 
     /// Whether `value` is valid: finite and in [`range`](Param::range).
     pub fn admits(self, value: f64) -> bool {
+        // Six orders of magnitude around the article's box for the scales;
+        // at each end the Fig. 7(a) point still gives a physical outcome
+        // (tests/option_ranges.rs). Beyond them the integrator's absolute
+        // tolerances and the start's thresholds stop meaning anything, and
+        // α → 0.5 attaches the strings at the hub (r = L/2 − αL → 0), where
+        // the settling underflows its step.
         value.is_finite()
             && match self {
-                Param::Length | Param::Rho | Param::Fn => value > 0.0,
-                Param::Alpha => (0.0..0.5).contains(&value),
-                Param::Zeta => value >= 0.0,
+                Param::Length | Param::Rho => (1e-3..=1e3).contains(&value),
+                Param::Alpha => (0.0..=0.49).contains(&value),
+                Param::Fn => (1e-2..=1e2).contains(&value),
+                Param::Zeta => (0.0..=10.0).contains(&value),
                 Param::Phi => value.abs() < PI / 2.0,
             }
     }
@@ -337,7 +344,7 @@ mod tests {
     fn invalid_inputs_name_field_and_range() {
         let e = Params::new(0.8, 2.5, 0.5, 3.0, 0.05, 0.1).unwrap_err();
         assert_eq!(e.field, "alpha");
-        assert!(e.to_string().contains("[0, 0.5)"), "{e}");
+        assert!(e.to_string().contains("[0, 0.49]"), "{e}");
         assert_eq!(
             Params::new(0.0, 2.5, 0.1, 3.0, 0.05, 0.1)
                 .unwrap_err()

@@ -89,9 +89,9 @@ fn ranges() -> Vec<(&'static str, f64, f64, f64, f64, Set, Expect)> {
         (
             "g",
             0.1,
-            max,
+            1000.0,
             0.0999,
-            f64::INFINITY,
+            1000.1,
             |o, v| o.g = v,
             Expect::Physical,
         ),
@@ -268,4 +268,56 @@ fn touchdown_offset_zero_is_refused() {
     let e = o.validate().unwrap_err();
     assert_eq!(e.field, "touchdown_offset");
     assert_eq!(e.range, "in (0, 1e-6]");
+}
+
+#[test]
+fn both_ends_of_every_input_range_give_a_physical_outcome_at_fig7a() {
+    use rtw_model::Param;
+    use std::f64::consts::FRAC_PI_2;
+    // (input, lower end, upper end, just outside below, just outside above);
+    // φ's range is open, so its ends are the doubles just inside ±π/2.
+    let inside = FRAC_PI_2.next_down();
+    let ends = [
+        (Param::Length, 1e-3, 1e3, 0.999e-3, 1.001e3),
+        (Param::Rho, 1e-3, 1e3, 0.999e-3, 1.001e3),
+        (Param::Alpha, 0.0, 0.49, -1e-12, 0.4901),
+        (Param::Fn, 1e-2, 1e2, 0.999e-2, 1.001e2),
+        (Param::Zeta, 0.0, 10.0, -1e-12, 10.001),
+        (Param::Phi, -inside, inside, -FRAC_PI_2, FRAC_PI_2),
+    ];
+    let o = Options::default();
+    let mut bad = Vec::new();
+    for (param, lo, hi, below, above) in ends {
+        for (end, v) in [("lower", lo), ("upper", hi)] {
+            let mut p = Params::fig7a();
+            param.set(&mut p, v);
+            if let Err(e) = p.validate() {
+                bad.push(format!(
+                    "{} = {v:e} ({end} end) is refused: {e}",
+                    param.name()
+                ));
+                continue;
+            }
+            let out = simulate(&p, &o);
+            if out.label == Label::Diverged {
+                bad.push(format!(
+                    "{} = {v:e} ({end} end): diverged ({:?})",
+                    param.name(),
+                    out.failure
+                ));
+            }
+        }
+        for v in [below, above] {
+            let mut p = Params::fig7a();
+            param.set(&mut p, v);
+            match p.validate() {
+                Err(e) => assert_eq!(e.field, param.name(), "{} = {v:e}", param.name()),
+                Ok(()) => bad.push(format!(
+                    "{} = {v:e} (just outside) is accepted",
+                    param.name()
+                )),
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

@@ -260,7 +260,7 @@ fn bad_configs_are_refused_with_a_message_naming_the_key() {
         (
             "alpha = { uniform = [0, 0.4] }",
             "alpha = 0.5",
-            &["params.alpha: 0.5 is invalid: must be in [0, 0.5)"],
+            &["params.alpha: 0.5 is invalid: must be in [0, 0.49]"],
         ),
         (
             "alpha = { uniform = [0, 0.4] }",

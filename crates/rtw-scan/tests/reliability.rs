@@ -529,7 +529,7 @@ fn values_outside_their_range_are_refused_naming_file_column_and_row() {
     rtw_scan::io::write_file(&bad, &batch, meta).unwrap();
     run_err(
         &["summary", s(&bad)],
-        &["bad.parquet", "alpha", "row 7", "0.7", "[0, 0.5)"],
+        &["bad.parquet", "alpha", "row 7", "0.7", "[0, 0.49]"],
     );
     run_err(&["cluster", s(&bad)], &["bad.parquet", "alpha", "row 7"]);
 }

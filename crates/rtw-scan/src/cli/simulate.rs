@@ -20,7 +20,7 @@ pub(super) struct SimulateArgs {
     /// Mass per length ρ [kg/m].
     #[arg(long)]
     rho: f64,
-    /// Connection ratio α, in [0, 0.5).
+    /// Connection ratio α, in [0, 0.49].
     #[arg(long)]
     alpha: f64,
     /// Eigen-frequency f_n [Hz].

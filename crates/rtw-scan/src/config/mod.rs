@@ -404,7 +404,7 @@ phi = [0.1, 0.2]
         );
         let e = err(&BASE.replace("[0.0, 0.4]", "[0.0, 0.5]"));
         assert!(
-            e.contains("params.alpha.uniform[1] (hi): 0.5 is invalid: must be in [0, 0.5)"),
+            e.contains("params.alpha.uniform[1] (hi): 0.5 is invalid: must be in [0, 0.49]"),
             "{e}"
         );
         let e = err(&BASE.replace("[1, 5]", "[5, 1]"));
