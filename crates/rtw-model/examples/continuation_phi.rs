@@ -3,47 +3,16 @@
 //!
 //! Solves the period-1 walk at φ = 0.15 (as the `cycle` example), continues
 //! its fixed point of the step map in φ both ways by pseudo-arclength
-//! (Jacobians in z by the variational equations, in φ by central
-//! differences), locates the bifurcations on it, and switches onto the
+//! ([`StepMapFamily`]: Jacobians in z by the variational equations, in φ by
+//! central differences), locates the bifurcations on it, and switches onto the
 //! period-2 branch at the period doubling. Prints one line per point:
 //! `branch φ stable max|μ| ω` and one per bifurcation.
-use hybrid_ode::continuation::{self, Kind, MapEval, Options as Cont};
+use hybrid_ode::continuation::{self, Kind, Options as Cont};
 use hybrid_ode::limit;
 use nalgebra::DMatrix;
-use rtw_model::cycles::section::SectionPoint;
-use rtw_model::cycles::stepmap::{CycleOptions, Jacobian, StepMap};
-use rtw_model::{Options, Params};
-
-/// The step map's `n`-th power at the section point `template` with
-/// coordinates `z`, on a slope `phi`, as a map with a parameter.
-fn family<'a>(
-    base: &'a Params,
-    options: &'a Options,
-    cycle: &'a CycleOptions,
-    template: SectionPoint,
-    n: usize,
-) -> impl FnMut(&[f64], f64) -> Option<MapEval> + 'a {
-    move |z: &[f64], phi: f64| {
-        let at = |phi: f64| StepMap::new(&Params { phi, ..*base }, options, cycle);
-        let p = template.with_coords(z);
-        let (q, dz) = at(phi).power_with_jacobian(&p, n, Jacobian::Variational)?;
-        // ∂P/∂φ by central differences of the whole power.
-        let h = 1e-6;
-        let plus = at(phi + h).power_with_jacobian(&p, n, Jacobian::Differences { rel: 1e-6 })?;
-        let minus = at(phi - h).power_with_jacobian(&p, n, Jacobian::Differences { rel: 1e-6 })?;
-        let (qp, qm) = (plus.0.coords(), minus.0.coords());
-        let dp = qp
-            .iter()
-            .zip(&qm)
-            .map(|(a, b)| (a - b) / (2.0 * h))
-            .collect();
-        Some(MapEval {
-            value: q.coords(),
-            dz,
-            dp,
-        })
-    }
-}
+use rtw_model::cycles::continuation::StepMapFamily;
+use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
+use rtw_model::{Options, Param, Params};
 
 fn nontrivial(j: &DMatrix<f64>) -> Vec<nalgebra::Complex<f64>> {
     limit::nontrivial_multipliers(j)
@@ -75,7 +44,7 @@ fn main() {
     };
     let t = std::time::Instant::now();
     for dir in [1.0, -1.0] {
-        let mut f = family(&base, &options, &cycle, template, 1);
+        let mut f = StepMapFamily::new(&base, &options, &cycle, Param::Phi, template, 1);
         let b = continuation::continue_branch(&mut f, &z0, base.phi, dir, &opts, &nontrivial)
             .expect("a start");
         for pt in &b.points {
@@ -91,7 +60,7 @@ fn main() {
                 &bif.point.multipliers[..bif.point.multipliers.len().min(3)]
             );
             if bif.kind == Kind::PeriodDoubling {
-                let f = family(&base, &options, &cycle, template, 1);
+                let f = StepMapFamily::new(&base, &options, &cycle, Param::Phi, template, 1);
                 match continuation::switch_period_doubling(f, bif, 1.0, &opts, &nontrivial) {
                     Ok((two, _)) => {
                         for pt in &two.points {

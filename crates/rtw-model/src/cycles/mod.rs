@@ -5,6 +5,8 @@
 //! |---|---|
 //! | [`section`] | the section's points in canonical labels (the 60° symmetry), the log of a run's crossings |
 //! | [`stepmap`] | the step map, its Jacobian (variational or differences), periods, fixed points, Floquet multipliers |
+//! | [`continuation`] | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) |
 
+pub mod continuation;
 pub mod section;
 pub mod stepmap;
