@@ -2,7 +2,7 @@
 //! the region of a parameter plane where a fixed point exists (fold) or is
 //! stable against period doubling.
 
-use super::{Bifurcation, End, Error, Kind, Options};
+use super::{Bifurcation, End, Error, Kind, Options, arclength_update, unit_tangent};
 use nalgebra::{Complex, DMatrix, DVector};
 
 /// A map with two parameters and its derivatives at `(z, p)`.
@@ -145,26 +145,9 @@ where
             if scale_f <= o.tol && arc.abs() <= o.tol && f[n].abs() <= o.tol.sqrt() * 1e-3 {
                 return Some((x, jac, dz));
             }
-            let mut a = jac.insert_row(n + 1, 0.0);
-            a.set_row(n + 1, &t.transpose());
-            let mut r = -f.insert_row(n + 1, 0.0);
-            r[n + 1] = -arc;
-            let dx = a.lu().solve(&r)?;
-            if !dx.iter().all(|v| v.is_finite()) {
-                return None;
-            }
-            x += dx;
+            x += arclength_update(&jac, t, &f, arc)?;
         }
         None
-    };
-    let tangent = |jac: &DMatrix<f64>, t: &DVector<f64>| -> Option<DVector<f64>> {
-        let mut a = jac.clone().insert_row(n + 1, 0.0);
-        a.set_row(n + 1, &t.transpose());
-        let mut rhs = DVector::zeros(n + 2);
-        rhs[n + 1] = 1.0;
-        let tau = a.lu().solve(&rhs)?;
-        let norm = tau.norm();
-        (norm.is_finite() && norm > 0.0).then(|| tau / norm)
     };
     // The start: the bifurcation corrected at fixed p₂, then the tangent
     // oriented towards `direction` in p₂.
@@ -176,7 +159,7 @@ where
         _ => p2 / ps2,
     });
     let (mut x, jac0, dz0) = correct(&mut system, &guess, &e2, 0.0).ok_or(Error::NoStart)?;
-    let mut t = tangent(&jac0, &(e2 * direction.signum())).ok_or(Error::SingularStart)?;
+    let mut t = unit_tangent(&jac0, &(e2 * direction.signum())).ok_or(Error::SingularStart)?;
     let point = |x: &DVector<f64>, dz: &DMatrix<f64>| {
         let (z, p) = unscale(x);
         CurvePoint {
@@ -192,7 +175,7 @@ where
             break End::MaxPoints;
         }
         let step = correct(&mut system, &x, &t, ds)
-            .and_then(|(xn, jac, dz)| Some((tangent(&jac, &t)?, xn, dz)));
+            .and_then(|(xn, jac, dz)| Some((unit_tangent(&jac, &t)?, xn, dz)));
         let Some((tn, xn, dz)) = step else {
             ds *= 0.5;
             if ds < o.ds_min {

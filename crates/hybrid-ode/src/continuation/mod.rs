@@ -257,19 +257,6 @@ impl<M: ParamMap> Scaled<'_, M> {
         Some(At { g, gx, eval })
     }
 
-    /// The unit tangent at a point with Jacobian `gx`, oriented along `t`:
-    /// `[G_x; tᵀ] τ = (0, 1)`.
-    fn tangent(gx: &DMatrix<f64>, t: &DVector<f64>) -> Option<DVector<f64>> {
-        let n = gx.nrows();
-        let mut a = gx.clone().insert_row(n, 0.0);
-        a.set_row(n, &t.transpose());
-        let mut rhs = DVector::zeros(n + 1);
-        rhs[n] = 1.0;
-        let tau = a.lu().solve(&rhs)?;
-        let norm = tau.norm();
-        (norm.is_finite() && norm > 0.0).then(|| tau / norm)
-    }
-
     /// Newton on `G(x) = 0`, `t·(x − x0) = ds`, from `x0 + ds t`.
     fn correct(
         &mut self,
@@ -279,7 +266,6 @@ impl<M: ParamMap> Scaled<'_, M> {
         tol: f64,
         max_iter: u32,
     ) -> Option<(DVector<f64>, At)> {
-        let n = self.n();
         let mut x = x0 + t * ds;
         for _ in 0..=max_iter {
             let at = self.at(&x)?;
@@ -287,15 +273,7 @@ impl<M: ParamMap> Scaled<'_, M> {
             if at.g.amax() <= tol && arc.abs() <= tol {
                 return Some((x, at));
             }
-            let mut a = at.gx.clone().insert_row(n, 0.0);
-            a.set_row(n, &t.transpose());
-            let mut r = -at.g.clone().insert_row(n, 0.0);
-            r[n] = -arc;
-            let dx = a.lu().solve(&r)?;
-            if !dx.iter().all(|v| v.is_finite()) {
-                return None;
-            }
-            x += dx;
+            x += arclength_update(&at.gx, t, &at.g, arc)?;
         }
         None
     }
@@ -313,6 +291,41 @@ impl<M: ParamMap> Scaled<'_, M> {
             jacobian: at.eval.dz.clone(),
         }
     }
+}
+
+/// `[J; tᵀ]`: the Jacobian of a curve's equations bordered by the arclength
+/// condition's row.
+fn bordered(jac: &DMatrix<f64>, t: &DVector<f64>) -> DMatrix<f64> {
+    let m = jac.nrows();
+    let mut a = jac.clone().insert_row(m, 0.0);
+    a.set_row(m, &t.transpose());
+    a
+}
+
+/// The unit tangent of the curve whose equations have Jacobian `jac`,
+/// oriented along `t`: `[J; tᵀ] τ = (0, 1)`.
+fn unit_tangent(jac: &DMatrix<f64>, t: &DVector<f64>) -> Option<DVector<f64>> {
+    let mut rhs = DVector::zeros(jac.nrows() + 1);
+    rhs[jac.nrows()] = 1.0;
+    let tau = bordered(jac, t).lu().solve(&rhs)?;
+    let norm = tau.norm();
+    (norm.is_finite() && norm > 0.0).then(|| tau / norm)
+}
+
+/// The Newton update of `[F(x); t·(x − x0) − ds] = 0` at a point where the
+/// equations have residual `f` and Jacobian `jac` and the arclength condition
+/// is off by `arc`.
+fn arclength_update(
+    jac: &DMatrix<f64>,
+    t: &DVector<f64>,
+    f: &DVector<f64>,
+    arc: f64,
+) -> Option<DVector<f64>> {
+    let m = f.len();
+    let mut r = -f.clone().insert_row(m, 0.0);
+    r[m] = -arc;
+    let dx = bordered(jac, t).lu().solve(&r)?;
+    dx.iter().all(|v| v.is_finite()).then_some(dx)
 }
 
 /// The test functions (fold/branch point, period doubling, Neimark–Sacker)
@@ -358,8 +371,7 @@ pub fn continue_branch<M: ParamMap>(
     let (x0, at0) = s
         .correct(&x_guess, &e_p, 0.0, opts.tol, opts.max_iter)
         .ok_or(Error::NoStart)?;
-    let t0 =
-        Scaled::<M>::tangent(&at0.gx, &(e_p * direction.signum())).ok_or(Error::SingularStart)?;
+    let t0 = unit_tangent(&at0.gx, &(e_p * direction.signum())).ok_or(Error::SingularStart)?;
     Ok(trace(&mut s, x0, at0, t0, opts))
 }
 
@@ -409,7 +421,7 @@ fn trace<M: ParamMap>(
             }
             continue;
         };
-        let Some(tn) = Scaled::<M>::tangent(&at.gx, &t) else {
+        let Some(tn) = unit_tangent(&at.gx, &t) else {
             ds *= 0.5;
             if ds < opts.ds_min {
                 break End::StepTooSmall;
@@ -493,7 +505,7 @@ fn locate<M: ParamMap>(
         let c = b - fb * (b - a) / (fb - fa);
         let c = if c > lo && c < hi { c } else { 0.5 * (lo + hi) };
         let (xc, at) = s.correct(x0, t, c, opts.tol, opts.max_iter)?;
-        let tc = Scaled::<M>::tangent(&at.gx, t)?;
+        let tc = unit_tangent(&at.gx, t)?;
         let point = s.point(&xc, &at, &tc);
         let fc = tests(&point.jacobian)[k];
         best = Some((point, fc));
@@ -554,7 +566,7 @@ pub fn switch_period_doubling<M: ParamMap>(
     let (x1, at1) = s
         .correct(&x0, &t0, opts.ds, opts.tol, opts.max_iter)
         .ok_or(Error::NoStart)?;
-    let t1 = Scaled::<Iterated<M>>::tangent(&at1.gx, &t0).ok_or(Error::SingularStart)?;
+    let t1 = unit_tangent(&at1.gx, &t0).ok_or(Error::SingularStart)?;
     let branch = trace(&mut s, x1, at1, t1, opts);
     Ok((branch, doubled))
 }
