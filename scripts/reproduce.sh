@@ -5,8 +5,9 @@
 #   2. the variant study (./scripts/variants.sh)  -> results/variants/
 #   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/
 #   4. the errata checks (rtw-model example errata) -> results/errata.md
-#   5. the figures (./scripts/figures.sh) -> results/figures/, and the bifurcation
-#      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/
+#   5. the figures (./scripts/figures.sh) -> results/figures/, the bifurcation
+#      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/ and the continuation
+#      diagrams (./scripts/continuation.sh) -> results/continuation/
 #   6. Fig. S2 by each definition of f_w (scripts/fig_s2_frequencies.py) -> results/fig-s2/frequencies.*
 #   7. the standing start and label rule against the previous default (scripts/fidelity_report.py)
 #      -> results/fidelity.md
@@ -30,6 +31,7 @@ done
 } >results/errata.md
 ./scripts/figures.sh
 ./scripts/bifurcation.sh >/dev/null
+./scripts/continuation.sh >/dev/null
 .venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
 .venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null

@@ -10,6 +10,7 @@
 
 use crate::analysis::assignments;
 use crate::bifurcation::files::{points_schema, steps_schema};
+use crate::continuation;
 use crate::io::table::{DESCRIPTION, UNIT};
 use crate::io::{scan_rows, trace};
 use arrow_schema::{DataType, Field, SchemaRef};
@@ -51,6 +52,21 @@ pub(crate) fn outputs() -> Vec<ParquetOutput> {
             files: "`FILE.steps.parquet` (`bifurcation --out FILE.parquet`)",
             row: "one recorded step at one value",
             schema: steps_schema(),
+        },
+        ParquetOutput {
+            files: "`FILE.parquet` (`continuation --out FILE.parquet`)",
+            row: "one point of a branch at one step of its orbit",
+            schema: continuation::files::branch_schema(),
+        },
+        ParquetOutput {
+            files: "`FILE.special.parquet` (`continuation --out FILE.parquet`)",
+            row: "a bifurcation, or a branch's first or last point",
+            schema: continuation::files::special_schema(),
+        },
+        ParquetOutput {
+            files: "`FILE.curve.parquet` (`continuation --curve P --out FILE.parquet`)",
+            row: "one point of a fold or period-doubling curve in two inputs",
+            schema: continuation::files::curve_schema(),
         },
     ]
 }

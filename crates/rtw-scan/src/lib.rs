@@ -13,9 +13,10 @@
 //! | [`io`] | column tables; Parquet written atomically with a content hash and read back checked; traces, assignments |
 //! | [`scan`] | sample ids → parameters → rows: parallel chunks, resume, shards, progress, locks |
 //! | `analysis` | k-means of the failures, shares with Wilson intervals, summary files |
-//! | `bifurcation` | one parameter swept with continuation on the step map: its files and summary |
+//! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
+//! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
 //! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
-//! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `cluster`, `summary` subcommands |
+//! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands |
 //!
 //! The public API is what the binary, `rtw-bench` and the tests use; the
 //! rest is private to the crate. The deterministic stand-in simulator
@@ -44,6 +45,7 @@ pub(crate) mod analysis;
 pub(crate) mod bifurcation;
 mod cli;
 pub mod config;
+pub(crate) mod continuation;
 pub mod dictionary;
 #[cfg(any(test, feature = "fake-sim"))]
 pub(crate) mod fake;

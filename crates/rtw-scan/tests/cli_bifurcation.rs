@@ -161,3 +161,123 @@ fn bad_flags_name_the_flag_and_the_range() {
     );
     assert!(!std::path::Path::new(out).exists());
 }
+
+/// Columns of `continuation`'s branch-point file, spelled out so a renamed
+/// column fails here.
+const BRANCH_COLUMNS: [&str; 12] = [
+    "param",
+    "branch",
+    "period",
+    "parent",
+    "index",
+    "k",
+    "stable",
+    "value",
+    "omega",
+    "floquet_max",
+    "mu_re",
+    "mu_im",
+];
+
+#[test]
+fn a_short_continuation_in_phi_writes_its_branches_and_their_ends() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("phi.parquet");
+    let o = run_ok(&[
+        "continuation",
+        "--from",
+        "0.145",
+        "--to",
+        "0.155",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(column_names(&out), BRANCH_COLUMNS);
+    let points = rows(&out);
+    // Two branches through the start (up and down in φ), period 1, one row
+    // per point; the walk is stable here (max |μ| 0.833 at 0.15, as the
+    // sweep's test above) and its ω at the start is the same on both.
+    for branch in ["0", "1"] {
+        let b: Vec<_> = points
+            .iter()
+            .filter(|r| field(r, "branch") == branch)
+            .collect();
+        assert!(b.len() >= 2, "{branch}: {}", b.len());
+        for r in &b {
+            assert_eq!(field(r, "period"), "1");
+            assert_eq!(field(r, "k"), "0");
+            assert_eq!(field(r, "stable"), "true");
+            let v: f64 = field(r, "value").parse().unwrap();
+            assert!((0.145 - 0.01..=0.155 + 0.01).contains(&v), "{r:?}");
+        }
+        let mu: f64 = field(b[0], "floquet_max").parse().unwrap();
+        assert!((mu - 0.833).abs() < 1e-3, "{mu}");
+    }
+    // No bifurcation between 0.145 and 0.155: a start and an end per branch,
+    // each branch ending by leaving the range.
+    let special = rows(&dir.path().join("phi.special.parquet"));
+    let kinds: Vec<&str> = special.iter().map(|r| field(r, "kind")).collect();
+    assert_eq!(
+        kinds,
+        [
+            "start",
+            "end_parameter_range",
+            "start",
+            "end_parameter_range"
+        ]
+    );
+    // No --curve, no curve file; the summary printed and written.
+    assert!(!dir.path().join("phi.curve.parquet").exists());
+    let md = std::fs::read_to_string(dir.path().join("phi.md")).unwrap();
+    assert_eq!(stdout(&o), md);
+    assert!(md.contains("| 0 | 1 | the start |"), "{md}");
+}
+
+#[test]
+fn continuation_refuses_bad_flags_naming_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.parquet");
+    let out = out.to_str().unwrap();
+    run_err(
+        &["continuation", "--param", "s", "--out", out],
+        &[
+            "--param: unknown input `s`",
+            "length, rho, alpha, fn, zeta, phi",
+        ],
+    );
+    run_err(
+        &["continuation", "--to", "2", "--out", out],
+        &["--to: phi = 2 is invalid: must be in (-pi/2, pi/2) rad"],
+    );
+    run_err(
+        &["continuation", "--from", "0.16", "--out", out],
+        &["the start's phi = 0.15 must lie strictly between them"],
+    );
+    run_err(
+        &[
+            "continuation",
+            "--curve",
+            "phi",
+            "--curve-from",
+            "0.1",
+            "--curve-to",
+            "0.2",
+            "--out",
+            out,
+        ],
+        &["--curve phi: must differ from --param"],
+    );
+    run_err(
+        &["continuation", "--curve", "fn", "--out", out],
+        &["--curve fn: needs --curve-from and --curve-to"],
+    );
+    run_err(
+        &["continuation", "--section", "bounce", "--out", out],
+        &["--section bounce: must be `stays` or `touch-and-go`"],
+    );
+    run_err(
+        &["continuation", "--ds", "0", "--out", out],
+        &["--ds 0 --ds-max 0.05: need 0 < ds ≤ ds-max"],
+    );
+    assert!(!std::path::Path::new(out).exists());
+}

@@ -57,6 +57,11 @@ pub struct Options2 {
 /// The augmented system at a point: `F`, its Jacobian and `∂P/∂z`.
 type Augmented = (DVector<f64>, DMatrix<f64>, DMatrix<f64>);
 
+/// The augmented system at `x`, with the test function's gradient given
+/// (kept) or computed afresh (`None`).
+type AugmentedSystem<'a> =
+    dyn FnMut(&DVector<f64>, Option<&DVector<f64>>) -> Option<Augmented> + 'a;
+
 /// Continues a located fold or period doubling (`at`, found at second
 /// parameter `p2`) in both parameters: the curve where `P(z; p₁, p₂) = z`
 /// and `det(∂P/∂z ∓ I) = 0` (− for a fold, + for a period doubling), first
@@ -92,8 +97,14 @@ where
         )
     };
     // F(x) = [(P − z)/zs; det(J ∓ I)] and its Jacobian (n + 1) × (n + 2).
+    // The last row (the test function's gradient, by central differences:
+    // 2(n + 2) Jacobians of the map) is the costly part. It is computed at
+    // the first iterate of a corrector and then kept, from iterate to iterate
+    // and from point to point (a chord iteration in that row; the map's own
+    // rows are exact at every iterate); a corrector that fails with a kept
+    // gradient is retried with a fresh one before the step is shortened.
     let mut system = |x: &DVector<f64>,
-                      with_jacobian: bool|
+                      gradient: Option<&DVector<f64>>|
      -> Option<(DVector<f64>, DMatrix<f64>, DMatrix<f64>)> {
         let (z, p) = unscale(x);
         let e = map(&z, p)?;
@@ -110,44 +121,79 @@ where
             return None;
         }
         let mut jac = DMatrix::zeros(n + 1, n + 2);
-        if with_jacobian {
-            for r in 0..n {
-                for c in 0..n {
-                    let d = e.dz[(r, c)] - if r == c { 1.0 } else { 0.0 };
-                    jac[(r, c)] = d * zs[c] / zs[r];
-                }
-                jac[(r, n)] = e.dp[0][r] * ps1 / zs[r];
-                jac[(r, n + 1)] = e.dp[1][r] * ps2 / zs[r];
+        for r in 0..n {
+            for c in 0..n {
+                let d = e.dz[(r, c)] - if r == c { 1.0 } else { 0.0 };
+                jac[(r, c)] = d * zs[c] / zs[r];
             }
-            for c in 0..n + 2 {
-                let mut xp = x.clone();
-                xp[c] += opts.fd_step;
-                let (zp, pp) = unscale(&xp);
-                let fp = test(&map(&zp, pp)?.dz);
-                xp[c] -= 2.0 * opts.fd_step;
-                let (zm, pm) = unscale(&xp);
-                let fm = test(&map(&zm, pm)?.dz);
-                jac[(n, c)] = (fp - fm) / (2.0 * opts.fd_step);
+            jac[(r, n)] = e.dp[0][r] * ps1 / zs[r];
+            jac[(r, n + 1)] = e.dp[1][r] * ps2 / zs[r];
+        }
+        match gradient {
+            Some(g) => jac.row_mut(n).copy_from(&g.transpose()),
+            None => {
+                for c in 0..n + 2 {
+                    let mut xp = x.clone();
+                    xp[c] += opts.fd_step;
+                    let (zp, pp) = unscale(&xp);
+                    let fp = test(&map(&zp, pp)?.dz);
+                    xp[c] -= 2.0 * opts.fd_step;
+                    let (zm, pm) = unscale(&xp);
+                    let fm = test(&map(&zm, pm)?.dz);
+                    jac[(n, c)] = (fp - fm) / (2.0 * opts.fd_step);
+                }
             }
         }
         Some((f, jac, e.dz))
     };
-    let correct = |system: &mut dyn FnMut(&DVector<f64>, bool) -> Option<Augmented>,
+    let correct = |system: &mut AugmentedSystem<'_>,
+                   gradient: &mut Option<DVector<f64>>,
                    x0: &DVector<f64>,
                    t: &DVector<f64>,
                    ds: f64|
      -> Option<Augmented> {
         let mut x = x0 + t * ds;
+        // The last step and test value, for Broyden's update of the kept row.
+        let mut last: Option<(DVector<f64>, f64)> = None;
         for _ in 0..=o.max_iter {
-            let (f, jac, dz) = system(&x, true)?;
+            let (f, mut jac, dz) = system(&x, gradient.as_ref())?;
+            if let (Some(g), Some((dx, f_prev))) = (gradient.as_mut(), last.as_ref()) {
+                // Secant update after a step: the kept row then predicts the
+                // test function's change along that step exactly
+                // (superlinear convergence instead of the chord's linear one).
+                let miss = f[n] - f_prev - g.dot(dx);
+                *g += dx * (miss / dx.norm_squared());
+                jac.row_mut(n).copy_from(&g.transpose());
+            }
             let arc = t.dot(&(&x - x0)) - ds;
             let scale_f = f.rows(0, n).amax();
-            if scale_f <= o.tol && arc.abs() <= o.tol && f[n].abs() <= o.tol.sqrt() * 1e-3 {
+            // The test function's residual over its gradient: the distance
+            // to its zero set, to first order, in the same scaled units.
+            let off = f[n].abs() / jac.row(n).norm().max(f64::MIN_POSITIVE);
+            if scale_f <= o.tol && arc.abs() <= o.tol && off <= o.tol {
                 return Some((x, jac, dz));
             }
-            x += arclength_update(&jac, t, &f, arc)?;
+            gradient.get_or_insert_with(|| jac.row(n).transpose());
+            let dx = arclength_update(&jac, t, &f, arc)?;
+            x += &dx;
+            last = Some((dx, f[n]));
         }
         None
+    };
+    // A corrector with the kept gradient, and if it fails, with a fresh one.
+    let mut gradient: Option<DVector<f64>> = None;
+    let mut correct = |system: &mut AugmentedSystem<'_>,
+                       x0: &DVector<f64>,
+                       t: &DVector<f64>,
+                       ds: f64|
+     -> Option<Augmented> {
+        if gradient.is_some() {
+            if let Some(found) = correct(system, &mut gradient, x0, t, ds) {
+                return Some(found);
+            }
+            gradient = None;
+        }
+        correct(system, &mut gradient, x0, t, ds)
     };
     // The start: the bifurcation corrected at fixed p₂, then the tangent
     // oriented towards `direction` in p₂.

@@ -8,9 +8,15 @@
 //! continuation stops there.
 
 use crate::cycles::section::SectionPoint;
-use crate::cycles::stepmap::{CycleOptions, Jacobian, StepMap};
+use crate::cycles::stepmap::{CycleError, CycleOptions, Jacobian, LimitCycle, StepMap};
+use crate::plant::slots::{self, OMEGA};
 use crate::{Options, Param, Params};
-use hybrid_ode::continuation::{MapEval, ParamMap};
+use hybrid_ode::continuation::{
+    self, Bifurcation, Branch, Error as ContError, Kind, MapEval, MapEval2, Options as ContOptions,
+    ParamMap,
+};
+use hybrid_ode::limit;
+use nalgebra::DMatrix;
 
 /// Relative step of the central differences in the parameter.
 const PARAM_STEP: f64 = 1e-6;
@@ -85,4 +91,231 @@ impl ParamMap for StepMapFamily {
                 .collect(),
         })
     }
+}
+
+/// The step map with two inputs as parameters, for the curves of folds and
+/// period doublings in a parameter plane
+/// ([`hybrid_ode::continuation::curve`]).
+#[derive(Clone, Debug)]
+pub struct StepMapFamily2 {
+    family: StepMapFamily,
+    second: Param,
+}
+
+impl StepMapFamily2 {
+    /// `family`'s map with `second` as its second parameter.
+    pub fn new(family: StepMapFamily, second: Param) -> Self {
+        Self { family, second }
+    }
+
+    /// `Pⁿ` at `(z; p₁, p₂)` with `∂Pⁿ/∂z` (variational) and both parameter
+    /// derivatives (central differences).
+    pub fn eval(&self, z: &[f64], p: [f64; 2]) -> Option<MapEval2> {
+        let mut at = self.family.clone();
+        self.second.set(&mut at.base, p[1]);
+        let first = at.eval(z, p[0])?;
+        let h = PARAM_STEP * p[1].abs().max(1.0);
+        let power = |v: f64| {
+            let mut f = self.family.clone();
+            self.second.set(&mut f.base, v);
+            f.power(p[0], &f.template.with_coords(z))
+        };
+        let (plus, minus) = (power(p[1] + h)?, power(p[1] - h)?);
+        let dp2 = plus
+            .iter()
+            .zip(&minus)
+            .map(|(a, b)| (a - b) / (2.0 * h))
+            .collect();
+        Some(MapEval2 {
+            value: first.value,
+            dz: first.dz,
+            dp: [first.dp, dp2],
+        })
+    }
+}
+
+/// Settings of a [`diagram`].
+#[derive(Clone, Debug)]
+pub struct DiagramOptions {
+    /// The continuation's settings: steps, tolerances, the parameter's range
+    /// (`p_min`, `p_max`) and scale. Its `z_scale` is set from the map.
+    pub continuation: ContOptions,
+    /// Switch onto the period-2 branch at each period doubling of the
+    /// branch through the start (not recursively: one cascade level).
+    pub switch_period_doubling: bool,
+}
+
+/// One branch of a [`diagram`]: fixed points of `Pⁿ`, in order.
+#[derive(Clone, Debug)]
+pub struct DiagramBranch {
+    /// The branch's period in steps (`n`).
+    pub period: usize,
+    /// Index of the branch it was switched from (`None`: through the start).
+    pub parent: Option<usize>,
+    /// +1 / −1: the first direction of the continuation (in `p` for the
+    /// branch through the start, along the −1 eigenvector for a switch).
+    pub direction: f64,
+    /// Its points, bifurcations and end.
+    pub branch: Branch,
+    /// For each point, the post-impact angular velocity ω of the new stance
+    /// rod at each of the orbit's `n` section points (the diagram's
+    /// vertical axis: one value per step of the orbit, so a period-2
+    /// branch shows as two curves).
+    pub omega: Vec<Vec<f64>>,
+}
+
+/// A bifurcation diagram of a gait in one input: the branch of its limit
+/// cycle through the start, both ways, stable and unstable, with its
+/// bifurcations, and the period-2 branches born at its period doublings.
+#[derive(Clone, Debug)]
+pub struct Diagram {
+    /// The input continued.
+    pub param: Param,
+    /// The limit cycle the branches start from.
+    pub start: LimitCycle,
+    /// The branches: through the start upwards and downwards in `p`, then
+    /// the switched ones.
+    pub branches: Vec<DiagramBranch>,
+}
+
+impl Diagram {
+    /// ω of the new stance rod at the section point with coordinates `z`
+    /// in the start's mode pattern (for bifurcation points and curves).
+    pub fn omega_at(&self, z: &[f64]) -> f64 {
+        stance_omega(&self.start.orbit[0].with_coords(z))
+    }
+}
+
+/// Why a diagram could not be started.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum DiagramError {
+    /// No limit cycle at the start.
+    #[error("no limit cycle at the start: {0}")]
+    Cycle(#[from] CycleError),
+    /// The continuation could not start from it.
+    #[error("the continuation could not start: {0}")]
+    Continuation(#[from] ContError),
+}
+
+/// ω of the new stance rod (a+ in canonical labels) at a section point.
+fn stance_omega(p: &SectionPoint) -> f64 {
+    p.y[slots::at(0, OMEGA)]
+}
+
+/// ω at each of the `n` section points of the orbit from `z` at `value`.
+fn orbit_omega(family: &StepMapFamily, z: &[f64], value: f64) -> Vec<f64> {
+    let at = family.template.with_coords(z);
+    let Some(map) = family.map_at(value) else {
+        return vec![f64::NAN; family.n];
+    };
+    let mut out = vec![stance_omega(&at)];
+    if let Ok(steps) = map.iterate(&at, family.n - 1) {
+        out.extend(steps.iter().map(|s| stance_omega(&s.to)));
+    }
+    out.resize(family.n, f64::NAN);
+    out
+}
+
+/// The bifurcation diagram of the gait that `base` settles into, in
+/// `param`: solves its limit cycle ([`StepMap::limit_cycle`]; where the
+/// settled iterates show no period, the period-1 cycle nearest them), continues
+/// the fixed point of `Pⁿ` (`n` its period) both ways by pseudo-arclength
+/// ([`continuation::continue_branch`]), and, if asked, switches onto the
+/// period-2ⁿ branch at each period doubling found
+/// ([`continuation::switch_period_doubling`], first towards +1 along the
+/// eigenvector of −1).
+pub fn diagram(
+    base: &Params,
+    options: &Options,
+    cycle: &CycleOptions,
+    param: Param,
+    opts: &DiagramOptions,
+) -> Result<Diagram, DiagramError> {
+    let map = StepMap::new(base, options, cycle);
+    let start = match map.limit_cycle(options, cycle) {
+        // A cycle near a Neimark–Sacker point (or just past one, inside the
+        // invariant circle its iterates settle on) shows no period: Newton
+        // for a period-1 cycle from where the settled iterates are.
+        Err(CycleError::NoPeriod(_)) => {
+            let mut p = map.first(options).map_err(CycleError::from)?.to;
+            for _ in 0..cycle.settle_steps {
+                p = map.step(&p).map_err(CycleError::from)?.to;
+            }
+            map.solve(&p, 1, cycle)?
+        }
+        other => other?,
+    };
+    let template = start.orbit[0];
+    let cont = ContOptions {
+        z_scale: map.coord_scale(&template),
+        ..opts.continuation.clone()
+    };
+    let family = StepMapFamily::new(base, options, cycle, param, template, start.period);
+    let multipliers = |j: &DMatrix<f64>| limit::nontrivial_multipliers(j);
+    let z0 = start.fixed_point.z.clone();
+    let p0 = param.get(base);
+    let mut branches = Vec::new();
+    for direction in [1.0, -1.0] {
+        let mut f = family.clone();
+        let branch =
+            continuation::continue_branch(&mut f, &z0, p0, direction, &cont, &multipliers)?;
+        let omega = branch
+            .points
+            .iter()
+            .map(|pt| orbit_omega(&family, &pt.z, pt.p))
+            .collect();
+        branches.push(DiagramBranch {
+            period: start.period,
+            parent: None,
+            direction,
+            branch,
+            omega,
+        });
+    }
+    if opts.switch_period_doubling {
+        for parent in 0..branches.len() {
+            let doublings: Vec<Bifurcation> = branches[parent]
+                .branch
+                .bifurcations
+                .iter()
+                .filter(|b| b.kind == Kind::PeriodDoubling)
+                .cloned()
+                .collect();
+            for bif in doublings {
+                // A switch that does not start (the −1 eigenvector leads off
+                // the template's mode pattern) leaves the diagram without that
+                // branch; the parent's bifurcation point still marks it.
+                let Ok((branch, _)) = continuation::switch_period_doubling(
+                    family.clone(),
+                    &bif,
+                    1.0,
+                    &cont,
+                    &multipliers,
+                ) else {
+                    continue;
+                };
+                let doubled = StepMapFamily {
+                    n: 2 * family.n,
+                    ..family.clone()
+                };
+                let omega = branch
+                    .points
+                    .iter()
+                    .map(|pt| orbit_omega(&doubled, &pt.z, pt.p))
+                    .collect();
+                branches.push(DiagramBranch {
+                    period: 2 * start.period,
+                    parent: Some(parent),
+                    direction: 1.0,
+                    branch,
+                    omega,
+                });
+            }
+        }
+    }
+    Ok(Diagram {
+        param,
+        start,
+        branches,
+    })
 }

@@ -27,6 +27,7 @@
 //! the pattern it lands in, and a fixed point must keep its own.
 //!
 
+use crate::cycles::stepmap::Section;
 use crate::outcome::MAX_PERIOD;
 use crate::plant::contact::RodMode;
 use crate::plant::geometry::{SPOKES, Tip};
@@ -42,12 +43,19 @@ const BEHIND_SPOKE: usize = 5;
 /// The spoke that landed if the touchdown of `tip` of `rod` crosses the
 /// section of a walk whose stance foot is spoke `stance`: a new foot —
 /// neither the stance foot nor the one behind it — that stays on the ground
-/// (in `modes`, just after the impact). A touch-and-go, or a foot that lands
-/// again after a bounce, is not a step.
-pub(crate) fn new_foot(stance: usize, modes: &[RodMode; 3], rod: usize, tip: Tip) -> Option<usize> {
+/// (in `modes`, just after the impact), or with [`Section::TouchAndGo`] any
+/// new foot. A foot that lands again after a bounce is not a step.
+pub(crate) fn new_foot(
+    stance: usize,
+    modes: &[RodMode; 3],
+    rod: usize,
+    tip: Tip,
+    section: Section,
+) -> Option<usize> {
     let j = SPOKES.iter().position(|&s| s == (rod, tip))?;
     let behind = (stance + BEHIND_SPOKE) % 6;
-    (j != stance && j != behind && modes[rod] != RodMode::Free).then_some(j)
+    let down = modes[rod] != RodMode::Free || section == Section::TouchAndGo;
+    (j != stance && j != behind && down).then_some(j)
 }
 
 /// A point on the section, in canonical labels (see the module doc).
@@ -65,8 +73,9 @@ impl SectionPoint {
         let mut out = Vec::with_capacity(N);
         for (i, &mode) in self.modes.iter().enumerate() {
             let own = slots::coordinates(mode);
-            // a+'s contact x is zero by the shift.
-            let skip = usize::from(i == 0 && mode != RodMode::Free);
+            // a+'s x slot (contact x, or the centre's of a free rod after a
+            // touch-and-go) is zero by the shift.
+            let skip = usize::from(i == 0);
             out.extend(own[skip..].iter().map(|&k| slots::at(i, k)));
         }
         out
@@ -119,10 +128,16 @@ fn wrap(theta: f64) -> f64 {
 }
 
 /// The canonical section point of the state `y` (in modes `modes`) just after
-/// spoke `j` landed; `None` if the landing rod is not on the ground.
-pub(crate) fn canonical(modes: &[RodMode; 3], y: &[f64; N], j: usize) -> Option<SectionPoint> {
+/// spoke `j` landed; `None` if the landing rod is not on the ground, unless
+/// the section counts touch-and-go landings.
+pub(crate) fn canonical(
+    modes: &[RodMode; 3],
+    y: &[f64; N],
+    j: usize,
+    section: Section,
+) -> Option<SectionPoint> {
     let (o0, _) = source(j, 0);
-    if modes[o0] == RodMode::Free {
+    if modes[o0] == RodMode::Free && section == Section::Stays {
         return None;
     }
     let x0 = y[slots::at(o0, X)];
@@ -192,10 +207,10 @@ impl SectionLog {
     /// Records the touchdown of `tip` of `rod` (state `y` just after it, in
     /// `modes`) if it crosses the section (`new_foot`).
     pub fn on_touchdown(&mut self, modes: &[RodMode; 3], y: &[f64; N], rod: usize, tip: Tip) {
-        let Some(j) = new_foot(self.stance, modes, rod, tip) else {
+        let Some(j) = new_foot(self.stance, modes, rod, tip, Section::Stays) else {
             return;
         };
-        if let Some(p) = canonical(modes, y, j) {
+        if let Some(p) = canonical(modes, y, j, Section::Stays) {
             self.ring[self.len % LOG_LEN] = p;
             self.len += 1;
             self.stance = j;

@@ -88,6 +88,7 @@ pub enum StepError {
 /// the contact states on the way.
 #[derive(Clone, Debug, Default)]
 struct StepLog {
+    section: Section,
     landed: Option<usize>,
     state_time: [f64; 4],
     failure: Option<FailureDetail>,
@@ -97,7 +98,7 @@ impl Observer<N, Rtw> for StepLog {
     fn on_transition(&mut self, rtw: &Rtw, _t: f64, _y: &[f64; N], tr: &Transition) -> Flow {
         match *tr {
             Transition::Touchdown { rod, tip, .. } => {
-                match new_foot(STANCE_SPOKE, &rtw.modes(), rod, tip) {
+                match new_foot(STANCE_SPOKE, &rtw.modes(), rod, tip, self.section) {
                     Some(j) => {
                         self.landed = Some(j);
                         Flow::Stop
@@ -173,6 +174,24 @@ pub struct CycleOptions {
     pub step_horizon: f64,
     /// How Newton gets the map's Jacobian.
     pub jacobian: Jacobian,
+    /// Which touchdowns cross the section ([`Section`]).
+    pub section: Section,
+}
+
+/// Which touchdowns of a new foot cross the step map's section.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Section {
+    /// Only a foot that stays on the ground (the walk's step; a
+    /// touch-and-go landing is not a step).
+    #[default]
+    Stays,
+    /// Every touchdown of a new foot, a touch-and-go too: the section of
+    /// skipping gaits whose feet touch and lift again at once (s = 0 on
+    /// steep slopes), which [`Section::Stays`] never crosses. The landing
+    /// rod may then be free, with its tip on the ground: its coordinates
+    /// keep the height and angle that this ties together, so the map has one
+    /// trivial multiplier 0 more.
+    TouchAndGo,
 }
 
 /// How the step map's Jacobian is computed.
@@ -203,6 +222,7 @@ impl Default for CycleOptions {
             newton_max_iter: 12,
             step_horizon: 5.0,
             jacobian: Jacobian::Variational,
+            section: Section::Stays,
         }
     }
 }
@@ -214,6 +234,7 @@ pub struct StepMap {
     rtw: Rtw,
     engine: EngineOptions,
     horizon: f64,
+    section: Section,
     /// Per-slot scale: positions L, angles 1, speeds sqrt(g L), rates
     /// sqrt(g / L), energies m g L.
     slot_scale: [f64; N],
@@ -247,6 +268,7 @@ impl StepMap {
             rtw,
             engine,
             horizon: cycle.step_horizon,
+            section: cycle.section,
             slot_scale,
         }
     }
@@ -276,10 +298,13 @@ impl StepMap {
     }
 
     fn run_step(&self, mut rtw: Rtw, mut y: [f64; N]) -> Result<Step, StepError> {
-        let mut log = StepLog::default();
+        let mut log = StepLog {
+            section: self.section,
+            ..StepLog::default()
+        };
         let end = run(&mut rtw, &mut log, 0.0, &mut y, self.horizon, &self.engine);
         let j = finish(&log, end.reason)?;
-        let to = canonical(&rtw.modes, &y, j).ok_or(StepError::LandingFootLeft)?;
+        let to = canonical(&rtw.modes, &y, j, self.section).ok_or(StepError::LandingFootLeft)?;
         Ok(Step {
             to,
             time: end.t,
@@ -293,12 +318,17 @@ impl StepMap {
     pub fn step_with_jacobian(&self, p: &SectionPoint) -> Result<(Step, DMatrix<f64>), StepError> {
         let mut rtw = self.rtw.clone();
         rtw.modes = p.modes;
-        let mut var = Variational::new(rtw, StepLog::default(), self.slot_scale);
+        let log = StepLog {
+            section: self.section,
+            ..StepLog::default()
+        };
+        let mut var = Variational::new(rtw, log, self.slot_scale);
         let mut z: [f64; M] = Sensitivity::initial(&p.y);
         let end = var.run(0.0, &mut z, self.horizon, &self.engine);
         let j = finish(&var.observer, end.reason)?;
         let y = Sensitivity::state(&z);
-        let to = canonical(&var.sys.modes, &y, j).ok_or(StepError::LandingFootLeft)?;
+        let to =
+            canonical(&var.sys.modes, &y, j, self.section).ok_or(StepError::LandingFootLeft)?;
         let c = canonical_jacobian(j);
         let (rows, cols) = (to.coordinate_slots(), p.coordinate_slots());
         let jac = DMatrix::from_fn(rows.len(), cols.len(), |r, k| {

@@ -11,7 +11,7 @@ mod simulate;
 use crate::io::files;
 use analysis::{ClusterArgs, SummaryArgs};
 use anyhow::{Context, Result};
-use bifurcation::BifurcationArgs;
+use bifurcation::{BifurcationArgs, ContinuationArgs};
 use clap::{Parser, Subcommand};
 use run::{MergeArgs, RunArgs};
 use simulate::SimulateArgs;
@@ -107,6 +107,22 @@ enum Command {
         after_help = EXIT_CODES
     )]
     Bifurcation(BifurcationArgs),
+    /// Continue a gait's limit cycle in one input, stable and unstable: branches, bifurcations, curves in two inputs.
+    #[command(
+        long_about = "Continue a gait's limit cycle in one input by pseudo-arclength continuation on the step map.\n\n\
+        Solves the limit cycle the start (default Fig. 7(a)) settles into, then follows its fixed point of the \
+        step map's period-th power both ways in --param, stable and unstable, over [--from, --to], with Jacobians \
+        from the variational equations. Folds, branch points, period doublings and Neimark–Sacker points are \
+        located on the Floquet multipliers (test functions, bisection); at each period doubling it switches onto \
+        the period-2 branch born there. A branch ends where the fixed point leaves the start's mode pattern \
+        (which feet touch, how): the step map is not smooth there. With --curve P2, each fold and period doubling \
+        of the branches through the start is continued in (--param, P2) over [--curve-from, --curve-to]: the \
+        boundary of the region where the gait exists and is stable. Writes FILE.parquet (one row per branch point \
+        and orbit step), FILE.special.parquet (bifurcations, branch starts and ends), FILE.curve.parquet (with \
+        --curve) and FILE.md, and prints the summary. Options as `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Continuation(ContinuationArgs),
     /// Cluster the failed samples of a finished scan (k-means on standardized α, f_n, φ).
     #[command(after_help = EXIT_CODES)]
     Cluster(ClusterArgs),
@@ -128,6 +144,7 @@ pub fn main() -> ExitCode {
         Command::Merge(a) => run::cmd_merge(a),
         Command::Simulate(a) => simulate::cmd_simulate(a),
         Command::Bifurcation(a) => bifurcation::cmd_bifurcation(a),
+        Command::Continuation(a) => bifurcation::cmd_continuation(a),
         Command::Cluster(a) => analysis::cmd_cluster(a),
         Command::Summary(a) => analysis::cmd_summary(a),
     };

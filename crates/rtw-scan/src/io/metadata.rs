@@ -37,6 +37,10 @@ pub(crate) const META_CONTENT_HASH: &str = "rtw.content_hash";
 pub(crate) const META_CLUSTERS: &str = "rtw.clusters";
 /// Metadata key: the swept parameter of a bifurcation file.
 pub(crate) const META_PARAM: &str = "rtw.bifurcation.param";
+/// Metadata key: the continued input of a continuation diagram's files.
+pub(crate) const META_CONT_PARAM: &str = "rtw.continuation.param";
+/// Metadata key: a diagram's second input and its range (`--curve`).
+pub(crate) const META_CONT_CURVE: &str = "rtw.continuation.curve";
 /// Metadata key: the parameters of a trace, the base point of a sweep (JSON
 /// of the six inputs).
 pub(crate) const META_PARAMS: &str = "rtw.params";
@@ -77,12 +81,16 @@ pub(crate) enum FileKind {
     Trace,
     /// `bifurcation` per-value and per-step files (`rtw.bifurcation.param`).
     Bifurcation,
+    /// `continuation` diagram files (`rtw.continuation.param`).
+    Continuation,
 }
 
 impl FileKind {
     /// The kind of a file with metadata `meta`, if rtw-scan wrote it.
     pub(crate) fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
-        if meta.contains_key(META_PARAM) {
+        if meta.contains_key(META_CONT_PARAM) {
+            Some(Self::Continuation)
+        } else if meta.contains_key(META_PARAM) {
             Some(Self::Bifurcation)
         } else if meta.contains_key(META_CLUSTERS) {
             Some(Self::Assignments)
@@ -101,6 +109,7 @@ impl FileKind {
             Self::Assignments => "cluster assignments (`cluster --assignments`)",
             Self::Trace => "a trace (`simulate --trace`)",
             Self::Bifurcation => "a bifurcation sweep (`bifurcation`)",
+            Self::Continuation => "a continuation diagram (`continuation`)",
         }
     }
 }

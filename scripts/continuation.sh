@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The continuation diagrams of docs/limit-cycles.md -> results/continuation/:
+#   1. the Fig. 7(a) walk continued in φ, stable and unstable, its bifurcations,
+#      the period-2 branch born at its period doubling, and that period doubling
+#      continued in (φ, f_n): rtw-scan continuation --curve fn
+#   2. the brute-force check of that curve: configs/continuation-plane.toml (every
+#      grid point of the (φ, f_n) plane simulated, its limit cycle solved),
+#      compared column by column (scripts/continuation.py plane --check fails
+#      the script if they disagree beyond the grid's resolution)
+#   3. the s = 0 skip on a steep slope, whose feet touch and go, continued in φ
+#      on the touch-and-go section (--section touch-and-go)
+#   4. the figures (scripts/continuation.py) and results/continuation/summary.md
+# Uses results/bifurcation/phi-fig7a.parquet (./scripts/bifurcation.sh) for the
+# attractor drawn under the diagram. Both continuations run at once (2 cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release -q -p rtw-scan
+out=results/continuation
+mkdir -p "$out"
+bin=target/release/rtw-scan
+walk=(continuation --param phi --from 0.02 --to 0.35 --curve fn --curve-from 2.9 --curve-to 3.9)
+skip=(continuation --param phi --phi 0.34 --from 0.30 --to 0.38 --set strings.rest_length_ratio=0
+      --section touch-and-go)
+"$bin" "${walk[@]}" --out "$out/phi-fig7a.parquet" --force >"$out/phi-fig7a.log" &
+a=$!
+"$bin" "${skip[@]}" --out "$out/phi-s0-touch-and-go.parquet" --force >"$out/phi-s0.log" &
+b=$!
+wait "$a"
+wait "$b"
+rm -rf "$out/plane"
+"$bin" run configs/continuation-plane.toml --out "$out/plane" --quiet >/dev/null
+
+py=.venv/bin/python
+$py scripts/continuation.py diagram "$out/phi-fig7a.parquet" --sweep results/bifurcation/phi-fig7a.parquet \
+  --title "The Fig. 7(a) walk continued in φ (default model, s = 0.85)"
+$py scripts/continuation.py diagram "$out/phi-s0-touch-and-go.parquet" \
+  --title "The s = 0 skip continued in φ on the touch-and-go section (from φ = 0.34)"
+plane=$($py scripts/continuation.py plane "$out/phi-fig7a.parquet" "$out/plane/samples.parquet" --check \
+  --title "The walk's period-doubling boundary in (φ, f_n) over the brute-force scan")
+
+{
+  echo "# Continuation diagrams"
+  echo
+  echo "Made by \`./scripts/continuation.sh\`. Files per diagram: NAME.parquet (branch points),"
+  echo "NAME.special.parquet (bifurcations, branch ends), NAME.curve.parquet (two-parameter curves), NAME.png."
+  echo
+  echo "## The Fig. 7(a) walk in φ: phi-fig7a.png"
+  echo
+  echo "\`rtw-scan ${walk[*]}\`"
+  echo
+  cat "$out/phi-fig7a.md"
+  echo
+  echo "## Its period-doubling curve in (φ, f_n) against the brute-force scan: phi-fig7a.plane.png"
+  echo
+  echo "\`rtw-scan run configs/continuation-plane.toml\` (period and Floquet multipliers of every grid point's"
+  echo "limit cycle); per column of f_n, where the scan's stable period-1 walk turns into a period-2 walk, and the"
+  echo "continued curve's φ there (\`scripts/continuation.py plane --check\`):"
+  echo
+  echo "$plane"
+  echo
+  echo "## The s = 0 skip on the touch-and-go section: phi-s0-touch-and-go.png"
+  echo
+  echo "\`rtw-scan ${skip[*]}\`"
+  echo
+  cat "$out/phi-s0-touch-and-go.md"
+} >"$out/summary.md"
+rm -f "$out/phi-fig7a.log" "$out/phi-s0.log"
+echo "continuation: wrote $out/summary.md and the diagrams"
