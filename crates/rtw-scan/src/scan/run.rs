@@ -29,7 +29,9 @@
 
 use crate::config::ScanConfig;
 use crate::io::files;
-use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS};
+use crate::io::metadata::{
+    self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME,
+};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows::{self, Row};
@@ -43,9 +45,11 @@ use crate::scan::progress::{Progress, ProgressMode};
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
 use anyhow::{Context, Result, anyhow, bail};
+use arrow_array::RecordBatch;
 use rayon::prelude::*;
 use rtw_model::{Options, Outcome, Params, Physical};
 use std::num::NonZeroUsize;
+use std::ops::Range;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -231,10 +235,7 @@ pub(crate) fn run_scan(
     }
 
     let sampler = Sampler::new(cfg);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(settings.threads.map_or(0, NonZeroUsize::get))
-        .build()
-        .context("cannot start the worker threads")?;
+    let pool = worker_pool(settings.threads)?;
     let mut computed = 0;
     for c in 0..chunks {
         if done.contains(&c) {
@@ -244,20 +245,7 @@ pub(crate) fn run_scan(
             break;
         }
         let started = Instant::now();
-        let results: Vec<Option<Row>> = pool.install(|| {
-            range(c)
-                .into_par_iter()
-                .map(|id| {
-                    if stop.load(Ordering::SeqCst) {
-                        return None;
-                    }
-                    let row = run_one(id, sampler.params(id), &cfg.simulation, sim);
-                    progress.record(row.label());
-                    Some(row)
-                })
-                .collect()
-        });
-        let Some(chunk): Option<Vec<Row>> = results.into_iter().collect() else {
+        let Some(chunk) = compute_rows(&pool, range(c), &sampler, cfg, sim, stop, &progress) else {
             break;
         };
         let mut meta = metadata.clone();
@@ -296,6 +284,79 @@ pub(crate) fn run_scan(
         rows,
         computed,
     })
+}
+
+/// A pool of `threads` workers (`None`: one per core).
+fn worker_pool(threads: Option<NonZeroUsize>) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.map_or(0, NonZeroUsize::get))
+        .build()
+        .context("cannot start the worker threads")
+}
+
+/// The rows of sample ids `ids`, computed in parallel on `pool`, in id
+/// order; `None` once `stop` is set (the rows in flight finish, the rest are
+/// skipped).
+fn compute_rows(
+    pool: &rayon::ThreadPool,
+    ids: Range<u64>,
+    sampler: &Sampler,
+    cfg: &ScanConfig,
+    sim: Simulator,
+    stop: &AtomicBool,
+    progress: &Progress,
+) -> Option<Vec<Row>> {
+    let results: Vec<Option<Row>> = pool.install(|| {
+        ids.into_par_iter()
+            .map(|id| {
+                if stop.load(Ordering::SeqCst) {
+                    return None;
+                }
+                let row = run_one(id, sampler.params(id), &cfg.simulation, sim);
+                progress.record(row.label());
+                Some(row)
+            })
+            .collect()
+    });
+    results.into_iter().collect()
+}
+
+/// A whole scan computed in memory, as `rtw.scan` does from Python: the
+/// rows `rtw-scan run` writes to `samples.parquet` (same per-sample code,
+/// same values but `wall_time_s`), as one batch whose schema carries the
+/// file's metadata (config, its hash, version, seed, variant, wall time).
+/// `Ok(None)` when `stop` was set before the last row was computed.
+pub fn scan_batch(
+    cfg: &ScanConfig,
+    threads: Option<NonZeroUsize>,
+    stop: &AtomicBool,
+) -> Result<Option<RecordBatch>> {
+    let total = cfg.total_rows()?;
+    check_threads(threads)?;
+    let pool = worker_pool(threads)?;
+    let started = Instant::now();
+    let progress = Progress::new(total, ProgressMode::Quiet);
+    let sim: Simulator = &rtw_model::simulate;
+    let Some(rows) = compute_rows(
+        &pool,
+        0..total,
+        &Sampler::new(cfg),
+        cfg,
+        sim,
+        stop,
+        &progress,
+    ) else {
+        return Ok(None);
+    };
+    let mut meta = metadata::scan_metadata(cfg);
+    meta.push(metadata::kv(
+        META_WALL_TIME,
+        started.elapsed().as_secs_f64().to_string(),
+    ));
+    Ok(Some(metadata::with_metadata(
+        scan_rows::to_batch(&rows),
+        meta,
+    )?))
 }
 
 /// Runs one sample: derived parameters, the simulation (panics caught) and
