@@ -243,6 +243,39 @@ mod tests {
     }
 
     #[test]
+    fn config_text_layers_like_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let cfg = dir.path().join("base.toml");
+        let text = format!("name = \"box\"\n{BASE}\n[simulation]\nt_max = 5.0\n");
+        std::fs::write(&cfg, &text).unwrap();
+        let var = dir.path().join("v.toml");
+        std::fs::write(&var, "name = \"pre\"\n[simulation]\ncontact.mu = 0.8\n").unwrap();
+        let sets = ["initial.omega=-3".to_string()];
+        assert_eq!(
+            parse_layered(&text, Some(&var), &sets).unwrap(),
+            load_layered(&cfg, Some(&var), &sets).unwrap()
+        );
+        // Without a name, a variant is appended to `scan`.
+        let c = parse_layered(BASE, Some(&var), &[]).unwrap();
+        assert_eq!(c.name.as_deref(), Some("scan+pre"));
+        let e = format!(
+            "{:#}",
+            parse_layered(BASE, None, &["contact.mu=-1".into()]).unwrap_err()
+        );
+        assert!(
+            e.starts_with(
+                "config (with variant and --set) text: simulation.contact.mu: -1 is invalid"
+            ),
+            "{e}"
+        );
+        let e = format!(
+            "{:#}",
+            parse_layered("simulation = 1\n", None, &[]).unwrap_err()
+        );
+        assert!(e.contains("`simulation` is not a table"), "{e}");
+    }
+
+    #[test]
     fn set_overrides_parse_toml_values_or_bare_strings() {
         let mut t = toml::Table::new();
         for s in [

@@ -618,4 +618,33 @@ t_max = 2.0
             "{st:?}"
         );
     }
+
+    #[test]
+    fn scan_batch_holds_the_rows_of_run_scan() {
+        // The real simulator, a few short runs: the in-memory scan (Python's
+        // `rtw.scan`) and the file are the same rows but the wall time.
+        let cfg = parse(&CFG.replace("samples = 37", "samples = 5")).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        let sim: Simulator = &rtw_model::simulate;
+        run_scan(&cfg, &settings(dir.path(), 2, 2), sim, &never).unwrap();
+        let b = scan_batch(&cfg, NonZeroUsize::new(2), &never)
+            .unwrap()
+            .unwrap();
+        let meta = b.schema().metadata().clone();
+        assert_eq!(meta["rtw.config"], cfg.to_toml());
+        assert_eq!(meta["rtw.config_hash"], cfg.hash());
+        assert!(meta["rtw.wall_time_s"].parse::<f64>().unwrap() > 0.0);
+        let i = b.schema().index_of("wall_time_s").unwrap();
+        let mut cols = b.columns().to_vec();
+        cols[i] = std::sync::Arc::new(arrow::array::Float64Array::from(vec![0.0; b.num_rows()]));
+        let b = RecordBatch::try_new(schema(), cols).unwrap();
+        assert_eq!(
+            b,
+            rows_without_wall_time(&dir.path().join("samples.parquet"))
+        );
+        // Stopped before it starts: no rows, no error.
+        let stopped = AtomicBool::new(true);
+        assert!(scan_batch(&cfg, None, &stopped).unwrap().is_none());
+    }
 }
