@@ -3,7 +3,8 @@
 #   1. Rust (any user, only the toolchain): fmt, clippy, every Rust test;
 #   2. Python (python3 with venv; pip fetches scripts/requirements.txt into
 #      .venv the first time): the pandas/polars/pyarrow check of the Parquet
-#      output, that Cargo.toml's rust-version covers every dependency's, and
+#      output, the Python package (built and installed into .venv, its pytest
+#      tests), that Cargo.toml's rust-version covers every dependency's, and
 #      that the generated tables in README.md and docs/*.md match the
 #      committed results;
 #   3. Slurm: a sharded scan on a real one-node cluster (scripts/test_slurm.sh;
@@ -31,6 +32,13 @@ if [ -f scripts/check_parquet.py ]; then
   .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
   rm -rf "$out"
 fi
+echo "== the Python package rtw (crates/rtw-py): installed into .venv, then pytest"
+./scripts/venv.sh
+# maturin comes from scripts/requirements.txt (found on PATH in .venv/bin) and
+# builds in the workspace's target/, so an unchanged crate is only relinked.
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+  --no-build-isolation ./crates/rtw-py
+.venv/bin/python -m pytest -q crates/rtw-py/tests
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
 .venv/bin/python scripts/check_msrv.py
 echo "== fault injection: kills, a full disk, corrupt pages (scripts/fault_inject.sh)"

@@ -6,7 +6,8 @@
 //! string plus the isotropic damper `−c (Ṗ − Q̇)` (damping `relative`); with
 //! `slack` a string cannot push.
 
-use crate::options::Damping;
+use crate::options::{Damping, Options};
+use crate::params::Physical;
 use crate::plant::geometry::{RodFrame, SPOKES, V2, add, cross, dot, scale, sub};
 
 /// String constants of one RTW.
@@ -24,6 +25,22 @@ pub struct StringSet {
     pub slack: bool,
     /// How the damper acts.
     pub damping: Damping,
+}
+
+impl StringSet {
+    /// The strings of the RTW of `phys` with the string model of `options`
+    /// (rest length `s r`, slack, damping): the plant's own, and what
+    /// [`crate::modal`] linearizes.
+    pub fn new(phys: &Physical, options: &Options) -> Self {
+        Self {
+            k: phys.k,
+            c: phys.c,
+            r: phys.r,
+            rest_length: options.strings.rest_length_ratio * phys.r,
+            slack: options.strings.slack,
+            damping: options.strings.damping,
+        }
+    }
 }
 
 /// Net string force and torque (about its centre) on each rod, and the power

@@ -1,12 +1,13 @@
 //! `simulate`: one run, its row printed, its trace written.
 
 use crate::config::layers::simulation_options;
-use crate::io::metadata::{FileKind, META_OPTIONS, META_PARAMS, META_VERSION, kv};
+use crate::config::params::checked_params;
+use crate::io::metadata::FileKind;
 use crate::io::scan_rows::{self, JsonRow};
 use crate::io::trace::{self, TraceWriter};
 use crate::io::{destination, files};
 use crate::scan::run::run_one;
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result};
 use clap::Args;
 use rtw_model::{Options, Outcome, Params};
 use std::path::{Path, PathBuf};
@@ -63,40 +64,15 @@ fn simulate_options(config_file: Option<&Path>, sets: &[String]) -> Result<Optio
 }
 
 pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
-    let params = Params::new(a.length, a.rho, a.alpha, a.f_n, a.zeta, a.phi)
-        .map_err(|e| anyhow!("--{}: {} is invalid: must be {}", e.field, e.value, e.range))?;
+    let params = checked_params([a.length, a.rho, a.alpha, a.f_n, a.zeta, a.phi], "--")?;
     let options = simulate_options(a.config.as_deref(), &a.set)?;
     let mut trace = match &a.trace {
         Some(path) => {
             destination::check_destination(path, FileKind::Trace, &[], "--trace", a.force)?;
-            let rows = trace::trace_rows_bound(&options);
-            let bytes = rows as f64 * trace::trace_row_bytes() as f64;
-            if bytes > a.trace_limit as f64 {
-                bail!(
-                    "--trace {}: about {} ({rows} samples × {} bytes: t_max {} s / trace_dt {} s{}) is more \
-                     than --trace-limit {}: raise trace_dt (--set trace_dt=...), lower t_max, or raise --trace-limit",
-                    path.display(),
-                    trace::human_bytes(bytes),
-                    trace::trace_row_bytes(),
-                    options.t_max,
-                    options.trace_dt,
-                    if options.trace_dt > 0.0 {
-                        String::new()
-                    } else {
-                        format!(
-                            ", i.e. one per step, up to max_steps = {}",
-                            options.max_steps
-                        )
-                    },
-                    trace::human_bytes(a.trace_limit as f64)
-                );
-            }
+            trace::check_trace_size(&options, a.trace_limit, "--trace-limit")
+                .with_context(|| format!("--trace {}", path.display()))?;
             files::remove_stray_temps(path)?;
-            let meta = vec![
-                kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
-                kv(META_PARAMS, serde_json::to_string(&params)?),
-                kv(META_OPTIONS, toml::to_string(&options)?),
-            ];
+            let meta = trace::trace_metadata(&params, &options)?;
             Some(
                 TraceWriter::create(path, meta, a.trace_limit)
                     .with_context(|| format!("trace {}", path.display()))?,

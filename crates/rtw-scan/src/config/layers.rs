@@ -29,30 +29,53 @@ struct RawVariant {
 /// own (the variant wins; the scan is then named `NAME+VARIANT`), then the
 /// `--set KEY=VALUE` overrides, and validates the result. Errors name the
 /// file and the key.
-pub(crate) fn load_layered(
-    path: &Path,
+pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
+    let (table, simulation) = read_split(path)?;
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    layered(table, simulation, &stem, variant, sets)
+        .with_context(|| format!("{} {}", layered_what(variant, sets), path.display()))
+}
+
+/// [`load_layered`] of config text instead of a file (`rtw.scan` from
+/// Python given TOML): a variant's name is appended to the config's `name`
+/// (or to `scan` when it has none).
+pub fn parse_layered(text: &str, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
+    let (table, simulation) = split_simulation(parse_table(text)?).context("config text")?;
+    layered(table, simulation, "scan", variant, sets)
+        .with_context(|| format!("{} text", layered_what(variant, sets)))
+}
+
+/// How a layered config is named in errors.
+fn layered_what(variant: Option<&Path>, sets: &[String]) -> &'static str {
+    if variant.is_some() || !sets.is_empty() {
+        "config (with variant and --set)"
+    } else {
+        "config"
+    }
+}
+
+/// The layers of [`load_layered`] over a config's top-level and
+/// `[simulation]` tables; `stem` names the scan when the config does not.
+fn layered(
+    mut table: toml::Table,
+    mut simulation: toml::Table,
+    stem: &str,
     variant: Option<&Path>,
     sets: &[String],
 ) -> Result<ScanConfig> {
-    let (mut table, mut simulation) = read_split(path)?;
     let suffix = layer_variant_and_sets(&mut simulation, variant, sets)?;
     table.insert("simulation".into(), simulation.into());
     if let Some(suffix) = suffix {
         let base = match table.get("name") {
             Some(toml::Value::String(n)) => n.clone(),
-            _ => path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
+            _ => stem.to_string(),
         };
         table.insert("name".into(), format!("{base}+{suffix}").into());
     }
-    let what = if variant.is_some() || !sets.is_empty() {
-        "config (with variant and --set)"
-    } else {
-        "config"
-    };
-    parse_value(table).with_context(|| format!("{what} {}", path.display()))
+    parse_value(table)
 }
 
 /// Layers a variant file's `[simulation]` keys (the variant wins), then the
@@ -80,8 +103,9 @@ fn layer_variant_and_sets(
 
 /// The simulation options of a single model (`simulate`, `bifurcation`):
 /// the `[simulation]` table of `config_file` (default: the adopted model, docs/model.md §9),
-/// then a variant file, then the `--set` overrides, validated.
-pub(crate) fn simulation_options(
+/// then a variant file, then the `--set` overrides, validated. Errors name
+/// the file and the key, the value and the valid range.
+pub fn simulation_options(
     config_file: Option<&Path>,
     variant: Option<&Path>,
     sets: &[String],
@@ -97,12 +121,18 @@ pub(crate) fn simulation_options(
 /// Reads a config file into its top-level table and, taken out of it, its
 /// `[simulation]` table (empty when absent). Errors name the file.
 pub(crate) fn read_split(path: &Path) -> Result<(toml::Table, toml::Table)> {
-    let mut table = parse_table(&read_text(path, "config")?)
+    let table = parse_table(&read_text(path, "config")?)
         .with_context(|| format!("config {}", path.display()))?;
+    split_simulation(table).with_context(|| format!("config {}", path.display()))
+}
+
+/// A config's top-level table and, taken out of it, its `[simulation]`
+/// table (empty when absent).
+fn split_simulation(mut table: toml::Table) -> Result<(toml::Table, toml::Table)> {
     let simulation = match table.remove("simulation") {
         None => toml::Table::new(),
         Some(toml::Value::Table(s)) => s,
-        Some(_) => bail!("config {}: `simulation` is not a table", path.display()),
+        Some(_) => bail!("`simulation` is not a table"),
     };
     Ok((table, simulation))
 }
@@ -123,7 +153,9 @@ fn merge_tables(base: &mut toml::Table, over: toml::Table) {
 /// Applies `KEY=VALUE` overrides to a table. `KEY` is a dotted path
 /// (`contact.mu`); `VALUE` is read as a TOML value (`true`, `inf`, `-3`,
 /// `"dop853"`), or taken as a bare string when it is not one (`dop853`).
-pub(crate) fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
+/// The key is checked when the table is deserialized
+/// ([`super::options_from_table`]), not here.
+pub fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
     let (key, value) = assignment
         .split_once('=')
         .ok_or_else(|| anyhow!("--set {assignment:?}: expected KEY=VALUE"))?;
@@ -208,6 +240,39 @@ mod tests {
             e.contains("unknown key `seed`") && e.contains("v.toml"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn config_text_layers_like_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let cfg = dir.path().join("base.toml");
+        let text = format!("name = \"box\"\n{BASE}\n[simulation]\nt_max = 5.0\n");
+        std::fs::write(&cfg, &text).unwrap();
+        let var = dir.path().join("v.toml");
+        std::fs::write(&var, "name = \"pre\"\n[simulation]\ncontact.mu = 0.8\n").unwrap();
+        let sets = ["initial.omega=-3".to_string()];
+        assert_eq!(
+            parse_layered(&text, Some(&var), &sets).unwrap(),
+            load_layered(&cfg, Some(&var), &sets).unwrap()
+        );
+        // Without a name, a variant is appended to `scan`.
+        let c = parse_layered(BASE, Some(&var), &[]).unwrap();
+        assert_eq!(c.name.as_deref(), Some("scan+pre"));
+        let e = format!(
+            "{:#}",
+            parse_layered(BASE, None, &["contact.mu=-1".into()]).unwrap_err()
+        );
+        assert!(
+            e.starts_with(
+                "config (with variant and --set) text: simulation.contact.mu: -1 is invalid"
+            ),
+            "{e}"
+        );
+        let e = format!(
+            "{:#}",
+            parse_layered("simulation = 1\n", None, &[]).unwrap_err()
+        );
+        assert!(e.contains("`simulation` is not a table"), "{e}");
     }
 
     #[test]

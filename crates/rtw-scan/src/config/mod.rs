@@ -28,7 +28,7 @@
 //! range whose ends are valid only yields valid samples.
 
 pub mod axis;
-pub(crate) mod layers;
+pub mod layers;
 pub mod params;
 pub(crate) mod raw;
 pub(crate) mod variant;
@@ -187,8 +187,9 @@ pub(crate) const CLUSTER_MAX_POINTS: usize = 20_000;
 /// k-means of up to [`CLUSTER_MAX_POINTS`] points.
 pub(crate) const MAX_RESTARTS: i64 = 1000;
 
-/// Options → validated, the error naming `prefix.key`.
-pub(crate) fn validate_options(options: &Options, prefix: &str) -> Result<()> {
+/// Options → validated, the error naming `prefix.key`, the value and the
+/// valid range (`simulation.contact.mu: 2 is invalid: must be in [0, 1] or inf`).
+pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {
     options.validate().map_err(|e| {
         anyhow!(
             "{prefix}.{}: {} is invalid: must be {}",
@@ -199,8 +200,9 @@ pub(crate) fn validate_options(options: &Options, prefix: &str) -> Result<()> {
     })
 }
 
-/// Deserializes a `[simulation]` table into validated [`Options`].
-pub(crate) fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
+/// Deserializes a `[simulation]` table into validated [`Options`]; an
+/// unknown key or a bad value is named as `prefix.key`.
+pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
     let options: Options = from_value(toml::Value::Table(table), prefix)?;
     validate_options(&options, prefix)?;
     Ok(options)

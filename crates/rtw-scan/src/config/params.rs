@@ -16,6 +16,21 @@ use rtw_model::{Options, ParamError, Params};
 /// product, sampling, columns, the index of `ScanConfig::params`).
 pub use rtw_model::Param as Input;
 
+/// The six inputs (L, ρ, α, f_n, ζ, φ) as validated [`Params`]; an invalid
+/// one is named `{prefix}{name}` (`--alpha` on the command line, `alpha`
+/// from Python) with its value and valid range.
+pub fn checked_params(values: [f64; 6], prefix: &str) -> Result<Params> {
+    let [length, rho, alpha, f_n, zeta, phi] = values;
+    Params::new(length, rho, alpha, f_n, zeta, phi).map_err(|e| {
+        anyhow::anyhow!(
+            "{prefix}{}: {} is invalid: must be {}",
+            e.field,
+            e.value,
+            e.range
+        )
+    })
+}
+
 /// A parameter a bifurcation sweep can vary: an input of docs/model.md §1 or
 /// `s`, the strings' rest-length ratio (`strings.rest_length_ratio`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -4,8 +4,11 @@
 
 use crate::config::variant::Variant;
 use crate::config::{self, ScanConfig};
+use arrow_array::RecordBatch;
+use arrow_schema::ArrowError;
 use parquet::file::metadata::KeyValue;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 
 /// Metadata key: the resolved scan config as TOML.
 pub(crate) const META_CONFIG: &str = "rtw.config";
@@ -56,6 +59,21 @@ pub(crate) const META_RECORD: &str = "rtw.bifurcation.record";
 /// A key-value metadata entry.
 pub fn kv(key: &str, value: String) -> KeyValue {
     KeyValue::new(key.to_string(), value)
+}
+
+/// `batch` with `metadata` in its schema, where an in-memory table (a
+/// pyarrow table from Python) carries what a file carries in its footer.
+pub(crate) fn with_metadata(
+    batch: RecordBatch,
+    metadata: Vec<KeyValue>,
+) -> Result<RecordBatch, ArrowError> {
+    let schema = batch.schema().as_ref().clone().with_metadata(
+        metadata
+            .into_iter()
+            .map(|kv| (kv.key, kv.value.unwrap_or_default()))
+            .collect::<HashMap<_, _>>(),
+    );
+    batch.with_schema(Arc::new(schema))
 }
 
 /// The file metadata of a scan's Parquet files: config, its hash, version,

@@ -28,3 +28,4 @@ pub(crate) mod trace;
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
 pub use scan_rows::schema;
+pub use trace::{check_trace_size, trace_batch, trace_metadata, trace_schema};

@@ -1,13 +1,14 @@
 //! Trace files (`simulate --trace`): a run's time series, streamed to
 //! Parquet, and the size it may reach.
 
+use crate::io::metadata::{META_OPTIONS, META_PARAMS, META_VERSION, kv};
 use crate::io::parquet::{ParquetFile, writer_properties};
 use crate::io::table;
 use anyhow::{Result, bail};
 use arrow_array::{ArrayRef, Float64Array, Int8Array, RecordBatch};
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use parquet::file::metadata::KeyValue;
-use rtw_model::TraceSample;
+use rtw_model::{Options, Params, TraceSample};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -15,7 +16,6 @@ use std::sync::Arc;
 /// `BATCH` samples, so a long trace never sits in memory.
 pub(crate) struct TraceWriter {
     file: ParquetFile,
-    schema: SchemaRef,
     buffer: Vec<TraceSample>,
     rows: u64,
     max_rows: u64,
@@ -114,7 +114,7 @@ fn trace_columns() -> Vec<TraceColumn> {
 }
 
 /// The schema of a trace file (`simulate --trace`).
-pub(crate) fn trace_schema() -> SchemaRef {
+pub fn trace_schema() -> SchemaRef {
     let fields: Vec<Field> = trace_columns()
         .into_iter()
         .map(|(n, unit, description, g)| {
@@ -126,6 +126,59 @@ pub(crate) fn trace_schema() -> SchemaRef {
         })
         .collect();
     Arc::new(Schema::new(fields))
+}
+
+/// A trace's samples as one batch of [`trace_schema`]: what a trace file's
+/// row groups hold, and what `rtw.trace` hands to Python.
+pub fn trace_batch(samples: &[TraceSample]) -> RecordBatch {
+    let arrays: Vec<ArrayRef> = trace_columns()
+        .into_iter()
+        .map(|(_, _, _, g)| match g {
+            TraceGet::F64(g) => {
+                Arc::new(samples.iter().map(&g).collect::<Float64Array>()) as ArrayRef
+            }
+            TraceGet::I8(g) => Arc::new(samples.iter().map(&g).collect::<Int8Array>()),
+        })
+        .collect();
+    RecordBatch::try_new(trace_schema(), arrays).expect("the trace columns match their schema")
+}
+
+/// The metadata of a trace of a run of `params` with `options`: rtw-scan's
+/// version, the parameters (JSON) and the resolved options (TOML).
+pub fn trace_metadata(params: &Params, options: &Options) -> Result<Vec<KeyValue>> {
+    Ok(vec![
+        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_PARAMS, serde_json::to_string(params)?),
+        kv(META_OPTIONS, toml::to_string(options)?),
+    ])
+}
+
+/// Refuses a trace of a run with `options` whose size estimate
+/// ([`trace_rows_bound`] × [`trace_row_bytes`]) exceeds `limit` bytes;
+/// `limit_name` names the limit in the message (`--trace-limit`).
+pub fn check_trace_size(options: &Options, limit: u64, limit_name: &str) -> Result<()> {
+    let rows = trace_rows_bound(options);
+    let bytes = rows as f64 * trace_row_bytes() as f64;
+    if bytes > limit as f64 {
+        bail!(
+            "about {} ({rows} samples × {} bytes: t_max {} s / trace_dt {} s{}) is more \
+             than {limit_name} {}: raise trace_dt (--set trace_dt=...), lower t_max, or raise {limit_name}",
+            human_bytes(bytes),
+            trace_row_bytes(),
+            options.t_max,
+            options.trace_dt,
+            if options.trace_dt > 0.0 {
+                String::new()
+            } else {
+                format!(
+                    ", i.e. one per step, up to max_steps = {}",
+                    options.max_steps
+                )
+            },
+            human_bytes(limit as f64)
+        );
+    }
+    Ok(())
 }
 
 /// Bytes of one trace sample before compression (the sum of its columns'
@@ -143,7 +196,7 @@ pub(crate) fn trace_row_bytes() -> u64 {
 /// Most samples a trace of a run with `options` can have: one every
 /// `trace_dt` over `t_max`, or with `trace_dt = 0` one per step, at most the
 /// work budget `max_steps`.
-pub(crate) fn trace_rows_bound(options: &rtw_model::Options) -> u64 {
+pub(crate) fn trace_rows_bound(options: &Options) -> u64 {
     if options.trace_dt > 0.0 {
         (options.t_max / options.trace_dt).min(u64::MAX as f64 / 2.0) as u64 + 2
     } else {
@@ -199,10 +252,9 @@ impl TraceWriter {
     pub(crate) fn create(dest: &Path, metadata: Vec<KeyValue>, limit: u64) -> Result<Self> {
         let schema = trace_schema();
         let props = writer_properties(&schema, Self::BATCH, metadata);
-        let file = ParquetFile::create(dest, schema.clone(), props)?;
+        let file = ParquetFile::create(dest, schema, props)?;
         Ok(Self {
             file,
-            schema,
             buffer: Vec::with_capacity(Self::BATCH),
             rows: 0,
             max_rows: limit / trace_row_bytes(),
@@ -229,17 +281,7 @@ impl TraceWriter {
         if self.buffer.is_empty() {
             return Ok(());
         }
-        let arrays: Vec<ArrayRef> = trace_columns()
-            .into_iter()
-            .map(|(_, _, _, g)| match g {
-                TraceGet::F64(g) => {
-                    Arc::new(self.buffer.iter().map(&g).collect::<Float64Array>()) as ArrayRef
-                }
-                TraceGet::I8(g) => Arc::new(self.buffer.iter().map(&g).collect::<Int8Array>()),
-            })
-            .collect();
-        self.file
-            .write(&RecordBatch::try_new(self.schema.clone(), arrays)?)?;
+        self.file.write(&trace_batch(&self.buffer))?;
         self.rows += self.buffer.len() as u64;
         self.buffer.clear();
         Ok(())

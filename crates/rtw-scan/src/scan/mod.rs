@@ -4,7 +4,8 @@
 //! | module | role |
 //! |---|---|
 //! | [`sample`] | sample id → parameters, from (seed, id) only |
-//! | `run` | parallel chunks into durable files, resume, one sample's row |
+//! | `run` | parallel chunks into durable files, resume, one sample's row; [`scan_batch`]: a scan in memory |
+//! | [`single`] | one run in memory: its `--json` row and its trace (the Python package) |
 //! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks |
 //! | `shard` | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | `progress` | progress on stderr |
@@ -18,3 +19,6 @@ pub(crate) mod progress;
 pub(crate) mod run;
 pub mod sample;
 pub(crate) mod shard;
+pub mod single;
+
+pub use run::scan_batch;

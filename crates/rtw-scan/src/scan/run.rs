@@ -29,7 +29,9 @@
 
 use crate::config::ScanConfig;
 use crate::io::files;
-use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS};
+use crate::io::metadata::{
+    self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME,
+};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows::{self, Row};
@@ -43,9 +45,11 @@ use crate::scan::progress::{Progress, ProgressMode};
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
 use anyhow::{Context, Result, anyhow, bail};
+use arrow_array::RecordBatch;
 use rayon::prelude::*;
 use rtw_model::{Options, Outcome, Params, Physical};
 use std::num::NonZeroUsize;
+use std::ops::Range;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -231,10 +235,7 @@ pub(crate) fn run_scan(
     }
 
     let sampler = Sampler::new(cfg);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(settings.threads.map_or(0, NonZeroUsize::get))
-        .build()
-        .context("cannot start the worker threads")?;
+    let pool = worker_pool(settings.threads)?;
     let mut computed = 0;
     for c in 0..chunks {
         if done.contains(&c) {
@@ -244,20 +245,7 @@ pub(crate) fn run_scan(
             break;
         }
         let started = Instant::now();
-        let results: Vec<Option<Row>> = pool.install(|| {
-            range(c)
-                .into_par_iter()
-                .map(|id| {
-                    if stop.load(Ordering::SeqCst) {
-                        return None;
-                    }
-                    let row = run_one(id, sampler.params(id), &cfg.simulation, sim);
-                    progress.record(row.label());
-                    Some(row)
-                })
-                .collect()
-        });
-        let Some(chunk): Option<Vec<Row>> = results.into_iter().collect() else {
+        let Some(chunk) = compute_rows(&pool, range(c), &sampler, cfg, sim, stop, &progress) else {
             break;
         };
         let mut meta = metadata.clone();
@@ -296,6 +284,79 @@ pub(crate) fn run_scan(
         rows,
         computed,
     })
+}
+
+/// A pool of `threads` workers (`None`: one per core).
+fn worker_pool(threads: Option<NonZeroUsize>) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.map_or(0, NonZeroUsize::get))
+        .build()
+        .context("cannot start the worker threads")
+}
+
+/// The rows of sample ids `ids`, computed in parallel on `pool`, in id
+/// order; `None` once `stop` is set (the rows in flight finish, the rest are
+/// skipped).
+fn compute_rows(
+    pool: &rayon::ThreadPool,
+    ids: Range<u64>,
+    sampler: &Sampler,
+    cfg: &ScanConfig,
+    sim: Simulator,
+    stop: &AtomicBool,
+    progress: &Progress,
+) -> Option<Vec<Row>> {
+    let results: Vec<Option<Row>> = pool.install(|| {
+        ids.into_par_iter()
+            .map(|id| {
+                if stop.load(Ordering::SeqCst) {
+                    return None;
+                }
+                let row = run_one(id, sampler.params(id), &cfg.simulation, sim);
+                progress.record(row.label());
+                Some(row)
+            })
+            .collect()
+    });
+    results.into_iter().collect()
+}
+
+/// A whole scan computed in memory, as `rtw.scan` does from Python: the
+/// rows `rtw-scan run` writes to `samples.parquet` (same per-sample code,
+/// same values but `wall_time_s`), as one batch whose schema carries the
+/// file's metadata (config, its hash, version, seed, variant, wall time).
+/// `Ok(None)` when `stop` was set before the last row was computed.
+pub fn scan_batch(
+    cfg: &ScanConfig,
+    threads: Option<NonZeroUsize>,
+    stop: &AtomicBool,
+) -> Result<Option<RecordBatch>> {
+    let total = cfg.total_rows()?;
+    check_threads(threads)?;
+    let pool = worker_pool(threads)?;
+    let started = Instant::now();
+    let progress = Progress::new(total, ProgressMode::Quiet);
+    let sim: Simulator = &rtw_model::simulate;
+    let Some(rows) = compute_rows(
+        &pool,
+        0..total,
+        &Sampler::new(cfg),
+        cfg,
+        sim,
+        stop,
+        &progress,
+    ) else {
+        return Ok(None);
+    };
+    let mut meta = metadata::scan_metadata(cfg);
+    meta.push(metadata::kv(
+        META_WALL_TIME,
+        started.elapsed().as_secs_f64().to_string(),
+    ));
+    Ok(Some(metadata::with_metadata(
+        scan_rows::to_batch(&rows),
+        meta,
+    )?))
 }
 
 /// Runs one sample: derived parameters, the simulation (panics caught) and
@@ -556,5 +617,34 @@ t_max = 2.0
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
         );
+    }
+
+    #[test]
+    fn scan_batch_holds_the_rows_of_run_scan() {
+        // The real simulator, a few short runs: the in-memory scan (Python's
+        // `rtw.scan`) and the file are the same rows but the wall time.
+        let cfg = parse(&CFG.replace("samples = 37", "samples = 5")).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        let sim: Simulator = &rtw_model::simulate;
+        run_scan(&cfg, &settings(dir.path(), 2, 2), sim, &never).unwrap();
+        let b = scan_batch(&cfg, NonZeroUsize::new(2), &never)
+            .unwrap()
+            .unwrap();
+        let meta = b.schema().metadata().clone();
+        assert_eq!(meta["rtw.config"], cfg.to_toml());
+        assert_eq!(meta["rtw.config_hash"], cfg.hash());
+        assert!(meta["rtw.wall_time_s"].parse::<f64>().unwrap() > 0.0);
+        let i = b.schema().index_of("wall_time_s").unwrap();
+        let mut cols = b.columns().to_vec();
+        cols[i] = std::sync::Arc::new(arrow::array::Float64Array::from(vec![0.0; b.num_rows()]));
+        let b = RecordBatch::try_new(schema(), cols).unwrap();
+        assert_eq!(
+            b,
+            rows_without_wall_time(&dir.path().join("samples.parquet"))
+        );
+        // Stopped before it starts: no rows, no error.
+        let stopped = AtomicBool::new(true);
+        assert!(scan_batch(&cfg, None, &stopped).unwrap().is_none());
     }
 }

@@ -1,0 +1,243 @@
+//! `rtw._rtw`: the native layer of the Python package `rtw`
+//! (`python/rtw/__init__.py` is its documented face).
+//!
+//! Only conversions and GIL handling live here: inputs and options are
+//! checked by rtw-scan's config layers (the messages of the CLI), runs and
+//! scans are rtw-scan's and rtw-model's own code, and tables cross into
+//! Python through the Arrow C data interface (arrow-pyarrow: pyarrow imports
+//! the Rust buffers, no value is copied or boxed as a Python object).
+
+use anyhow::anyhow;
+use arrow_array::RecordBatch;
+use arrow_pyarrow::{IntoPyArrow, Table};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
+use rtw_model::plant::strings::StringSet;
+use rtw_model::{Options, Params, Physical, modal};
+use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
+use rtw_scan::config::params::checked_params;
+use rtw_scan::scan::scan_batch;
+use rtw_scan::scan::single::{simulate_json, simulate_traced_json};
+use std::num::NonZeroUsize;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{RecvTimeoutError, channel};
+use std::time::Duration;
+
+/// How often a running scan looks for a signal (Ctrl-C) in Python.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Most bytes a trace may take in memory before compression, as
+/// `simulate --trace-limit`'s default.
+const TRACE_LIMIT: u64 = 2_000_000_000;
+
+/// Most settling steps of `limit_cycle` (as `bifurcation --transient`).
+const MAX_SETTLE_STEPS: usize = 10_000_000;
+
+/// An rtw error as Python's `ValueError`, with every context (`{:#}`).
+fn value_error(e: anyhow::Error) -> PyErr {
+    PyValueError::new_err(format!("{e:#}"))
+}
+
+/// The six inputs and the layered options (config's `[simulation]`, variant,
+/// `KEY=VALUE` sets), checked as `rtw-scan simulate` checks them.
+fn inputs(
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    sets: &[String],
+) -> PyResult<(Params, Options)> {
+    let params = checked_params(values, "").map_err(value_error)?;
+    let options =
+        simulation_options(config.as_deref(), variant.as_deref(), sets).map_err(value_error)?;
+    Ok((params, options))
+}
+
+/// A batch as a `pyarrow.Table`, through the C data interface.
+fn to_table(py: Python<'_>, batch: RecordBatch) -> PyResult<Bound<'_, PyAny>> {
+    let schema = batch.schema();
+    Table::try_new(vec![batch], schema)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+        .into_pyarrow(py)
+}
+
+/// One run: its row as the JSON object of `rtw-scan simulate --json`.
+#[pyfunction]
+#[pyo3(signature = (values, config, variant, sets))]
+fn simulate(
+    py: Python<'_>,
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    sets: Vec<String>,
+) -> PyResult<String> {
+    let (params, options) = inputs(values, config, variant, &sets)?;
+    py.detach(|| simulate_json(params, &options))
+        .map_err(value_error)
+}
+
+/// One run and its trace: (the `--json` row, a `pyarrow.Table` of the
+/// `simulate --trace` columns).
+#[pyfunction]
+#[pyo3(signature = (values, config, variant, sets))]
+fn trace(
+    py: Python<'_>,
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    sets: Vec<String>,
+) -> PyResult<(String, Bound<'_, PyAny>)> {
+    let (params, options) = inputs(values, config, variant, &sets)?;
+    let (json, batch) = py
+        .detach(|| simulate_traced_json(params, &options, TRACE_LIMIT, "the in-memory limit"))
+        .map_err(value_error)?;
+    Ok((json, to_table(py, batch)?))
+}
+
+/// A scan (config file `path` or TOML `text`, then variant and sets) as a
+/// `pyarrow.Table` of the rows of `rtw-scan run`. It runs on a worker thread
+/// (rayon inside) with the GIL released; this thread polls Python's signal
+/// handlers every [`SIGNAL_POLL`], and on an exception (KeyboardInterrupt)
+/// stops the scan, waits for the samples in flight, and raises it.
+#[pyfunction]
+#[pyo3(signature = (path, text, variant, sets, threads))]
+fn scan(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    text: Option<String>,
+    variant: Option<PathBuf>,
+    sets: Vec<String>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'_, PyAny>> {
+    let cfg = match (path, text) {
+        (Some(p), None) => load_layered(&p, variant.as_deref(), &sets),
+        (None, Some(t)) => parse_layered(&t, variant.as_deref(), &sets),
+        _ => Err(anyhow!("give a config path or TOML text")),
+    }
+    .map_err(value_error)?;
+    let threads = match threads {
+        None => None,
+        Some(n) => Some(
+            NonZeroUsize::new(n)
+                .ok_or_else(|| PyValueError::new_err("threads: 0 is invalid: must be >= 1"))?,
+        ),
+    };
+    let stop = Arc::new(AtomicBool::new(false));
+    let (done, finished) = channel();
+    let worker = {
+        let stop = Arc::clone(&stop);
+        std::thread::spawn(move || {
+            let result = scan_batch(&cfg, threads, &stop);
+            // The receiver is gone only if this function already returned.
+            let _ = done.send(());
+            result
+        })
+    };
+    let mut finished = finished;
+    loop {
+        // The receiver is `Send` but not `Sync`: it goes into the detached
+        // closure and comes back.
+        let (wait, back) = py.detach(move || (finished.recv_timeout(SIGNAL_POLL), finished));
+        finished = back;
+        match wait {
+            Err(RecvTimeoutError::Timeout) => {}
+            Ok(()) | Err(RecvTimeoutError::Disconnected) => break,
+        }
+        if let Err(interrupt) = py.check_signals() {
+            stop.store(true, Ordering::SeqCst);
+            // The samples in flight finish (each is bounded by t_max and max_steps).
+            let _ = py.detach(|| worker.join());
+            return Err(interrupt);
+        }
+    }
+    let result = py
+        .detach(|| worker.join())
+        .map_err(|_| PyRuntimeError::new_err("the scan's worker thread panicked"))?;
+    match result.map_err(value_error)? {
+        Some(batch) => to_table(py, batch),
+        // Stopped without a signal seen here: only a signal sets `stop`.
+        None => Err(PyKeyboardInterrupt::new_err("the scan was stopped")),
+    }
+}
+
+/// The limit cycle the run from the options' initial state settles into
+/// (rtw-model's step map: `settle_steps` steps, the period found on the
+/// section, Newton on `Pⁿ(z) = z`, Floquet multipliers), as a dict.
+#[pyfunction]
+#[pyo3(signature = (values, config, variant, sets, settle_steps))]
+fn limit_cycle<'py>(
+    py: Python<'py>,
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    sets: Vec<String>,
+    settle_steps: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (params, options) = inputs(values, config, variant, &sets)?;
+    if !(1..=MAX_SETTLE_STEPS).contains(&settle_steps) {
+        return Err(PyValueError::new_err(format!(
+            "settle_steps: {settle_steps} is invalid: must be an integer >= 1 and at most {MAX_SETTLE_STEPS}"
+        )));
+    }
+    let cycle = CycleOptions {
+        settle_steps,
+        ..CycleOptions::default()
+    };
+    let lc = py
+        .detach(|| StepMap::new(&params, &options, &cycle).limit_cycle(&options, &cycle))
+        .map_err(|e| PyRuntimeError::new_err(format!("no limit cycle: {e}")))?;
+    let d = PyDict::new(py);
+    d.set_item("period", lc.period)?;
+    d.set_item("fixed_point", lc.fixed_point.z.clone())?;
+    d.set_item("residual", lc.fixed_point.residual)?;
+    d.set_item("iterations", lc.fixed_point.iterations)?;
+    let multipliers: Vec<(f64, f64)> = lc.multipliers.iter().map(|m| (m.re, m.im)).collect();
+    d.set_item("multipliers", multipliers)?;
+    d.set_item("floquet_max", lc.floquet_max())?;
+    d.set_item("stable", lc.is_stable())?;
+    d.set_item("label", lc.label(&options.labels).as_str())?;
+    let step_times: Vec<f64> = lc.steps.iter().map(|s| s.time).collect();
+    d.set_item("step_times", step_times)?;
+    Ok(d)
+}
+
+/// The eigen-frequencies of rtw-model's `modal`: S18's f_n, the approximate
+/// 3-rotor model's modes and the free 9-DOF star's, as a dict.
+#[pyfunction]
+#[pyo3(signature = (values, config, variant, sets))]
+fn modes<'py>(
+    py: Python<'py>,
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    sets: Vec<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (params, options) = inputs(values, config, variant, &sets)?;
+    let phys = Physical::new(&params, options.normalization, options.g);
+    let strings = StringSet::new(&phys, &options);
+    let approx = modal::approximate_modes(&phys, &strings);
+    let star = modal::free_star_modes(&phys, &strings);
+    let d = PyDict::new(py);
+    d.set_item("s18_hz", modal::s18_frequency(&phys))?;
+    d.set_item("approx_hz", approx.freq_hz)?;
+    d.set_item("approx_damped_hz", approx.damped_freq_hz)?;
+    d.set_item("approx_damping_ratio", approx.damping_ratio)?;
+    d.set_item("star_hz", star.freq_hz.to_vec())?;
+    d.set_item("star_rigid_modes", star.rigid_modes)?;
+    Ok(d)
+}
+
+/// The module `rtw._rtw`.
+#[pymodule]
+fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(trace, m)?)?;
+    m.add_function(wrap_pyfunction!(scan, m)?)?;
+    m.add_function(wrap_pyfunction!(limit_cycle, m)?)?;
+    m.add_function(wrap_pyfunction!(modes, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
