@@ -25,7 +25,7 @@ nb = nbformat.read(source, as_version=4)
 stale = [i for i, c in enumerate(nb.cells) if c.cell_type == "code" and (c.outputs or c.execution_count)]
 if stale:
     sys.exit(f"run_notebook: {source} is committed with outputs in code cells {stale}: "
-             "strip them (jupyter nbconvert --clear-output --inplace)")
+             "strip them (Jupyter: Edit > Clear Outputs of All Cells, then save)")
 # The kernel runs in the temporary folder: whatever a cell writes lands there.
 NotebookClient(nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(work)}}).execute()
 out = work / source.name

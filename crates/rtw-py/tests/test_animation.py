@@ -158,6 +158,19 @@ def test_mp4_without_ffmpeg_is_a_clear_error(run, tmp_path, monkeypatch):
         animate(path, fps=10, duration=0.2).save(tmp_path / "walk.mp4")
 
 
+@pytest.mark.skipif(animation.shutil.which("ffmpeg") is None or animation.shutil.which("ffprobe") is None,
+                    reason="ffmpeg/ffprobe not on PATH (the error without them is tested above)")
+def test_mp4_has_the_frames(run, tmp_path):
+    path, _ = run
+    anim = animate(path, fps=25, start=1.0, duration=0.4)
+    out = tmp_path / "walk.mp4"
+    anim.save(out)
+    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                            "stream=nb_read_frames,width", "-of", "csv=p=0", str(out)],
+                           check=True, capture_output=True, text=True)
+    assert probe.stdout.strip() == f"480,{anim.frame_count}" and anim.frame_count == 11
+
+
 def test_api_errors_name_the_argument(run):
     path, _ = run
     for kwargs, name in (({"fps": 0}, "fps"), ({"speed": -1}, "speed"), ({"start": -5}, "start"),

@@ -112,6 +112,12 @@ def rod_points(x, y, th, half: float, r: float):
     return (c + half * e, c - half * e), (c + r * e, c - r * e)
 
 
+def stance_tips(plus, minus, code):
+    """The tip a rod touches the ground with: tip + for a positive contact
+    code, tip − for a negative one (meaningless where the code is 0)."""
+    return np.where((np.asarray(code) > 0)[..., None], plus, minus)
+
+
 def _column_names(table) -> list[str]:
     names = getattr(table, "column_names", None)  # pyarrow.Table
     if names is None:
@@ -187,7 +193,7 @@ class Trace:
     def feet(self) -> np.ndarray:
         """The tip each rod stands on (+ for a positive code, − for a negative), [rod, sample, xy]."""
         (plus, minus), _ = self.points()
-        return np.where((self.contact >= 0)[..., None], plus, minus)
+        return stance_tips(plus, minus, self.contact)
 
     def nearest(self, times) -> np.ndarray:
         """Index of the sample nearest each time (the earlier one on a tie)."""
@@ -310,7 +316,7 @@ class Star:
         for r in range(3):
             self.rods[r].set_data(tips[r, :, 0], tips[r, :, 1])
         code = trace.contact[:, i]
-        foot = tips[np.arange(3), np.where(code > 0, 0, 1)]
+        foot = stance_tips(tips[:, 0], tips[:, 1], code)
         for artist, kind in ((self.stick, STICK), (self.slide, SLIDE)):
             m = np.abs(code) == kind
             artist.set_data(foot[m, 0], foot[m, 1])
