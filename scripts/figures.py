@@ -4,9 +4,12 @@ Run through scripts/figures.sh, which sets up the venv and builds rtw-scan.
 Inputs: the scans results/paper, results/fig-s2 and results/fig-s3
 (samples.parquet each), rtw-scan's own k-means assignment of the paper
 scan's failures (`rtw-scan cluster --assignments`), and three trajectories
-this script records with `rtw-scan simulate --trace` for the gait gallery.
-Nothing here recomputes a simulation result: every number drawn is read
-from a file rtw-scan wrote, or from `rtw-scan simulate --json`.
+this script records for the gait gallery and the walk animation (walk.gif):
+with the Python package (rtw.simulate, rtw.trace) when it is installed,
+else with `rtw-scan simulate --json --trace`. Nothing here recomputes a
+simulation result: every number drawn is read from a file rtw-scan wrote,
+or from a run of the model. The star is drawn by the package's rtw.draw
+(crates/rtw-py/python; importable from the checkout without the native part).
 
     python scripts/figures.py --bin target/release/rtw-scan [--out results/figures]
 """
@@ -30,25 +33,31 @@ import numpy as np  # noqa: E402
 import polars as pl  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.patches import Patch, Polygon  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
+try:
+    import rtw.draw  # noqa: F401  (the installed package)
+except ImportError:
+    # The package's pure-Python part, straight from the checkout.
+    sys.path.insert(0, str(ROOT / "crates/rtw-py/python"))
+from rtw.animation import animate  # noqa: E402
+from rtw.draw import (  # noqa: E402
+    FAILED,
+    OUTCOME_COLOR,
+    ROD_COLOR,
+    STABLE,
+    STATE_COLOR,
+    STATE_NAMES,
+    GeometryError,
+    Trace,
+    check_geometry,
+    draw_star,
+    timeline,
+)
+
 DPI = 130
 
-# Outcome styles, shared by every figure.
-OUTCOME_COLOR = {
-    "skip": "#d95f02",
-    "walk": "#1b9e77",
-    "crawl": "#7570b3",
-    "collapse": "#e7298a",
-    "stall": "#666666",
-    "diverged": "#000000",
-}
-STABLE = ("skip", "walk", "crawl")
-FAILED = ("collapse", "stall")
-STATE_NAMES = ("NLSP", "SLSP", "DLSP", "TLSP")
-STATE_COLOR = {"NLSP": "#e6ab02", "SLSP": "#1f78b4", "DLSP": "#33a02c", "TLSP": "#6a3d9a"}
-ROD_COLOR = ("#1f77b4", "#d62728", "#2ca02c")  # rods a, b, c
 CLUSTER_COLOR = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf")
 KIND_MARKER = {"collapse": "^", "stall": "o"}
 
@@ -59,6 +68,7 @@ FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
 DEFAULT_VARIANT = "prestress-0.85-static-mu0.8-slack"
 # Trace sampling for the gait gallery (events are recorded as well).
 TRACE_DT = 0.004
+PARAMS = ("length", "rho", "alpha", "fn", "zeta", "phi")
 
 
 # --------------------------------------------------------------------- inputs
@@ -408,19 +418,43 @@ class Gait:
     config: Path | None = None
 
 
-def simulate(binary: Path, g: Gait, trace: Path) -> dict:
-    """One traced run: `rtw-scan simulate ... --json --trace`; returns its metrics."""
+def native():
+    """The compiled package (rtw.simulate, rtw.trace), or None when only the
+    pure-Python part is importable (then the runs go through rtw-scan)."""
+    try:
+        import rtw._rtw  # noqa: F401
+    except ImportError:
+        return None
+    import rtw
+
+    return rtw
+
+
+def simulate(binary: Path, g: Gait, trace_file: Path) -> tuple[dict, Trace]:
+    """One traced run, its metrics and its trace (also written to trace_file):
+    rtw.simulate + rtw.trace if the package is installed, else
+    `rtw-scan simulate ... --json --trace`."""
+    rtw = native()
+    if rtw is not None:
+        inputs = {key: float(g.params[key]) for key in PARAMS}
+        options = {k: tomllib.loads(f"v = {v}")["v"] for k, v in (s.split("=", 1) for s in g.sets)}
+        config = None if g.config is None else str(g.config)
+        print(f"figures: rtw.simulate/rtw.trace({inputs}, config={config}, options={options})", file=sys.stderr)
+        m = rtw.simulate(**inputs, config=config, options={**options, "trace_dt": TRACE_DT}).to_dict()
+        table = rtw.trace(**inputs, config=config, options=options, dt=TRACE_DT)
+        pq.write_table(table, trace_file)
+        return m, Trace.read(trace_file)
     args = [str(binary), "simulate"]
-    for key in ("length", "rho", "alpha", "fn", "zeta", "phi"):
+    for key in PARAMS:
         args += [f"--{key}", repr(float(g.params[key]))]
     if g.config is not None:
         args += ["--config", str(g.config)]
     for s in g.sets + [f"trace_dt={TRACE_DT}"]:
         args += ["--set", s]
-    args += ["--json", "--trace", str(trace)]
+    args += ["--json", "--trace", str(trace_file)]
     print("figures: " + " ".join(args[1:]), file=sys.stderr)
     res = subprocess.run(args, check=True, capture_output=True, text=True)
-    return json.loads(res.stdout)
+    return json.loads(res.stdout), Trace.read(trace_file)
 
 
 def pick_crawl(paper: Scan) -> dict:
@@ -434,124 +468,39 @@ def pick_crawl(paper: Scan) -> dict:
     return pool.sort("tlsp", descending=True).row(0, named=True)
 
 
-def rod_points(x: float, y: float, th: float, half: float, r: float):
-    """Tips c ± (L/2) e and connection points c ± r e (geometry.rs)."""
-    e = np.array([math.cos(th), math.sin(th)])
-    c = np.array([x, y])
-    return (c + half * e, c - half * e), (c + r * e, c - r * e)
+def checked(trace: Trace, m: dict) -> Trace:
+    """The trace, once its drawing is shown to be the model's: the connection
+    radius rtw.draw derives from (L, α) is the run's, and check_geometry holds
+    with the run's stiffness."""
+    if not math.isclose(trace.design.r, float(m["r"]), rel_tol=1e-12):
+        sys.exit(f"figures: rtw.draw's r = {trace.design.r} is not the run's {m['r']}: geometry mismatch")
+    try:
+        check_geometry(trace, float(m["k"]))
+    except GeometryError as e:
+        sys.exit(f"figures: {e}")
+    return trace
 
 
-# Spokes in angular order a+, b+, c+, a−, b−, c−; string j joins spoke j and j+1 (strings.rs).
-SPOKES = [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (2, 1)]
+FIG7A_TEXT = "Fig. 7(a) point: L = 0.8, ρ = 2.5, α = 0.125, f_n = 3.269, ζ = 0.0514, φ = 0.15"
+WALK = Gait("walk", f"{FIG7A_TEXT}; the default model (variant {DEFAULT_VARIANT})", FIG7A, [],
+            Path("configs/variants") / f"{DEFAULT_VARIANT}.toml")
 
 
-def check_geometry(tr: pl.DataFrame, length: float, r: float, k: float, options: dict) -> None:
-    """The drawing's geometry must be the model's: every foot the trace says is
-    on the ground (contact code ±1 stick, ±2 slide on tip ±) lies on y = 0
-    (the tip sign convention), and the six strings drawn (spoke j to j+1,
-    natural length s·r, slack when short if the run's strings go slack) store
-    the string energy the trace reports, at every sample. Fails loudly rather
-    than draw a wrong picture."""
-    worst = 0.0
-    for row in tr.iter_rows(named=True):
-        for rod in "abc":
-            code = int(row[f"contact_{rod}"])
-            if code:
-                tips, _ = rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)
-                worst = max(worst, abs(tips[0 if code > 0 else 1][1]))
-    if worst > 1e-6 * length:
-        sys.exit(f"figures: a foot in contact is drawn {worst:.3g} m off the ground: geometry mismatch")
-    strings = options.get("strings", {})
-    rest = float(strings.get("rest_length_ratio", 0.0)) * r
-    slack = bool(strings.get("slack", False))
-    worst_energy = 0.0
-    for row in tr.iter_rows(named=True):
-        conns = [rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)[1] for rod in "abc"]
-        sides = [np.linalg.norm(conns[i][a] - conns[i2][a2]) for (i, a), (i2, a2) in zip(SPOKES, SPOKES[1:] + SPOKES[:1])]
-        energy = sum(0.5 * k * (x - rest) ** 2 for x in sides if not (slack and x < rest))
-        worst_energy = max(worst_energy, abs(energy - row["string_potential"]) / max(abs(row["string_potential"]), 1e-12))
-    if worst_energy > 1e-6:
-        sys.exit(f"figures: the strings drawn store energy off the trace's by {worst_energy:.3g} (relative): geometry mismatch")
-
-
-def draw_star(ax, row: dict, length: float, r: float, phi: float, window: float) -> None:
-    """One frame of the filmstrip, turned from the slope frame (x downhill,
-    y normal) into the world so the ground appears at its angle φ."""
-    down = np.array([math.cos(phi), -math.sin(phi)])
-    normal = np.array([math.sin(phi), math.cos(phi)])
-
-    def world(p):
-        return p[0] * down + p[1] * normal
-
-    tips, conns = [], []
-    for i, rod in enumerate("abc"):
-        t, s = rod_points(row[f"x_{rod}"], row[f"y_{rod}"], row[f"theta_{rod}"], length / 2, r)
-        tips.append(t)
-        conns.append(s)
-    hub = np.mean([[row[f"x_{rod}"], row[f"y_{rod}"]] for rod in "abc"], axis=0)
-    centre = world(np.array([hub[0], 0.0])) + 0.45 * length * np.array([0, 1])
-    # Ground: the slope line y = 0 and a band below it.
-    g0, g1 = world(np.array([hub[0] - 2 * length, 0])), world(np.array([hub[0] + 2 * length, 0]))
-    below = -0.6 * length * normal
-    ax.add_patch(Polygon([g0, g1, g1 + below, g0 + below], closed=True, color="#e8dcc4", zorder=0))
-    ax.plot([g0[0], g1[0]], [g0[1], g1[1]], color="#8c6d31", lw=1.5, zorder=1)
-    for j in range(6):
-        (i, k), (i2, k2) = SPOKES[j], SPOKES[(j + 1) % 6]
-        p, q = world(conns[i][k]), world(conns[i2][k2])
-        ax.plot([p[0], q[0]], [p[1], q[1]], color="#555555", lw=0.9, zorder=2)
-    for i, rod in enumerate("abc"):
-        p, q = world(tips[i][0]), world(tips[i][1])
-        ax.plot([p[0], q[0]], [p[1], q[1]], color=ROD_COLOR[i], lw=3.2, solid_capstyle="round", zorder=3)
-        code = int(row[f"contact_{rod}"])
-        if code != 0:
-            foot = world(tips[i][0 if code > 0 else 1])
-            ax.scatter([foot[0]], [foot[1]], s=38, zorder=4, marker="o" if abs(code) == 1 else "D",
-                       color="black" if abs(code) == 1 else "white", edgecolors="black", linewidths=1.2)
-    ax.set_xlim(centre[0] - window / 2, centre[0] + window / 2)
-    ax.set_ylim(centre[1] - 0.62 * window, centre[1] + 0.58 * window)
-    ax.set_aspect("equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    for s in ax.spines.values():
-        s.set_visible(False)
-
-
-def timeline(ax_modes, ax_state, tr: pl.DataFrame, t0: float, t1: float, frames: np.ndarray) -> None:
-    """Per-rod contact mode (stick / slide / free) and the number of rods on the ground."""
-    w = tr.filter((pl.col("t") >= t0) & (pl.col("t") <= t1))
-    t = w["t"].to_numpy()
-    nxt = np.append(t[1:], t1)
-    for i, rod in enumerate("abc"):
-        code = w[f"contact_{rod}"].to_numpy()
-        for kind, hatch, alpha in ((1, None, 0.95), (2, "////", 0.45)):
-            m = np.abs(code) == kind
-            spans = [(a, b - a) for a, b in zip(t[m], nxt[m])]
-            ax_modes.broken_barh(spans, (2 - i - 0.38, 0.76), facecolors=ROD_COLOR[i], alpha=alpha,
-                                 hatch=hatch, edgecolor=ROD_COLOR[i] if hatch else "none", linewidth=0)
-    ax_modes.set_yticks([2, 1, 0], ["rod a", "rod b", "rod c"], fontsize=8)
-    ax_modes.set_ylim(-0.6, 2.6)
-    state = w["contact_state"].to_numpy()
-    ax_state.step(t, state, where="post", color="black", lw=1.1)
-    ax_state.set_yticks([0, 1, 2, 3], [f"{n} {s}" for n, s in enumerate(STATE_NAMES)], fontsize=7.5)
-    ax_state.set_ylim(-0.3, 3.3)
-    ax_state.set_xlabel("time t [s]")
-    for ax in (ax_modes, ax_state):
-        ax.set_xlim(t0, t1)
-        ax.axvspan(frames[0], frames[-1], color="#fff3c4", zorder=-1)
-        for f in frames:
-            ax.axvline(f, color="#999999", lw=0.7, ls=":", zorder=0)
-        ax.grid(axis="x", alpha=0.2)
+def steady_touchdown(tr: Trace, m: dict) -> float:
+    """After the transient: the first touchdown (rods on the ground rise)
+    past three quarters of the run."""
+    t_end = float(m["t_end"])
+    rise = np.nonzero((np.diff(tr.state) > 0) & (tr.t[1:] >= 0.75 * t_end))[0]
+    return float(tr.t[rise[0] + 1]) if len(rise) else 0.75 * t_end
 
 
 def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: int = 8) -> Path:
     crawl = pick_crawl(paper)
     paper_config = data_dir / "paper-config.toml"
     paper_config.write_text((pq.read_metadata(paper.path).metadata or {})[b"rtw.config"].decode())
-    fig7a_text = "Fig. 7(a) point: L = 0.8, ρ = 2.5, α = 0.125, f_n = 3.269, ζ = 0.0514, φ = 0.15"
     gaits = [
-        Gait("walk", f"{fig7a_text}; the default model (variant {DEFAULT_VARIANT})", FIG7A, [],
-             Path("configs/variants") / f"{DEFAULT_VARIANT}.toml"),
-        Gait("skip", f"{fig7a_text}; the paper-faithful model (variant literal: S5–S6 literally, s = 0)",
+        WALK,
+        Gait("skip", f"{FIG7A_TEXT}; the paper-faithful model (variant literal: S5–S6 literally, s = 0)",
              FIG7A, [], Path("configs/variants/literal.toml")),
         # The crawl is re-run with the paper scan's own [simulation] table (its
         # variant, whatever the default is), so it is that scan's row again.
@@ -565,24 +514,14 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
     fig = plt.figure(figsize=(15, 5.0 * len(gaits)))
     outer = fig.add_gridspec(len(gaits), 1, hspace=0.32, top=0.955, bottom=0.04, left=0.06, right=0.99)
     for gi, g in enumerate(gaits):
-        trace_file = data_dir / f"trace-{g.name}.parquet"
-        m = simulate(binary, g, trace_file)
-        tr = pl.read_parquet(trace_file)
+        m, tr = simulate(binary, g, data_dir / f"trace-{g.name}.parquet")
         if m["outcome"] != g.name:
             print(f"figures: warning: the {g.name} example came out {m['outcome']}", file=sys.stderr)
         if g.name == "crawl" and m["tlsp"] != crawl["tlsp"]:
             sys.exit(f"figures: sample {crawl['sample_id']} re-run gives TLSP {m['tlsp']}, the scan {crawl['tlsp']}")
         length = float(g.params["length"])
-        r = float(m["r"])
-        options = tomllib.loads((pq.read_metadata(trace_file).metadata or {})[b"rtw.options"].decode())
-        check_geometry(tr, length, r, float(m["k"]), options)
-        # After the transient: the first touchdown (rods on the ground rise)
-        # past three quarters of the run, then two steps (new-foot touchdowns).
-        t_end = float(m["t_end"])
-        state = tr["contact_state"].to_numpy()
-        t = tr["t"].to_numpy()
-        rise = np.nonzero((np.diff(state) > 0) & (t[1:] >= 0.75 * t_end))[0]
-        t_start = float(t[rise[0] + 1]) if len(rise) else 0.75 * t_end
+        checked(tr, m)
+        t_start = steady_touchdown(tr, m)
         step = 1.0 / m["f_w_newfoot"] if m["f_w_newfoot"] > 0 else 0.5
         span = min(max(2 * step, 0.3), 1.5)
         frames = t_start + np.linspace(0, span, nframes)
@@ -590,9 +529,9 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
         window = 1.45 * length
         for fi, tf in enumerate(frames):
             ax = fig.add_subplot(inner[0, fi])
-            row = tr.row(int(np.argmin(np.abs(t - tf))), named=True)
-            draw_star(ax, row, length, r, float(g.params["phi"]), window)
-            ax.set_title(f"t = {row['t']:.3f} s", fontsize=8, pad=1)
+            i = int(tr.nearest(tf))
+            draw_star(ax, tr, i, window)
+            ax.set_title(f"t = {tr.t[i]:.3f} s", fontsize=8, pad=1)
         ax_modes = fig.add_subplot(inner[1, :])
         ax_state = fig.add_subplot(inner[2, :], sharex=ax_modes)
         plt.setp(ax_modes.get_xticklabels(), visible=False)
@@ -621,7 +560,32 @@ def gait_gallery(binary: Path, paper: Scan, data_dir: Path, out: Path, nframes: 
     return save(fig, out, "gait-gallery")
 
 
+# ------------------------------------------------------------- walk animation
+
+# The README's animated gait: small enough to embed (≈ 1 MB), long enough for several steps.
+WALK_GIF = dict(fps=20, speed=1.0, duration=4.0, width=480)
+
+
+def walk_gif(binary: Path, data_dir: Path, out: Path) -> Path:
+    """The Fig. 7(a) walk (the gallery's walk run) as an animated GIF, from its
+    first steady touchdown (as the gallery's frames)."""
+    m, tr = simulate(binary, WALK, data_dir / "trace-walk.parquet")
+    checked(tr, m)
+    start = steady_touchdown(tr, m)
+    duration = min(WALK_GIF["duration"], float(tr.t[-1]) - start)
+    anim = animate(tr, fps=WALK_GIF["fps"], speed=WALK_GIF["speed"], start=start, duration=duration,
+                   width=WALK_GIF["width"])
+    path = out / "walk.gif"
+    anim.save(path)
+    print(f"figures: wrote {path.relative_to(ROOT) if path.is_relative_to(ROOT) else path} "
+          f"({anim.frame_count} frames, {path.stat().st_size / 1e6:.2f} MB)")
+    return path
+
+
 # ----------------------------------------------------------------------- main
+
+
+FIGURES = ["fig-s2", "fig-s3", "fig-s4", "failure-rate", "gait-gallery", "walk-gif"]
 
 
 def main() -> None:
@@ -629,13 +593,12 @@ def main() -> None:
     ap.add_argument("--bin", type=Path, default=ROOT / "target/release/rtw-scan", help="the rtw-scan binary")
     ap.add_argument("--results", type=Path, default=ROOT / "results", help="where the scans are")
     ap.add_argument("--out", type=Path, default=ROOT / "results/figures", help="where the PNGs go")
-    ap.add_argument("--only", nargs="*", choices=["fig-s2", "fig-s3", "fig-s4", "failure-rate", "gait-gallery"],
-                    help="make only these figures")
+    ap.add_argument("--only", nargs="*", choices=FIGURES, help="make only these figures")
     a = ap.parse_args()
     a.out.mkdir(parents=True, exist_ok=True)
     data = a.out / "data"
     data.mkdir(exist_ok=True)
-    want = set(a.only or ["fig-s2", "fig-s3", "fig-s4", "failure-rate", "gait-gallery"])
+    want = set(a.only or FIGURES)
     plt.rcParams.update({"font.size": 9.5, "axes.titlesize": 10})
     paper = Scan.read(a.results / "paper/samples.parquet") if want & {"fig-s4", "failure-rate", "gait-gallery"} else None
     if "fig-s2" in want:
@@ -648,6 +611,8 @@ def main() -> None:
         failure_rates(paper, a.out)
     if "gait-gallery" in want:
         gait_gallery(a.bin, paper, data, a.out)
+    if "walk-gif" in want:
+        walk_gif(a.bin, data, a.out)
 
 
 if __name__ == "__main__":

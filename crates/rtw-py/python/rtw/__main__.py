@@ -1,0 +1,47 @@
+"""`python -m rtw animate TRACE.parquet OUT.gif`: watch a gait (docs/animation.md).
+
+Make the trace with `rtw-scan simulate … --set trace_dt=0.01 --trace TRACE.parquet`
+(or rtw.trace); the design (L, α, φ, strings) is read from the file's metadata.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m rtw", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="command", required=True)
+    an = sub.add_parser("animate", help="a trace as an animated .gif or .mp4",
+                        description="Animate a trace file: rods, strings, slope, contact modes, time and "
+                                    "contact state. Frame k shows simulated time START + k·SPEED/FPS, "
+                                    "k = 0 … floor(DURATION·FPS/SPEED).")
+    an.add_argument("trace", help="trace Parquet file (rtw-scan simulate --trace)")
+    an.add_argument("out", help="output file, .gif (Pillow) or .mp4 (needs ffmpeg)")
+    an.add_argument("--fps", default=25.0, help="frames per second, in [1, 100] (default 25)")
+    an.add_argument("--speed", default=1.0, help="simulated seconds per real second, in [0.01, 100] (default 1)")
+    an.add_argument("--start", default=None, help="first simulated time shown [s] (default: the trace's start)")
+    an.add_argument("--duration", default=None, help="simulated seconds shown (default: to the trace's end)")
+    an.add_argument("--width", default=480, help="width in pixels, in [160, 1920] (default 480)")
+    a = ap.parse_args(argv)
+
+    # Imported here so that `--help` answers without matplotlib.
+    from .animation import animate, saver
+
+    flags = {"fps": "--fps", "speed": "--speed", "start": "--start", "duration": "--duration", "width": "--width"}
+    try:
+        saver(a.out, "OUT")  # before the frames are drawn
+        anim = animate(a.trace, fps=a.fps, speed=a.speed, start=a.start, duration=a.duration,
+                       width=a.width, names=flags)
+        anim.save(a.out)
+    except (ValueError, FileNotFoundError, RuntimeError) as e:
+        print(f"python -m rtw animate: error: {e}", file=sys.stderr)
+        return 2
+    print(f"rtw: {anim.frame_count} frames at {anim.fps:g} fps written to {a.out}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
