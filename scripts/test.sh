@@ -39,6 +39,8 @@ echo "== the Python package rtw (crates/rtw-py): installed into .venv, then pyte
 PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
   --no-build-isolation ./crates/rtw-py
 .venv/bin/python -m pytest -q crates/rtw-py/tests
+echo "== the quickstart notebook, executed (scripts/run_notebook.sh)"
+./scripts/run_notebook.sh
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
 .venv/bin/python scripts/check_msrv.py
 echo "== fault injection: kills, a full disk, corrupt pages (scripts/fault_inject.sh)"
