@@ -593,7 +593,7 @@ impl HybridSystem<1> for CountedGuards {
 fn root_finding_evaluates_one_guard_at_a_time() {
     // Event location asks only for the guard it locates (and, once, for a
     // later guard at the earliest event so far); the whole set is evaluated
-    // at step ends only. A system's own one-guard evaluation must give the
+    // at step ends only (values and rates). A system's own one-guard evaluation must give the
     // same event, bit for bit, as the default through `guards`.
     for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
         let opts = EngineOptions {
@@ -613,8 +613,14 @@ fn root_finding_evaluates_one_guard_at_a_time() {
             let mut y = [0.0];
             let end = run(&mut sys, &mut (), 0.0, &mut y, 2.0, &opts);
             assert_eq!(end.reason, EndReason::Stopped);
-            // One set at the start, one at each accepted step's end.
-            assert_eq!(sys.guards_calls.get(), 1 + end.work.steps, "{method:?}");
+            // One set at the start and at each accepted step's end, and one
+            // more at each for the guards' rates (the default
+            // `guard_rates`: a forward difference of the set along ẏ).
+            assert_eq!(
+                sys.guards_calls.get(),
+                2 * (1 + end.work.steps),
+                "{method:?}"
+            );
             let calls = sys.guard_calls.get();
             assert!(calls[1] > 0, "{method:?}: {calls:?}");
             let (i, t) = sys.inner.first.unwrap();
