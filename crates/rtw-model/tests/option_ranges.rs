@@ -71,9 +71,9 @@ fn ranges() -> Vec<(&'static str, f64, f64, f64, f64, Set, Expect)> {
         (
             "h_max",
             tiny,
-            max,
-            0.0,
             f64::INFINITY,
+            0.0,
+            f64::NAN,
             |o, v| o.h_max = v,
             Expect::Budget,
         ),
