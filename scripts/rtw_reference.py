@@ -294,7 +294,6 @@ def simulate(model, rods0, codes, t_max=20.0, rtol=1e-4, atol=1e-6, stall_time=3
     sys_.store(rods0, y)
     for i, m in enumerate(sys_.modes):
         if m[0] == SLIDE:
-            d = sys_.rods(y)[i]
             sys_.modes[i] = (SLIDE, m[1], math.copysign(1.0, y[6 * i + 3]))
     window_start = t_max * (1.0 - window)
     t, last_td, events, nfev = 0.0, 0.0, 0, 0

@@ -181,7 +181,12 @@ const LN_FACOLD_MIN: f64 = -9.210340371976182;
 ///    values at its start (same index): guard `i` fires when it crosses in its
 ///    [`Crossing`](crate::Crossing) direction, strictly from the other side (a guard exactly 0
 ///    at the start does not fire, so a reset that leaves its guard at 0 is not
-///    re-triggered);
+///    re-triggered), or, with both ends on its uncrossed side, when it
+///    crossed and came
+///    back inside the step: from the guards' values and rates at both ends
+///    ([`HybridSystem::guard_rates`]) the guard's cubic model says where a
+///    dip cannot be excluded, and the dense output is searched there (a dip
+///    counts when deeper than the step's error estimate moves the guard);
 /// 2. for each guard that crossed, its root on the step's dense output is
 ///    located by the Illinois method to `event_time_tol`; the earliest wins
 ///    (ties: lower index), and the event state is the crossed end of the
@@ -197,7 +202,8 @@ const LN_FACOLD_MIN: f64 = -9.210340371976182;
 /// Step-size control (adaptive methods) is Hairer's: RMS error norm with
 /// scale `atol + rtol·max(|y0|, |y1|)`, safety 0.9, ratio bounds [0.2, 10]
 /// (no growth right after a rejection), PI control for DP5 (β = 0.04),
-/// `hinit` for the first step, every step ≤ `h_max`. The last step is clamped
+/// `hinit` for the first step, every step ≤ `h_max` (none needed for event
+/// detection). The last step is clamped
 /// to end at `t_end` exactly. A trial step that produces a non-finite state or
 /// derivative is rejected and retried 5× shorter; if that drives the step
 /// below `h_min` the run ends as [`EndReason::NonFinite`] (otherwise an

@@ -76,8 +76,7 @@ impl<const N: usize> Scratch<N> {
 
 /// Illinois (modified regula falsi) on guard `idx` along `dense`, from the
 /// bracket `[a, b]` with `ga` not crossed at `a` and `gb` crossed at `b`
-/// (`sc.yc` holds the state at `b`), trying `first` first when given (the
-/// root of the guard's cubic model). Shrinks the bracket to `b − a <= tol`
+/// (`sc.yc` holds the state at `b`). Shrinks the bracket to `b − a <= tol`
 /// and returns `b`, the crossed end; `sc.yc` is then the state there. Only
 /// guard `idx` is evaluated ([`HybridSystem::guard`]).
 // `!(a < b)` is deliberate throughout the engine: it is true for NaN too.
@@ -91,11 +90,9 @@ fn illinois<const N: usize, S: HybridSystem<N>>(
     ga: f64,
     b: f64,
     gb: f64,
-    first: Option<f64>,
     tol: f64,
     sc: &mut Scratch<N>,
 ) -> f64 {
-    let mut first = first;
     // s(t) > 0 before the crossing, s(t) <= 0 after it.
     let sgn = if falling { 1.0 } else { -1.0 };
     let (mut a, mut fa) = (a, sgn * ga);
@@ -119,9 +116,7 @@ fn illinois<const N: usize, S: HybridSystem<N>>(
             since_check = 0;
             w_check = w;
         }
-        let mut c = if let Some(c) = first.take().filter(|c| *c > a && *c < b) {
-            c
-        } else if !bisect && fa.is_finite() && fb.is_finite() && fa != fb {
+        let mut c = if !bisect && fa.is_finite() && fb.is_finite() && fa != fb {
             a + w * (fa / (fa - fb))
         } else {
             a + 0.5 * w
@@ -248,56 +243,6 @@ fn cubic_dip(a: &Knot, b: &Knot, margin: Option<f64>) -> Option<(f64, f64)> {
     let (th, v) = best?;
     let margin = margin.unwrap_or(DIP_MARGIN * (p0 + th * (p1 - p0) - v));
     (v <= margin).then_some((a.t + th * h, v))
-}
-
-/// The root in `(a.t, b.t)` of the cubic Hermite model of `s` through both
-/// knots, for `s(a) > 0 >= s(b)`: a few safeguarded Newton steps on the
-/// model alone (no guard evaluation). The root finder's first trial: on a
-/// step that resolves the guard its error is O(h⁴), so the bracket closes in
-/// a few evaluations instead of a dozen.
-fn cubic_root(a: &Knot, b: &Knot) -> Option<f64> {
-    let h = b.t - a.t;
-    let (p0, p1, m0, m1) = (a.s, b.s, h * a.ds, h * b.ds);
-    if !(h > 0.0 && p0 > 0.0 && p1 <= 0.0 && m0.is_finite() && m1.is_finite()) {
-        return None;
-    }
-    let p = |th: f64| {
-        let th2 = th * th;
-        let th3 = th2 * th;
-        (2.0 * th3 - 3.0 * th2 + 1.0) * p0
-            + (th3 - 2.0 * th2 + th) * m0
-            + (3.0 * th2 - 2.0 * th3) * p1
-            + (th3 - th2) * m1
-    };
-    let dp = |th: f64| {
-        let th2 = th * th;
-        (6.0 * th2 - 6.0 * th) * p0
-            + (3.0 * th2 - 4.0 * th + 1.0) * m0
-            + (6.0 * th - 6.0 * th2) * p1
-            + (3.0 * th2 - 2.0 * th) * m1
-    };
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let mut th = p0 / (p0 - p1);
-    for _ in 0..12 {
-        let v = p(th);
-        if v > 0.0 {
-            lo = th;
-        } else {
-            hi = th;
-        }
-        let next = th - v / dp(th);
-        let next = if next > lo && next < hi {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
-        let done = (next - th).abs() <= 1e-12;
-        th = next;
-        if done {
-            break;
-        }
-    }
-    Some(a.t + th * h)
 }
 
 /// The knots, on side `sg`, of a guard's `(time, value, rate)` at a step's
@@ -441,18 +386,11 @@ pub(crate) fn locate_earliest<const N: usize, S: HybridSystem<N>>(
         let kind = gn.crossing[i];
         // The guard's bracket: not crossed at `a`, crossed at `b`, `sc.yc`
         // the state at `b`.
-        let (falling, a, ga, b, gb, first) = if let Some(falling) =
+        let (falling, a, ga, b, gb) = if let Some(falling) =
             crossing_dir(kind, gp.value[i], gn.value[i])
         {
             sc.yc = dense.y1;
-            let sg = if falling { 1.0 } else { -1.0 };
-            let (k0, k1) = end_knots(
-                sg,
-                (dense.t0, gp.value[i], rp[i]),
-                (dense.t1, gn.value[i], rn[i]),
-            );
-            let first = cubic_root(&k0, &k1);
-            (falling, dense.t0, gp.value[i], dense.t1, gn.value[i], first)
+            (falling, dense.t0, gp.value[i], dense.t1, gn.value[i])
         } else if let Some(sg) = dip_side(kind, gp.value[i], gn.value[i]) {
             let (k0, k1) = end_knots(
                 sg,
@@ -463,7 +401,7 @@ pub(crate) fn locate_earliest<const N: usize, S: HybridSystem<N>>(
             let Some((a, ga, b, gb)) = find_dip(sys, dense, i, sg, k0, k1, t_limit, err, sc) else {
                 continue;
             };
-            (sg > 0.0, a, ga, b, gb, None)
+            (sg > 0.0, a, ga, b, gb)
         } else {
             continue;
         };
@@ -484,7 +422,7 @@ pub(crate) fn locate_earliest<const N: usize, S: HybridSystem<N>>(
             }
             _ => (b, gb),
         };
-        let t_i = illinois(sys, dense, i, falling, a, ga, b, gb, first, tol, sc);
+        let t_i = illinois(sys, dense, i, falling, a, ga, b, gb, tol, sc);
         if best.is_none_or(|(_, t_best)| t_i < t_best) {
             best = Some((i, t_i));
             sc.ybest = sc.yc;

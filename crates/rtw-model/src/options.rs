@@ -340,9 +340,16 @@ impl Options {
     /// Checks every option, naming the offending key and its valid range.
     pub fn validate(&self) -> Result<(), ParamError> {
         check("t_max", self.t_max, "finite and > 0 (s)", |v| v > 0.0)?;
-        check("rtol", self.rtol, "in (0, 1)", |v| v > 0.0 && v < 1.0)?;
-        check("atol", self.atol, "finite and > 0", |v| v > 0.0)?;
-        check("rk4_step", self.rk4_step, "finite and > 0 (s)", |v| v > 0.0)?;
+        // Without a step cap the tolerances alone bound the step: the
+        // Fig. 7(a) walk stays a walk up to rtol 0.4, atol 1 and an RK4 step
+        // of 0.2 s (rtol 0.5 underflows its step, atol 10 stalls, an RK4 step
+        // of 0.5 s stalls): tests/option_ranges.rs. The ranges stop at round
+        // values inside those.
+        check("rtol", self.rtol, "in (0, 0.1]", |v| v > 0.0 && v <= 0.1)?;
+        check("atol", self.atol, "in (0, 1]", |v| v > 0.0 && v <= 1.0)?;
+        check("rk4_step", self.rk4_step, "in (0, 0.1] (s)", |v| {
+            v > 0.0 && v <= 0.1
+        })?;
         if self.h_max.is_nan() || self.h_max <= 0.0 {
             return Err(ParamError::new(
                 "h_max",
