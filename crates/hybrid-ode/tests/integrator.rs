@@ -719,3 +719,29 @@ fn work_budget_and_observer_stop() {
     assert!(end.t >= 0.5 && end.t < 0.52);
     assert!((y[0] - end.t).abs() < 1e-12);
 }
+
+#[test]
+fn dense_output_rate_is_the_interpolant_s_derivative() {
+    // Reference: central differences of `Dense::eval` inside the step, and
+    // the right-hand side itself at the step's start (every interpolant here
+    // is C¹ through f0).
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
+        let y0 = [1.0, 0.0];
+        let mut d = Dense::default();
+        step_with_dense(method, osc, 0.0, &y0, 0.5, &mut d);
+        let mut r = [0.0; 2];
+        d.eval_rate(0.0, &mut r);
+        let mut f0 = [0.0; 2];
+        osc(0.0, &y0, &mut f0);
+        assert!(dist(&r, &f0) <= 1e-14, "{method:?}: {r:?} vs f0 {f0:?}");
+        for t in [0.1, 0.25, 0.4] {
+            let e = 1e-6;
+            let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+            d.eval(t + e, &mut a);
+            d.eval(t - e, &mut b);
+            let fd = [(a[0] - b[0]) / (2.0 * e), (a[1] - b[1]) / (2.0 * e)];
+            d.eval_rate(t, &mut r);
+            assert!(dist(&r, &fd) <= 1e-8, "{method:?} at {t}: {r:?} vs {fd:?}");
+        }
+    }
+}
