@@ -81,6 +81,10 @@ def measure(path):
     stages = incl(r"integrate\.rs:hybrid_ode::engine::run$") + incl(
         r"integrate::fill_dense \["
     )
+    # The test for a crossing inside a step: the guards' rates at each step
+    # end, and the search of the dense output where the model allows a dip.
+    rates = incl(r"HybridSystem<20_usize>>::guard_rates \[")
+    dips = incl(r"events::find_dip")
     resets = incl(r"HybridSystem<20_usize>>::reset \[")
     observe = incl(r"Recorder::observe_step \[")
     sincos = incl(r"__sincos_fma \[")
@@ -91,6 +95,8 @@ def measure(path):
         "guards (step ends + root finding)": pct(step_end + root, total),
         "of which root finding": pct(root, total),
         "Runge–Kutta stage arithmetic + dense output": pct(stages, total),
+        "guard rates at step ends": pct(rates, total),
+        "search for dips inside steps": pct(dips, total),
         "resets (events, energy bookkeeping)": pct(resets, total),
         "observe (statistics, mu_required)": pct(observe, total),
         "sincos (all callers)": pct(sincos, total),

@@ -121,6 +121,30 @@ impl<const N: usize> Dense<N> {
         self.y1 = y;
     }
 
+    /// The time derivative of the interpolant at `t`: the nested form of
+    /// [`eval`](Self::eval) differentiated term by term (forward mode). At
+    /// `t0` and at the step's end it is the right-hand side there (the
+    /// interpolants are C¹ through `f0` and `f1`).
+    pub fn eval_rate(&self, t: f64, out: &mut [f64; N]) {
+        let th = (t - self.t0) / self.h;
+        let th1 = 1.0 - th;
+        let m = self.terms;
+        for i in 0..N {
+            // acc_j = F_{j-1} + w_j acc_{j+1}, w_j = 1−θ (odd j) or θ (even j).
+            let mut acc = self.coef[m - 1][i];
+            let mut dacc = 0.0;
+            let mut j = m - 1;
+            while j >= 1 {
+                let (w, dw) = if j % 2 == 1 { (th1, -1.0) } else { (th, 1.0) };
+                dacc = w * dacc + dw * acc;
+                acc = self.coef[j - 1][i] + w * acc;
+                j -= 1;
+            }
+            // y = y0 + θ acc.
+            out[i] = (acc + th * dacc) / self.h;
+        }
+    }
+
     /// The interpolated state at `t ∈ [t0, t1]` (outside that interval the
     /// polynomial is extrapolated). `eval(t0)` is `y0` and `eval(t1)` is `y1`
     /// exactly.

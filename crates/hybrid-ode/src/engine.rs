@@ -6,9 +6,9 @@
 //! components are live, not the storage.
 
 use crate::dense::Dense;
-use crate::events::{Scratch, crossing_dir, locate_earliest};
+use crate::events::{Scratch, any_crossing, locate_earliest};
 use crate::integrate::{Method, Stages, fill_dense, hinit, trial};
-use crate::system::{EndsRun, Flow, Guards, HybridSystem, Observer, StepEnd};
+use crate::system::{EndsRun, Flow, Guards, HybridSystem, MAX_GUARDS, Observer, StepEnd};
 
 /// Settings of [`run`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,7 +19,8 @@ pub struct EngineOptions {
     pub rtol: f64,
     /// Absolute tolerance of the adaptive methods.
     pub atol: f64,
-    /// Largest step allowed (also bounds how far apart guard samples are).
+    /// Largest step allowed (≤ 0: none). Event detection does not need one:
+    /// a crossing that goes out and back inside a step is found too.
     pub h_max: f64,
     /// A step below this is a step-size underflow (the run ends as such).
     pub h_min: f64,
@@ -180,7 +181,12 @@ const LN_FACOLD_MIN: f64 = -9.210340371976182;
 ///    values at its start (same index): guard `i` fires when it crosses in its
 ///    [`Crossing`](crate::Crossing) direction, strictly from the other side (a guard exactly 0
 ///    at the start does not fire, so a reset that leaves its guard at 0 is not
-///    re-triggered);
+///    re-triggered), or, with both ends on its uncrossed side, when it
+///    crossed and came
+///    back inside the step: from the guards' values and rates at both ends
+///    ([`HybridSystem::guard_rates`]) the guard's cubic model says where a
+///    dip cannot be excluded, and the dense output is searched there (a dip
+///    counts when deeper than the step's error estimate moves the guard);
 /// 2. for each guard that crossed, its root on the step's dense output is
 ///    located by the Illinois method to `event_time_tol`; the earliest wins
 ///    (ties: lower index), and the event state is the crossed end of the
@@ -196,7 +202,8 @@ const LN_FACOLD_MIN: f64 = -9.210340371976182;
 /// Step-size control (adaptive methods) is Hairer's: RMS error norm with
 /// scale `atol + rtol·max(|y0|, |y1|)`, safety 0.9, ratio bounds [0.2, 10]
 /// (no growth right after a rejection), PI control for DP5 (β = 0.04),
-/// `hinit` for the first step, every step ≤ `h_max`. The last step is clamped
+/// `hinit` for the first step, every step ≤ `h_max` (none needed for event
+/// detection). The last step is clamped
 /// to end at `t_end` exactly. A trial step that produces a non-finite state or
 /// derivative is rejected and retried 5× shorter; if that drives the step
 /// below `h_min` the run ends as [`EndReason::NonFinite`] (otherwise an
@@ -241,7 +248,12 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
     }
     let mut gp = Guards::default();
     let mut gn = Guards::default();
+    // The guards' rates at the step's start and end, for the test of a
+    // crossing that goes out and back inside a step.
+    let mut rp = [0.0; MAX_GUARDS];
+    let mut rn = [0.0; MAX_GUARDS];
     sys.guards_aux(t, y, &aux, &mut gp);
+    sys.guard_rates(t, y, &st.k[0], &aux, &gp, &mut rp);
     if !(t < t_end) {
         finish!(EndReason::TimeUp);
     }
@@ -351,14 +363,9 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
         after_reject = false;
 
         sys.guards_aux(t_new, &st.ynew, &aux, &mut gn);
-        let len = gp.len.min(gn.len);
-        let mut crossed = false;
-        for i in 0..len {
-            if crossing_dir(gn.crossing[i], gp.value[i], gn.value[i]).is_some() {
-                crossed = true;
-                break;
-            }
-        }
+        sys.guard_rates(t_new, &st.ynew, &st.fnew, &aux, &gn, &mut rn);
+        // A guard crossed at the step's end, or may have inside it.
+        let crossed = any_crossing(&gp, &gn, &rp, &rn, t, t_new);
         let full = crossed || observer.reads_interior(sys, t, t_new);
         work.rhs_evals += fill_dense(
             method,
@@ -372,12 +379,22 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
             &mut dense,
         );
 
-        if crossed {
-            let Some((idx, te)) =
-                locate_earliest(&*sys, &dense, &gp, &gn, opts.event_time_tol, &mut sc)
-            else {
-                unreachable!("a crossing was detected");
-            };
+        let event = if crossed {
+            locate_earliest(
+                &*sys,
+                &dense,
+                &gp,
+                &gn,
+                &rp,
+                &rn,
+                &st.err,
+                opts.event_time_tol,
+                &mut sc,
+            )
+        } else {
+            None
+        };
+        if let Some((idx, te)) = event {
             dense.t1 = te;
             dense.y1 = sc.ybest;
             t = te;
@@ -410,6 +427,7 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
                 finish!(EndReason::NonFinite);
             }
             sys.guards_aux(t, y, &aux, &mut gp);
+            sys.guard_rates(t, y, &st.k[0], &aux, &gp, &mut rp);
             if t >= t_end {
                 finish!(EndReason::TimeUp);
             }
@@ -422,6 +440,7 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
         *y = st.ynew;
         st.k[0] = st.fnew;
         core::mem::swap(&mut gp, &mut gn);
+        core::mem::swap(&mut rp, &mut rn);
         // `fill_dense` evaluates with plain `rhs`: `aux` is still at `y`.
         if observer.on_step(sys, &dense, StepEnd::Step { aux: &aux }) == Flow::Stop {
             finish!(EndReason::Stopped);

@@ -99,6 +99,9 @@ pub(crate) struct Stages<const N: usize> {
     pub yt: [f64; N],
     pub ynew: [f64; N],
     pub fnew: [f64; N],
+    /// The step's local error estimate (the embedded solution's difference;
+    /// 0 for RK4), the state's uncertainty over the step.
+    pub err: [f64; N],
 }
 
 impl<const N: usize> Stages<N> {
@@ -109,6 +112,7 @@ impl<const N: usize> Stages<N> {
             yt: [0.0; N],
             ynew: [0.0; N],
             fnew: [0.0; N],
+            err: [0.0; N],
         }
     }
 }
@@ -260,11 +264,11 @@ fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     stage!(&mut st.ynew, y, h, A5, NZ5, 6, 5, &st.k);
     f(t + h, &st.ynew, &mut st.k[6]);
     st.fnew = st.k[6];
-    // The error estimate h Σ (b − b̂)_j k_j, into `yt`.
-    combine(&mut st.yt, &[0.0; N], h, &ERR5, &NZ_ERR5, &st.k);
+    // The error estimate h Σ (b − b̂)_j k_j.
+    combine(&mut st.err, &[0.0; N], h, &ERR5, &NZ_ERR5, &st.k);
     let mut sum = 0.0;
     for i in 0..N {
-        let r = st.yt[i] / scale(atol, rtol, y[i], st.ynew[i]);
+        let r = st.err[i] / scale(atol, rtol, y[i], st.ynew[i]);
         sum += r * r;
     }
     if N == 0 { 0.0 } else { (sum / N as f64).sqrt() }
@@ -316,6 +320,8 @@ fn dop853_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
         let r3 = e3 / sk;
         err3 += r3 * r3;
         let r5 = e5[i] / sk;
+        // The 5th-order error estimate h Σ e_j k_j.
+        st.err[i] = h * e5[i];
         err5 += r5 * r5;
     }
     let mut deno = err5 + 0.01 * err3;

@@ -146,6 +146,52 @@ pub trait HybridSystem<const N: usize> {
         self.guards(t, y, out);
     }
 
+    /// The time derivative of guard `index` at `(t, y)` along a motion with
+    /// `ẏ = dy` (on a step's dense output, its derivative there). The engine
+    /// uses it to test, with the guards' values and rates at both ends of a
+    /// step, whether a guard can have crossed zero and come back inside the
+    /// step (`events`). The default is a forward difference of
+    /// [`guard`](HybridSystem::guard) along `dy` ([`fd_delta`]); a system
+    /// with closed-form rates may override it.
+    #[inline]
+    fn guard_rate(&self, t: f64, y: &[f64; N], dy: &[f64; N], index: usize) -> f64 {
+        let d = fd_delta(y, dy);
+        if d == 0.0 {
+            return 0.0;
+        }
+        let yd: [f64; N] = core::array::from_fn(|i| y[i] + d * dy[i]);
+        (self.guard(t + d, &yd, index) - self.guard(t, y, index)) / d
+    }
+
+    /// [`guard_rate`](HybridSystem::guard_rate) of every guard at once, at a
+    /// step end `(t, y)` where the guards are `g`, `ẏ = dy`, and
+    /// [`rhs_aux`](HybridSystem::rhs_aux) has just written `aux`; writes
+    /// `out[i]` for `i < g.len`. The default is a forward difference of
+    /// [`guards`](HybridSystem::guards) along `dy`: one evaluation of all
+    /// guards per step.
+    #[inline]
+    fn guard_rates(
+        &self,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        _aux: &Self::Aux,
+        g: &Guards,
+        out: &mut [f64; MAX_GUARDS],
+    ) {
+        let d = fd_delta(y, dy);
+        if d == 0.0 {
+            out[..g.len].fill(0.0);
+            return;
+        }
+        let yd: [f64; N] = core::array::from_fn(|i| y[i] + d * dy[i]);
+        let mut gd = Guards::default();
+        self.guards(t + d, &yd, &mut gd);
+        for ((r, a), b) in out.iter_mut().zip(&gd.value).zip(&g.value).take(g.len) {
+            *r = (a - b) / d;
+        }
+    }
+
     /// The reset of guard `index`, applied at its located event time `t` with
     /// `y` the state there: may change the mode and jump `y`.
     fn reset(&mut self, t: f64, y: &mut [f64; N], index: usize) -> Self::Transition;
@@ -168,6 +214,18 @@ pub trait HybridSystem<const N: usize> {
     {
         self.reset(t, y, index)
     }
+}
+
+/// The time increment of a forward difference along `dy` at `y`:
+/// `√ε (1 + ‖y‖) / ‖dy‖` (max norms), the usual choice for a directional
+/// derivative, which balances truncation against rounding for a function of
+/// the state of unit scale. 0 when `dy` is 0 or not finite.
+#[inline]
+pub fn fd_delta<const N: usize>(y: &[f64; N], dy: &[f64; N]) -> f64 {
+    let ny = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let nd = dy.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let d = f64::EPSILON.sqrt() * (1.0 + ny) / nd;
+    if d.is_finite() { d } else { 0.0 }
 }
 
 /// How an observed step ended.

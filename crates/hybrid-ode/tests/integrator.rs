@@ -593,7 +593,7 @@ impl HybridSystem<1> for CountedGuards {
 fn root_finding_evaluates_one_guard_at_a_time() {
     // Event location asks only for the guard it locates (and, once, for a
     // later guard at the earliest event so far); the whole set is evaluated
-    // at step ends only. A system's own one-guard evaluation must give the
+    // at step ends only (values and rates). A system's own one-guard evaluation must give the
     // same event, bit for bit, as the default through `guards`.
     for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
         let opts = EngineOptions {
@@ -613,8 +613,14 @@ fn root_finding_evaluates_one_guard_at_a_time() {
             let mut y = [0.0];
             let end = run(&mut sys, &mut (), 0.0, &mut y, 2.0, &opts);
             assert_eq!(end.reason, EndReason::Stopped);
-            // One set at the start, one at each accepted step's end.
-            assert_eq!(sys.guards_calls.get(), 1 + end.work.steps, "{method:?}");
+            // One set at the start and at each accepted step's end, and one
+            // more at each for the guards' rates (the default
+            // `guard_rates`: a forward difference of the set along ẏ).
+            assert_eq!(
+                sys.guards_calls.get(),
+                2 * (1 + end.work.steps),
+                "{method:?}"
+            );
             let calls = sys.guard_calls.get();
             assert!(calls[1] > 0, "{method:?}: {calls:?}");
             let (i, t) = sys.inner.first.unwrap();
@@ -712,4 +718,30 @@ fn work_budget_and_observer_stop() {
     assert_eq!(end.reason, EndReason::Stopped);
     assert!(end.t >= 0.5 && end.t < 0.52);
     assert!((y[0] - end.t).abs() < 1e-12);
+}
+
+#[test]
+fn dense_output_rate_is_the_interpolant_s_derivative() {
+    // Reference: central differences of `Dense::eval` inside the step, and
+    // the right-hand side itself at the step's start (every interpolant here
+    // is C¹ through f0).
+    for method in [Method::Dp54, Method::Dop853, Method::Rk4] {
+        let y0 = [1.0, 0.0];
+        let mut d = Dense::default();
+        step_with_dense(method, osc, 0.0, &y0, 0.5, &mut d);
+        let mut r = [0.0; 2];
+        d.eval_rate(0.0, &mut r);
+        let mut f0 = [0.0; 2];
+        osc(0.0, &y0, &mut f0);
+        assert!(dist(&r, &f0) <= 1e-14, "{method:?}: {r:?} vs f0 {f0:?}");
+        for t in [0.1, 0.25, 0.4] {
+            let e = 1e-6;
+            let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+            d.eval(t + e, &mut a);
+            d.eval(t - e, &mut b);
+            let fd = [(a[0] - b[0]) / (2.0 * e), (a[1] - b[1]) / (2.0 * e)];
+            d.eval_rate(t, &mut r);
+            assert!(dist(&r, &fd) <= 1e-8, "{method:?} at {t}: {r:?} vs {fd:?}");
+        }
+    }
 }

@@ -16,7 +16,7 @@ pub(crate) fn report(m: &Measured) -> String {
         md,
         "Made by `{command}` on a machine with {} logical cores ({} worker threads). \
          Reference: DOP853 at rtol 1e-13, atol 1e-15. Adaptive settings use atol = rtol/100; \
-         every setting has h_max = 0.01 s and t_max = 20 s. Wall times are medians of {} \
+         every setting has no step cap (h_max = inf) and t_max = 20 s. Wall times are medians of {} \
          runs, one thread.\n",
         std::thread::available_parallelism().map_or(1, |n| n.get()),
         rayon::current_num_threads(),

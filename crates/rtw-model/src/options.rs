@@ -215,8 +215,9 @@ pub struct Options {
     /// the work–precision benchmark (`cargo run --release -p rtw-bench`,
     /// results/bench/work-precision.md): the cheapest setting whose scan
     /// outcome fractions stay within 1 pp of DOP853 at rtol 1e-13 and whose
-    /// f_w errs by < 1 %. At this tolerance the step is mostly `h_max`-limited.
-    /// DOP853 is the benchmark's reference; RK4 takes fixed steps `rk4_step`.
+    /// f_w errs by < 1 %, with no step cap: the tolerance alone sets the step
+    /// (issue 18). DOP853 is the benchmark's reference; RK4 takes fixed
+    /// steps `rk4_step`.
     pub method: Method,
     /// Relative tolerance of the adaptive methods.
     pub rtol: f64,
@@ -224,7 +225,9 @@ pub struct Options {
     pub atol: f64,
     /// Fixed step of RK4 (s).
     pub rk4_step: f64,
-    /// Largest adaptive step (s).
+    /// Largest adaptive step (s); `inf` (the default): none, the tolerance
+    /// alone sets the step. Event detection needs no cap: a guard that
+    /// crosses and comes back inside a step is found too (issue 18).
     pub h_max: f64,
     /// Work budget (accepted + rejected steps) before `diverged`.
     pub max_steps: u64,
@@ -276,7 +279,7 @@ impl Default for Options {
             rtol: 1e-4,
             atol: 1e-6,
             rk4_step: 1e-4,
-            h_max: 0.01,
+            h_max: f64::INFINITY,
             max_steps: 5_000_000,
             g: 9.81,
             normalization: Normalization::Supplementary,
@@ -337,10 +340,23 @@ impl Options {
     /// Checks every option, naming the offending key and its valid range.
     pub fn validate(&self) -> Result<(), ParamError> {
         check("t_max", self.t_max, "finite and > 0 (s)", |v| v > 0.0)?;
-        check("rtol", self.rtol, "in (0, 1)", |v| v > 0.0 && v < 1.0)?;
-        check("atol", self.atol, "finite and > 0", |v| v > 0.0)?;
-        check("rk4_step", self.rk4_step, "finite and > 0 (s)", |v| v > 0.0)?;
-        check("h_max", self.h_max, "finite and > 0 (s)", |v| v > 0.0)?;
+        // Without a step cap the tolerances alone bound the step: the
+        // Fig. 7(a) walk stays a walk up to rtol 0.4, atol 1 and an RK4 step
+        // of 0.2 s (rtol 0.5 underflows its step, atol 10 stalls, an RK4 step
+        // of 0.5 s stalls): tests/option_ranges.rs. The ranges stop at round
+        // values inside those.
+        check("rtol", self.rtol, "in (0, 0.1]", |v| v > 0.0 && v <= 0.1)?;
+        check("atol", self.atol, "in (0, 1]", |v| v > 0.0 && v <= 1.0)?;
+        check("rk4_step", self.rk4_step, "in (0, 0.1] (s)", |v| {
+            v > 0.0 && v <= 0.1
+        })?;
+        if self.h_max.is_nan() || self.h_max <= 0.0 {
+            return Err(ParamError::new(
+                "h_max",
+                self.h_max,
+                "> 0 (s), or inf for no cap",
+            ));
+        }
         check("max_steps", self.max_steps as f64, ">= 1", |v| v >= 1.0)?;
         // Each lower or upper end below is the last value at which the
         // Fig. 7(a) walk is still judged a walk (or, for g and initial.omega,

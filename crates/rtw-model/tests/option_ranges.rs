@@ -41,27 +41,27 @@ fn ranges() -> Vec<(&'static str, f64, f64, f64, f64, Set, Expect)> {
         (
             "rtol",
             tiny,
-            1.0 - f64::EPSILON,
+            0.1,
             0.0,
-            1.0,
+            0.1000001,
             |o, v| o.rtol = v,
             Expect::Walk,
         ),
         (
             "atol",
             tiny,
-            max,
+            1.0,
             0.0,
-            f64::INFINITY,
+            1.000001,
             |o, v| o.atol = v,
             Expect::Walk,
         ),
         (
             "rk4_step",
             tiny,
-            max,
+            0.1,
             0.0,
-            f64::INFINITY,
+            0.1000001,
             |o, v| {
                 o.method = Method::Rk4;
                 o.rk4_step = v
@@ -71,9 +71,9 @@ fn ranges() -> Vec<(&'static str, f64, f64, f64, f64, Set, Expect)> {
         (
             "h_max",
             tiny,
-            max,
-            0.0,
             f64::INFINITY,
+            0.0,
+            f64::NAN,
             |o, v| o.h_max = v,
             Expect::Budget,
         ),

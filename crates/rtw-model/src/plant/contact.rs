@@ -133,7 +133,12 @@ impl RodBody {
     #[inline]
     pub fn frame(&self, mode: RodMode, s: &[f64]) -> RodFrame {
         let (sin, cos) = s[2].sin_cos();
-        let e = [cos, sin];
+        self.frame_with(mode, s, [cos, sin])
+    }
+
+    /// [`frame`](Self::frame) given the unit vector `e` of the angle `s[2]`.
+    #[inline]
+    pub fn frame_with(&self, mode: RodMode, s: &[f64], e: V2) -> RodFrame {
         match mode {
             RodMode::Free => RodFrame {
                 c: [s[0], s[1]],
