@@ -42,7 +42,11 @@ fn main() {
             let rho = limit::spectral_radius(&pt.multipliers);
             println!("{i} P{} {:.6} {} {rho:.4}", b.period, pt.p, pt.stable);
         }
-        println!("{i} end {:?} after {} points", b.branch.end, b.branch.points.len());
+        println!(
+            "{i} end {:?} after {} points",
+            b.branch.end,
+            b.branch.points.len()
+        );
         for bif in &b.branch.bifurcations {
             println!("{i} bifurcation {:?} at phi {:.6}", bif.kind, bif.point.p);
         }
