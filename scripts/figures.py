@@ -65,7 +65,7 @@ KIND_MARKER = {"collapse": "^", "stall": "o"}
 FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
 # The variant that walks there (docs/model.md §9) and the paper-faithful one (S5–S6 literally).
 # The variant files the gallery's walk and skip are run with (configs/variants/).
-DEFAULT_VARIANT = "prestress-0.85-static-mu0.8-slack"
+DEFAULT_VARIANT = "prestress-0.85-settled-mu0.8-slack-steps"
 # Trace sampling for the gait gallery (events are recorded as well).
 TRACE_DT = 0.004
 PARAMS = ("length", "rho", "alpha", "fn", "zeta", "phi")
