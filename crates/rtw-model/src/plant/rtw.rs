@@ -230,6 +230,7 @@ impl Rtw {
 
     /// The guards of the current modes, in a fixed order that depends only
     /// on the modes (the engine compares the same index across a step).
+    #[inline]
     pub fn guard_kinds(&self, mut visit: impl FnMut(GuardKind)) {
         for (rod, mode) in self.modes.iter().enumerate() {
             match *mode {
@@ -421,14 +422,26 @@ impl Rtw {
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
     pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
         // Only sticking rods count: without one, no contact force is needed.
-        if !self
-            .modes
-            .iter()
-            .any(|m| matches!(m, RodMode::Stick { .. }))
-        {
+        if !self.any_sticks() {
             return 0.0;
         }
         self.friction_ratio_of(&self.contact_forces(y))
+    }
+
+    /// [`friction_ratio`](Self::friction_ratio) at the state whose frames
+    /// are `frames`.
+    pub fn friction_ratio_at(&self, frames: &[RodFrame; 3]) -> f64 {
+        if !self.any_sticks() {
+            return 0.0;
+        }
+        self.friction_ratio_of(&self.contact_forces_of(frames))
+    }
+
+    /// Whether a rod sticks.
+    fn any_sticks(&self) -> bool {
+        self.modes
+            .iter()
+            .any(|m| matches!(m, RodMode::Stick { .. }))
     }
 
     /// [`friction_ratio`](Self::friction_ratio) from the contact forces.
@@ -444,26 +457,39 @@ impl Rtw {
 
     /// Kinetic, gravitational and elastic energy of state `y`.
     pub fn energy(&self, y: &[f64; N]) -> (f64, f64, f64) {
-        let frames = self.frames(y);
-        let rods = Self::rods_of(y, &frames);
+        self.energy_at(y, &self.frames(y))
+    }
+
+    /// [`energy`](Self::energy) of `y`, whose frames are `frames`.
+    pub fn energy_at(&self, y: &[f64; N], frames: &[RodFrame; 3]) -> (f64, f64, f64) {
+        let rods = Self::rods_of(y, frames);
         let kinetic = rods.iter().map(|r| self.body.kinetic(r)).sum();
         let gravity = -self.body.m
             * rods
                 .iter()
                 .map(|r| r.c[0] * self.gravity[0] + r.c[1] * self.gravity[1])
                 .sum::<f64>();
-        (kinetic, gravity, self.strings.potential(&frames))
+        (kinetic, gravity, self.strings.potential(frames))
     }
 
     /// Total mechanical energy (kinetic + gravity + strings).
     pub fn total_energy(&self, y: &[f64; N]) -> f64 {
-        let (k, g, s) = self.energy(y);
+        self.total_energy_at(y, &self.frames(y))
+    }
+
+    /// [`total_energy`](Self::total_energy) of `y`, whose frames are `frames`.
+    pub fn total_energy_at(&self, y: &[f64; N], frames: &[RodFrame; 3]) -> f64 {
+        let (k, g, s) = self.energy_at(y, frames);
         k + g + s
     }
 
     /// Centre of mass of the three rods.
     pub fn centre_of_mass(&self, y: &[f64; N]) -> V2 {
-        let f = self.frames(y);
+        Self::centre_of_mass_at(&self.frames(y))
+    }
+
+    /// Centre of mass of the rods with frames `f`.
+    pub fn centre_of_mass_at(f: &[RodFrame; 3]) -> V2 {
         [
             (f[0].c[0] + f[1].c[0] + f[2].c[0]) / 3.0,
             (f[0].c[1] + f[1].c[1] + f[2].c[1]) / 3.0,
