@@ -17,6 +17,7 @@ use crate::plant::slots::{self, DISSIPATED, FRICTION, N, OMEGA, THETA, VX};
 use crate::plant::strings::StringSet;
 use hybrid_ode::system::{MAX_GUARDS, fd_delta};
 use hybrid_ode::{Crossing, EndsRun, Guards, HybridSystem};
+use std::ops::ControlFlow;
 
 /// What a guard watches.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -232,33 +233,46 @@ impl Rtw {
     /// on the modes (the engine compares the same index across a step).
     #[inline]
     pub fn guard_kinds(&self, mut visit: impl FnMut(GuardKind)) {
+        let _: ControlFlow<()> = self.try_guard_kinds(|kind| {
+            visit(kind);
+            ControlFlow::Continue(())
+        });
+    }
+
+    /// [`guard_kinds`](Self::guard_kinds) until `visit` breaks: the lookup
+    /// of one guard stops at it (root finding asks at every iterate).
+    #[inline]
+    fn try_guard_kinds<B>(
+        &self,
+        mut visit: impl FnMut(GuardKind) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
         for (rod, mode) in self.modes.iter().enumerate() {
             match *mode {
                 RodMode::Free => {
                     visit(GuardKind::Touchdown {
                         rod,
                         tip: Tip::Plus,
-                    });
+                    })?;
                     visit(GuardKind::Touchdown {
                         rod,
                         tip: Tip::Minus,
-                    });
+                    })?;
                 }
                 RodMode::Stick { .. } => {
-                    visit(GuardKind::LiftOff { rod });
-                    visit(GuardKind::RodDown { rod });
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
                     if self.mu.is_finite() {
-                        visit(GuardKind::Slip { rod });
+                        visit(GuardKind::Slip { rod })?;
                     }
                 }
                 RodMode::Slide { .. } => {
-                    visit(GuardKind::LiftOff { rod });
-                    visit(GuardKind::RodDown { rod });
-                    visit(GuardKind::Restick { rod });
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
+                    visit(GuardKind::Restick { rod })?;
                 }
             }
         }
-        visit(GuardKind::ComLow);
+        visit(GuardKind::ComLow)
     }
 
     fn guards_of(&self, y: &[f64; N], frames: &[RodFrame; 3], lambda: &[V2; 3], out: &mut Guards) {
@@ -338,14 +352,17 @@ impl Rtw {
     /// The guard of index `index` in the current modes.
     pub fn guard_kind(&self, index: usize) -> GuardKind {
         let mut k = 0;
-        let mut found = None;
-        self.guard_kinds(|kind| {
+        let found = self.try_guard_kinds(|kind| {
             if k == index {
-                found = Some(kind);
+                return ControlFlow::Break(kind);
             }
             k += 1;
+            ControlFlow::Continue(())
         });
-        found.expect("guard index in range")
+        match found {
+            ControlFlow::Break(kind) => kind,
+            ControlFlow::Continue(()) => panic!("guard index {index} out of range"),
+        }
     }
 
     /// Re-applies the mode-choice rule to a grounded rod; `leaving`: the mode
