@@ -86,7 +86,11 @@ def measure(path):
     rates = incl(r"HybridSystem<20_usize>>::guard_rates \[")
     dips = incl(r"events::find_dip")
     resets = incl(r"HybridSystem<20_usize>>::reset \[")
-    observe = incl(r"Recorder::observe_step \[")
+    # The run's observer: its step statistics (mu_required) and, at events,
+    # the energy and centre of mass before and after the reset.
+    observe = incl(r"Recorder as hybrid_ode::system::Observer<20_usize,rtw_model::plant::rtw::Rtw>>::on_step \[") + incl(
+        r"Recorder as hybrid_ode::system::Observer<20_usize,rtw_model::plant::rtw::Rtw>>::on_transition \["
+    )
     sincos = incl(r"__sincos_fma \[")
     return {
         "instructions per run": f"{total / 1e6:.1f} M",
@@ -98,7 +102,7 @@ def measure(path):
         "guard rates at step ends": pct(rates, total),
         "search for dips inside steps": pct(dips, total),
         "resets (events, energy bookkeeping)": pct(resets, total),
-        "observe (statistics, mu_required)": pct(observe, total),
+        "observer (statistics, mu_required, energy at events)": pct(observe, total),
         "sincos (all callers)": pct(sincos, total),
     }
 

@@ -188,15 +188,10 @@ fn cubic_dip(a: &Knot, b: &Knot, margin: Option<f64>) -> Option<(f64, f64)> {
         return None;
     }
     let (p0, p1, m0, m1) = (a.s, b.s, h * a.ds, h * b.ds);
-    if !(m0 < 0.0 || m1 > 0.0) {
+    if margin.is_none() && excluded_cheaply(p0, p1, m0, m1) {
         return None;
     }
-    // A cheap bound first: the slope terms' basis functions are at most
-    // 4/27 in size, so the model stays above min(p0, p1) − B and its depth
-    // below the chord is at most B, B = 4/27 (|m0| + |m1|). Without an
-    // error margin, a minimum above B/2 already excludes a dip.
-    let bound = 4.0 / 27.0 * (m0.abs() + m1.abs());
-    if margin.is_none() && p0.min(p1) - bound > DIP_MARGIN * bound {
+    if !(m0 < 0.0 || m1 > 0.0) {
         return None;
     }
     // p(θ) = (2θ³−3θ²+1)p0 + (θ³−2θ²+θ)m0 + (3θ²−2θ³)p1 + (θ³−θ²)m1;
@@ -245,6 +240,24 @@ fn cubic_dip(a: &Knot, b: &Knot, margin: Option<f64>) -> Option<(f64, f64)> {
     (v <= margin).then_some((a.t + th * h, v))
 }
 
+/// Whether the cubic Hermite model with end values `p0`, `p1` and scaled
+/// slopes `m0`, `m1` (slope × step) has no dip that [`cubic_dip`] without a
+/// margin could report, by the cheap tests alone: no interior minimum (`s`
+/// does not fall at the start nor rise at the end), or a minimum that a
+/// bound keeps above [`DIP_MARGIN`] × its depth. The slope terms' basis
+/// functions are at most 4/27 in size, so the model stays above
+/// min(p0, p1) − B and its depth below the chord is at most B,
+/// B = 4/27 (|m0| + |m1|): a minimum above B/2 excludes a dip. Always
+/// inlined: it decides nearly every guard at every step end.
+#[inline(always)]
+fn excluded_cheaply(p0: f64, p1: f64, m0: f64, m1: f64) -> bool {
+    if !(m0 < 0.0 || m1 > 0.0) {
+        return true;
+    }
+    let bound = 4.0 / 27.0 * (m0.abs() + m1.abs());
+    p0.min(p1) - bound > DIP_MARGIN * bound
+}
+
 /// The knots, on side `sg`, of a guard's `(time, value, rate)` at a step's
 /// two ends.
 #[inline]
@@ -274,6 +287,12 @@ pub(crate) fn may_dip(
         return false;
     };
     let (a, b) = end_knots(sg, (t0, gp, rp), (t1, gn, rn));
+    let h = b.t - a.t;
+    // The cheap tests here, inlined; `cubic_dip` repeats them and decides
+    // the rest.
+    if h > 0.0 && excluded_cheaply(a.s, b.s, h * a.ds, h * b.ds) {
+        return false;
+    }
     cubic_dip(&a, &b, None).is_some()
 }
 

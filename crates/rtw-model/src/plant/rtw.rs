@@ -17,6 +17,7 @@ use crate::plant::slots::{self, DISSIPATED, FRICTION, N, OMEGA, THETA, VX};
 use crate::plant::strings::StringSet;
 use hybrid_ode::system::{MAX_GUARDS, fd_delta};
 use hybrid_ode::{Crossing, EndsRun, Guards, HybridSystem};
+use std::ops::ControlFlow;
 
 /// What a guard watches.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -230,34 +231,48 @@ impl Rtw {
 
     /// The guards of the current modes, in a fixed order that depends only
     /// on the modes (the engine compares the same index across a step).
+    #[inline]
     pub fn guard_kinds(&self, mut visit: impl FnMut(GuardKind)) {
+        let _: ControlFlow<()> = self.try_guard_kinds(|kind| {
+            visit(kind);
+            ControlFlow::Continue(())
+        });
+    }
+
+    /// [`guard_kinds`](Self::guard_kinds) until `visit` breaks: the lookup
+    /// of one guard stops at it (root finding asks at every iterate).
+    #[inline]
+    fn try_guard_kinds<B>(
+        &self,
+        mut visit: impl FnMut(GuardKind) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
         for (rod, mode) in self.modes.iter().enumerate() {
             match *mode {
                 RodMode::Free => {
                     visit(GuardKind::Touchdown {
                         rod,
                         tip: Tip::Plus,
-                    });
+                    })?;
                     visit(GuardKind::Touchdown {
                         rod,
                         tip: Tip::Minus,
-                    });
+                    })?;
                 }
                 RodMode::Stick { .. } => {
-                    visit(GuardKind::LiftOff { rod });
-                    visit(GuardKind::RodDown { rod });
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
                     if self.mu.is_finite() {
-                        visit(GuardKind::Slip { rod });
+                        visit(GuardKind::Slip { rod })?;
                     }
                 }
                 RodMode::Slide { .. } => {
-                    visit(GuardKind::LiftOff { rod });
-                    visit(GuardKind::RodDown { rod });
-                    visit(GuardKind::Restick { rod });
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
+                    visit(GuardKind::Restick { rod })?;
                 }
             }
         }
-        visit(GuardKind::ComLow);
+        visit(GuardKind::ComLow)
     }
 
     fn guards_of(&self, y: &[f64; N], frames: &[RodFrame; 3], lambda: &[V2; 3], out: &mut Guards) {
@@ -337,14 +352,17 @@ impl Rtw {
     /// The guard of index `index` in the current modes.
     pub fn guard_kind(&self, index: usize) -> GuardKind {
         let mut k = 0;
-        let mut found = None;
-        self.guard_kinds(|kind| {
+        let found = self.try_guard_kinds(|kind| {
             if k == index {
-                found = Some(kind);
+                return ControlFlow::Break(kind);
             }
             k += 1;
+            ControlFlow::Continue(())
         });
-        found.expect("guard index in range")
+        match found {
+            ControlFlow::Break(kind) => kind,
+            ControlFlow::Continue(()) => panic!("guard index {index} out of range"),
+        }
     }
 
     /// Re-applies the mode-choice rule to a grounded rod; `leaving`: the mode
@@ -421,14 +439,26 @@ impl Rtw {
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.
     pub fn friction_ratio(&self, y: &[f64; N]) -> f64 {
         // Only sticking rods count: without one, no contact force is needed.
-        if !self
-            .modes
-            .iter()
-            .any(|m| matches!(m, RodMode::Stick { .. }))
-        {
+        if !self.any_sticks() {
             return 0.0;
         }
         self.friction_ratio_of(&self.contact_forces(y))
+    }
+
+    /// [`friction_ratio`](Self::friction_ratio) at the state whose frames
+    /// are `frames`.
+    pub fn friction_ratio_at(&self, frames: &[RodFrame; 3]) -> f64 {
+        if !self.any_sticks() {
+            return 0.0;
+        }
+        self.friction_ratio_of(&self.contact_forces_of(frames))
+    }
+
+    /// Whether a rod sticks.
+    fn any_sticks(&self) -> bool {
+        self.modes
+            .iter()
+            .any(|m| matches!(m, RodMode::Stick { .. }))
     }
 
     /// [`friction_ratio`](Self::friction_ratio) from the contact forces.
@@ -444,26 +474,39 @@ impl Rtw {
 
     /// Kinetic, gravitational and elastic energy of state `y`.
     pub fn energy(&self, y: &[f64; N]) -> (f64, f64, f64) {
-        let frames = self.frames(y);
-        let rods = Self::rods_of(y, &frames);
+        self.energy_at(y, &self.frames(y))
+    }
+
+    /// [`energy`](Self::energy) of `y`, whose frames are `frames`.
+    pub fn energy_at(&self, y: &[f64; N], frames: &[RodFrame; 3]) -> (f64, f64, f64) {
+        let rods = Self::rods_of(y, frames);
         let kinetic = rods.iter().map(|r| self.body.kinetic(r)).sum();
         let gravity = -self.body.m
             * rods
                 .iter()
                 .map(|r| r.c[0] * self.gravity[0] + r.c[1] * self.gravity[1])
                 .sum::<f64>();
-        (kinetic, gravity, self.strings.potential(&frames))
+        (kinetic, gravity, self.strings.potential(frames))
     }
 
     /// Total mechanical energy (kinetic + gravity + strings).
     pub fn total_energy(&self, y: &[f64; N]) -> f64 {
-        let (k, g, s) = self.energy(y);
+        self.total_energy_at(y, &self.frames(y))
+    }
+
+    /// [`total_energy`](Self::total_energy) of `y`, whose frames are `frames`.
+    pub fn total_energy_at(&self, y: &[f64; N], frames: &[RodFrame; 3]) -> f64 {
+        let (k, g, s) = self.energy_at(y, frames);
         k + g + s
     }
 
     /// Centre of mass of the three rods.
     pub fn centre_of_mass(&self, y: &[f64; N]) -> V2 {
-        let f = self.frames(y);
+        Self::centre_of_mass_at(&self.frames(y))
+    }
+
+    /// Centre of mass of the rods with frames `f`.
+    pub fn centre_of_mass_at(f: &[RodFrame; 3]) -> V2 {
         [
             (f[0].c[0] + f[1].c[0] + f[2].c[0]) / 3.0,
             (f[0].c[1] + f[1].c[1] + f[2].c[1]) / 3.0,

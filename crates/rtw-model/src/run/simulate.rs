@@ -7,7 +7,6 @@ use crate::cycles::stepmap::cycle_of_run;
 use crate::options::Options;
 use crate::outcome::{Energy, FailureDetail, Label, Outcome, Stance, TraceSample};
 use crate::params::{Params, Physical};
-use crate::plant::geometry::V2;
 use crate::plant::initial::initial_state;
 use crate::plant::rtw::{AtState, Rtw, Transition};
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
@@ -132,23 +131,32 @@ impl Observer<N, Rtw> for Recorder<'_> {
     }
 
     fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, end: StepEnd<'_, AtState>) -> Flow {
-        let lambda_end = match end {
-            StepEnd::Step { aux } => Some(&aux.lambda),
-            StepEnd::Event { .. } => None,
-        };
-        let flow = self.observe_step(rtw, dense, lambda_end);
-        if flow == Flow::Continue && matches!(end, StepEnd::Event { .. }) {
-            let y = &dense.y1;
-            self.before_reset = (rtw.centre_of_mass(y)[0], rtw.total_energy(y));
+        match end {
+            StepEnd::Step { aux } => {
+                self.observe_step(rtw, dense, || rtw.friction_ratio_of(&aux.lambda))
+            }
+            StepEnd::Event { .. } => {
+                // The event state's frames, once for all that is read there.
+                let y = &dense.y1;
+                let frames = rtw.frames(y);
+                let flow = self.observe_step(rtw, dense, || rtw.friction_ratio_at(&frames));
+                if flow == Flow::Continue {
+                    self.before_reset = (
+                        Rtw::centre_of_mass_at(&frames)[0],
+                        rtw.total_energy_at(y, &frames),
+                    );
+                }
+                flow
+            }
         }
-        flow
     }
 }
 
 impl Recorder<'_> {
     /// Statistics of one step (or of the part of it before an event);
-    /// `lambda_end`: the contact forces at `dense.y1`, if already known.
-    fn observe_step(&mut self, rtw: &Rtw, dense: &Dense<N>, lambda_end: Option<&[V2; 3]>) -> Flow {
+    /// `mu_end`: the friction ratio at `dense.y1`, from what is already known
+    /// there.
+    fn observe_step(&mut self, rtw: &Rtw, dense: &Dense<N>, mu_end: impl FnOnce() -> f64) -> Flow {
         let (t0, t1) = (dense.t0, dense.t1);
         self.stats
             .on_interval(t0, t1, rtw.contact_state(), rtw.sliding());
@@ -161,10 +169,7 @@ impl Recorder<'_> {
         // (or, with an early stop, over the settled window).
         let in_window = t1 >= self.stats.window_start;
         if (in_window || self.stop_when_settled) && rtw.contact_state() > 0 {
-            let mu = match lambda_end {
-                Some(lambda) => rtw.friction_ratio_of(lambda),
-                None => rtw.friction_ratio(&dense.y1),
-            };
+            let mu = mu_end();
             if in_window {
                 self.mu_required = self.mu_required.max(mu);
             }
