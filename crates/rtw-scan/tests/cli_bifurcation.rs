@@ -281,3 +281,39 @@ fn continuation_refuses_bad_flags_naming_them() {
     );
     assert!(!std::path::Path::new(out).exists());
 }
+
+#[test]
+fn continuation_refuses_to_write_over_a_file_it_did_not_make() {
+    // A scan's rows where the diagram would go: refused, the scan's file
+    // untouched (issue 14's rule, for this command's three files).
+    let dir = tempfile::tempdir().unwrap();
+    let scan = dir.path().join("scan");
+    run_ok(&[
+        "run",
+        config("smoke").to_str().unwrap(),
+        "--out",
+        scan.to_str().unwrap(),
+    ]);
+    let samples = scan.join("samples.parquet");
+    let before = std::fs::read(&samples).unwrap();
+    run_err(
+        &["continuation", "--out", samples.to_str().unwrap()],
+        &[
+            "holds a scan (rows of `rtw-scan run`) (from its metadata), not a continuation diagram",
+            "refusing to write over it",
+        ],
+    );
+    // The special-points file beside a diagram is guarded too.
+    let special = dir.path().join("d.special.parquet");
+    std::fs::copy(&samples, &special).unwrap();
+    run_err(
+        &[
+            "continuation",
+            "--out",
+            dir.path().join("d.parquet").to_str().unwrap(),
+        ],
+        &["--out (special points file)", "refusing to write over it"],
+    );
+    assert_eq!(std::fs::read(&samples).unwrap(), before);
+    assert!(!dir.path().join("d.parquet").exists());
+}

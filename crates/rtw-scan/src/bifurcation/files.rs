@@ -9,7 +9,7 @@ use crate::io::metadata::{
     FileKind, META_CYCLE, META_OPTIONS, META_PARAM, META_PARAMS, META_RECORD, META_TRANSIENT,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
 };
-use crate::io::table::{self, Column, Get};
+use crate::io::table::{self, Column, Get, column};
 use crate::io::{destination, files, parquet};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::{Result, bail};
@@ -28,24 +28,6 @@ const PARAM: &str = "the swept parameter's name (length, rho, alpha, fn, zeta, p
 const VALUE: &str =
     "the swept parameter's value, in its unit in samples.parquet (s = rest_length_ratio: 1)";
 const VALUE_UNIT: &str = "as param";
-
-/// A column of a sweep file (no text form, so no group).
-const fn column<R>(
-    name: &'static str,
-    nullable: bool,
-    unit: &'static str,
-    description: &'static str,
-    get: Get<R>,
-) -> Column<R> {
-    Column {
-        name,
-        group: "",
-        nullable,
-        unit,
-        description,
-        get,
-    }
-}
 
 fn label_names() -> Vec<&'static str> {
     LABELS.to_vec()

@@ -9,30 +9,12 @@ use crate::io::metadata::{
     FileKind, META_CONT_CURVE, META_CONT_PARAM, META_CYCLE, META_OPTIONS, META_PARAMS,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
 };
-use crate::io::table::{self, Column, Get};
+use crate::io::table::{self, Column, Get, column};
 use crate::io::{destination, files, parquet};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::{Result, bail};
 use arrow_schema::SchemaRef;
 use std::path::{Path, PathBuf};
-
-/// A column (no text form, so no group).
-const fn column<R>(
-    name: &'static str,
-    nullable: bool,
-    unit: &'static str,
-    description: &'static str,
-    get: Get<R>,
-) -> Column<R> {
-    Column {
-        name,
-        group: "",
-        nullable,
-        unit,
-        description,
-        get,
-    }
-}
 
 /// Where a row's point is, and its multipliers: the columns every file of a
 /// diagram has.

@@ -70,6 +70,25 @@ pub(crate) struct Column<R> {
     pub(crate) get: Get<R>,
 }
 
+/// A column with no text form (no group): the bifurcation and continuation
+/// files' columns.
+pub(crate) const fn column<R>(
+    name: &'static str,
+    nullable: bool,
+    unit: &'static str,
+    description: &'static str,
+    get: Get<R>,
+) -> Column<R> {
+    Column {
+        name,
+        group: "",
+        nullable,
+        unit,
+        description,
+        get,
+    }
+}
+
 impl<R> Column<R> {
     /// The column's Arrow type.
     pub(crate) fn data_type(&self) -> DataType {
