@@ -197,6 +197,25 @@ pub enum DiagramError {
     Continuation(#[from] ContError),
 }
 
+impl DiagramBranch {
+    /// A branch of fixed points of `family`'s map (period `family.n`), with
+    /// the orbit's ω at each point.
+    fn of(family: &StepMapFamily, parent: Option<usize>, direction: f64, branch: Branch) -> Self {
+        let omega = branch
+            .points
+            .iter()
+            .map(|pt| orbit_omega(family, &pt.z, pt.p))
+            .collect();
+        Self {
+            period: family.n,
+            parent,
+            direction,
+            branch,
+            omega,
+        }
+    }
+}
+
 /// ω of the new stance rod (a+ in canonical labels) at a section point.
 fn stance_omega(p: &SectionPoint) -> f64 {
     p.y[slots::at(0, OMEGA)]
@@ -259,18 +278,7 @@ pub fn diagram(
         let mut f = family.clone();
         let branch =
             continuation::continue_branch(&mut f, &z0, p0, direction, &cont, &multipliers)?;
-        let omega = branch
-            .points
-            .iter()
-            .map(|pt| orbit_omega(&family, &pt.z, pt.p))
-            .collect();
-        branches.push(DiagramBranch {
-            period: start.period,
-            parent: None,
-            direction,
-            branch,
-            omega,
-        });
+        branches.push(DiagramBranch::of(&family, None, direction, branch));
     }
     if opts.switch_period_doubling {
         for parent in 0..branches.len() {
@@ -298,18 +306,7 @@ pub fn diagram(
                     n: 2 * family.n,
                     ..family.clone()
                 };
-                let omega = branch
-                    .points
-                    .iter()
-                    .map(|pt| orbit_omega(&doubled, &pt.z, pt.p))
-                    .collect();
-                branches.push(DiagramBranch {
-                    period: 2 * start.period,
-                    parent: Some(parent),
-                    direction: 1.0,
-                    branch,
-                    omega,
-                });
+                branches.push(DiagramBranch::of(&doubled, Some(parent), 1.0, branch));
             }
         }
     }

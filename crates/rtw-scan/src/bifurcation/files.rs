@@ -10,9 +10,9 @@ use crate::io::metadata::{
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
 };
 use crate::io::table::{self, Column, Get, column};
-use crate::io::{destination, files, parquet};
+use crate::io::{destination, parquet};
 use ::parquet::file::metadata::KeyValue;
-use anyhow::{Result, bail};
+use anyhow::Result;
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
 use std::path::{Path, PathBuf};
@@ -271,11 +271,7 @@ fn file_metadata(sweep: &Sweep, wall_time_s: f64) -> Result<Vec<KeyValue>> {
 
 /// The per-step file beside the per-value file `out`: `NAME.steps.parquet`.
 pub(crate) fn steps_path(out: &Path) -> PathBuf {
-    let stem = out
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    out.with_file_name(format!("{stem}.steps.parquet"))
+    destination::companion(out, "steps")
 }
 
 /// Writes both files; returns the per-step file's path.
@@ -296,36 +292,14 @@ pub(crate) fn write(
     Ok(sp)
 }
 
-/// The summary beside the per-value file `out`: `NAME.md`.
-pub(crate) fn summary_path(out: &Path) -> PathBuf {
-    out.with_extension("md")
-}
-
 /// Refuses, unless `force`, to write the sweep's files (`out`, its
 /// `.steps.parquet` and `.md`) over files that are not a sweep's: another
 /// kind of Parquet file, or an `.md` that is not the summary of a sweep at
 /// `out`.
 pub(crate) fn check_outputs(out: &Path, force: bool) -> Result<()> {
-    use FileKind::Bifurcation;
-    destination::check_destination(out, Bifurcation, &[], "--out", force)?;
-    destination::check_destination(
-        &steps_path(out),
-        Bifurcation,
-        &[],
-        "--out (steps file)",
-        force,
-    )?;
-    let md = summary_path(out);
-    if !force && md.exists() && !out.exists() {
-        bail!(
-            "--out {}: {} exists and is not the summary of a sweep there: refusing to replace it; \
-             choose another file, or pass --force",
-            out.display(),
-            md.display()
-        );
-    }
-    for f in [out.to_path_buf(), steps_path(out), md] {
-        files::remove_stray_temps(&f)?;
-    }
-    Ok(())
+    let files_ = [
+        (out.to_path_buf(), "--out"),
+        (steps_path(out), "--out (steps file)"),
+    ];
+    destination::check_outputs(out, &files_, FileKind::Bifurcation, "a sweep", force)
 }

@@ -1,6 +1,6 @@
 //! `bifurcation`: one parameter swept with continuation on the step map.
 
-use crate::bifurcation::files::{check_outputs, summary_path, write};
+use crate::bifurcation::files::{check_outputs, write};
 use crate::bifurcation::summary::{period_str, summary_markdown};
 use crate::bifurcation::sweep::{Sweep, run_sweep};
 use crate::config::layers::simulation_options;
@@ -8,6 +8,7 @@ use crate::config::params::SweepParam;
 use crate::continuation::{
     self, Continuation, CurveSettings, files as cont_files, summary as cont_summary,
 };
+use crate::io::destination::summary_path;
 use crate::io::files::write_atomic;
 use anyhow::Result;
 use clap::Args;
@@ -263,7 +264,7 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
         result.diagram.branches.len(),
         wall,
     );
-    write_atomic(&cont_files::summary_path(&out), md.as_bytes())?;
+    write_atomic(&summary_path(&out), md.as_bytes())?;
     print!("{md}");
     Ok(ExitCode::SUCCESS)
 }

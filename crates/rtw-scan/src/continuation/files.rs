@@ -5,16 +5,17 @@
 
 use super::{Continuation, Result2, critical, end_name, kind_name};
 use crate::config::variant::Variant;
+use crate::io::destination::{self, companion};
 use crate::io::metadata::{
     FileKind, META_CONT_CURVE, META_CONT_PARAM, META_CYCLE, META_OPTIONS, META_PARAMS,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
 };
+use crate::io::parquet;
 use crate::io::table::{self, Column, Get, column};
-use crate::io::{destination, files, parquet};
 use ::parquet::file::metadata::KeyValue;
-use anyhow::{Result, bail};
+use anyhow::Result;
 use arrow_schema::SchemaRef;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Where a row's point is, and its multipliers: the columns every file of a
 /// diagram has.
@@ -499,20 +500,6 @@ fn file_metadata(c: &Continuation, wall_time_s: f64) -> Result<Vec<KeyValue>> {
     Ok(m)
 }
 
-/// `NAME.special.parquet` and `NAME.curve.parquet` beside `out`.
-pub(crate) fn companion(out: &Path, what: &str) -> PathBuf {
-    let stem = out
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    out.with_file_name(format!("{stem}.{what}.parquet"))
-}
-
-/// The summary beside `out`: `NAME.md`.
-pub(crate) fn summary_path(out: &Path) -> PathBuf {
-    out.with_extension("md")
-}
-
 /// Writes the files (the curve file only with `--curve`).
 pub(crate) fn write(out: &Path, c: &Continuation, rows: &Rows, wall_time_s: f64) -> Result<()> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -532,26 +519,10 @@ pub(crate) fn write(out: &Path, c: &Continuation, rows: &Rows, wall_time_s: f64)
 
 /// Refuses, unless `force`, to write over files that are not a diagram's.
 pub(crate) fn check_outputs(out: &Path, force: bool) -> Result<()> {
-    use FileKind::Continuation;
     let files_ = [
         (out.to_path_buf(), "--out"),
         (companion(out, "special"), "--out (special points file)"),
         (companion(out, "curve"), "--out (curve file)"),
     ];
-    for (f, flag) in &files_ {
-        destination::check_destination(f, Continuation, &[], flag, force)?;
-    }
-    let md = summary_path(out);
-    if !force && md.exists() && !out.exists() {
-        bail!(
-            "--out {}: {} exists and is not the summary of a diagram there: refusing to replace it; \
-             choose another file, or pass --force",
-            out.display(),
-            md.display()
-        );
-    }
-    for f in files_.into_iter().map(|(f, _)| f).chain([md]) {
-        files::remove_stray_temps(&f)?;
-    }
-    Ok(())
+    destination::check_outputs(out, &files_, FileKind::Continuation, "a diagram", force)
 }
