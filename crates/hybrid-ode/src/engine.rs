@@ -56,6 +56,7 @@ impl Default for EngineOptions {
 
 /// Integrator work over a run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Work {
     /// Accepted steps.
     pub steps: u64,

@@ -274,29 +274,10 @@ pub struct Energy {
     pub balance_error: f64,
 }
 
-/// Integrator work over a run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct IntegratorWork {
-    /// Accepted steps.
-    pub steps: u64,
-    /// Rejected trial steps.
-    pub rejected: u64,
-    /// Right-hand-side evaluations.
-    pub rhs_evals: u64,
-    /// Events located (touchdowns, lift-offs, mode switches).
-    pub events: u64,
-}
-
-impl From<hybrid_ode::Work> for IntegratorWork {
-    fn from(w: hybrid_ode::Work) -> Self {
-        Self {
-            steps: w.steps,
-            rejected: w.rejected,
-            rhs_evals: w.rhs_evals,
-            events: w.events,
-        }
-    }
-}
+/// Integrator work over a run: accepted and rejected steps, RHS evaluations
+/// and events (touchdowns, lift-offs, mode switches), as the engine counts
+/// them.
+pub type IntegratorWork = hybrid_ode::Work;
 
 /// Everything one run measures (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

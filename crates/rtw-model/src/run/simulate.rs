@@ -323,7 +323,7 @@ fn simulate_inner(
         work: {
             let mut work = end.work;
             work += standing;
-            work.into()
+            work
         },
     }
 }
@@ -348,6 +348,6 @@ fn failed_at_start(detail: FailureDetail, work: Work) -> Outcome {
         energy: Energy::default(),
         period: 0,
         cycle: None,
-        work: work.into(),
+        work,
     }
 }
