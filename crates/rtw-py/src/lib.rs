@@ -18,6 +18,7 @@ use rtw_model::plant::strings::StringSet;
 use rtw_model::{Options, Params, Physical, modal};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
+use rtw_scan::io::{TraceNames, parse_size};
 use rtw_scan::scan::scan_batch;
 use rtw_scan::scan::single::{simulate_json, simulate_traced_json};
 use std::num::NonZeroUsize;
@@ -30,9 +31,11 @@ use std::time::Duration;
 /// How often a running scan looks for a signal (Ctrl-C) in Python.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
-/// Most bytes a trace may take in memory before compression, as
-/// `simulate --trace-limit`'s default.
-const TRACE_LIMIT: u64 = 2_000_000_000;
+/// How `rtw.trace` spells the settings of a trace's size.
+const PYTHON_TRACE_NAMES: TraceNames = TraceNames {
+    limit: "limit",
+    dt: "dt",
+};
 
 /// Most settling steps of `limit_cycle` (as `bifurcation --transient`).
 const MAX_SETTLE_STEPS: usize = 10_000_000;
@@ -80,19 +83,22 @@ fn simulate(
 }
 
 /// One run and its trace: (the `--json` row, a `pyarrow.Table` of the
-/// `simulate --trace` columns).
+/// `simulate --trace` columns). `limit` caps the trace's size in memory
+/// before compression (`2GB`, `500MB`, bytes), as `--trace-limit` does.
 #[pyfunction]
-#[pyo3(signature = (values, config, variant, sets))]
+#[pyo3(signature = (values, config, variant, sets, limit))]
 fn trace(
     py: Python<'_>,
     values: [f64; 6],
     config: Option<PathBuf>,
     variant: Option<PathBuf>,
     sets: Vec<String>,
+    limit: String,
 ) -> PyResult<(String, Bound<'_, PyAny>)> {
+    let limit = parse_size(&limit).map_err(|e| PyValueError::new_err(format!("limit: {e}")))?;
     let (params, options) = inputs(values, config, variant, &sets)?;
     let (json, batch) = py
-        .detach(|| simulate_traced_json(params, &options, TRACE_LIMIT, "the in-memory limit"))
+        .detach(|| simulate_traced_json(params, &options, limit, PYTHON_TRACE_NAMES))
         .map_err(value_error)?;
     Ok((json, to_table(py, batch)?))
 }

@@ -136,7 +136,12 @@ def test_outcome_is_typed_with_the_rows_fields() -> None:
         (lambda: rtw.simulate(**FIG7A, t_max="long"), ["simulation.t_max"]),
         (lambda: rtw.simulate(**FIG7A, t_max=[1]), ["t_max"]),
         (lambda: rtw.trace(**FIG7A, dt=-1.0), ["simulation.trace_dt: -1 is invalid"]),
-        (lambda: rtw.trace(**FIG7A, dt=1e-12), ["GB", "trace_dt"]),
+        (lambda: rtw.trace(**FIG7A, dt=1e-12), ["than limit 2.0 GB", "raise dt,", "or raise limit"]),
+        # 20 s every 0.01 s: 2002 samples of 196 bytes, 392 kB.
+        (lambda: rtw.trace(**FIG7A, dt=0.01, limit="300kB"), ["392.4 kB", "than limit 300.0 kB"]),
+        (lambda: rtw.trace(**FIG7A, limit="lots"), ["limit: `lots`: unknown unit", "GB"]),
+        (lambda: rtw.trace(**FIG7A, limit="1.2.3GB"), ["limit: `1.2.3GB` is not a size"]),
+        (lambda: rtw.trace(**FIG7A, limit=0), ["limit: `0`: must be a size > 0"]),
         (lambda: rtw.simulate(**FIG7A, config="no/such.toml"), ["no/such.toml"]),
         (lambda: rtw.scan("configs/smoke.toml", set={"contact.mu": 2}), ["simulation.contact.mu: 2 is invalid"]),
         (lambda: rtw.scan("seed = 1\nsamples = 0\n"), ["[params]"]),
@@ -182,6 +187,14 @@ def test_trace_equals_the_cli_trace_file(cli: Path, tmp_path: Path) -> None:
     outcome = json.loads(got.schema.metadata[b"rtw.outcome"])
     assert outcome["outcome"] == "walk"
     assert got.column("t").to_pylist()[-1] == pytest.approx(outcome["t_end"], abs=0.01)
+
+
+def test_trace_within_its_limit_runs() -> None:
+    # The same trace as the refused one above, under a limit it fits (in
+    # bytes and in units): at most the 2002 samples of the estimate (the
+    # run may stop early).
+    for limit in (400_000, "0.4MB"):
+        assert 1000 < rtw.trace(**FIG7A, dt=0.01, limit=limit).num_rows <= 2002
 
 
 def test_tables_are_the_rust_buffers_not_copies() -> None:

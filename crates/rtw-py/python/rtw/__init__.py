@@ -313,6 +313,7 @@ def trace(
     phi: float,
     *,
     dt: float | None = None,
+    limit: str | int = "2GB",
     config: Config | None = None,
     variant: Config | None = None,
     options: Mapping[str, Any] | None = None,
@@ -331,17 +332,23 @@ def trace(
     Args:
         dt: sampling interval (s) — the option ``trace_dt`` (0: every step);
             default: the options' (docs/model.md §9).
+        limit: the most memory the table may take before the run, as
+            ``--trace-limit``: a size such as ``"2GB"`` or ``"500MB"``
+            (decimal units), or bytes. The run is refused, not cut, when its
+            estimate (samples × 196 bytes) is larger.
         length, rho, alpha, fn, zeta, phi, config, variant, options,
         more_options: as for :func:`simulate`.
 
     Raises:
-        ValueError: as :func:`simulate`, and for a trace estimated above 2 GB.
+        ValueError: as :func:`simulate`; for a ``limit`` that is not a size;
+            for a trace estimated above ``limit`` (the message says how big,
+            and to raise ``dt``, lower ``t_max`` or raise ``limit``).
     """
     extra = dict(more_options)
     if dt is not None:
         extra["trace_dt"] = dt
     inputs = (length, rho, alpha, fn, zeta, phi)
-    row, table = _rtw.trace(*_native_args(inputs, config, variant, options, extra))
+    row, table = _rtw.trace(*_native_args(inputs, config, variant, options, extra), str(limit))
     meta = dict(table.schema.metadata or {})
     meta[b"rtw.outcome"] = row.encode()
     return table.replace_schema_metadata(meta)

@@ -15,7 +15,11 @@ def simulate(
     values: list[float], config: str | None, variant: str | None, sets: list[str]
 ) -> str: ...
 def trace(
-    values: list[float], config: str | None, variant: str | None, sets: list[str]
+    values: list[float],
+    config: str | None,
+    variant: str | None,
+    sets: list[str],
+    limit: str,
 ) -> tuple[str, pyarrow.Table]: ...
 def scan(
     path: str | None,

@@ -69,7 +69,7 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
     let mut trace = match &a.trace {
         Some(path) => {
             destination::check_destination(path, FileKind::Trace, &[], "--trace", a.force)?;
-            trace::check_trace_size(&options, a.trace_limit, "--trace-limit")
+            trace::check_trace_size(&options, a.trace_limit, trace::TraceNames::CLI)
                 .with_context(|| format!("--trace {}", path.display()))?;
             files::remove_stray_temps(path)?;
             let meta = trace::trace_metadata(&params, &options)?;

@@ -28,4 +28,6 @@ pub(crate) mod trace;
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
 pub use scan_rows::schema;
-pub use trace::{check_trace_size, trace_batch, trace_metadata, trace_schema};
+pub use trace::{
+    TraceNames, check_trace_size, parse_size, trace_batch, trace_metadata, trace_schema,
+};

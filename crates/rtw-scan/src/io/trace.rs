@@ -153,16 +153,35 @@ pub fn trace_metadata(params: &Params, options: &Options) -> Result<Vec<KeyValue
     ])
 }
 
+/// How the caller spells the two settings a trace's size depends on, for
+/// the message of [`check_trace_size`].
+#[derive(Clone, Copy, Debug)]
+pub struct TraceNames {
+    /// The size limit (`--trace-limit`).
+    pub limit: &'static str,
+    /// The sampling interval (`trace_dt (--set trace_dt=...)`).
+    pub dt: &'static str,
+}
+
+impl TraceNames {
+    /// The names of `rtw-scan simulate`'s flags.
+    pub const CLI: Self = Self {
+        limit: "--trace-limit",
+        dt: "trace_dt (--set trace_dt=...)",
+    };
+}
+
 /// Refuses a trace of a run with `options` whose size estimate
 /// ([`trace_rows_bound`] × [`trace_row_bytes`]) exceeds `limit` bytes;
-/// `limit_name` names the limit in the message (`--trace-limit`).
-pub fn check_trace_size(options: &Options, limit: u64, limit_name: &str) -> Result<()> {
+/// `names` says how the caller spells the limit and the interval.
+pub fn check_trace_size(options: &Options, limit: u64, names: TraceNames) -> Result<()> {
     let rows = trace_rows_bound(options);
     let bytes = rows as f64 * trace_row_bytes() as f64;
+    let (limit_name, dt_name) = (names.limit, names.dt);
     if bytes > limit as f64 {
         bail!(
             "about {} ({rows} samples × {} bytes: t_max {} s / trace_dt {} s{}) is more \
-             than {limit_name} {}: raise trace_dt (--set trace_dt=...), lower t_max, or raise {limit_name}",
+             than {limit_name} {}: raise {dt_name}, lower t_max, or raise {limit_name}",
             human_bytes(bytes),
             trace_row_bytes(),
             options.t_max,
@@ -217,7 +236,7 @@ pub(crate) fn human_bytes(b: f64) -> String {
 }
 
 /// Parses a size such as `2GB`, `500 MB`, `1e9` (bytes), `64kB`; decimal units.
-pub(crate) fn parse_size(s: &str) -> Result<u64, String> {
+pub fn parse_size(s: &str) -> Result<u64, String> {
     let t = s.trim();
     let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
     let (num, unit) = t.split_at(split);

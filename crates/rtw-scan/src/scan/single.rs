@@ -4,7 +4,7 @@
 
 use crate::io::metadata::with_metadata;
 use crate::io::scan_rows::JsonRow;
-use crate::io::trace::{check_trace_size, trace_batch, trace_metadata};
+use crate::io::trace::{TraceNames, check_trace_size, trace_batch, trace_metadata};
 use crate::scan::run::run_one;
 use anyhow::Result;
 use arrow_array::RecordBatch;
@@ -20,14 +20,14 @@ pub fn simulate_json(params: Params, options: &Options) -> Result<String> {
 /// [`simulate_json`] with the run's trace: the columns and field metadata
 /// of a `simulate --trace` file, its file metadata (version, parameters,
 /// options) in the schema. A trace estimated above `limit` bytes is refused
-/// before the run, naming `limit_name`.
+/// before the run, in the caller's `names`.
 pub fn simulate_traced_json(
     params: Params,
     options: &Options,
     limit: u64,
-    limit_name: &str,
+    names: TraceNames,
 ) -> Result<(String, RecordBatch)> {
-    check_trace_size(options, limit, limit_name)?;
+    check_trace_size(options, limit, names)?;
     let mut samples = Vec::new();
     let row = run_one(0, params, options, |p: &Params, o: &Options| {
         rtw_model::simulate_traced(p, o, &mut |s| samples.push(*s))
