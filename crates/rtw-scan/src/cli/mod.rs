@@ -61,8 +61,9 @@ enum Command {
         Writes DIR/samples.parquet (one row per sample: inputs, derived parameters, outcome, every metric, \
         integrator work, wall time), DIR/summary.json and DIR/summary.md, and prints the summary. Finished chunks \
         are kept in DIR/.partial while the run goes on, so an interrupted run (Ctrl-C, kill) loses at most the \
-        chunk in progress: finish it with --resume. A sample that panics or fails numerically becomes a \
-        `diverged` row; the scan goes on.\n\n\
+        chunks in progress (the workers take the samples in order: those of the samples in flight, one per \
+        worker): finish it with --resume. A sample that panics or fails numerically becomes a `diverged` row; \
+        the scan goes on.\n\n\
         Config keys: seed, samples, name (optional); [params] length, rho, alpha, fn, zeta, phi, each a number, \
         { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
         grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
