@@ -241,6 +241,17 @@ macro_rules! stage {
     };
 }
 
+/// Stages `$s` (with `$m` nonzero columns each) of tableau `$a`/`$c`/`$nz`,
+/// in order: each one's state from the stages before it into `st.yt`, then
+/// its derivative into `st.k[$s]`.
+macro_rules! stages {
+    ($st:ident, $f:ident, $t:ident, $y:ident, $h:ident, $a:ident, $c:ident, $nz:ident;
+     $(($s:literal, $m:literal)),*) => {$(
+        stage!(&mut $st.yt, $y, $h, $a, $nz, $s, $m, &$st.k);
+        $f($t + $c[$s] * $h, &$st.yt, &mut $st.k[$s]);
+    )*};
+}
+
 #[inline]
 fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     f: &mut F,
@@ -251,16 +262,8 @@ fn dp5_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     rtol: f64,
     st: &mut Stages<N>,
 ) -> f64 {
-    stage!(&mut st.yt, y, h, A5, NZ5, 1, 1, &st.k);
-    f(t + C5[1] * h, &st.yt, &mut st.k[1]);
-    stage!(&mut st.yt, y, h, A5, NZ5, 2, 2, &st.k);
-    f(t + C5[2] * h, &st.yt, &mut st.k[2]);
-    stage!(&mut st.yt, y, h, A5, NZ5, 3, 3, &st.k);
-    f(t + C5[3] * h, &st.yt, &mut st.k[3]);
-    stage!(&mut st.yt, y, h, A5, NZ5, 4, 4, &st.k);
-    f(t + C5[4] * h, &st.yt, &mut st.k[4]);
-    stage!(&mut st.yt, y, h, A5, NZ5, 5, 5, &st.k);
-    f(t + C5[5] * h, &st.yt, &mut st.k[5]);
+    stages!(st, f, t, y, h, A5, C5, NZ5; (1, 1), (2, 2), (3, 3), (4, 4), (5, 5));
+    // The last stage is the 5th-order solution (FSAL).
     stage!(&mut st.ynew, y, h, A5, NZ5, 6, 5, &st.k);
     f(t + h, &st.ynew, &mut st.k[6]);
     st.fnew = st.k[6];
@@ -284,13 +287,8 @@ fn dop853_trial<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     rtol: f64,
     st: &mut Stages<N>,
 ) -> f64 {
-    macro_rules! stages {
-        ($(($s:literal, $m:literal)),*) => {$(
-            stage!(&mut st.yt, y, h, A8, NZ8, $s, $m, &st.k);
-            f(t + C8[$s] * h, &st.yt, &mut st.k[$s]);
-        )*};
-    }
     stages!(
+        st, f, t, y, h, A8, C8, NZ8;
         (1, 1),
         (2, 2),
         (3, 2),
@@ -347,12 +345,7 @@ fn dop853_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     dense: &mut Dense<N>,
 ) {
     st.k[12] = st.fnew;
-    stage!(&mut st.yt, y, h, A8, NZ8, 13, 8, &st.k);
-    f(t + C8[13] * h, &st.yt, &mut st.k[13]);
-    stage!(&mut st.yt, y, h, A8, NZ8, 14, 8, &st.k);
-    f(t + C8[14] * h, &st.yt, &mut st.k[14]);
-    stage!(&mut st.yt, y, h, A8, NZ8, 15, 8, &st.k);
-    f(t + C8[15] * h, &st.yt, &mut st.k[15]);
+    stages!(st, f, t, y, h, A8, C8, NZ8; (13, 8), (14, 8), (15, 8));
     for (d, row) in D8.iter().enumerate() {
         combine(&mut dense.coef[3 + d], &[0.0; N], h, row, &NZ_D8, &st.k);
     }
