@@ -243,27 +243,27 @@ pub(crate) fn run_scan(
     let mut computed = 0;
     let jobs = Jobs {
         sampler: &sampler,
-        cfg,
+        options: &cfg.simulation,
         sim,
         stop,
         progress: &progress,
     };
-    let kept = done.clone();
     let todo = Todo {
         chunks,
         range: &range,
-        done: &kept,
+        done: &done,
     };
+    let mut written = 0;
     compute_chunks(&pool, &todo, &jobs, |c, chunk, wall| {
         let mut meta = metadata.clone();
         meta.push(metadata::kv(META_CHUNK_WALL_TIME, wall.to_string()));
         parquet::write_file(&layout.chunk(c), &scan_rows::to_batch(&chunk), meta)?;
-        done.insert(c);
+        written += 1;
         computed += chunk.len() as u64;
         Ok(())
     })?;
 
-    let chunks_done = done.len() as u64;
+    let chunks_done = done.len() as u64 + written;
     if chunks_done < chunks {
         progress.finish(false);
         return Ok(RunStatus::Interrupted {
@@ -303,7 +303,7 @@ fn worker_pool(threads: Option<NonZeroUsize>) -> Result<rayon::ThreadPool> {
 /// simulator, the stop flag and the progress counts.
 struct Jobs<'a> {
     sampler: &'a Sampler,
-    cfg: &'a ScanConfig,
+    options: &'a Options,
     sim: Simulator<'a>,
     stop: &'a AtomicBool,
     progress: &'a Progress,
@@ -312,7 +312,7 @@ struct Jobs<'a> {
 impl Jobs<'_> {
     /// The row of sample `id`, counted in the progress.
     fn row(&self, id: u64) -> Row {
-        let row = run_one(id, self.sampler.params(id), &self.cfg.simulation, self.sim);
+        let row = run_one(id, self.sampler.params(id), self.options, self.sim);
         self.progress.record(row.label());
         row
     }
@@ -327,12 +327,18 @@ struct Todo<'a> {
 }
 
 impl Todo<'_> {
-    /// The first chunk to do from `c` on (`chunks` if none).
-    fn from(&self, mut c: u64) -> u64 {
+    /// The first sample to do from chunk `c` on: its chunk and id (the chunk
+    /// is `chunks` when none is left).
+    fn first_from(&self, mut c: u64) -> (u64, u64) {
         while c < self.chunks && self.done.contains(&c) {
             c += 1;
         }
-        c
+        let id = if c < self.chunks {
+            (self.range)(c).start
+        } else {
+            0
+        };
+        (c, id)
     }
 }
 
@@ -364,13 +370,7 @@ fn compute_chunks(
     mut finished: impl FnMut(u64, Vec<Row>, f64) -> Result<()>,
 ) -> Result<()> {
     // The next sample to hand out: its chunk and id.
-    let first = todo.from(0);
-    let start = if first < todo.chunks {
-        (todo.range)(first).start
-    } else {
-        0
-    };
-    let cursor = Mutex::new((first, start));
+    let cursor = Mutex::new(todo.first_from(0));
     let take = || {
         let mut cur = cursor.lock().unwrap_or_else(|e| e.into_inner());
         let (c, id) = *cur;
@@ -380,15 +380,7 @@ fn compute_chunks(
         *cur = if id + 1 < (todo.range)(c).end {
             (c, id + 1)
         } else {
-            let n = todo.from(c + 1);
-            (
-                n,
-                if n < todo.chunks {
-                    (todo.range)(n).start
-                } else {
-                    0
-                },
-            )
+            todo.first_from(c + 1)
         };
         Some((c, id))
     };
@@ -477,7 +469,7 @@ pub fn scan_batch(
     let sim: Simulator = &rtw_model::simulate;
     let jobs = Jobs {
         sampler: &Sampler::new(cfg),
-        cfg,
+        options: &cfg.simulation,
         sim,
         stop,
         progress: &progress,
@@ -769,7 +761,7 @@ t_max = 2.0
         let sampler = Sampler::new(&cfg);
         let jobs = Jobs {
             sampler: &sampler,
-            cfg: &cfg,
+            options: &cfg.simulation,
             sim,
             stop: &stop,
             progress: &progress,
