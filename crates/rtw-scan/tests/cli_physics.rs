@@ -116,3 +116,23 @@ fn smoke_scan_runs_without_diverged_rows_and_independent_of_threads() {
     assert!(stdout(&o).contains("| **stable** |"));
     assert!(a.join("summary.json").exists() && a.join("summary.md").exists());
 }
+
+#[test]
+fn simulate_takes_a_variant_like_run() {
+    // `--variant FILE` layers the variant's [simulation] table as `run` does:
+    // the same run as taking the file as the config, not the default model's.
+    let literal = config("variants/literal");
+    let literal = literal.to_str().unwrap();
+    let json = |extra: &[&str]| -> serde_json::Value {
+        let o = run_ok(&[&FIG7A[..], extra, &["--json"]].concat());
+        serde_json::from_str(&stdout(&o)).unwrap()
+    };
+    let by_variant = json(&["--variant", literal]);
+    let by_config = json(&["--config", literal]);
+    let default = json(&[]);
+    for k in ["outcome", "speed", "steps", "slsp", "dlsp"] {
+        assert_eq!(by_variant[k], by_config[k], "{k}");
+    }
+    assert_eq!(by_variant["outcome"], "skip", "{by_variant}");
+    assert_eq!(default["outcome"], "walk", "{default}");
+}

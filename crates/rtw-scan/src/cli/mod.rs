@@ -67,7 +67,8 @@ enum Command {
         Config keys: seed, samples, name (optional); [params] length, rho, alpha, fn, zeta, phi, each a number, \
         { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
         grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
-        every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...).\n\n\
+        every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...): \
+        configs/template.toml has every key with its unit, range and default.\n\n\
         A run refuses to write into a directory holding another scan's results (another config hash, or \
         another --shard split) unless --force, and one process at a time writes a result (a lock file names \
         it). SIGINT, SIGTERM and SIGHUP stop it like Ctrl-C: the samples in flight finish, the finished chunks \
@@ -89,7 +90,8 @@ enum Command {
     /// Simulate one RTW and print its outcome and every metric.
     #[command(
         long_about = "Simulate one RTW and print its outcome and every metric.\n\n\
-        The simulation options come from the [simulation] table of --config (default: the adopted model, docs/model.md §9) and \
+        The simulation options come from the [simulation] table of --config (default: the adopted model, docs/model.md §9), \
+        then --variant (a configs/variants/*.toml layered over them), \
         then the --set overrides, e.g. --set initial.omega=-3 --set contact.mu=0.8 --set strings.slack=true \
         --set method=dop853. Values are read as TOML values (inf, true, \"text\"); a value that is not one is taken \
         as a string.",
@@ -189,5 +191,66 @@ mod tests {
     #[test]
     fn cli_is_well_formed() {
         Cli::command().debug_assert();
+    }
+
+    /// docs/cli.md is the flag reference: each subcommand's section names
+    /// every flag it takes (hidden testing flags aside).
+    #[test]
+    fn docs_cli_md_names_every_flag_of_every_subcommand() {
+        let doc = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cli.md"),
+        )
+        .unwrap();
+        let mut missing = Vec::new();
+        for sub in Cli::command().get_subcommands() {
+            let heading = format!("### `rtw-scan {}`", sub.get_name());
+            let Some((_, section)) = doc.split_once(&heading) else {
+                missing.push(format!("a section `{heading}`"));
+                continue;
+            };
+            // The section ends at the next heading of its level or above.
+            let end = ["\n### ", "\n## "]
+                .iter()
+                .filter_map(|h| section.find(h))
+                .min()
+                .unwrap_or(section.len());
+            let section = &section[..end];
+            let shown = sub.get_arguments().filter(|a| {
+                !a.is_hide_set() && !["help", "version"].contains(&a.get_id().as_str())
+            });
+            for arg in shown {
+                let name = match arg.get_long() {
+                    Some(long) => format!("`--{long}"),
+                    None => format!("`{}", arg.get_id().as_str().to_uppercase()),
+                };
+                if !section.contains(&name) {
+                    missing.push(format!("{}: {name}`", sub.get_name()));
+                }
+            }
+        }
+        assert!(
+            missing.is_empty(),
+            "docs/cli.md lacks:\n{}",
+            missing.join("\n")
+        );
+    }
+
+    /// One flag for one idea: every subcommand that takes simulation options
+    /// takes them the same three ways (config, variant, set).
+    #[test]
+    fn model_options_are_spelled_alike_in_every_subcommand() {
+        for sub in Cli::command().get_subcommands() {
+            // By id: `run` takes its config as its argument, the others as --config.
+            let ids: Vec<&str> = sub.get_arguments().map(|a| a.get_id().as_str()).collect();
+            if ids.contains(&"set") {
+                for flag in ["config", "variant", "set"] {
+                    assert!(
+                        ids.contains(&flag),
+                        "{} takes --set but not --{flag}",
+                        sub.get_name()
+                    );
+                }
+            }
+        }
     }
 }

@@ -10,7 +10,7 @@ use crate::scan::run::run_one;
 use anyhow::{Context, Result};
 use clap::Args;
 use rtw_model::{Options, Outcome, Params};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Args, Debug)]
@@ -36,7 +36,10 @@ pub(super) struct SimulateArgs {
     /// Take the [simulation] options of this config file.
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
-    /// Override one simulation option (repeatable), e.g. contact.mu=0.8.
+    /// Layer a model variant file (configs/variants/*.toml) over them, as `run --variant` does.
+    #[arg(long, value_name = "FILE")]
+    variant: Option<PathBuf>,
+    /// Override one simulation option after the variant (repeatable), e.g. contact.mu=0.8.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
     /// Print one JSON object: `outcome` (the label) and every metric, flattened, with the derived parameters.
@@ -58,14 +61,9 @@ pub(super) struct SimulateArgs {
     fake_sim: bool,
 }
 
-/// The simulation options of `simulate`: the config's [simulation] table, then `--set`.
-fn simulate_options(config_file: Option<&Path>, sets: &[String]) -> Result<Options> {
-    simulation_options(config_file, None, sets)
-}
-
 pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
     let params = checked_params([a.length, a.rho, a.alpha, a.f_n, a.zeta, a.phi], "--")?;
-    let options = simulate_options(a.config.as_deref(), &a.set)?;
+    let options = simulation_options(a.config.as_deref(), a.variant.as_deref(), &a.set)?;
     let mut trace = match &a.trace {
         Some(path) => {
             destination::check_destination(path, FileKind::Trace, &[], "--trace", a.force)?;
@@ -132,13 +130,14 @@ mod tests {
             "seed = 1\n[simulation]\nt_max = 5.0\ncontact.mu = 0.5\n",
         )
         .unwrap();
-        let o = simulate_options(
+        let o = simulation_options(
             Some(&f),
+            None,
             &["contact.mu=0.8".into(), "initial.omega=-3".into()],
         )
         .unwrap();
         assert_eq!((o.t_max, o.contact.mu, o.initial.omega), (5.0, 0.8, -3.0));
-        let e = simulate_options(None, &["contact.mu=2".into()]).unwrap_err();
+        let e = simulation_options(None, None, &["contact.mu=2".into()]).unwrap_err();
         assert!(
             format!("{e:#}").contains("simulation.contact.mu: 2 is invalid"),
             "{e:#}"
