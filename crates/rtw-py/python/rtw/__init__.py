@@ -73,6 +73,12 @@ class Outcome:
     ``wall_time_s`` (the run's own time in Rust). Metrics that do not apply,
     and non-finite values, are ``None``, as in the JSON. Immutable;
     :meth:`to_dict` gives a plain ``dict``.
+
+    ``period`` is the gait's period as the ``period`` column has it: in
+    touchdowns on the touchdown return map of this run, or, with
+    ``limit_cycle=True`` and a cycle found, in steps on the step map
+    (``LimitCycle.period``); the two can differ for one walk
+    (docs/data-dictionary.md).
     """
 
     __slots__ = ("_fields",)
@@ -159,7 +165,10 @@ class LimitCycle:
     """A periodic gait on the step map (the section at each new foot's touchdown).
 
     Attributes:
-        period: period in steps (1: every step the same).
+        period: the step map's period in steps (1: every step the same), the
+            fixed point of ``Pⁿ``. Not the ``Outcome.period`` of a run
+            without ``limit_cycle=True``, which counts touchdowns on the
+            touchdown return map of the simulated run.
         fixed_point: the fixed point ``z`` of ``Pⁿ`` (the map's coordinates in
             the orbit's contact modes).
         residual: ``max |Pⁿ(z) − z| / scale`` at the solution.

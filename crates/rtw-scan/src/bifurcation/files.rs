@@ -91,7 +91,7 @@ fn point_columns<'a>() -> Vec<Column<InSweep<'a, PointRow>>> {
             "period",
             true,
             "1",
-            "period of the solved cycle in steps; null: no period found (chaotic or failure)",
+            "period of the solved cycle in steps on the step map (its fixed point of the period-th power); null: no period found (chaotic or failure)",
             Get::I64(|r| r.row.period.map(|p| p as i64)),
         ),
         column(

@@ -323,8 +323,10 @@ pub(crate) static COLUMNS: &[Column<Row>] = &[
     count(
         "period",
         "metric",
-        "period of the gait in steps (0: none found); from the step map with limit_cycle = true, \
-         else from the touchdown return map",
+        "the gait's period, two ways (0: none found): with limit_cycle = true and a cycle found, in steps on \
+         the step map (new-foot touchdowns, the star's 60° symmetry factored out; Newton at rtol 1e-11); \
+         else in touchdowns on the touchdown return map (step time and the landing rod's ω repeating within 1e-3, \
+         at the run's own tolerance), which can be a multiple: the Fig. 7(a) walk gives 3 at rtol 1e-4, 1 on the step map",
         |r| {
             r.outcome
                 .map(|o| i64::from(o.cycle.map_or(o.period, |c| c.period)))
