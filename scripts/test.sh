@@ -39,6 +39,8 @@ echo "== the Python package rtw (crates/rtw-py): installed into .venv, then pyte
 PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
   --no-build-isolation ./crates/rtw-py
 .venv/bin/python -m pytest -q crates/rtw-py/tests
+echo "== README.md's Python example, in a venv made by its install line (scripts/check_readme_python.sh)"
+./scripts/check_readme_python.sh
 echo "== the quickstart notebook, executed (scripts/run_notebook.sh)"
 ./scripts/run_notebook.sh
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
