@@ -669,6 +669,29 @@ fn a_footer_edited_in_place_is_refused_by_every_reader() {
         &["part-1.parquet", "rtw.metadata_hash"],
     );
     assert!(!sharded.join("samples.parquet").exists());
+
+    // A finished chunk of an interrupted run: --resume redoes it, saying
+    // why, and the rows are the uninterrupted run's.
+    let resumed = dir.path().join("r");
+    let mut first = spawn_slow(&cfg, &resumed, "1", "20");
+    let chunk = resumed.join(".partial/chunk-00000.parquet");
+    wait_for(&mut first, &chunk, Duration::from_secs(30));
+    signal(&first, "INT");
+    wait_at_most(&mut first, Duration::from_secs(30), "first run");
+    rewrite_footer(&chunk, |kv| {
+        edit_value(kv, "rtw.config", |c| {
+            c.replace("t_max = 3.0", "t_max = 4.0")
+        })
+    });
+    let o = fake_run(&cfg, &resumed, &["--resume", "--chunk-size", "4"]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("redoing") && err.contains("chunk-00000.parquet"),
+        "{err}"
+    );
+    assert!(err.contains("rtw.metadata_hash"), "{err}");
+    assert_eq!(rows(&resumed.join("samples.parquet")), rows(&samples));
 }
 
 #[test]
