@@ -80,9 +80,9 @@ def test_scan_equals_the_cli_row_for_row(cli: Path, tmp_path: Path) -> None:
     # Every value but the measured wall time; NaN = NaN.
     assert_same_columns(got, want, skip={"wall_time_s"})
     assert all(t > 0 for t in got.column("wall_time_s").to_pylist())
-    # The file's metadata, but what only a file has (its content hash) and the time.
+    # The file's metadata, but what only a file has (its two hashes) and the time.
     gm, wm = got.schema.metadata, file_metadata(tmp_path / "samples.parquet")
-    assert set(wm) - set(gm) == {b"rtw.content_hash"}
+    assert set(wm) - set(gm) == {b"rtw.content_hash", b"rtw.metadata_hash"}
     for key in gm:
         if key != b"rtw.wall_time_s":
             assert gm[key] == wm[key], key

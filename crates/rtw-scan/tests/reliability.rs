@@ -495,43 +495,354 @@ fn a_corrupt_page_is_refused_by_summary_cluster_and_merge() {
     assert!(!sharded.join("samples.parquet").exists());
 }
 
+/// A fake scan of `n` rows (seed 5) in `dir/o`; its `samples.parquet` and
+/// its config file.
+fn fake_scan(dir: &Path, n: u64) -> (std::path::PathBuf, String) {
+    let cfg = write(dir, "c.toml", &paper_like(n, 5));
+    let out = dir.join("o");
+    fake_run_ok(&cfg, &out, &[]);
+    (out.join("samples.parquet"), cfg)
+}
+
+/// The same scan as `cfg`'s, run as two shards into `dir/sh` (not merged).
+fn fake_shards(dir: &Path, cfg: &str) -> std::path::PathBuf {
+    let sharded = dir.join("sh");
+    for k in 0..2 {
+        fake_run_ok(cfg, &sharded, &["--shard", &format!("{k}/2")]);
+    }
+    sharded
+}
+
+type Column = arrow::array::ArrayRef;
+type Metadata = std::collections::BTreeMap<String, String>;
+
+/// `samples`' rows with column `col` changed by `edit` and its metadata by
+/// `meta`, written to `dest` through rtw-scan's own writer, so every hash
+/// matches and only the value checks can tell.
+fn forge(
+    samples: &Path,
+    dest: &Path,
+    col: &str,
+    edit: impl FnOnce(Column) -> Column,
+    meta: impl FnOnce(&mut Metadata),
+) {
+    let input = rtw_scan::io::open(samples, 1 << 20).unwrap();
+    let mut m = input.metadata.clone();
+    meta(&mut m);
+    let batch: arrow::array::RecordBatch = input.reader.map(|b| b.unwrap()).next().unwrap();
+    let i = batch.schema().index_of(col).unwrap();
+    let mut cols = batch.columns().to_vec();
+    cols[i] = edit(cols[i].clone());
+    let batch = arrow::array::RecordBatch::try_new(batch.schema(), cols).unwrap();
+    let kv = m
+        .into_iter()
+        .map(|(k, v)| rtw_scan::io::kv(&k, v))
+        .collect();
+    rtw_scan::io::write_file(dest, &batch, kv).unwrap();
+}
+
+/// `edit` applied to the values of a column of Arrow type `T`.
+fn values<T: arrow::datatypes::ArrowPrimitiveType>(
+    edit: impl FnOnce(&mut Vec<T::Native>),
+) -> impl FnOnce(Column) -> Column {
+    use arrow::array::{AsArray, PrimitiveArray};
+    move |c| {
+        let mut v = c.as_primitive::<T>().values().to_vec();
+        edit(&mut v);
+        std::sync::Arc::new(PrimitiveArray::<T>::from_iter_values(v))
+    }
+}
+
+/// `edit` applied to a `Float64` column.
+fn floats(edit: impl FnOnce(&mut Vec<f64>)) -> impl FnOnce(Column) -> Column {
+    values::<arrow::datatypes::Float64Type>(edit)
+}
+
 #[test]
 fn values_outside_their_range_are_refused_naming_file_column_and_row() {
-    use arrow::array::{Array, Float64Array, RecordBatch};
-    use std::sync::Arc;
     let dir = tempfile::tempdir().unwrap();
-    let cfg = write(dir.path(), "c.toml", &paper_like(20, 5));
-    let out = dir.path().join("o");
-    fake_run_ok(&cfg, &out, &[]);
-    let samples = out.join("samples.parquet");
-    // The same rows and metadata with alpha of row 7 set to 0.7, written
-    // through rtw-scan's own writer (so the content hash matches).
-    let input = rtw_scan::io::open(&samples, 1000).unwrap();
-    let meta: Vec<_> = input
-        .metadata
-        .iter()
-        .filter(|(k, _)| k.starts_with("rtw.") && k.as_str() != "rtw.content_hash")
-        .map(|(k, v)| rtw_scan::io::kv(k, v.clone()))
-        .collect();
-    let batch: RecordBatch = input.reader.map(|b| b.unwrap()).next().unwrap();
-    let i = batch.schema().index_of("alpha").unwrap();
-    let alpha = batch
-        .column(i)
-        .as_any()
-        .downcast_ref::<Float64Array>()
-        .unwrap();
-    let mut values: Vec<f64> = (0..alpha.len()).map(|r| alpha.value(r)).collect();
-    values[7] = 0.7;
-    let mut cols = batch.columns().to_vec();
-    cols[i] = Arc::new(Float64Array::from(values));
+    let (samples, _) = fake_scan(dir.path(), 20);
+    // The same rows and metadata with alpha of row 7 set to 0.7.
     let bad = dir.path().join("bad.parquet");
-    let batch = RecordBatch::try_new(batch.schema(), cols).unwrap();
-    rtw_scan::io::write_file(&bad, &batch, meta).unwrap();
+    forge(&samples, &bad, "alpha", floats(|v| v[7] = 0.7), |_| {});
     run_err(
         &["summary", s(&bad)],
         &["bad.parquet", "alpha", "row 7", "0.7", "[0, 0.49]"],
     );
     run_err(&["cluster", s(&bad)], &["bad.parquet", "alpha", "row 7"]);
+}
+
+/// Rewrites the key-value metadata of a Parquet file in place, as an editor
+/// of its footer would: the row groups and pages keep their bytes; only the
+/// footer after them is written anew, with its entries (in file order) passed
+/// through `edit`.
+fn rewrite_footer(path: &Path, edit: impl FnOnce(&mut Vec<(String, String)>)) {
+    use parquet::file::metadata::{
+        FileMetaData, KeyValue, ParquetMetaData, ParquetMetaDataReader, ParquetMetaDataWriter,
+    };
+    let bytes = std::fs::read(path).unwrap();
+    let meta = ParquetMetaDataReader::new()
+        .parse_and_finish(&std::fs::File::open(path).unwrap())
+        .unwrap();
+    let footer_len =
+        u32::from_le_bytes(bytes[bytes.len() - 8..bytes.len() - 4].try_into().unwrap());
+    let data_end = bytes.len() - 8 - footer_len as usize;
+    let fm = meta.file_metadata();
+    let mut kv: Vec<(String, String)> = fm
+        .key_value_metadata()
+        .into_iter()
+        .flatten()
+        .map(|kv| (kv.key.clone(), kv.value.clone().unwrap_or_default()))
+        .collect();
+    edit(&mut kv);
+    let file_meta = FileMetaData::new(
+        fm.version(),
+        fm.num_rows(),
+        fm.created_by().map(str::to_string),
+        Some(kv.into_iter().map(|(k, v)| KeyValue::new(k, v)).collect()),
+        fm.schema_descr_ptr(),
+        fm.column_orders().cloned(),
+    );
+    let meta = ParquetMetaData::new(file_meta, meta.row_groups().to_vec());
+    let mut out = bytes[..data_end].to_vec();
+    ParquetMetaDataWriter::new(&mut out, &meta)
+        .finish()
+        .unwrap();
+    std::fs::write(path, out).unwrap();
+}
+
+/// `key`'s value in `kv`, edited by `f`.
+fn edit_value(kv: &mut [(String, String)], key: &str, f: impl FnOnce(&str) -> String) {
+    let e = kv
+        .iter_mut()
+        .find(|(k, _)| k == key)
+        .unwrap_or_else(|| panic!("no {key}"));
+    e.1 = f(&e.1);
+}
+
+/// `key`'s name in `kv` with bit 0 of its last byte flipped.
+fn flip_key_bit(kv: &mut [(String, String)], key: &str) -> String {
+    let e = kv.iter_mut().find(|(k, _)| k == key).unwrap();
+    let mut b = e.0.clone().into_bytes();
+    *b.last_mut().unwrap() ^= 1;
+    e.0 = String::from_utf8(b).unwrap();
+    e.0.clone()
+}
+
+#[test]
+fn a_footer_edited_in_place_is_refused_by_every_reader() {
+    let dir = tempfile::tempdir().unwrap();
+    let (samples, cfg) = fake_scan(dir.path(), 300);
+    let pristine = std::fs::read(&samples).unwrap();
+    // The helper itself keeps a file readable: an untouched footer rewritten.
+    rewrite_footer(&samples, |_| {});
+    run_ok(&["summary", s(&samples), "--json"]);
+
+    // The model (the config text), the run's timing and version: each
+    // decides what summary and cluster print.
+    type Edit = fn(&str) -> String;
+    let edits: [(&str, Edit); 4] = [
+        ("rtw.config", |c| c.replace("t_max = 3.0", "t_max = 4.0")),
+        ("rtw.config", |c| c.replace("seed = 5", "seed = 6")),
+        ("rtw.wall_time_s", |_| "1e-9".into()),
+        ("rtw.version", |_| "9.9.9".into()),
+    ];
+    for (key, f) in edits {
+        std::fs::write(&samples, &pristine).unwrap();
+        rewrite_footer(&samples, |kv| edit_value(kv, key, f));
+        for cmd in [vec!["summary"], vec!["cluster"], vec!["summary", "--json"]] {
+            let args: Vec<&str> = cmd.iter().copied().chain([s(&samples)]).collect();
+            run_err(&args, &["samples.parquet", "metadata", "rtw.metadata_hash"]);
+        }
+    }
+
+    // A part's shard and row count decide what merge joins.
+    let sharded = fake_shards(dir.path(), &cfg);
+    let part = sharded.join("part-1.parquet");
+    rewrite_footer(&part, |kv| {
+        edit_value(kv, "rtw.config", |c| {
+            c.replace("t_max = 3.0", "t_max = 4.0")
+        })
+    });
+    run_err(
+        &["merge", s(&sharded)],
+        &["part-1.parquet", "rtw.metadata_hash"],
+    );
+    assert!(!sharded.join("samples.parquet").exists());
+
+    // A finished chunk of an interrupted run: --resume redoes it, saying
+    // why, and the rows are the uninterrupted run's.
+    let resumed = dir.path().join("r");
+    let mut first = spawn_slow(&cfg, &resumed, "1", "20");
+    let chunk = resumed.join(".partial/chunk-00000.parquet");
+    wait_for(&mut first, &chunk, Duration::from_secs(30));
+    signal(&first, "INT");
+    wait_at_most(&mut first, Duration::from_secs(30), "first run");
+    rewrite_footer(&chunk, |kv| {
+        edit_value(kv, "rtw.config", |c| {
+            c.replace("t_max = 3.0", "t_max = 4.0")
+        })
+    });
+    let o = fake_run(&cfg, &resumed, &["--resume", "--chunk-size", "4"]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("redoing") && err.contains("chunk-00000.parquet"),
+        "{err}"
+    );
+    assert!(err.contains("rtw.metadata_hash"), "{err}");
+    assert_eq!(rows(&resumed.join("samples.parquet")), rows(&samples));
+}
+
+#[test]
+fn a_file_from_before_the_metadata_hash_is_read_only_if_its_config_matches_its_hash() {
+    let dir = tempfile::tempdir().unwrap();
+    let (samples, _) = fake_scan(dir.path(), 300);
+    let want = stdout(&run_ok(&["summary", s(&samples), "--json"]));
+    // Without the key, the file is as rtw-scan wrote it before the key
+    // existed (the committed results): rows checked, config checked
+    // against `rtw.config_hash`, same summary.
+    rewrite_footer(&samples, |kv| kv.retain(|(k, _)| k != "rtw.metadata_hash"));
+    let old = std::fs::read(&samples).unwrap();
+    assert_eq!(stdout(&run_ok(&["summary", s(&samples), "--json"])), want);
+    // Its config edited: refused, naming the key it no longer matches.
+    rewrite_footer(&samples, |kv| {
+        edit_value(kv, "rtw.config", |c| {
+            c.replace("t_max = 3.0", "t_max = 4.0")
+        })
+    });
+    for cmd in ["summary", "cluster"] {
+        run_err(&[cmd, s(&samples)], &["samples.parquet", "rtw.config_hash"]);
+    }
+    // Its seed key disagreeing with its config: refused.
+    std::fs::write(&samples, &old).unwrap();
+    rewrite_footer(&samples, |kv| edit_value(kv, "rtw.seed", |_| "6".into()));
+    run_err(&["summary", s(&samples)], &["samples.parquet", "rtw.seed"]);
+    // A committed result (written before the key existed) still reads (a
+    // copy: summary writes its summary beside it).
+    let paper = dir.path().join("paper.parquet");
+    std::fs::copy(workspace().join("results/paper/samples.parquet"), &paper).unwrap();
+    run_ok(&["summary", s(&paper), "--json"]);
+}
+
+/// Every Parquet file under `dir`, recursively.
+fn parquet_files(dir: &Path, found: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            parquet_files(&p, found);
+        } else if p.extension().is_some_and(|x| x == "parquet") {
+            found.push(p);
+        }
+    }
+}
+
+#[test]
+fn every_committed_result_verifies_as_it_is() {
+    // The committed results were written before `rtw.metadata_hash` and stay
+    // bit-identical: each must pass the checks for such files, rows included.
+    let mut files = Vec::new();
+    parquet_files(&workspace().join("results"), &mut files);
+    assert!(files.len() > 50, "{} files", files.len());
+    for f in files {
+        let input = rtw_scan::io::open(&f, 1 << 16).unwrap_or_else(|e| panic!("{e:#}"));
+        assert!(
+            input.metadata.contains_key("rtw.content_hash"),
+            "{}",
+            f.display()
+        );
+        for b in input.reader {
+            b.unwrap_or_else(|e| panic!("{e:#}"));
+        }
+    }
+}
+
+#[test]
+fn a_damaged_hash_key_is_refused_naming_the_file_and_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let (samples, cfg) = fake_scan(dir.path(), 300);
+    let pristine = std::fs::read(&samples).unwrap();
+    let (start, len) = column_bytes(&samples, "alpha");
+    for key in ["rtw.content_hash", "rtw.metadata_hash"] {
+        // One bit of the key's name, then one data page.
+        std::fs::write(&samples, &pristine).unwrap();
+        let mut damaged = String::new();
+        rewrite_footer(&samples, |kv| damaged = flip_key_bit(kv, key));
+        flip_bytes(&samples, start + len / 2, 40);
+        for cmd in [vec!["summary"], vec!["cluster"], vec!["summary", "--json"]] {
+            let args: Vec<&str> = cmd.iter().copied().chain([s(&samples)]).collect();
+            run_err(&args, &["samples.parquet", key]);
+        }
+    }
+    // A file that looks old (no metadata hash) with its content hash's name
+    // damaged: nothing vouches for its rows.
+    std::fs::write(&samples, &pristine).unwrap();
+    rewrite_footer(&samples, |kv| {
+        kv.retain(|(k, _)| k != "rtw.metadata_hash");
+        flip_key_bit(kv, "rtw.content_hash");
+    });
+    run_err(
+        &["summary", s(&samples)],
+        &["samples.parquet", "rtw.content_hash"],
+    );
+
+    // A merge part and a resumed run's chunk alike.
+    let sharded = fake_shards(dir.path(), &cfg);
+    let part = sharded.join("part-0.parquet");
+    rewrite_footer(&part, |kv| {
+        flip_key_bit(kv, "rtw.content_hash");
+    });
+    run_err(
+        &["merge", s(&sharded)],
+        &["part-0.parquet", "rtw.content_hash"],
+    );
+}
+
+#[test]
+fn ids_and_numbers_a_reader_relies_on_are_checked_in_every_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (samples, _) = fake_scan(dir.path(), 20);
+    let file = |name: &str| dir.path().join(name);
+    forge(
+        &samples,
+        &file("dup.parquet"),
+        "sample_id",
+        values::<arrow::datatypes::Int64Type>(|v| v[5] = 4),
+        |_| {},
+    );
+    forge(
+        &samples,
+        &file("neg.parquet"),
+        "sample_id",
+        values::<arrow::datatypes::Int64Type>(|v| v[0] = -1),
+        |_| {},
+    );
+    let nan = floats(|v| v[3] = f64::NAN);
+    forge(&samples, &file("nan.parquet"), "wall_time_s", nan, |_| {});
+    let inf = floats(|v| v[3] = f64::INFINITY);
+    forge(&samples, &file("inf.parquet"), "wall_time_s", inf, |_| {});
+    forge(
+        &samples,
+        &file("k.parquet"),
+        "sample_id",
+        |c| c,
+        |m| {
+            let c = m["rtw.config"].replace("k = 2", "k = -1");
+            m.insert("rtw.config".into(), c);
+        },
+    );
+    for (name, needles) in [
+        ("dup.parquet", &["sample_id", "row 5", "4"][..]),
+        ("neg.parquet", &["sample_id", "row 0", "-1"][..]),
+        ("nan.parquet", &["wall_time_s", "row 3", "NaN"][..]),
+        ("inf.parquet", &["wall_time_s", "row 3", "inf"][..]),
+        ("k.parquet", &["cluster.k", "-1"][..]),
+    ] {
+        for cmd in ["summary", "cluster"] {
+            let needles = [&[name][..], needles].concat();
+            run_err(&[cmd, s(&file(name))], &needles);
+        }
+    }
 }
 
 // ---- item 8: the small ones ----

@@ -143,10 +143,12 @@ pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
             .get(META_WALL_TIME)
             .and_then(|v| v.parse().ok()),
     };
+    let mut next_id = None;
     for batch in input.reader {
         let batch = batch.with_context(|| format!("reading {}", path.display()))?;
         let ctx = || format!("{}", path.display());
         scan_files::check_scan_values(&batch, path, data.rows)?;
+        next_id = scan_files::check_ids(&batch, path, data.rows, next_id)?;
         let labels = label_column(&batch).with_context(ctx)?;
         let wall = f64_column(&batch, "wall_time_s").with_context(ctx)?;
         for (i, label) in labels.iter().enumerate() {

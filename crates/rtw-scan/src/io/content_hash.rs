@@ -1,12 +1,14 @@
-//! The content hash of a table's rows, written with them and checked by
-//! every read.
+//! The content hash of a table's rows and the hash of the metadata beside
+//! them, written with them and checked by every read.
 
 use crate::hash::mix;
+use crate::io::metadata::META_METADATA_HASH;
 use anyhow::{Result, bail};
 use arrow_array::cast::AsArray;
 use arrow_array::types::{Float64Type, Int8Type, Int32Type, Int64Type};
 use arrow_array::{Array, RecordBatch};
 use arrow_schema::DataType;
+use std::collections::BTreeMap;
 
 /// A hash of a table's values, column by column in file order: for each
 /// column, its values in row order (a null as a marker word, a number as its
@@ -122,4 +124,24 @@ impl ContentHash {
         }
         format!("{h:016x}")
     }
+}
+
+/// The hash of a file's metadata, as it is written in [`META_METADATA_HASH`]:
+/// every `rtw.*` key and its value but that key itself, in key order, each
+/// folded as a string the way [`ContentHash`] folds a string value. It covers
+/// `rtw.content_hash`, so a file's rows and everything its readers take from
+/// its footer (the config, the version, the shard, the wall time...) hang on
+/// this one value; a key added, removed, renamed or edited changes it.
+/// `meta` is the footer as a reader sees it (the last value of a repeated
+/// key), so it covers exactly what is read.
+pub(crate) fn metadata_hash(meta: &BTreeMap<String, String>) -> String {
+    let mut h = 0;
+    for (k, v) in meta
+        .iter()
+        .filter(|(k, _)| k.starts_with("rtw.") && *k != META_METADATA_HASH)
+    {
+        ContentHash::fold_str(&mut h, k);
+        ContentHash::fold_str(&mut h, v);
+    }
+    format!("{h:016x}")
 }

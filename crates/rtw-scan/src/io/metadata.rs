@@ -31,9 +31,14 @@ pub(crate) const META_SHARD: &str = "rtw.shard";
 pub(crate) const META_TOTAL_ROWS: &str = "rtw.total_rows";
 /// Metadata key: how many shards a merged file was made of.
 pub(crate) const META_SHARDS: &str = "rtw.shards";
-/// Metadata key: [`ContentHash`] of the file's rows, written with them and
-/// checked by every read ([`open`]), so a corrupt page is refused.
+/// Metadata key: [`ContentHash`](crate::io::content_hash::ContentHash) of
+/// the file's rows, written with them and checked by every read
+/// ([`open`](crate::io::parquet::open)), so a corrupt page is refused.
 pub(crate) const META_CONTENT_HASH: &str = "rtw.content_hash";
+/// Metadata key: [`metadata_hash`](crate::io::content_hash::metadata_hash)
+/// of every other `rtw.*` key, checked when a file is opened, so an edited
+/// or damaged footer is refused before anything is read from it.
+pub(crate) const META_METADATA_HASH: &str = "rtw.metadata_hash";
 
 /// Metadata key of an assignments file: the clustering (centres, sizes,
 /// cross-table) as JSON, exactly what `cluster --json` prints.
@@ -55,6 +60,36 @@ pub(crate) const META_CYCLE: &str = "rtw.cycle";
 pub(crate) const META_TRANSIENT: &str = "rtw.bifurcation.transient";
 /// Metadata key: a sweep's steps recorded at each value (`--record`).
 pub(crate) const META_RECORD: &str = "rtw.bifurcation.record";
+
+/// Every key rtw-scan wrote before [`META_METADATA_HASH`] existed (the
+/// committed results are such files), and the Arrow schema the parquet crate
+/// writes. A file without `rtw.metadata_hash` is taken for such an old file
+/// only if its keys are all in this list: a damaged name of one of the two
+/// hash keys is not, so it is refused rather than read unchecked. Fixed for
+/// good: a key added later is always covered by the metadata hash.
+pub(crate) const KEYS_BEFORE_METADATA_HASH: [&str; 21] = [
+    META_CONFIG,
+    META_VERSION,
+    META_SEED,
+    META_VARIANT,
+    META_WALL_TIME,
+    META_CHUNK_WALL_TIME,
+    META_CONFIG_HASH,
+    META_SHARD,
+    META_TOTAL_ROWS,
+    META_SHARDS,
+    META_CONTENT_HASH,
+    META_CLUSTERS,
+    META_PARAM,
+    META_CONT_PARAM,
+    META_CONT_CURVE,
+    META_PARAMS,
+    META_OPTIONS,
+    META_CYCLE,
+    META_TRANSIENT,
+    META_RECORD,
+    "ARROW:schema",
+];
 
 /// A key-value metadata entry.
 pub fn kv(key: &str, value: String) -> KeyValue {

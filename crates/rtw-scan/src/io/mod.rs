@@ -7,7 +7,7 @@
 //! | `scan_rows` | the scan row and its table; its JSON and text forms |
 //! | `scan_files` | scan batches read back and checked; chunks and parts concatenated |
 //! | `parquet` | Parquet files written atomically with a content hash, read back verified |
-//! | `content_hash` | the hash of a table's values, independent of batches and pages |
+//! | `content_hash` | the hash of a table's values, independent of batches and pages, and of its metadata |
 //! | `metadata` | the metadata keys, a scan's metadata, the kind of a file |
 //! | `destination` | the refusal to write one kind of file over another |
 //! | `files` | temporary files renamed into place; cleanup on a signal |

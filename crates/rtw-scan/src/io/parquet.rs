@@ -3,12 +3,18 @@
 //! Files are written through [`ParquetFile`]: to a temporary file in the
 //! destination's directory, closed, synced and renamed into place, so a file
 //! at its final name is always complete, with the [`ContentHash`] of its rows
-//! in its metadata; [`open`] checks that hash as the rows are read.
-//! Compression is zstd.
+//! and the [`metadata_hash`] of its other metadata in its footer; [`open`]
+//! checks the second before anything is read from the footer, and the first
+//! as the rows are read. Compression is zstd.
 
-use crate::io::content_hash::ContentHash;
+use crate::config;
+use crate::config::variant::Variant;
+use crate::io::content_hash::{ContentHash, metadata_hash};
 use crate::io::files::{Temp, temp_file_for};
-use crate::io::metadata::{META_CONTENT_HASH, kv};
+use crate::io::metadata::{
+    KEYS_BEFORE_METADATA_HASH, META_CONFIG, META_CONFIG_HASH, META_CONTENT_HASH,
+    META_METADATA_HASH, META_SEED, META_VARIANT, kv,
+};
 use anyhow::{Context, Result, anyhow};
 use arrow_array::RecordBatch;
 use arrow_schema::{Schema, SchemaRef};
@@ -37,7 +43,9 @@ pub(crate) const MAX_ROW_GROUP_ROWS: usize = 8192;
 pub(crate) const READ_BATCH_ROWS: usize = 4096;
 
 /// Writer properties for files of `schema`: zstd, row groups of at most
-/// `max_rows`, the given key-value metadata, and dictionary encoding only for
+/// `max_rows`, the given key-value metadata (but for the two hash keys,
+/// which [`ParquetFile::finish`] computes: a copied stale value would
+/// otherwise be written beside them), and dictionary encoding only for
 /// the string and label columns. Numbers are plain-encoded: a scan's floats
 /// are all distinct, so a dictionary would not shrink them, yet each
 /// column's dictionary builder holds every value of the row group in memory
@@ -61,19 +69,27 @@ pub(crate) fn writer_properties(
             ZstdLevel::try_new(3).expect("valid zstd level"),
         ))
         .set_max_row_group_row_count(Some(max_rows.max(1)))
-        .set_key_value_metadata(Some(metadata))
+        .set_key_value_metadata(Some(
+            metadata
+                .into_iter()
+                .filter(|kv| kv.key != META_CONTENT_HASH && kv.key != META_METADATA_HASH)
+                .collect(),
+        ))
         .build()
 }
 
 /// A Parquet file being written under a temporary name next to `dest`;
 /// [`ParquetFile::finish`] closes, syncs and renames it, with the
-/// [`ContentHash`] of every row written in its metadata. Dropped unfinished,
-/// the temporary file is removed.
+/// [`ContentHash`] of every row written and the [`metadata_hash`] of its
+/// metadata in its footer. Dropped unfinished, the temporary file is removed.
 pub(crate) struct ParquetFile {
     tmp: Temp,
     writer: ArrowWriter<File>,
     dest: PathBuf,
     hash: ContentHash,
+    /// The metadata written so far, as a reader will see it (a key given
+    /// twice keeps its last value).
+    metadata: BTreeMap<String, String>,
 }
 
 impl ParquetFile {
@@ -84,12 +100,19 @@ impl ParquetFile {
             .reopen()
             .with_context(|| format!("cannot open {}", tmp.file.path().display()))?;
         let hash = ContentHash::new(schema.fields().len());
+        let metadata = props
+            .key_value_metadata()
+            .into_iter()
+            .flatten()
+            .filter_map(|kv| Some((kv.key.clone(), kv.value.clone()?)))
+            .collect();
         let writer = ArrowWriter::try_new(file, schema, Some(props))?;
         Ok(Self {
             tmp,
             writer,
             dest: dest.to_path_buf(),
             hash,
+            metadata,
         })
     }
 
@@ -101,6 +124,7 @@ impl ParquetFile {
     }
 
     pub(crate) fn append_metadata(&mut self, key: &str, value: String) {
+        self.metadata.insert(key.to_string(), value.clone());
         self.writer
             .append_key_value_metadata(KeyValue::new(key.to_string(), value));
     }
@@ -112,8 +136,12 @@ impl ParquetFile {
             mut writer,
             dest,
             hash,
+            mut metadata,
         } = self;
-        writer.append_key_value_metadata(kv(META_CONTENT_HASH, hash.value()));
+        let rows = hash.value();
+        writer.append_key_value_metadata(kv(META_CONTENT_HASH, rows.clone()));
+        metadata.insert(META_CONTENT_HASH.to_string(), rows);
+        writer.append_key_value_metadata(kv(META_METADATA_HASH, metadata_hash(&metadata)));
         writer
             .close()
             .with_context(|| format!("closing {}", dest.display()))?;
@@ -142,8 +170,9 @@ pub struct ParquetInput {
 
 /// The batches of a Parquet file, checked: a page that does not decode, and
 /// (once the last batch has been read) rows that do not hash to the file's
-/// `rtw.content_hash`, are errors naming the file. Files without the key
-/// (written before it existed) are read unchecked.
+/// `rtw.content_hash`, are errors naming the file. A file that [`open`]
+/// accepted without the key has no rtw-scan metadata at all: what a reader
+/// needs of rtw-scan's is missing, and it refuses the file for that.
 pub struct VerifiedReader {
     inner: ParquetRecordBatchReader,
     path: PathBuf,
@@ -192,8 +221,79 @@ impl Iterator for VerifiedReader {
     }
 }
 
+/// Checks that what a file's footer says can be trusted, before anything is
+/// read from it. A file with no `rtw.*` key makes no claim (readers refuse
+/// it for the key they need). Any other must carry `rtw.content_hash`, and:
+/// - with `rtw.metadata_hash` (every file rtw-scan writes now), every `rtw.*`
+///   value must hash to it;
+/// - without it (files written before it existed), its keys must all be
+///   keys of that time ([`KEYS_BEFORE_METADATA_HASH`]: a damaged hash key's
+///   name is not), and a scan's config text must hash to its
+///   `rtw.config_hash`, which `rtw.seed` and `rtw.variant` must agree with.
+///   Such a file's `rtw.version` and wall time are taken as written.
+fn check_metadata(path: &Path, meta: &BTreeMap<String, String>) -> Result<()> {
+    let shown = path.display();
+    let Some(ours) = meta.keys().find(|k| k.starts_with("rtw.")) else {
+        return Ok(());
+    };
+    let refuse = |why: String| {
+        anyhow!(
+            "{shown}: {why}: its footer was edited or damaged; restore the file or rerun what made it"
+        )
+    };
+    if !meta.contains_key(META_CONTENT_HASH) {
+        return Err(refuse(format!(
+            "it has rtw-scan metadata (`{ours}`) but no `{META_CONTENT_HASH}` to check its rows with"
+        )));
+    }
+    if let Some(want) = meta.get(META_METADATA_HASH) {
+        let got = metadata_hash(meta);
+        if got != *want {
+            return Err(refuse(format!(
+                "its metadata hashes to {got}, not to the {want} written with it (`{META_METADATA_HASH}`)"
+            )));
+        }
+        return Ok(());
+    }
+    if let Some(k) = meta
+        .keys()
+        .find(|k| !KEYS_BEFORE_METADATA_HASH.contains(&k.as_str()))
+    {
+        return Err(refuse(format!(
+            "it has no `{META_METADATA_HASH}`, yet a key `{k}` that rtw-scan never wrote without one"
+        )));
+    }
+    let Some(text) = meta.get(META_CONFIG) else {
+        return Ok(());
+    };
+    let hash = meta.get(META_CONFIG_HASH).map_or("(none)", String::as_str);
+    if config::config_hash(text) != hash {
+        return Err(refuse(format!(
+            "its `{META_CONFIG}` does not hash to its `{META_CONFIG_HASH}` {hash}"
+        )));
+    }
+    // A config that no longer parses is refused by the reader that needs it,
+    // with the field named.
+    let Ok(cfg) = config::parse(text) else {
+        return Ok(());
+    };
+    let expect = [
+        (META_SEED, cfg.seed.to_string()),
+        (META_VARIANT, Variant::of(&cfg.simulation).to_string()),
+    ];
+    for (key, want) in expect {
+        if let Some(got) = meta.get(key).filter(|got| **got != want) {
+            return Err(refuse(format!(
+                "its `{key}` {got} disagrees with its config's {want}"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Opens a Parquet file for reading, with errors naming the path; its
-/// batches are checked against its content hash ([`VerifiedReader`]).
+/// metadata is checked at once ([`check_metadata`]), its batches against its
+/// content hash as they are read ([`VerifiedReader`]).
 pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
@@ -206,6 +306,7 @@ pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
         .flatten()
         .filter_map(|kv| Some((kv.key.clone(), kv.value.clone()?)))
         .collect();
+    check_metadata(path, &metadata)?;
     let columns = builder.schema().fields().len();
     let inner = builder.with_batch_size(batch_size.max(1)).build()?;
     Ok(ParquetInput {

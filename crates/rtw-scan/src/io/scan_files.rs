@@ -15,10 +15,42 @@ use rtw_model::Label;
 use std::path::{Path, PathBuf};
 
 /// Checks the values of a batch of scan rows that every reader relies on:
-/// each input parameter inside its range (docs/model.md §1), the derived
-/// parameters finite. `first_row` is the batch's first row in the file; an
-/// error names the file, the column and the row.
+/// each `sample_id` a number >= 0, each input parameter inside its range
+/// (docs/model.md §1), the derived parameters finite, each `wall_time_s`
+/// finite and >= 0 (summed into the summary's timing). `first_row` is the
+/// batch's first row in the file; an error names the file, the column and
+/// the row. That the ids run in order, once each, is the caller's check
+/// ([`check_ids`]): it spans batches.
 pub(crate) fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64) -> Result<()> {
+    let ids = i64_column(batch, "sample_id").with_context(|| path.display().to_string())?;
+    if let Some(r) = ids.iter().position(|v| v.is_none_or(|v| v < 0)) {
+        bail!(
+            "{}: column `sample_id`, row {}: {} is invalid: must be an integer >= 0; the file is corrupt \
+             or was not written by rtw-scan",
+            path.display(),
+            first_row + r as u64,
+            ids.iter()
+                .nth(r)
+                .flatten()
+                .map_or("null".into(), |v| v.to_string())
+        );
+    }
+    let wall = f64_column(batch, "wall_time_s").with_context(|| path.display().to_string())?;
+    if let Some(r) = wall
+        .iter()
+        .position(|v| !v.is_some_and(|v| v.is_finite() && v >= 0.0))
+    {
+        bail!(
+            "{}: column `wall_time_s`, row {}: {} is invalid: must be a finite number >= 0; the file \
+             is corrupt or was not written by rtw-scan",
+            path.display(),
+            first_row + r as u64,
+            wall.iter()
+                .nth(r)
+                .flatten()
+                .map_or("null".into(), |v| v.to_string())
+        );
+    }
     for input in Input::ALL {
         let key = input.name();
         let col = f64_column(batch, key).with_context(|| path.display().to_string())?;
@@ -57,6 +89,35 @@ pub(crate) fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64
         }
     }
     Ok(())
+}
+
+/// Checks that the `sample_id`s of a batch (already checked >= 0 by
+/// [`check_scan_values`]) go on from `next` (the id expected after the
+/// previous batch's last; `None` at the file's first row) one by one: no id
+/// twice, none skipped, in order. Returns the id expected next. `first_row`
+/// is the batch's first row in the file.
+pub(crate) fn check_ids(
+    batch: &RecordBatch,
+    path: &Path,
+    first_row: u64,
+    mut next: Option<i64>,
+) -> Result<Option<i64>> {
+    let ids = i64_column(batch, "sample_id").with_context(|| path.display().to_string())?;
+    for (r, id) in ids.iter().enumerate() {
+        let id = id.unwrap_or(-1);
+        if let Some(want) = next.filter(|want| *want != id) {
+            bail!(
+                "{}: column `sample_id`, row {}: {id} is invalid: must be {want} (each id once, in \
+                 order); the file is corrupt or was not written by rtw-scan",
+                path.display(),
+                first_row + r as u64
+            );
+        }
+        // Past the largest id, the expected one wraps to a negative number
+        // that no valid id equals: a row after it is refused.
+        next = Some(id.wrapping_add(1));
+    }
+    Ok(next)
 }
 
 /// A `Float64` column of a scan batch, by name.
