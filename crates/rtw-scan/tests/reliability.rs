@@ -680,6 +680,20 @@ fn quiet_json_summary_and_documented_exit_codes() {
     }
 }
 
+/// A fake run of `cfg` into `out` (chunks of 4 rows) stopped by signal `sig`
+/// once its second chunk exists, which must end it with status 130.
+fn interrupted_by(cfg: &str, out: &Path, sig: &str) {
+    let mut child = spawn_slow(cfg, out, "2", "25");
+    wait_for(
+        &mut child,
+        &out.join(".partial/chunk-00001.parquet"),
+        Duration::from_secs(60),
+    );
+    signal(&child, sig);
+    let st = wait_at_most(&mut child, Duration::from_secs(30), sig);
+    assert_eq!(st.code(), Some(130), "SIG{sig}");
+}
+
 #[test]
 fn sigterm_and_sighup_keep_finished_chunks_like_ctrl_c() {
     let dir = tempfile::tempdir().unwrap();
@@ -688,15 +702,7 @@ fn sigterm_and_sighup_keep_finished_chunks_like_ctrl_c() {
     fake_run_ok(&cfg, &full, &[]);
     for sig in ["TERM", "HUP"] {
         let out = dir.path().join(sig);
-        let mut child = spawn_slow(&cfg, &out, "2", "25");
-        wait_for(
-            &mut child,
-            &out.join(".partial/chunk-00001.parquet"),
-            Duration::from_secs(60),
-        );
-        signal(&child, sig);
-        let st = wait_at_most(&mut child, Duration::from_secs(30), sig);
-        assert_eq!(st.code(), Some(130), "SIG{sig}");
+        interrupted_by(&cfg, &out, sig);
         assert!(out.join(".partial/chunk-00001.parquet").exists());
         fake_run_ok(&cfg, &out, &["--resume"]);
         assert_eq!(
@@ -711,15 +717,7 @@ fn sigterm_and_sighup_keep_finished_chunks_like_ctrl_c() {
 /// A fake run of `cfg` into `out` (chunks of 4 rows) stopped by SIGTERM once
 /// its second chunk exists: an unfinished run with finished chunks.
 fn interrupted(cfg: &str, out: &Path) {
-    let mut child = spawn_slow(cfg, out, "2", "25");
-    wait_for(
-        &mut child,
-        &out.join(".partial/chunk-00001.parquet"),
-        Duration::from_secs(60),
-    );
-    signal(&child, "TERM");
-    let st = wait_at_most(&mut child, Duration::from_secs(30), "TERM");
-    assert_eq!(st.code(), Some(130));
+    interrupted_by(cfg, out, "TERM");
 }
 
 /// Names in `dir`, sorted (none if it does not exist).

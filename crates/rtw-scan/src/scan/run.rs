@@ -782,6 +782,20 @@ t_max = 2.0
         assert!(panicked > 0, "the seed should draw some rho > 4.75");
     }
 
+    /// A run of `cfg` into `dir` on one thread in chunks of 4 rows, stopped
+    /// (as by Ctrl-C) once `n` samples have been taken.
+    fn stopped_after(cfg: &ScanConfig, dir: &Path, n: u64) -> RunStatus {
+        let stop = AtomicBool::new(false);
+        let taken = AtomicU64::new(0);
+        let stopping = |p: &Params, o: &Options| {
+            if taken.fetch_add(1, Ordering::SeqCst) >= n {
+                stop.store(true, Ordering::SeqCst);
+            }
+            fake_sim(p, o)
+        };
+        run_scan(cfg, &settings(dir, 1, 4), &stopping, &stop).unwrap()
+    }
+
     #[test]
     fn interrupted_run_resumes_to_the_same_rows() {
         let cfg = parse(CFG).unwrap();
@@ -790,16 +804,8 @@ t_max = 2.0
         let never = AtomicBool::new(false);
         run_scan(&cfg, &settings(full.path(), 2, 4), &fake_sim, &never).unwrap();
 
-        // Stop after 3 samples: the chunk in progress is dropped.
-        let stop = AtomicBool::new(false);
-        let n = AtomicU64::new(0);
-        let stopping = |p: &Params, o: &Options| {
-            if n.fetch_add(1, Ordering::SeqCst) >= 6 {
-                stop.store(true, Ordering::SeqCst);
-            }
-            fake_sim(p, o)
-        };
-        let st = run_scan(&cfg, &settings(part.path(), 1, 4), &stopping, &stop).unwrap();
+        // Stop after 7 samples: the chunk in progress is dropped.
+        let st = stopped_after(&cfg, part.path(), 6);
         let RunStatus::Interrupted {
             chunks_done,
             chunks,
@@ -851,15 +857,7 @@ t_max = 2.0
         let cfg = parse(CFG).unwrap();
         let dir = tempfile::tempdir().unwrap();
         let never = AtomicBool::new(false);
-        let stop = AtomicBool::new(false);
-        let n = AtomicU64::new(0);
-        let stopping = |p: &Params, o: &Options| {
-            if n.fetch_add(1, Ordering::SeqCst) >= 10 {
-                stop.store(true, Ordering::SeqCst);
-            }
-            fake_sim(p, o)
-        };
-        run_scan(&cfg, &settings(dir.path(), 1, 4), &stopping, &stop).unwrap();
+        stopped_after(&cfg, dir.path(), 10);
         let chunk = dir.path().join(".partial/chunk-00000.parquet");
         let input = parquet::open(&chunk, 64).unwrap();
         let meta = input
