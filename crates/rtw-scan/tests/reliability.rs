@@ -864,11 +864,12 @@ fn resume_finishes_every_state_a_kill_can_leave() {
 /// Starts a fake run (chunks of 4 rows) that stops at `point` (the hidden
 /// `RTW_SCAN_PAUSE` of test builds), waits until it says so, and kills it
 /// with SIGKILL there.
-fn kill_at(cfg: &str, out: &Path, point: &str) {
+fn kill_at(cfg: &str, out: &Path, point: &str, extra: &[&str]) {
     use std::io::BufRead;
     let mut child = bin()
         .args(["run", cfg, "--out", s(out), "--chunk-size", "4"])
         .args(["--fake-sim", "0"])
+        .args(extra)
         .env("RTW_SCAN_PAUSE", point)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -901,7 +902,7 @@ fn a_sigkill_at_each_step_of_the_end_of_a_run_resumes_without_recomputing() {
         ("cleanup", "samples.parquet"),
     ] {
         let out = dir.path().join(point);
-        kill_at(&cfg, &out, point);
+        kill_at(&cfg, &out, point, &[]);
         assert!(out.join(there).exists(), "{point}: {:?}", names(&out));
         assert!(out.join(".partial").exists(), "{point}");
         let o = fake_run(&cfg, &out, &["--resume"]);
@@ -919,6 +920,19 @@ fn a_sigkill_at_each_step_of_the_end_of_a_run_resumes_without_recomputing() {
         assert!(!out.join(".partial").exists(), "{point}");
         assert!(temp_files(&out).is_empty(), "{point}: {:?}", names(&out));
     }
+    // A shard the same: killed during its clean-up, resumed, merged.
+    let out = dir.path().join("shards");
+    fake_run_ok(&cfg, &out, &["--shard", "0/2"]);
+    kill_at(&cfg, &out, "cleanup", &["--shard", "1/2"]);
+    assert!(out.join("part-1.parquet").exists() && out.join(".partial-1").exists());
+    let o = fake_run(&cfg, &out, &["--shard", "1/2", "--resume"]);
+    assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
+    assert!(!out.join(".partial-1").exists());
+    run_ok(&["merge", s(&out), "--quiet"]);
+    assert_eq!(
+        rows(&out.join("samples.parquet")),
+        rows(&full.join("samples.parquet"))
+    );
 }
 
 #[test]
