@@ -8,6 +8,11 @@
 #   3. corrupted: bytes flipped in a data page of the finished file, a part
 #      and a finished chunk, which summary, merge and --resume must refuse or
 #      redo;
+#   4. killed (SIGKILL) at each step of a run's start and end: before its
+#      manifest exists, during the final merge, after it, and while .partial
+#      is being removed (the test build's RTW_SCAN_PAUSE stops the run there),
+#      with a stray file of the user's in .partial; --resume must finish each
+#      without computing a finished row again, and leave the stray file alone;
 # and every result is compared row by row (scripts/compare_scans.py) with an
 # uninterrupted run. The random points come from a seed, printed (set
 # FAULT_SEED to replay one). Exits non-zero if any finished row was lost or
@@ -19,7 +24,9 @@ seed=${FAULT_SEED:-$(( $(date +%s) % 32768 ))}
 RANDOM=$seed
 echo "fault_inject: seed $seed (FAULT_SEED=$seed ./scripts/fault_inject.sh replays it)"
 
-cargo build --release -q -p rtw-scan
+# The test build (fake-sim feature: RTW_SCAN_PAUSE, part 4); the same
+# binary `cargo test` builds, and the physics as in a plain build.
+cargo build --release -q -p rtw-scan --features fake-sim
 bin=$PWD/target/release/rtw-scan
 ./scripts/venv.sh >/dev/null
 py=.venv/bin/python
@@ -186,5 +193,35 @@ if [ -e "$chunked/.partial/chunk-00002.parquet" ]; then
 else
   echo "fault_inject: corrupt chunk: the run finished before it could be killed; not injected"
 fi
+
+# 4. SIGKILL at the steps of a run's start and end, each resumed.
+for point in manifest merge merged cleanup; do
+  out=$work/end-$point
+  RTW_SCAN_PAUSE=$point "$bin" "${scan[@]}" --out "$out" >/dev/null 2>"$work/pause.err" &
+  pid=$!
+  for _ in $(seq 6000); do
+    grep -q "paused at $point" "$work/pause.err" && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.01
+  done
+  grep -q "paused at $point" "$work/pause.err" || fail "the run did not pause at $point: $(cat "$work/pause.err")"
+  kill -KILL "$pid"
+  wait "$pid" 2>/dev/null || true
+  faults=$((faults + 1))
+  [ -d "$out/.partial" ] || fail "killed at $point: no .partial left to resume"
+  kept=$(finished_rows "$out")
+  [ -f "$out/samples.parquet" ] && kept="all 400 (samples.parquet)"
+  echo "note" >"$out/.partial/notes.txt"
+  "$bin" run "$config" --threads 2 --out "$out" --resume >/dev/null 2>"$work/resume.err" ||
+    fail "the resume after a kill at $point failed: $(cat "$work/resume.err")"
+  if [ "$point" != manifest ]; then
+    grep -q "already complete" "$work/resume.err" ||
+      fail "killed at $point: the resume computed finished rows again: $(cat "$work/resume.err")"
+  fi
+  grep -q "notes.txt" "$work/resume.err" || fail "killed at $point: the stray notes.txt was not reported"
+  [ "$(cat "$out/.partial/notes.txt")" = note ] || fail "killed at $point: the stray notes.txt was touched"
+  compare "$out" "killed at $point, resumed"
+  echo "fault_inject: SIGKILL at $point: $kept rows finished; resumed to the reference rows, the stray file kept"
+done
 
 echo "fault_inject: passed: $faults faults injected (seed $seed); no finished row was lost or changed"

@@ -54,3 +54,25 @@ pub mod io;
 pub mod scan;
 
 pub use cli::main;
+
+/// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in
+/// the environment, a run says `paused at POINT` on stderr and waits there a
+/// minute, so that the tests and `scripts/fault_inject.sh` can kill it at
+/// exactly that step of its end: `manifest` (`.partial` made, its manifest
+/// not yet), `merge` (the scan file half written), `merged` (the scan file
+/// complete, `.partial` whole), `cleanup` (`.partial` partly removed). A
+/// plain build does nothing here. It waits once per process (the merge
+/// passes its point once per file).
+pub(crate) fn pause_at(point: &str) {
+    #[cfg(feature = "fake-sim")]
+    if std::env::var("RTW_SCAN_PAUSE").is_ok_and(|p| p == point) {
+        static PAUSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+        if PAUSED.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            return;
+        }
+        eprintln!("rtw-scan: paused at {point} (RTW_SCAN_PAUSE)");
+        std::thread::sleep(std::time::Duration::from_secs(60));
+    }
+    #[cfg(not(feature = "fake-sim"))]
+    let _ = point;
+}

@@ -991,6 +991,20 @@ fn quiet_json_summary_and_documented_exit_codes() {
     }
 }
 
+/// A fake run of `cfg` into `out` (chunks of 4 rows) stopped by signal `sig`
+/// once its second chunk exists, which must end it with status 130.
+fn interrupted_by(cfg: &str, out: &Path, sig: &str) {
+    let mut child = spawn_slow(cfg, out, "2", "25");
+    wait_for(
+        &mut child,
+        &out.join(".partial/chunk-00001.parquet"),
+        Duration::from_secs(60),
+    );
+    signal(&child, sig);
+    let st = wait_at_most(&mut child, Duration::from_secs(30), sig);
+    assert_eq!(st.code(), Some(130), "SIG{sig}");
+}
+
 #[test]
 fn sigterm_and_sighup_keep_finished_chunks_like_ctrl_c() {
     let dir = tempfile::tempdir().unwrap();
@@ -999,15 +1013,7 @@ fn sigterm_and_sighup_keep_finished_chunks_like_ctrl_c() {
     fake_run_ok(&cfg, &full, &[]);
     for sig in ["TERM", "HUP"] {
         let out = dir.path().join(sig);
-        let mut child = spawn_slow(&cfg, &out, "2", "25");
-        wait_for(
-            &mut child,
-            &out.join(".partial/chunk-00001.parquet"),
-            Duration::from_secs(60),
-        );
-        signal(&child, sig);
-        let st = wait_at_most(&mut child, Duration::from_secs(30), sig);
-        assert_eq!(st.code(), Some(130), "SIG{sig}");
+        interrupted_by(&cfg, &out, sig);
         assert!(out.join(".partial/chunk-00001.parquet").exists());
         fake_run_ok(&cfg, &out, &["--resume"]);
         assert_eq!(
@@ -1015,4 +1021,244 @@ fn sigterm_and_sighup_keep_finished_chunks_like_ctrl_c() {
             rows(&full.join("samples.parquet"))
         );
     }
+}
+
+// ---- resume at any instant, across versions, and what it refuses ----
+
+/// A fake run of `cfg` into `out` (chunks of 4 rows) stopped by SIGTERM once
+/// its second chunk exists: an unfinished run with finished chunks.
+fn interrupted(cfg: &str, out: &Path) {
+    interrupted_by(cfg, out, "TERM");
+}
+
+/// Names in `dir`, sorted (none if it does not exist).
+fn names(dir: &Path) -> Vec<String> {
+    let mut n: Vec<String> = std::fs::read_dir(dir)
+        .map(|d| {
+            d.filter_map(Result::ok)
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    n.sort();
+    n
+}
+
+#[test]
+fn a_resume_by_another_rtw_scan_version_is_refused_naming_both() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "c.toml", &paper_like(80, 9));
+    let full = dir.path().join("full");
+    fake_run_ok(&cfg, &full, &[]);
+    let out = dir.path().join("o");
+    interrupted(&cfg, &out);
+    // The unfinished run was started by an older rtw-scan.
+    let ours = env!("CARGO_PKG_VERSION");
+    let manifest = out.join(".partial/manifest.json");
+    let text = std::fs::read_to_string(&manifest).unwrap();
+    let older = text.replace(
+        &format!("\"version\": \"{ours}\""),
+        "\"version\": \"0.0.9\"",
+    );
+    assert_ne!(text, older);
+    std::fs::write(&manifest, older).unwrap();
+    let before = names(&out.join(".partial"));
+    let o = fake_run(&cfg, &out, &["--resume"]);
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    for needle in [
+        "different rtw-scan versions",
+        "from 0.0.9",
+        &format!("from {ours}"),
+    ] {
+        assert!(err.contains(needle), "no {needle:?} in:\n{err}");
+    }
+    // Nothing was mixed or lost.
+    assert!(!out.join("samples.parquet").exists());
+    assert_eq!(names(&out.join(".partial")), before);
+    // --force discards it and computes the scan anew with this version.
+    fake_run_ok(&cfg, &out, &["--force"]);
+    assert_eq!(
+        rows(&out.join("samples.parquet")),
+        rows(&full.join("samples.parquet"))
+    );
+}
+
+#[test]
+fn a_resume_of_another_config_names_both_and_what_differs() {
+    let dir = tempfile::tempdir().unwrap();
+    let named = |seed| format!("name = \"walk\"\n{}", paper_like(80, seed));
+    let a = write(dir.path(), "a.toml", &named(9));
+    let b = write(dir.path(), "b.toml", &named(10));
+    let hash = |cfg: &str, name: &str| {
+        let d = dir.path().join(name);
+        fake_run_ok(cfg, &d, &[]);
+        rtw_scan::io::open(&d.join("samples.parquet"), 1)
+            .unwrap()
+            .metadata["rtw.config_hash"]
+            .clone()
+    };
+    let (ha, hb) = (hash(&a, "ra"), hash(&b, "rb"));
+    let out = dir.path().join("o");
+    interrupted(&a, &out);
+    for extra in [&["--resume"][..], &[]] {
+        let o = fake_run(&b, &out, extra);
+        assert!(!o.status.success());
+        let err = stderr(&o);
+        for needle in [
+            format!("config hash {ha} (name walk, seed 9)"),
+            format!("config hash {hb} (name walk, seed 10)"),
+            "seed 9 there, 10 here".to_string(),
+        ] {
+            assert!(err.contains(&needle), "no {needle:?} in:\n{err}");
+        }
+    }
+}
+
+#[test]
+fn resume_finishes_every_state_a_kill_can_leave() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "c.toml", &paper_like(40, 3));
+    let full = dir.path().join("full");
+    fake_run_ok(&cfg, &full, &[]);
+    let reference = rows(&full.join("samples.parquet"));
+    let finished = |out: &Path, extra: &[&str]| -> String {
+        let o = fake_run(&cfg, out, extra);
+        let err = stderr(&o);
+        assert!(o.status.success(), "{}: {err}", out.display());
+        assert!(!err.contains("--force"), "{err}");
+        assert_eq!(rows(&out.join("samples.parquet")), reference);
+        assert!(temp_files(out).is_empty(), "{:?}", names(out));
+        err
+    };
+
+    // Killed before the manifest existed: `.partial` holds at most the
+    // manifest's temporary file. Nothing was finished: resumed or not, the
+    // run starts.
+    for extra in [&["--resume"][..], &[]] {
+        let out = dir.path().join(format!("no-manifest{}", extra.len()));
+        std::fs::create_dir_all(out.join(".partial")).unwrap();
+        std::fs::write(out.join(".partial/.manifest.json.a1b2c3.tmp"), "{").unwrap();
+        finished(&out, extra);
+        assert!(!out.join(".partial").exists());
+    }
+
+    // Killed while `.partial` was being removed after the merge: the scan is
+    // complete; the resume only finishes the clean-up.
+    let out = dir.path().join("cleanup");
+    interrupted(&cfg, &out);
+    std::fs::copy(full.join("samples.parquet"), out.join("samples.parquet")).unwrap();
+    std::fs::remove_file(out.join(".partial/manifest.json")).unwrap();
+    let err = finished(&out, &["--resume"]);
+    assert!(err.contains("already complete"), "{err}");
+    assert!(!out.join(".partial").exists());
+
+    // Stray files rtw-scan did not make are reported and left alone, and do
+    // not stop the resume.
+    let out = dir.path().join("stray");
+    interrupted(&cfg, &out);
+    std::fs::write(out.join(".partial/notes.txt"), "mine").unwrap();
+    std::fs::create_dir(out.join(".partial/plots")).unwrap();
+    let err = finished(&out, &["--resume", "--chunk-size", "4"]);
+    assert!(err.contains("notes.txt") && err.contains("plots"), "{err}");
+    assert_eq!(names(&out.join(".partial")), ["notes.txt", "plots"]);
+    assert_eq!(
+        std::fs::read_to_string(out.join(".partial/notes.txt")).unwrap(),
+        "mine"
+    );
+    // ... and still do not, once the scan is complete, resumed or rerun.
+    finished(&out, &["--resume"]);
+    finished(&out, &[]);
+    assert_eq!(names(&out.join(".partial")), ["notes.txt", "plots"]);
+}
+
+/// Starts a fake run (chunks of 4 rows) that stops at `point` (the hidden
+/// `RTW_SCAN_PAUSE` of test builds), waits until it says so, and kills it
+/// with SIGKILL there.
+fn kill_at(cfg: &str, out: &Path, point: &str, extra: &[&str]) {
+    use std::io::BufRead;
+    let mut child = bin()
+        .args(["run", cfg, "--out", s(out), "--chunk-size", "4"])
+        .args(["--fake-sim", "0"])
+        .args(extra)
+        .env("RTW_SCAN_PAUSE", point)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    loop {
+        line.clear();
+        let n = err.read_line(&mut line).unwrap();
+        assert!(n > 0, "the run ended without pausing at {point}");
+        if line.contains(&format!("paused at {point}")) {
+            break;
+        }
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
+
+#[test]
+fn a_sigkill_at_each_step_of_the_end_of_a_run_resumes_without_recomputing() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "c.toml", &paper_like(40, 4));
+    let full = dir.path().join("full");
+    fake_run_ok(&cfg, &full, &[]);
+    for (point, there) in [
+        ("manifest", ".partial"),
+        ("merge", ".partial/manifest.json"),
+        ("merged", "samples.parquet"),
+        ("cleanup", "samples.parquet"),
+    ] {
+        let out = dir.path().join(point);
+        kill_at(&cfg, &out, point, &[]);
+        assert!(out.join(there).exists(), "{point}: {:?}", names(&out));
+        assert!(out.join(".partial").exists(), "{point}");
+        let o = fake_run(&cfg, &out, &["--resume"]);
+        let err = stderr(&o);
+        assert!(o.status.success(), "{point}: {err}");
+        if point != "manifest" {
+            // Every chunk was finished: none is computed again.
+            assert!(err.contains("already complete"), "{point}: {err}");
+        }
+        assert_eq!(
+            rows(&out.join("samples.parquet")),
+            rows(&full.join("samples.parquet")),
+            "{point}"
+        );
+        assert!(!out.join(".partial").exists(), "{point}");
+        assert!(temp_files(&out).is_empty(), "{point}: {:?}", names(&out));
+    }
+    // A shard the same: killed during its clean-up, resumed, merged.
+    let out = dir.path().join("shards");
+    fake_run_ok(&cfg, &out, &["--shard", "0/2"]);
+    kill_at(&cfg, &out, "cleanup", &["--shard", "1/2"]);
+    assert!(out.join("part-1.parquet").exists() && out.join(".partial-1").exists());
+    let o = fake_run(&cfg, &out, &["--shard", "1/2", "--resume"]);
+    assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
+    assert!(!out.join(".partial-1").exists());
+    run_ok(&["merge", s(&out), "--quiet"]);
+    assert_eq!(
+        rows(&out.join("samples.parquet")),
+        rows(&full.join("samples.parquet"))
+    );
+}
+
+#[test]
+fn a_chunk_size_beyond_its_range_is_refused_before_anything_is_allocated() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "c.toml", &paper_like(40, 3));
+    for bad in ["10000000000", "65537"] {
+        let out = dir.path().join(bad);
+        let o = fake_run(&cfg, &out, &["--chunk-size", bad]);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{bad}: {err}");
+        for needle in ["--chunk-size", bad, "1..=65536"] {
+            assert!(err.contains(needle), "no {needle:?} in:\n{err}");
+        }
+        assert!(!out.join(".partial").exists());
+    }
+    fake_run_ok(&cfg, &dir.path().join("ok"), &["--chunk-size", "65536"]);
 }

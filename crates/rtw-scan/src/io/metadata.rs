@@ -4,6 +4,7 @@
 
 use crate::config::variant::Variant;
 use crate::config::{self, ScanConfig};
+use anyhow::{Result, bail};
 use arrow_array::RecordBatch;
 use arrow_schema::ArrowError;
 use parquet::file::metadata::KeyValue;
@@ -91,6 +92,34 @@ pub(crate) const KEYS_BEFORE_METADATA_HASH: [&str; 21] = [
     "ARROW:schema",
 ];
 
+/// rtw-scan's version, written into every scan file ([`META_VERSION`]) and
+/// resume manifest.
+pub(crate) const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The rule for rows of two rtw-scan versions: they never end up in one
+/// result (which carries one version label, while a row's numbers may differ
+/// between versions). `merge` refuses such parts, `run --resume` such an
+/// unfinished run, and a resume computes such a chunk again. `what` names
+/// both sides (`the parts`), `a` and `b` each side and its version, `then`
+/// what to do.
+pub(crate) fn refuse_mixed_versions(
+    what: &str,
+    a: (&str, &str),
+    b: (&str, &str),
+    then: &str,
+) -> Result<()> {
+    if a.1 != b.1 {
+        bail!(
+            "{what} come from different rtw-scan versions: {} from {}, {} from {}; {then}",
+            a.0,
+            a.1,
+            b.0,
+            b.1
+        );
+    }
+    Ok(())
+}
+
 /// A key-value metadata entry.
 pub fn kv(key: &str, value: String) -> KeyValue {
     KeyValue::new(key.to_string(), value)
@@ -117,7 +146,7 @@ pub(crate) fn scan_metadata(cfg: &ScanConfig) -> Vec<KeyValue> {
     vec![
         kv(META_CONFIG, cfg.to_toml()),
         kv(META_CONFIG_HASH, cfg.hash()),
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").to_string()),
+        kv(META_VERSION, VERSION.to_string()),
         kv(META_SEED, cfg.seed.to_string()),
         kv(META_VARIANT, Variant::of(&cfg.simulation).to_string()),
     ]

@@ -237,6 +237,7 @@ pub(crate) fn concat_scan_files(
             check_scan_values(&batch, path, next - batch.num_rows() as u64 - first_row)?;
             file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
         }
+        crate::pause_at("merge");
     }
     if next != ids.end {
         bail!(

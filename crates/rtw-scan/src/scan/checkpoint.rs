@@ -3,9 +3,10 @@
 //! the checks that keep a chunk, and the refusal to mix another scan's
 //! results into a directory.
 
+use crate::config;
 use crate::config::ScanConfig;
-use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD};
-use crate::io::parquet;
+use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
+use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files;
 use crate::scan::shard::{self, Shard};
 use anyhow::{Context, Result, anyhow, bail};
@@ -62,10 +63,20 @@ pub(crate) fn chunk_labels(
     ids: std::ops::Range<u64>,
     config: &str,
 ) -> Result<Vec<Label>> {
-    let input = parquet::open(path, ids.end.saturating_sub(ids.start) as usize)?;
+    let input = parquet::open(path, READ_BATCH_ROWS)?;
     if input.metadata.get(META_CONFIG).map(String::as_str) != Some(config) {
         bail!("written for another config");
     }
+    let version = input
+        .metadata
+        .get(META_VERSION)
+        .map_or("(none)", String::as_str);
+    metadata::refuse_mixed_versions(
+        "the chunk and this run",
+        ("the chunk", version),
+        ("this run", VERSION),
+        "it is computed again",
+    )?;
     if input.rows as u64 != ids.end - ids.start {
         bail!("{} rows, expected {}", input.rows, ids.end - ids.start);
     }
@@ -89,23 +100,68 @@ pub(crate) fn chunk_labels(
     Ok(labels)
 }
 
-/// The chunk numbers of the `chunk-NNNNN.parquet` files in `partial`.
-pub(crate) fn chunks_on_disk(partial: &Path) -> Result<Vec<u64>> {
+/// `N` of a file named `chunk-NNNNN.parquet`.
+fn chunk_number(name: &str) -> Option<u64> {
+    name.strip_prefix("chunk-")
+        .and_then(|n| n.strip_suffix(".parquet"))
+        .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+        .and_then(|n| n.parse().ok())
+}
+
+/// What an entry of `.partial` is.
+#[derive(Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Entry {
+    Manifest,
+    Chunk(u64),
+    /// The temporary file of a killed writer of the manifest or a chunk
+    /// (`.NAME.XXXXXX.tmp`, [`crate::io::files`]).
+    Temp,
+    /// Anything else: not made by rtw-scan, so never removed by it.
+    Unknown,
+}
+
+/// What the entry `name` of `.partial` is; only regular files are rtw-scan's
+/// (a directory or a symlink under a chunk's name is someone else's).
+fn entry_kind(name: &str, is_file: bool) -> Entry {
+    let own = |n: &str| n == "manifest.json" || chunk_number(n).is_some();
+    let temp = name
+        .strip_prefix('.')
+        .and_then(|n| n.strip_suffix(".tmp"))
+        .and_then(|n| n.rsplit_once('.'))
+        .is_some_and(|(n, random)| random.len() == 6 && own(n));
+    match (is_file, chunk_number(name)) {
+        (false, _) => Entry::Unknown,
+        (true, Some(c)) => Entry::Chunk(c),
+        _ if name == "manifest.json" => Entry::Manifest,
+        _ if temp => Entry::Temp,
+        _ => Entry::Unknown,
+    }
+}
+
+/// The entries of `partial` with their kinds, sorted by name.
+fn entries(partial: &Path) -> Result<Vec<(String, Entry)>> {
     let mut found = Vec::new();
     for entry in
         std::fs::read_dir(partial).with_context(|| format!("cannot read {}", partial.display()))?
     {
-        let name = entry?.file_name();
-        let name = name.to_string_lossy();
-        if let Some(c) = name
-            .strip_prefix("chunk-")
-            .and_then(|n| n.strip_suffix(".parquet"))
-            .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
-            .and_then(|n| n.parse().ok())
-        {
-            found.push(c);
-        }
+        let entry = entry?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let kind = entry_kind(&name, entry.file_type()?.is_file());
+        found.push((name, kind));
     }
+    found.sort();
+    Ok(found)
+}
+
+/// The chunk numbers of the `chunk-NNNNN.parquet` files in `partial`.
+pub(crate) fn chunks_on_disk(partial: &Path) -> Result<Vec<u64>> {
+    let mut found: Vec<u64> = entries(partial)?
+        .into_iter()
+        .filter_map(|(_, kind)| match kind {
+            Entry::Chunk(c) => Some(c),
+            _ => None,
+        })
+        .collect();
     found.sort_unstable();
     Ok(found)
 }
@@ -172,21 +228,99 @@ pub(crate) fn read_manifest(path: &Path) -> Result<Manifest> {
     serde_json::from_str(&text).with_context(|| format!("{} is corrupt", path.display()))
 }
 
-/// Removes everything in `.partial` that is neither the manifest nor a chunk
-/// (temporary files of a killed run).
-pub(crate) fn remove_stray_files(partial: &Path) -> Result<()> {
-    for entry in std::fs::read_dir(partial)? {
-        let entry = entry?;
-        let name = entry.file_name();
-        let name = name.to_string_lossy();
-        let keep =
-            name == "manifest.json" || (name.starts_with("chunk-") && name.ends_with(".parquet"));
-        if !keep {
-            std::fs::remove_file(entry.path())
-                .with_context(|| format!("cannot remove {}", entry.path().display()))?;
+/// Removes the temporary files a killed run left in `partial` (its own
+/// only), and returns the names of the entries rtw-scan did not make, which
+/// it leaves alone.
+pub(crate) fn remove_stray_temps(partial: &Path) -> Result<Vec<String>> {
+    let mut unknown = Vec::new();
+    for (name, kind) in entries(partial)? {
+        match kind {
+            Entry::Temp => remove(&partial.join(&name))?,
+            Entry::Unknown => unknown.push(name),
+            Entry::Manifest | Entry::Chunk(_) => {}
         }
     }
-    Ok(())
+    Ok(unknown)
+}
+
+/// Removes what rtw-scan made in `partial` (chunks first, the manifest last,
+/// so that a kill meanwhile leaves a state a resume recognises) and then the
+/// directory, unless it holds entries rtw-scan did not make: their names are
+/// returned, and they stay where they are.
+pub(crate) fn remove_partial(partial: &Path) -> Result<Vec<String>> {
+    let found = entries(partial)?;
+    let mut unknown = Vec::new();
+    let mut removed = 0;
+    for (name, kind) in found.iter().filter(|(_, k)| *k != Entry::Manifest) {
+        if *kind == Entry::Unknown {
+            unknown.push(name.clone());
+            continue;
+        }
+        remove(&partial.join(name))?;
+        removed += 1;
+        if removed == 1 {
+            crate::pause_at("cleanup");
+        }
+    }
+    if found.iter().any(|(_, k)| *k == Entry::Manifest) {
+        remove(&partial.join("manifest.json"))?;
+    }
+    if unknown.is_empty() {
+        std::fs::remove_dir(partial)
+            .with_context(|| format!("cannot remove {}", partial.display()))?;
+    }
+    Ok(unknown)
+}
+
+fn remove(path: &Path) -> Result<()> {
+    std::fs::remove_file(path).with_context(|| format!("cannot remove {}", path.display()))
+}
+
+/// Why the unfinished run of `manifest` is not the run of `cfg` (rows
+/// `rows`, shard `shard`): both named (config hash, name, seed), then each
+/// setting that differs, there (on disk) and here (requested).
+pub(crate) fn describe_mismatch(
+    manifest: &Manifest,
+    cfg: &ScanConfig,
+    rows: u64,
+    shard: Option<&str>,
+) -> String {
+    let ours = metadata::scan_label(&cfg.hash(), cfg.name.as_deref(), cfg.seed);
+    let theirs_hash = config::config_hash(&manifest.config);
+    let theirs_cfg = config::parse(&manifest.config).ok();
+    let theirs = match &theirs_cfg {
+        Some(c) => metadata::scan_label(&theirs_hash, c.name.as_deref(), c.seed),
+        None => format!("config hash {theirs_hash}"),
+    };
+    let none = || "none".to_string();
+    let mut differ = Vec::new();
+    let mut add = |what: &str, there: String, here: String| {
+        if there != here {
+            differ.push(format!("{what} {there} there, {here} here"));
+        }
+    };
+    if let Some(c) = &theirs_cfg {
+        add(
+            "name",
+            c.name.clone().unwrap_or_else(none),
+            cfg.name.clone().unwrap_or_else(none),
+        );
+        add("seed", c.seed.to_string(), cfg.seed.to_string());
+    }
+    add("rows", manifest.rows.to_string(), rows.to_string());
+    add(
+        "shard",
+        manifest.shard.clone().unwrap_or_else(none),
+        shard.map_or_else(none, str::to_string),
+    );
+    if differ.is_empty() {
+        differ.push(
+            "the same name, seed, rows and shard, but other settings (parameter ranges or \
+             [simulation]; its config is in manifest.json)"
+                .to_string(),
+        );
+    }
+    format!("it is {theirs}, this run is {ours}: {}", differ.join("; "))
 }
 
 /// Does `samples` exist, complete, for this very config (and shard)?

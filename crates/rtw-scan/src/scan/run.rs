@@ -32,14 +32,14 @@
 use crate::config::ScanConfig;
 use crate::io::files;
 use crate::io::metadata::{
-    self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME,
+    self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME, VERSION,
 };
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows::{self, Row};
 use crate::scan::checkpoint::{
-    Layout, Manifest, chunk_labels, chunks_on_disk, is_complete, read_manifest,
-    refuse_other_results, remove_stray_files,
+    Layout, Manifest, chunk_labels, chunks_on_disk, describe_mismatch, is_complete, read_manifest,
+    refuse_other_results, remove_partial, remove_stray_temps,
 };
 use crate::scan::lock::Lock;
 use crate::scan::panic::catch_panic;
@@ -132,6 +132,7 @@ pub(crate) fn run_scan(
     let shard_text = settings.shard.map(|s| s.to_string());
     let config_toml = cfg.to_toml();
     check_threads(settings.threads)?;
+    check_chunk_size(settings.chunk_size.get())?;
     let out = &settings.out_dir;
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output directory {}", out.display()))?;
@@ -151,55 +152,45 @@ pub(crate) fn run_scan(
         }
     }
 
-    let unfinished = if layout.partial.exists() {
-        let same = read_manifest(&layout.manifest()).map(|m| {
-            (m.config == config_toml && m.rows == rows && m.shard == shard_text).then_some(m)
-        });
-        match same {
-            Ok(Some(m)) if settings.resume => Some(m),
-            Ok(Some(_)) => bail!(
-                "{} holds an unfinished run of this scan: pass --resume to finish it, or delete it to start over",
-                layout.partial.display()
-            ),
-            _ if settings.force => {
-                std::fs::remove_dir_all(&layout.partial)
-                    .with_context(|| format!("cannot remove {}", layout.partial.display()))?;
-                None
-            }
-            Ok(None) => bail!(
-                "cannot {}: the unfinished run in {} was started with a different config (or another \
-                 --shard split); choose another --out, or pass --force to discard it",
-                if settings.resume { "resume" } else { "start" },
-                layout.partial.display()
-            ),
-            Err(e) => return Err(e.context("pass --force to discard the unfinished run")),
+    if settings.resume && is_complete(&layout.samples, &config_toml, shard_text.as_deref()) {
+        // Complete: at most the clean-up of a run killed after its merge is left.
+        if layout.partial.is_dir() {
+            report_unknown(&layout.partial, &remove_partial(&layout.partial)?);
         }
-    } else {
-        None
-    };
-    let chunk_size = if let Some(manifest) = unfinished {
-        remove_stray_files(&layout.partial)?;
-        manifest.chunk_size.max(1)
-    } else {
-        if settings.resume && is_complete(&layout.samples, &config_toml, shard_text.as_deref()) {
-            return Ok(RunStatus::Complete {
-                samples: layout.samples,
-                rows,
-                computed: 0,
-            });
-        }
-        std::fs::create_dir(&layout.partial)
-            .with_context(|| format!("cannot create {}", layout.partial.display()))?;
-        let manifest = Manifest {
-            version: env!("CARGO_PKG_VERSION").into(),
-            config: config_toml.clone(),
-            chunk_size: settings.chunk_size.get(),
+        return Ok(RunStatus::Complete {
+            samples: layout.samples,
             rows,
-            shard: shard_text.clone(),
-        };
-        files::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
-        settings.chunk_size.get()
+            computed: 0,
+        });
+    }
+    let chunk_size = match unfinished_run(&layout, settings, cfg, rows, shard_text.as_deref())? {
+        Some(manifest) => manifest.chunk_size,
+        None => {
+            // No finished chunk to keep: (re)start. A `.partial` without a
+            // manifest is a run killed before it wrote one, or one holding
+            // only files rtw-scan did not make.
+            std::fs::create_dir_all(&layout.partial)
+                .with_context(|| format!("cannot create {}", layout.partial.display()))?;
+            crate::pause_at("manifest");
+            let manifest = Manifest {
+                version: VERSION.into(),
+                config: config_toml.clone(),
+                chunk_size: settings.chunk_size.get(),
+                rows,
+                shard: shard_text.clone(),
+            };
+            files::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
+            settings.chunk_size.get()
+        }
     };
+    let unknown = remove_stray_temps(&layout.partial)?;
+    if !unknown.is_empty() {
+        eprintln!(
+            "rtw-scan: ignoring {} in {}: not made by rtw-scan (left as they are)",
+            unknown.join(", "),
+            layout.partial.display()
+        );
+    }
 
     let cs = chunk_size as u64;
     let chunks = rows.div_ceil(cs);
@@ -282,13 +273,113 @@ pub(crate) fn run_scan(
         metadata,
         META_CHUNK_WALL_TIME,
     )?;
-    std::fs::remove_dir_all(&layout.partial)
-        .with_context(|| format!("cannot remove {}", layout.partial.display()))?;
+    crate::pause_at("merged");
+    report_unknown(&layout.partial, &remove_partial(&layout.partial)?);
     Ok(RunStatus::Complete {
         samples: layout.samples,
         rows,
         computed,
     })
+}
+
+/// The unfinished run in `layout.partial` to resume, if there is one, with
+/// its manifest. Refuses (naming both sides) an unfinished run of another
+/// config, shard or rtw-scan version unless `force` (which discards it), and
+/// one of this very scan without `resume`. A `.partial` without a manifest
+/// holds no finished chunk of a run that can be resumed from it:
+/// `None` (chunks in it, left by a clean-up killed after the merge or by a
+/// lost manifest, are checked one by one like any other).
+fn unfinished_run(
+    layout: &Layout,
+    settings: &RunSettings,
+    cfg: &ScanConfig,
+    rows: u64,
+    shard: Option<&str>,
+) -> Result<Option<Manifest>> {
+    let partial = &layout.partial;
+    if !layout.manifest().exists() {
+        if partial.is_dir() && !chunks_on_disk(partial)?.is_empty() && !settings.resume {
+            if !settings.force {
+                bail!(
+                    "{} holds finished chunks of an unfinished run: pass --resume to finish it, or \
+                     --force to discard it",
+                    partial.display()
+                );
+            }
+            report_unknown(partial, &remove_partial(partial)?);
+        }
+        return Ok(None);
+    }
+    let m = read_manifest(&layout.manifest())
+        .map_err(|e| e.context("restore it, or pass --force to discard the unfinished run"));
+    let refusal = match &m {
+        Err(_) => None,
+        Ok(m) if m.config != cfg.to_toml() || m.rows != rows || m.shard.as_deref() != shard => {
+            Some(anyhow!(
+                "cannot {} in {}: its unfinished run was started with a different config or \
+                 --shard split: {}. Choose another --out, or pass --force to discard it",
+                if settings.resume { "resume" } else { "start" },
+                partial.display(),
+                describe_mismatch(m, cfg, rows, shard)
+            ))
+        }
+        Ok(m) => metadata::refuse_mixed_versions(
+            &format!(
+                "cannot resume the unfinished run in {}: its chunks and this run",
+                partial.display()
+            ),
+            ("its chunks", &m.version),
+            ("this run", VERSION),
+            &format!(
+                "one result never mixes two versions' rows: finish it with rtw-scan {}, or pass \
+                 --force to discard it and compute the scan anew",
+                m.version
+            ),
+        )
+        .err(),
+    };
+    if settings.force && (m.is_err() || refusal.is_some()) {
+        report_unknown(partial, &remove_partial(partial)?);
+        return Ok(None);
+    }
+    let m = m?;
+    if let Some(e) = refusal {
+        return Err(e);
+    }
+    if !settings.resume {
+        bail!(
+            "{} holds an unfinished run of this scan: pass --resume to finish it, or delete it to start over",
+            partial.display()
+        );
+    }
+    check_chunk_size(m.chunk_size)
+        .with_context(|| format!("{} is corrupt", layout.manifest().display()))?;
+    Ok(Some(m))
+}
+
+/// Says which entries of `partial` rtw-scan left in place, not having made them.
+fn report_unknown(partial: &std::path::Path, unknown: &[String]) {
+    if !unknown.is_empty() {
+        eprintln!(
+            "rtw-scan: kept {}: it holds {}, not made by rtw-scan",
+            partial.display(),
+            unknown.join(", ")
+        );
+    }
+}
+
+/// Most rows per chunk (`--chunk-size`): a chunk's rows are held in memory
+/// until it is written (about 400 bytes a row: 26 MB at the limit), so a
+/// huge size would allocate gigabytes. 256 (the default) already makes the
+/// chunk files' overhead small.
+pub(crate) const MAX_CHUNK_SIZE: usize = 65_536;
+
+/// Refuses a chunk size outside `1..=MAX_CHUNK_SIZE`.
+pub(crate) fn check_chunk_size(n: usize) -> Result<()> {
+    if !(1..=MAX_CHUNK_SIZE).contains(&n) {
+        bail!("--chunk-size: {n} is invalid: must be in 1..={MAX_CHUNK_SIZE} (rows per chunk)");
+    }
+    Ok(())
 }
 
 /// A pool of `threads` workers (`None`: one per core).
@@ -392,14 +483,19 @@ fn compute_chunks(
     let put = |c: u64, row: Row| -> Option<Vec<Row>> {
         let ids = (todo.range)(c);
         let mut open = open.lock().unwrap_or_else(|e| e.into_inner());
+        // Grown as the rows come (they come about in order), never
+        // allocated for the whole chunk ahead of them.
         let chunk = open.entry(c).or_insert_with(|| OpenChunk {
-            rows: (ids.start..ids.end).map(|_| None).collect(),
+            rows: Vec::new(),
             filled: 0,
         });
         let at = (row.sample_id - ids.start) as usize;
+        if chunk.rows.len() <= at {
+            chunk.rows.resize_with(at + 1, || None);
+        }
         chunk.rows[at] = Some(row);
         chunk.filled += 1;
-        if chunk.filled < chunk.rows.len() {
+        if (chunk.filled as u64) < ids.end - ids.start {
             return None;
         }
         let chunk = open.remove(&c).expect("the chunk just filled");
@@ -686,6 +782,20 @@ t_max = 2.0
         assert!(panicked > 0, "the seed should draw some rho > 4.75");
     }
 
+    /// A run of `cfg` into `dir` on one thread in chunks of 4 rows, stopped
+    /// (as by Ctrl-C) once `n` samples have been taken.
+    fn stopped_after(cfg: &ScanConfig, dir: &Path, n: u64) -> RunStatus {
+        let stop = AtomicBool::new(false);
+        let taken = AtomicU64::new(0);
+        let stopping = |p: &Params, o: &Options| {
+            if taken.fetch_add(1, Ordering::SeqCst) >= n {
+                stop.store(true, Ordering::SeqCst);
+            }
+            fake_sim(p, o)
+        };
+        run_scan(cfg, &settings(dir, 1, 4), &stopping, &stop).unwrap()
+    }
+
     #[test]
     fn interrupted_run_resumes_to_the_same_rows() {
         let cfg = parse(CFG).unwrap();
@@ -694,16 +804,8 @@ t_max = 2.0
         let never = AtomicBool::new(false);
         run_scan(&cfg, &settings(full.path(), 2, 4), &fake_sim, &never).unwrap();
 
-        // Stop after 3 samples: the chunk in progress is dropped.
-        let stop = AtomicBool::new(false);
-        let n = AtomicU64::new(0);
-        let stopping = |p: &Params, o: &Options| {
-            if n.fetch_add(1, Ordering::SeqCst) >= 6 {
-                stop.store(true, Ordering::SeqCst);
-            }
-            fake_sim(p, o)
-        };
-        let st = run_scan(&cfg, &settings(part.path(), 1, 4), &stopping, &stop).unwrap();
+        // Stop after 7 samples: the chunk in progress is dropped.
+        let st = stopped_after(&cfg, part.path(), 6);
         let RunStatus::Interrupted {
             chunks_done,
             chunks,
@@ -746,6 +848,46 @@ t_max = 2.0
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
         );
+    }
+
+    #[test]
+    fn a_chunk_of_another_rtw_scan_version_is_computed_again() {
+        // A chunk that says another version (copied in, or kept under a lost
+        // manifest) is not mixed into this version's file.
+        let cfg = parse(CFG).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        stopped_after(&cfg, dir.path(), 10);
+        let chunk = dir.path().join(".partial/chunk-00000.parquet");
+        let input = parquet::open(&chunk, 64).unwrap();
+        let meta = input
+            .metadata
+            .iter()
+            .filter(|(k, _)| k.as_str() != metadata::META_CONTENT_HASH)
+            .map(|(k, v)| {
+                let v = if k == metadata::META_VERSION {
+                    "0.0.9"
+                } else {
+                    v
+                };
+                metadata::kv(k, v.to_string())
+            })
+            .collect();
+        let batches: Vec<RecordBatch> = input.reader.map(|b| b.unwrap()).collect();
+        parquet::write_file(&chunk, &batches[0], meta).unwrap();
+        let kept = chunks_on_disk(&dir.path().join(".partial")).unwrap().len() as u64;
+        assert!(kept >= 2, "{kept} chunks");
+        let mut s = settings(dir.path(), 2, 4);
+        s.resume = true;
+        let st = run_scan(&cfg, &s, &fake_sim, &never).unwrap();
+        // Chunk 0's 4 rows are computed again with the others not kept.
+        let computed = 37 - 4 * (kept - 1);
+        assert!(
+            matches!(st, RunStatus::Complete { computed: c, .. } if c == computed),
+            "{st:?}, expected {computed} computed"
+        );
+        let file = parquet::open(&dir.path().join("samples.parquet"), 1).unwrap();
+        assert_eq!(file.metadata[metadata::META_VERSION], VERSION);
     }
 
     /// The scan's chunks of 4 rows of CFG's 37 samples, every one to do, on

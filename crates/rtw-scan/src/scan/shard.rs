@@ -216,15 +216,12 @@ pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
                 describe(p)
             );
         }
-        if p.version != first.version {
-            bail!(
-                "the parts come from different rtw-scan versions: {} from {}, {} from {}; rerun one of them",
-                first.name(),
-                first.version,
-                p.name(),
-                p.version
-            );
-        }
+        metadata::refuse_mixed_versions(
+            "the parts",
+            (&first.name(), &first.version),
+            (&p.name(), &p.version),
+            "rerun one of them",
+        )?;
         if p.shard.count != first.shard.count {
             bail!(
                 "the parts split the scan differently: {} is shard {}, {} is shard {}",
