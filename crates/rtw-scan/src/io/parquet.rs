@@ -9,7 +9,7 @@
 use crate::io::content_hash::ContentHash;
 use crate::io::files::{Temp, temp_file_for};
 use crate::io::metadata::{META_CONTENT_HASH, kv};
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use arrow_schema::{Schema, SchemaRef};
 use parquet::arrow::ArrowWriter;
@@ -152,6 +152,13 @@ pub struct VerifiedReader {
     done: bool,
 }
 
+impl VerifiedReader {
+    /// The schema of the file's batches.
+    pub fn schema(&self) -> arrow_schema::SchemaRef {
+        arrow_array::RecordBatchReader::schema(&self.inner)
+    }
+}
+
 impl Iterator for VerifiedReader {
     type Item = Result<RecordBatch>;
 
@@ -195,6 +202,14 @@ impl Iterator for VerifiedReader {
 /// Opens a Parquet file for reading, with errors naming the path; its
 /// batches are checked against its content hash ([`VerifiedReader`]).
 pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
+    // Told from the path first: a FIFO or device never ends (and opening a
+    // FIFO waits for a writer); a Parquet file is read by seeking.
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        bail!(
+            "{} is not a regular file: not a Parquet file",
+            path.display()
+        );
+    }
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
         .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
