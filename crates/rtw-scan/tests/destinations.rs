@@ -81,7 +81,27 @@ fn another_results_companion_file_is_not_taken_for_an_earlier_output() {
     let err = stderr(&o);
     assert!(!o.status.success(), "{err}");
     assert!(err.contains("--out (steps file)"), "{err}");
+    // A diagram's special-points file is not a diagram's branch file.
+    let diagram = |out: &Path| {
+        let flags = ["continuation", "--from", "0.145", "--to", "0.155", "--out"];
+        run(&[&flags[..], &[s(out)]].concat())
+    };
+    let d = dir.path().join("d.parquet");
+    let o = diagram(&d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let special = dir.path().join("d.special.parquet");
+    let before = std::fs::read(&special).unwrap();
+    let o = diagram(&special);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("another file of a continuation diagram") && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&special).unwrap(), before);
     // Its own earlier output may be replaced.
+    let o = diagram(&d);
+    assert!(o.status.success(), "{}", stderr(&o));
     let o = tiny_sweep(&out, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     // A Markdown file where the summary goes, beside an earlier sweep, is

@@ -127,9 +127,11 @@ fn check_destination_of(
         Err(_) => "a file that is not a Parquet file".to_string(),
         Ok(input) => match FileKind::of(&input.metadata) {
             Some(k) if k == kind => match schema {
-                Some(s) if names(s) != names(&input.reader.schema()) => format!(
-                    "another file of {} (its columns are not those of this file: the companion \
-                     of another output, such as a steps or special-points file)",
+                Some(s) if names(s) != names(&input.reader.schema()) => bail!(
+                    "{flag} {shown}: holds another file of {} (its columns are not those of \
+                     this one: another output's companion, such as a steps or special-points \
+                     file): refusing to write over it; choose another file, or pass --force to \
+                     replace it",
                     k.describe()
                 ),
                 _ => return Ok(()),

@@ -60,8 +60,8 @@ pub(crate) fn check_free_space(rows: u64, out: &Path, partial: &Path) -> Result<
     let available = free.saturating_add(bytes_kept(partial)?);
     if peak > available {
         bail!(
-            "this scan needs about {} on disk ({rows} rows × {BYTES_PER_ROW} bytes per row, the size \
-             of results/paper/samples.parquet's rows, twice: its chunks and the finished file exist \
+            "this scan needs about {} on disk ({rows} rows × {BYTES_PER_ROW} bytes, the bytes per row \
+             of results/paper/samples.parquet, twice: its chunks and the finished file exist \
              together while it is written), but the filesystem of {} has {} free: choose an --out on \
              a larger disk, fewer samples, or --shard; pass --force to start anyway",
             human_bytes(peak as f64),
