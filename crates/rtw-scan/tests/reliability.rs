@@ -390,16 +390,8 @@ fn absurd_sizes_are_refused_or_start_at_once_and_stop_on_the_first_ctrl_c() {
     assert_eq!(st.code(), Some(130));
     // Resuming it checks the chunks on disk without a pass over the ids.
     let mut child = bin()
-        .args([
-            "run",
-            &cfg,
-            "--out",
-            s(&out),
-            "--fake-sim",
-            "0",
-            "--resume",
-            "--force",
-        ])
+        .args(["run", &cfg, "--out", s(&out), "--fake-sim", "0", "--resume"])
+        .arg("--force")
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
