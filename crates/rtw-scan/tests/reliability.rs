@@ -12,26 +12,6 @@ use std::path::Path;
 use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_string()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// `run CONFIG --out OUT --fake-sim 0` plus `extra`.
-fn fake_run(config: &str, out: &Path, extra: &[&str]) -> std::process::Output {
-    run(&[&["run", config, "--out", s(out), "--fake-sim", "0"], extra].concat())
-}
-
-fn fake_run_ok(config: &str, out: &Path, extra: &[&str]) {
-    let o = fake_run(config, out, extra);
-    assert!(o.status.success(), "{}", stderr(&o));
-}
-
 /// Files in `dir` whose name ends with `.tmp` (temporary files left behind).
 fn temp_files(dir: &Path) -> Vec<String> {
     std::fs::read_dir(dir)
@@ -385,8 +365,9 @@ fn absurd_sizes_are_refused_or_start_at_once_and_stop_on_the_first_ctrl_c() {
         assert!(!err.contains("memory allocation"), "{err}");
         assert!(t0.elapsed() < Duration::from_secs(10));
     }
-    // A trillion samples: accepted, and the first sample runs at once (no
-    // pass over the sample ids first); the first Ctrl-C stops it.
+    // A trillion samples: accepted with --force (its output would not fit
+    // on the disk), and the first sample runs at once (no pass over the
+    // sample ids first); the first Ctrl-C stops it.
     let cfg = write(
         dir.path(),
         "huge.toml",
@@ -394,7 +375,7 @@ fn absurd_sizes_are_refused_or_start_at_once_and_stop_on_the_first_ctrl_c() {
     );
     let mut child = bin()
         .args(["run", &cfg, "--out", s(&out), "--fake-sim", "0"])
-        .args(["--chunk-size", "1000"])
+        .args(["--chunk-size", "1000", "--force"])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
@@ -410,6 +391,7 @@ fn absurd_sizes_are_refused_or_start_at_once_and_stop_on_the_first_ctrl_c() {
     // Resuming it checks the chunks on disk without a pass over the ids.
     let mut child = bin()
         .args(["run", &cfg, "--out", s(&out), "--fake-sim", "0", "--resume"])
+        .arg("--force")
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()

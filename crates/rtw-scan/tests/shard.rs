@@ -303,6 +303,36 @@ fn a_missing_part_is_named_with_its_ids() {
 }
 
 #[test]
+fn a_long_list_of_missing_parts_is_counted_and_summarised_at_once() {
+    // One part of a 10^12-way split (and of a 10^6-way one): merge counts
+    // the missing parts without listing them all, names the first few, and
+    // says how many more.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(
+        dir.path(),
+        "c.toml",
+        &paper_like(1, 5).replacen("samples = 1", "samples = 1000000000000", 1),
+    );
+    for n in ["1000000", "1000000000000"] {
+        let out = dir.path().join(format!("o{n}"));
+        run_shard(&cfg, &out, &format!("1/{n}"), &[]);
+        let missing = (n.parse::<u64>().unwrap() - 1).to_string();
+        let t0 = Instant::now();
+        let o = run_err(
+            &["merge", out.to_str().unwrap()],
+            &[
+                &format!("{missing} of {n} shards missing"),
+                &format!("part-0.parquet (shard 0/{n}"),
+                &format!("part-2.parquet (shard 2/{n}"),
+                "more",
+            ],
+        );
+        assert!(t0.elapsed() < Duration::from_secs(10));
+        assert!(stderr(&o).len() < 2000, "{}", stderr(&o).len());
+    }
+}
+
+#[test]
 fn parts_from_different_configs_or_versions_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let a = write_config(dir.path(), "a.toml", &paper_like(40, 5));

@@ -12,7 +12,8 @@ use crate::analysis::clusters::{
 };
 use crate::config::variant::Variant;
 use crate::config::{self, ScanConfig};
-use crate::io::files::write_atomic;
+use crate::io::destination::SUMMARY_MAX_BYTES;
+use crate::io::files::{self, write_atomic};
 use crate::io::metadata::{META_CONFIG, META_VERSION, META_WALL_TIME};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files::{self, f64_column, i64_column, label_column};
@@ -308,32 +309,61 @@ pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
     })
 }
 
-/// Refuses to let the summary of `samples` replace `dir/summary.json` and
-/// `summary.md` when they are the summary of another file (the summary of a
-/// part beside the merged scan's, say), or are not rtw-scan summaries.
-pub(crate) fn check_summary_target(dir: &Path, samples: &Path) -> Result<()> {
-    let json = dir.join("summary.json");
-    if !json.exists() {
-        return Ok(());
+/// The scan file a summary names, if rtw-scan wrote it: `summary.json`'s
+/// `file` (in an object that also has `version` and `outcomes`), or
+/// `summary.md`'s `- file: `...`` line under its `# rtw-scan summary:`
+/// title. These are what every summary rtw-scan writes carries; a file
+/// without them is not one of its summaries.
+fn summary_of(name: &str, text: &str) -> Option<String> {
+    if name.ends_with(".json") {
+        let v = serde_json::from_str::<serde_json::Value>(text).ok()?;
+        (v.get("version").is_some() && v.get("outcomes").is_some())
+            .then(|| v.get("file")?.as_str().map(str::to_string))
+            .flatten()
+    } else {
+        let mut lines = text.lines();
+        lines.next()?.strip_prefix("# rtw-scan summary: ")?;
+        lines.find_map(|l| {
+            l.strip_prefix("- file: `")?
+                .strip_suffix('`')
+                .map(str::to_string)
+        })
     }
-    let of = std::fs::read_to_string(&json)
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v.get("file").and_then(|f| f.as_str()).map(str::to_string));
-    let name = |p: &Path| p.file_name().map(|n| n.to_os_string());
-    match of {
-        Some(f) if name(Path::new(&f)) == name(samples) => Ok(()),
-        Some(f) => bail!(
-            "{} is the summary of {f}, not of {}: writing this one would replace it; pass --force to \
-             replace it",
-            json.display(),
-            samples.display()
-        ),
-        None => bail!(
-            "{} is not an rtw-scan summary: refusing to replace it; pass --force to replace it",
-            json.display()
-        ),
+}
+
+/// Refuses to let the summary of `samples` replace `dir/summary.json` or
+/// `dir/summary.md`: always when one is a symlink or not a regular file;
+/// unless `force`, when one is the summary of another file (the summary of
+/// a part beside the merged scan's, say) or is not an rtw-scan summary
+/// ([`summary_of`]: a file a person put there).
+pub(crate) fn check_summary_target(dir: &Path, samples: &Path, force: bool) -> Result<()> {
+    for name in ["summary.json", "summary.md"] {
+        let path = dir.join(name);
+        files::refuse_special(&path, "")?;
+        if force || !path.exists() {
+            continue;
+        }
+        let of = files::read_limited(&path, "summary", SUMMARY_MAX_BYTES)
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok())
+            .and_then(|t| summary_of(name, &t));
+        let file_name = |p: &Path| p.file_name().map(|n| n.to_os_string());
+        match of {
+            Some(f) if file_name(Path::new(&f)) == file_name(samples) => {}
+            Some(f) => bail!(
+                "{} is the summary of {f}, not of {}: writing this one would replace it; pass \
+                 --force to replace it",
+                path.display(),
+                samples.display()
+            ),
+            None => bail!(
+                "{} is not an rtw-scan summary (rtw-scan did not write it): refusing to replace \
+                 it; move it away, or pass --force to replace it",
+                path.display()
+            ),
+        }
     }
+    Ok(())
 }
 
 /// Writes `summary.json` and `summary.md` into `dir`.

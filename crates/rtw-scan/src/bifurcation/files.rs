@@ -5,12 +5,13 @@
 
 use crate::bifurcation::sweep::{LABELS, PointRow, StepRow, Sweep};
 use crate::config::variant::Variant;
+use crate::io::destination::{self, Output};
 use crate::io::metadata::{
     FileKind, META_CYCLE, META_OPTIONS, META_PARAM, META_PARAMS, META_RECORD, META_TRANSIENT,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
 };
+use crate::io::parquet;
 use crate::io::table::{self, Column, Get, column};
-use crate::io::{destination, parquet};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::Result;
 use arrow_array::RecordBatch;
@@ -298,8 +299,22 @@ pub(crate) fn write(
 /// `out`.
 pub(crate) fn check_outputs(out: &Path, force: bool) -> Result<()> {
     let files_ = [
-        (out.to_path_buf(), "--out"),
-        (steps_path(out), "--out (steps file)"),
+        Output {
+            path: out.to_path_buf(),
+            flag: "--out",
+            schema: points_schema(),
+        },
+        Output {
+            path: steps_path(out),
+            flag: "--out (steps file)",
+            schema: steps_schema(),
+        },
     ];
-    destination::check_outputs(out, &files_, FileKind::Bifurcation, "a sweep", force)
+    // A sweep's summary starts "N values of PARAM from ...".
+    let ours = |first: &str| {
+        first
+            .split_once(" values of ")
+            .is_some_and(|(n, _)| n.parse::<usize>().is_ok())
+    };
+    destination::check_outputs(out, &files_, FileKind::Bifurcation, "a sweep", ours, force)
 }

@@ -39,7 +39,8 @@ pub(super) struct SummaryArgs {
     /// Print the summary as JSON (what summary.json holds) instead of Markdown.
     #[arg(long)]
     json: bool,
-    /// Write summary.json and summary.md even when they are another file's summary.
+    /// Write summary.json and summary.md even when they are another file's summary or not rtw-scan's
+    /// (never over a symlink or a special file).
     #[arg(long)]
     force: bool,
 }
@@ -90,9 +91,7 @@ pub(super) fn cmd_summary(a: SummaryArgs) -> Result<ExitCode> {
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    if !a.force {
-        report::check_summary_target(dir, &a.samples)?;
-    }
+    report::check_summary_target(dir, &a.samples, a.force)?;
     let summary = report::summarize(&a.samples, a.k.map(NonZeroUsize::get))?;
     report::write_summary(dir, &summary)?;
     if a.json {

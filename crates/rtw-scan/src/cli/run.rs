@@ -4,9 +4,12 @@ use super::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::analysis::report;
 use crate::config::{self, ScanConfig};
 use crate::hash::fnv1a64;
+use crate::io::files;
+use crate::scan::checkpoint::Layout;
 use crate::scan::progress::ProgressMode;
 use crate::scan::run::{self, RunSettings, RunStatus};
 use crate::scan::shard::{self, Shard};
+use crate::scan::space;
 use anyhow::{Result, anyhow};
 use clap::Args;
 use std::num::NonZeroUsize;
@@ -39,7 +42,8 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "K/N")]
     shard: Option<Shard>,
     /// Write even into a directory that holds another scan's results (another config, another --shard
-    /// split) or its unfinished run, replacing them.
+    /// split), its unfinished run or summaries rtw-scan did not write, replacing them; start even when
+    /// the output may not fit on the disk. Never writes through a symlink or over a special file.
     #[arg(long)]
     force: bool,
     /// Print no progress (errors and the interruption notice still go to stderr).
@@ -58,7 +62,8 @@ pub(super) struct RunArgs {
 pub(super) struct MergeArgs {
     /// The directory holding part-0.parquet … part-(N-1).parquet.
     dir: PathBuf,
-    /// Replace a DIR/samples.parquet of another scan.
+    /// Replace a DIR/samples.parquet of another scan, or summaries that are not its own (never a
+    /// symlink or a special file).
     #[arg(long)]
     force: bool,
     /// Print nothing on stderr but errors.
@@ -103,6 +108,7 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,
     };
+    check_run_outputs(&cfg, &out, a.shard, a.force)?;
     GRACEFUL.store(true, Ordering::SeqCst);
     let settings = RunSettings {
         out_dir: out.clone(),
@@ -126,6 +132,29 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     }
     let status = run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP)?;
     finish_run(&a, &out, status)
+}
+
+/// Before any work: the files a run writes (its rows, and for a whole scan
+/// `summary.json` and `summary.md`) are not symlinks or special files, the
+/// summaries there are rtw-scan's own, and the output fits on the disk
+/// (these two unless `force`).
+fn check_run_outputs(
+    cfg: &ScanConfig,
+    out: &Path,
+    shard: Option<Shard>,
+    force: bool,
+) -> Result<()> {
+    let layout = Layout::new(out, shard);
+    files::refuse_special(&layout.samples, "--out")?;
+    if shard.is_none() {
+        report::check_summary_target(out, &layout.samples, force)?;
+    }
+    if !force {
+        let total = cfg.total_rows()?;
+        let ids = shard.map_or(Ok(0..total), |s| s.ids(total))?;
+        space::check_free_space(ids.end - ids.start, out, &layout.partial)?;
+    }
+    Ok(())
 }
 
 /// What a run prints and returns once it has ended.
@@ -185,6 +214,8 @@ fn write_and_print_summary(dir: &Path, samples: &Path) -> Result<ExitCode> {
 }
 
 pub(super) fn cmd_merge(a: MergeArgs) -> Result<ExitCode> {
+    files::refuse_special(&a.dir.join("samples.parquet"), "")?;
+    report::check_summary_target(&a.dir, &a.dir.join("samples.parquet"), a.force)?;
     let merged = shard::merge_parts(&a.dir, a.force)?;
     if !a.quiet {
         eprintln!(

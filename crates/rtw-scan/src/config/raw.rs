@@ -1,15 +1,15 @@
 //! The lowest layer of a config: a file read as UTF-8 text, the text as a
 //! TOML table, a table deserialized with every error naming its key path.
 
-use anyhow::{Context, Result, anyhow};
+use crate::io::files::{CONFIG_MAX_BYTES, read_limited};
+use anyhow::{Result, anyhow};
 use serde::Deserialize;
 use std::path::Path;
 
-/// Reads a UTF-8 text file, with errors naming what it is (`config`,
-/// `variant`) and the path.
+/// Reads a UTF-8 text file of at most [`CONFIG_MAX_BYTES`], with errors
+/// naming what it is (`config`, `variant`) and the path.
 pub(crate) fn read_text(path: &Path, what: &str) -> Result<String> {
-    let bytes =
-        std::fs::read(path).with_context(|| format!("cannot read {what} {}", path.display()))?;
+    let bytes = read_limited(path, what, CONFIG_MAX_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         anyhow!(
             "{what} {} is not valid UTF-8 (invalid byte at offset {})",

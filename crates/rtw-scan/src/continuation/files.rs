@@ -5,7 +5,7 @@
 
 use super::{Continuation, Result2, critical, end_name, kind_name};
 use crate::config::variant::Variant;
-use crate::io::destination::{self, companion};
+use crate::io::destination::{self, Output, companion};
 use crate::io::metadata::{
     FileKind, META_CONT_CURVE, META_CONT_PARAM, META_CYCLE, META_OPTIONS, META_PARAMS,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
@@ -520,9 +520,30 @@ pub(crate) fn write(out: &Path, c: &Continuation, rows: &Rows, wall_time_s: f64)
 /// Refuses, unless `force`, to write over files that are not a diagram's.
 pub(crate) fn check_outputs(out: &Path, force: bool) -> Result<()> {
     let files_ = [
-        (out.to_path_buf(), "--out"),
-        (companion(out, "special"), "--out (special points file)"),
-        (companion(out, "curve"), "--out (curve file)"),
+        Output {
+            path: out.to_path_buf(),
+            flag: "--out",
+            schema: branch_schema(),
+        },
+        Output {
+            path: companion(out, "special"),
+            flag: "--out (special points file)",
+            schema: special_schema(),
+        },
+        Output {
+            path: companion(out, "curve"),
+            flag: "--out (curve file)",
+            schema: curve_schema(),
+        },
     ];
-    destination::check_outputs(out, &files_, FileKind::Continuation, "a diagram", force)
+    // A diagram's summary starts "Continuation in PARAM over ...".
+    let ours = |first: &str| first.starts_with("Continuation in ");
+    destination::check_outputs(
+        out,
+        &files_,
+        FileKind::Continuation,
+        "a diagram",
+        ours,
+        force,
+    )
 }

@@ -5,6 +5,7 @@ use crate::io::files;
 use crate::io::metadata::FileKind;
 use crate::io::parquet::open;
 use anyhow::{Result, bail};
+use arrow_schema::{Schema, SchemaRef};
 use std::path::{Path, PathBuf};
 
 /// A file beside a command's main output `out`: `NAME.WHAT.parquet`
@@ -23,43 +24,67 @@ pub(crate) fn summary_path(out: &Path) -> PathBuf {
     out.with_extension("md")
 }
 
-/// Refuses, unless `force`, to write a command's outputs: its Parquet
-/// `files` (each with the flag that names it in messages; the main output
-/// `out` first) over files that are not of `kind` ([`check_destination`]),
-/// or its summary [`summary_path`] over an `.md` that is not the summary of
-/// such output at `out` (one without `out` beside it); then removes stray
-/// temporary files of all of them. `what` names the output in messages
-/// (`a sweep`, `a diagram`).
+/// One output file of a command: its path, the flag that names it in
+/// messages, and the columns a file in its place must have to be this
+/// command's own earlier output (a sweep's per-value and steps files are of
+/// one kind, but neither may replace the other).
+pub(crate) struct Output<'a> {
+    pub(crate) path: PathBuf,
+    pub(crate) flag: &'a str,
+    pub(crate) schema: SchemaRef,
+}
+
+/// Refuses to write a command's outputs: always over a symlink or a file
+/// that is not a regular file; unless `force`, its Parquet `files_` (the
+/// main output `out` first) over files that are not its own earlier output
+/// ([`check_destination`], each with its columns), or its summary
+/// [`summary_path`] over an `.md` rtw-scan did not write (`ours` tells one
+/// from its first line, which this command writes in its own form); then
+/// removes stray temporary files of all of them. `what` names the output in
+/// messages (`a sweep`, `a diagram`).
 pub(crate) fn check_outputs(
     out: &Path,
-    files_: &[(PathBuf, &str)],
+    files_: &[Output],
     kind: FileKind,
     what: &str,
+    ours: fn(&str) -> bool,
     force: bool,
 ) -> Result<()> {
-    for (f, flag) in files_ {
-        check_destination(f, kind, &[], flag, force)?;
+    for f in files_ {
+        check_destination_of(&f.path, kind, Some(&f.schema), &[], f.flag, force)?;
     }
     let md = summary_path(out);
-    if !force && md.exists() && !out.exists() {
-        bail!(
-            "--out {}: {} exists and is not the summary of {what} there: refusing to replace it; \
-             choose another file, or pass --force",
-            out.display(),
-            md.display()
-        );
+    files::refuse_special(&md, "--out (summary)")?;
+    if !force && md.exists() {
+        let first = files::read_limited(&md, "summary", SUMMARY_MAX_BYTES)
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok())
+            .map(|t| t.lines().next().unwrap_or_default().to_string());
+        if !first.as_deref().is_some_and(ours) {
+            bail!(
+                "--out {}: {} exists and is not the summary of {what} (rtw-scan did not write it): \
+                 refusing to replace it; choose another file, or pass --force",
+                out.display(),
+                md.display()
+            );
+        }
     }
-    for f in files_.iter().map(|(f, _)| f).chain([&md]) {
+    for f in files_.iter().map(|f| &f.path).chain([&md]) {
         files::remove_stray_temps(f)?;
     }
     Ok(())
 }
 
-/// Refuses, unless `force`, to write a `kind` file at `dest` (given by the
-/// option `flag`) when `dest` is one of the command's `inputs`, or exists and
-/// is not a file of the same kind (another kind of rtw-scan file, another
-/// Parquet file, or not a Parquet file at all). A file of the same kind is
-/// the command's own earlier output and may be replaced.
+/// Most bytes of a summary (Markdown or JSON) read back to tell whose it is:
+/// rtw-scan's are a few kB.
+pub(crate) const SUMMARY_MAX_BYTES: u64 = 16_000_000;
+
+/// Refuses to write a `kind` file at `dest` (given by the option `flag`):
+/// always when `dest` is a symlink or not a regular file; unless `force`,
+/// when `dest` is one of the command's `inputs`, or exists and is not a file
+/// of the same kind (another kind of rtw-scan file, another Parquet file, or
+/// not a Parquet file at all). A file of the same kind is the command's own
+/// earlier output and may be replaced.
 pub(crate) fn check_destination(
     dest: &Path,
     kind: FileKind,
@@ -67,6 +92,20 @@ pub(crate) fn check_destination(
     flag: &str,
     force: bool,
 ) -> Result<()> {
+    check_destination_of(dest, kind, None, inputs, flag, force)
+}
+
+/// [`check_destination`], where a file of the same kind must also have the
+/// columns of `schema` (when given) to be the command's earlier output.
+fn check_destination_of(
+    dest: &Path,
+    kind: FileKind,
+    schema: Option<&SchemaRef>,
+    inputs: &[&Path],
+    flag: &str,
+    force: bool,
+) -> Result<()> {
+    files::refuse_special(dest, flag)?;
     if force || !dest.exists() {
         return Ok(());
     }
@@ -82,13 +121,21 @@ pub(crate) fn check_destination(
             input.display()
         );
     }
-    if dest.is_dir() {
-        bail!("{flag} {shown}: is a directory");
-    }
+    let names =
+        |s: &Schema| -> Vec<String> { s.fields().iter().map(|f| f.name().clone()).collect() };
     let found = match open(dest, 1) {
         Err(_) => "a file that is not a Parquet file".to_string(),
         Ok(input) => match FileKind::of(&input.metadata) {
-            Some(k) if k == kind => return Ok(()),
+            Some(k) if k == kind => match schema {
+                Some(s) if names(s) != names(&input.reader.schema()) => bail!(
+                    "{flag} {shown}: holds another file of {} (its columns are not those of \
+                     this one: another output's companion, such as a steps or special-points \
+                     file): refusing to write over it; choose another file, or pass --force to \
+                     replace it",
+                    k.describe()
+                ),
+                _ => return Ok(()),
+            },
             Some(k) => format!("{} (from its metadata)", k.describe()),
             None => "a Parquet file rtw-scan did not write".to_string(),
         },

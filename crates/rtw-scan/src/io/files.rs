@@ -1,15 +1,18 @@
 //! Files that appear whole or not at all: every result is written to a
 //! temporary file beside it, synced and renamed into place; the temporary
 //! files (and lock files) a process holds are known, so a signal that ends
-//! it at once can remove them.
+//! it at once can remove them. Nothing is written through a symlink or over
+//! something that is not a plain file ([`refuse_special`]), and the small
+//! files rtw-scan reads whole are read within a size limit ([`read_limited`]).
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
 
 /// A temporary file next to `dest` (same directory, so a rename moves it
 /// into place atomically), named `.NAME.XXXXXX.tmp`, with the usual
 /// permissions (0666 less the umask) rather than tempfile's 0600.
 pub(crate) fn temp_file_for(dest: &Path) -> Result<Temp> {
+    refuse_special(dest, "")?;
     let file = named_temp_for(dest)?;
     let guard = Registered::new(file.path().to_path_buf());
     Ok(Temp { file, guard })
@@ -25,6 +28,9 @@ pub(crate) struct Temp {
 impl Temp {
     pub(crate) fn persist(self, dest: &Path) -> Result<()> {
         let Temp { file, guard } = self;
+        // Checked again at the rename: what appeared at `dest` meanwhile
+        // (a symlink, a FIFO) is not replaced either.
+        refuse_special(dest, "")?;
         file.persist(dest)
             .with_context(|| format!("cannot move the finished file to {}", dest.display()))?;
         drop(guard);
@@ -127,4 +133,95 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         .with_context(|| format!("cannot write {}", path.display()))?;
     tmp.file.as_file().sync_all()?;
     tmp.persist(path)
+}
+
+/// What a non-regular file is, for messages.
+fn special_kind(ft: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if ft.is_fifo() {
+            return "a FIFO";
+        } else if ft.is_char_device() {
+            return "a character device";
+        } else if ft.is_block_device() {
+            return "a block device";
+        } else if ft.is_socket() {
+            return "a socket";
+        }
+    }
+    if ft.is_dir() {
+        "a directory"
+    } else {
+        "a special file"
+    }
+}
+
+/// Refuses to write at `dest` (given by the option `flag`, or `""`) when it
+/// is a symlink or exists and is not a regular file (a directory, a device,
+/// a FIFO, a socket). rtw-scan replaces only plain files, through a rename
+/// in their folder; `--force` never overrides this, since replacing a
+/// symlink or a device would destroy what it is, not a result.
+pub(crate) fn refuse_special(dest: &Path, flag: &str) -> Result<()> {
+    let named = if flag.is_empty() {
+        dest.display().to_string()
+    } else {
+        format!("{flag} {}", dest.display())
+    };
+    match std::fs::symlink_metadata(dest) {
+        Ok(m) if m.file_type().is_symlink() => bail!(
+            "{named}: is a symlink: rtw-scan never writes through a symlink nor replaces one, \
+             not even with --force; choose another file, or remove the link"
+        ),
+        Ok(m) if !m.is_file() => bail!(
+            "{named}: is not a regular file ({}): rtw-scan writes only plain files and never \
+             replaces anything else, not even with --force; choose another file",
+            special_kind(m.file_type())
+        ),
+        _ => Ok(()),
+    }
+}
+
+/// Most bytes of a config or variant file: the committed ones are under
+/// 2 kB, so a larger file is a mistake (`/dev/zero`, a data file).
+pub(crate) const CONFIG_MAX_BYTES: u64 = 1_000_000;
+
+/// Reads `path` (`what` names it in messages: `config`, `variant`) whole,
+/// refusing a file that is not a regular file (a device or FIFO never
+/// ends) or is larger than `limit` bytes, before reading it.
+pub(crate) fn read_limited(path: &Path, what: &str, limit: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let cannot = || format!("cannot read {what} {}", path.display());
+    // Told from the path first: opening a FIFO would wait for a writer.
+    let meta = std::fs::metadata(path).with_context(cannot)?;
+    let too_big = |len: u64| {
+        anyhow::anyhow!(
+            "cannot read {what} {}: it is {} ({len} bytes), and a {what} may be at most {}",
+            path.display(),
+            crate::io::trace::human_bytes(len as f64),
+            crate::io::trace::human_bytes(limit as f64)
+        )
+    };
+    if !meta.is_file() {
+        bail!(
+            "cannot read {what} {}: it is not a regular file ({}), and a {what} is read only \
+             from a plain file",
+            path.display(),
+            special_kind(meta.file_type())
+        );
+    }
+    if meta.len() > limit {
+        return Err(too_big(meta.len()));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .with_context(cannot)?
+        .take(limit + 1)
+        .read_to_end(&mut bytes)
+        .with_context(cannot)?;
+    // It grew while we read it.
+    if bytes.len() as u64 > limit {
+        return Err(too_big(bytes.len() as u64));
+    }
+    Ok(bytes)
 }

@@ -15,7 +15,7 @@ use crate::io::metadata::{
     KEYS_BEFORE_METADATA_HASH, META_CONFIG, META_CONFIG_HASH, META_CONTENT_HASH,
     META_METADATA_HASH, META_SEED, META_VARIANT, kv,
 };
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use arrow_schema::{Schema, SchemaRef};
 use parquet::arrow::ArrowWriter;
@@ -181,6 +181,13 @@ pub struct VerifiedReader {
     done: bool,
 }
 
+impl VerifiedReader {
+    /// The schema of the file's batches.
+    pub fn schema(&self) -> arrow_schema::SchemaRef {
+        arrow_array::RecordBatchReader::schema(&self.inner)
+    }
+}
+
 impl Iterator for VerifiedReader {
     type Item = Result<RecordBatch>;
 
@@ -295,6 +302,14 @@ fn check_metadata(path: &Path, meta: &BTreeMap<String, String>) -> Result<()> {
 /// metadata is checked at once ([`check_metadata`]), its batches against its
 /// content hash as they are read ([`VerifiedReader`]).
 pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
+    // Told from the path first: a FIFO or device never ends (and opening a
+    // FIFO waits for a writer); a Parquet file is read by seeking.
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        bail!(
+            "{} is not a regular file: not a Parquet file",
+            path.display()
+        );
+    }
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
         .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;

@@ -8,6 +8,7 @@ use crate::config::ScanConfig;
 use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files;
+use crate::io::files;
 use crate::scan::shard::{self, Shard};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::cast::AsArray;
@@ -219,13 +220,15 @@ pub(crate) fn refuse_other_results(
 }
 
 pub(crate) fn read_manifest(path: &Path) -> Result<Manifest> {
-    let text = std::fs::read_to_string(path).with_context(|| {
-        format!(
-            "cannot read {}: delete its directory to start over",
-            path.display()
-        )
-    })?;
-    serde_json::from_str(&text).with_context(|| format!("{} is corrupt", path.display()))
+    // The manifest holds the config and a few numbers.
+    let text =
+        files::read_limited(path, "manifest", 2 * files::CONFIG_MAX_BYTES).with_context(|| {
+            format!(
+                "cannot read {}: delete its directory to start over",
+                path.display()
+            )
+        })?;
+    serde_json::from_slice(&text).with_context(|| format!("{} is corrupt", path.display()))
 }
 
 /// Removes the temporary files a killed run left in `partial` (its own

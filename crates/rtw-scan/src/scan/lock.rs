@@ -1,6 +1,6 @@
 //! One writer per result: a lock file beside it.
 
-use crate::io::files::Registered;
+use crate::io::files::{self, Registered};
 use anyhow::{Context, Result, bail};
 use std::fs::File;
 use std::path::{Path, PathBuf};
@@ -28,17 +28,32 @@ impl Lock {
         use std::io::Write;
         let path = Self::path_for(dest);
         loop {
-            let mut file = std::fs::OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(false)
+            // A symlink or special file where the lock goes is refused, not
+            // followed: taking the lock truncates the file it opens.
+            files::refuse_special(&path, "the lock file")?;
+            let mut options = std::fs::OpenOptions::new();
+            options.read(true).write(true).create(true).truncate(false);
+            // ... and one made between that check and the open is not
+            // followed either.
+            #[cfg(unix)]
+            std::os::unix::fs::OpenOptionsExt::custom_flags(
+                &mut options,
+                rustix::fs::OFlags::NOFOLLOW.bits() as i32,
+            );
+            let mut file = options
                 .open(&path)
                 .with_context(|| format!("cannot create the lock file {}", path.display()))?;
+            if !file.metadata().is_ok_and(|m| m.is_file()) {
+                files::refuse_special(&path, "the lock file")?;
+                bail!("the lock file {}: is not a regular file", path.display());
+            }
             match file.try_lock() {
                 Ok(()) => {}
                 Err(std::fs::TryLockError::WouldBlock) => {
-                    let pid = std::fs::read_to_string(&path).unwrap_or_default();
+                    // A PID is a few bytes: read no more than that.
+                    let pid = files::read_limited(&path, "lock file", 64)
+                        .map(|b| String::from_utf8_lossy(&b).into_owned())
+                        .unwrap_or_default();
                     let pid = pid.trim();
                     let pid = if pid.is_empty() { "?" } else { pid };
                     bail!(
@@ -55,7 +70,23 @@ impl Lock {
             // happened between our open and our lock, we hold a file that is
             // no longer at `path`; try again with the one that is.
             if same_file(&file, &path) {
+                // What rtw-scan leaves there (after a kill) is a PID; a file
+                // holding anything else is not its lock, and is not emptied.
+                let mut held = Vec::new();
+                std::io::Read::read_to_end(&mut std::io::Read::take(&file, 65), &mut held)?;
+                if held.len() > 64
+                    || !held
+                        .iter()
+                        .all(|b| b.is_ascii_digit() || b.is_ascii_whitespace())
+                {
+                    bail!(
+                        "the lock file {} holds something other than a process id: rtw-scan did \
+                         not make it; move it away",
+                        path.display()
+                    );
+                }
                 file.set_len(0)?;
+                std::io::Seek::rewind(&mut file)?;
                 writeln!(file, "{}", std::process::id())?;
                 return Ok(Self {
                     _file: file,

@@ -11,6 +11,7 @@
 //! | `progress` | progress on stderr |
 //! | `panic` | a sample's panic caught as its message |
 //! | `lock` | one writer per result |
+//! | `space` | whether a scan's output fits on its disk |
 
 pub(crate) mod checkpoint;
 pub(crate) mod lock;
@@ -20,5 +21,6 @@ pub(crate) mod run;
 pub mod sample;
 pub(crate) mod shard;
 pub mod single;
+pub(crate) mod space;
 
 pub use run::scan_batch;

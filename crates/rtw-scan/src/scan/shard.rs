@@ -244,33 +244,42 @@ pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
         );
     }
     let n = first.shard.count;
-    let missing: Vec<String> = (0..n)
-        .filter(|k| !found.contains_key(k))
-        .map(|k| {
-            let shard = Shard { index: k, count: n };
-            let ids = shard.ids(total).expect("N <= total for a written part");
-            let unfinished = if dir.join(shard.partial_name()).exists() {
+    // Counted, not listed: a 10^12-way split with one part present has
+    // 10^12 - 1 missing. The first few are named, then how many more.
+    let present = found.range(..n).count() as u64;
+    let missing = n - present;
+    if missing > 0 {
+        const NAMED: usize = 5;
+        let named: Vec<String> = (0..n)
+            .filter(|k| !found.contains_key(k))
+            .take(NAMED)
+            .map(|k| {
+                let shard = Shard { index: k, count: n };
+                let ids = shard.ids(total).expect("N <= total for a written part");
+                let unfinished = if dir.join(shard.partial_name()).exists() {
+                    format!(
+                        ", unfinished: {} holds its finished chunks",
+                        shard.partial_name()
+                    )
+                } else {
+                    String::new()
+                };
                 format!(
-                    ", unfinished: {} holds its finished chunks",
-                    shard.partial_name()
+                    "{} (shard {shard}, sample_ids {}..{}{unfinished})",
+                    shard.part_name(),
+                    ids.start,
+                    ids.end - 1
                 )
-            } else {
-                String::new()
-            };
-            format!(
-                "{} (shard {shard}, sample_ids {}..{}{unfinished})",
-                shard.part_name(),
-                ids.start,
-                ids.end - 1
-            )
-        })
-        .collect();
-    if !missing.is_empty() {
+            })
+            .collect();
+        let more = match missing - named.len() as u64 {
+            0 => String::new(),
+            m => format!("; and {m} more"),
+        };
         bail!(
-            "{} of {n} shards missing in {}: {}; run each with `rtw-scan run CONFIG --shard K/{n} --out {} --resume`",
-            missing.len(),
+            "{missing} of {n} shards missing in {}: {}{more}; run each with `rtw-scan run CONFIG --shard K/{n} --out {} --resume`",
             dir.display(),
-            missing.join("; "),
+            named.join("; "),
             dir.display()
         );
     }

@@ -63,6 +63,27 @@ pub fn run_err(args: &[&str], needles: &[&str]) -> Output {
     out
 }
 
+/// Writes `text` to `dir/name` and returns the path as a string.
+pub fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+pub fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// `run CONFIG --out OUT --fake-sim 0` plus `extra`.
+pub fn fake_run(config: &str, out: &Path, extra: &[&str]) -> Output {
+    run(&[&["run", config, "--out", s(out), "--fake-sim", "0"], extra].concat())
+}
+
+pub fn fake_run_ok(config: &str, out: &Path, extra: &[&str]) {
+    let o = fake_run(config, out, extra);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
