@@ -23,7 +23,7 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = super::positive)]
     threads: Option<NonZeroUsize>,
     /// Layer a model variant file (configs/variants/*.toml: name, description, [simulation]) over the
     /// config's [simulation] table; the scan is named CONFIG-NAME+VARIANT-NAME.
@@ -46,7 +46,8 @@ pub(super) struct RunArgs {
     #[arg(long)]
     quiet: bool,
     /// Rows per chunk and row group (a resumed run keeps its own).
-    #[arg(long, hide = true, value_name = "N", default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
+    #[arg(long, hide = true, value_name = "N", value_parser = super::positive,
+          default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
     /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
     #[cfg(feature = "fake-sim")]
