@@ -930,18 +930,10 @@ fn refusals_name_the_field_and_range_with_numbers_as_written() {
         assert!(err.contains(needle), "{args:?}: no {needle:?} in:\n{err}");
         assert!(!err.contains("non-zero type"), "{err}");
     }
-    let base = [
-        "simulate",
-        "--rho",
-        "2.5",
-        "--alpha",
-        "0.125",
-        "--fn",
-        "3.269",
-        "--zeta",
-        "0.0514",
-        "--fake-sim",
-    ];
+    // Fig. 7(a) but the length, which some cases set.
+    let base: Vec<&str> = "simulate --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --fake-sim"
+        .split(' ')
+        .collect();
     let with = |extra: &[&'static str]| {
         let length: &[&str] = if extra.contains(&"--length") {
             &[]
@@ -1007,6 +999,23 @@ fn refusals_name_the_field_and_range_with_numbers_as_written() {
     );
 }
 
+/// A finished fake scan of `paper_like(samples, seed)` in `dir/scan`; returns that directory.
+fn fake_scan(dir: &Path, samples: u64, seed: u64) -> std::path::PathBuf {
+    let cfg = write_config(dir, "c.toml", &paper_like(samples, seed));
+    let out = dir.join("scan");
+    let args = [
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+        "--quiet",
+    ];
+    run_ok(&args);
+    out
+}
+
 /// `src` rewritten as another tool would: strings as large strings, the
 /// label as a dictionary of `UInt32` keys over large strings (polars),
 /// compressed with `codec` (pyarrow's default is snappy), the key-value
@@ -1061,17 +1070,7 @@ fn rewrite_as_another_tool(src: &Path, dest: &Path, codec: parquet::basic::Compr
 fn parquet_files_rewritten_by_other_tools_are_read() {
     use parquet::basic::{Compression, GzipLevel};
     let dir = tempfile::tempdir().unwrap();
-    let cfg = write_config(dir.path(), "c.toml", &paper_like(60, 5));
-    let out = dir.path().join("scan");
-    run_ok(&[
-        "run",
-        &cfg,
-        "--out",
-        out.to_str().unwrap(),
-        "--fake-sim",
-        "0",
-        "--quiet",
-    ]);
+    let out = fake_scan(dir.path(), 60, 5);
     let summary = |f: &Path| {
         let o = run_ok(&["summary", f.to_str().unwrap(), "--json"]);
         let mut v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
