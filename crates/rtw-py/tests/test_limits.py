@@ -92,5 +92,9 @@ def test_keyword_errors_name_the_key_and_range_with_numbers_as_written() -> None
         for n in needles:
             assert n in str(e.value), str(e.value)
         assert "00000000" not in str(e.value), str(e.value)
+    # Python's own names, not the command line's.
+    with pytest.raises(ValueError) as e:
+        rtw.scan(ROOT / "configs" / "smoke.toml", threads=10**6, progress=False)
+    assert str(e.value).startswith("threads: 1000000 is invalid: must be at most"), str(e.value)
     with pytest.raises(ValueError, match="progress: 'yes' is invalid"):
         rtw.scan(ROOT / "configs" / "smoke.toml", progress="yes")  # type: ignore[arg-type]

@@ -99,7 +99,7 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     let cfg = config::layers::load_layered(&a.config, a.variant.as_deref(), &a.set)?;
-    run::check_threads(a.threads)?;
+    run::check_threads(a.threads, "--threads")?;
     let out = match a.out.clone() {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,

@@ -66,13 +66,14 @@ pub(crate) const DEFAULT_CHUNK_SIZE: usize = 256;
 /// would start threads until the system stops it.
 pub(crate) const MAX_THREADS_PER_CORE: usize = 4;
 
-/// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores.
-pub(crate) fn check_threads(threads: Option<NonZeroUsize>) -> Result<()> {
+/// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores,
+/// naming it as the caller spells it (`--threads`, Python's `threads`).
+pub(crate) fn check_threads(threads: Option<NonZeroUsize>, name: &str) -> Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, NonZeroUsize::get);
     let cap = MAX_THREADS_PER_CORE * cores;
     match threads {
         Some(n) if n.get() > cap => bail!(
-            "--threads: {n} is invalid: must be at most {cap} ({MAX_THREADS_PER_CORE} per core, {cores} cores)"
+            "{name}: {n} is invalid: must be at most {cap} ({MAX_THREADS_PER_CORE} per core, {cores} cores)"
         ),
         _ => Ok(()),
     }
@@ -131,7 +132,7 @@ pub(crate) fn run_scan(
     let rows = ids.end - ids.start;
     let shard_text = settings.shard.map(|s| s.to_string());
     let config_toml = cfg.to_toml();
-    check_threads(settings.threads)?;
+    check_threads(settings.threads, "--threads")?;
     let out = &settings.out_dir;
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output directory {}", out.display()))?;
@@ -496,7 +497,7 @@ pub fn scan_batch(
              rows to DIR/samples.parquet, and read that file (polars.scan_parquet reads it lazily)"
         );
     }
-    check_threads(threads)?;
+    check_threads(threads, "threads")?;
     let pool = worker_pool(threads)?;
     let started = Instant::now();
     let progress = Progress::new(total, ProgressMode::Quiet);
