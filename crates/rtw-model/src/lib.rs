@@ -31,5 +31,5 @@ pub mod run;
 
 pub use options::{Method, Options};
 pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
-pub use params::{Normalization, Param, ParamError, Params, Physical};
+pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
 pub use run::simulate::{simulate, simulate_traced};

@@ -274,6 +274,32 @@ pub struct Energy {
     pub balance_error: f64,
 }
 
+impl Energy {
+    /// Largest [`Self::relative_balance_error`] of a run whose integration
+    /// is trusted: the default tolerance keeps Fig. 7(a) at 0.03 %, while at
+    /// the stiff end of the range (f_n 100, ζ 0, α 0.4, φ 0.3) it leaves
+    /// 2.2 %, where a tighter `rtol` is needed to trust the outcome.
+    pub const BALANCE_BOUND: f64 = 0.01;
+
+    /// `|balance_error|` as a share of the energy at stake: the larger of
+    /// the start's total energy and the gravity energy released.
+    pub fn relative_balance_error(&self) -> f64 {
+        let scale = self.initial.abs().max(self.gravity_released.abs());
+        if scale > 0.0 {
+            self.balance_error.abs() / scale
+        } else {
+            self.balance_error.abs()
+        }
+    }
+
+    /// Whether the balance is off by more than [`Self::BALANCE_BOUND`] (a
+    /// NaN error counts as off).
+    pub fn balance_exceeds_bound(&self) -> bool {
+        let r = self.relative_balance_error();
+        r.is_nan() || r > Self::BALANCE_BOUND
+    }
+}
+
 /// Integrator work over a run: accepted and rejected steps, RHS evaluations
 /// and events (touchdowns, lift-offs, mode switches), as the engine counts
 /// them.
@@ -432,6 +458,32 @@ impl Label {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn energy_balance_is_judged_against_the_energy_at_stake() {
+        // The two runs of the stiff corner and Fig. 7(a) (J, from `simulate --json`).
+        let stiff = Energy {
+            initial: 2867.96,
+            gravity_released: 2745.66,
+            balance_error: -63.51,
+            ..Energy::default()
+        };
+        assert!((stiff.relative_balance_error() - 0.0221).abs() < 1e-4);
+        assert!(stiff.balance_exceeds_bound());
+        let fig7a = Energy {
+            initial: 26.81,
+            gravity_released: 235.73,
+            balance_error: -0.0785,
+            ..Energy::default()
+        };
+        assert!((fig7a.relative_balance_error() - 0.000333).abs() < 1e-5);
+        assert!(!fig7a.balance_exceeds_bound());
+        let nan = Energy {
+            balance_error: f64::NAN,
+            ..fig7a
+        };
+        assert!(nan.balance_exceeds_bound());
+    }
 
     #[test]
     fn labels_follow_table_s1() {

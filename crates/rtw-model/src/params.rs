@@ -3,10 +3,29 @@
 
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+use std::fmt;
+
+/// A number as a person writes it, for messages: plain decimals for
+/// magnitudes in [1e-4, 1e15) (`0.125`, `500`), scientific notation outside
+/// (`1e300`, `-2.5e-7`), and `inf`, `-inf`, `NaN`. f64's own `Display`
+/// would print 1e300 as 301 digits and 1e-300 as 302.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
 
 /// A rejected input: names the field, the value and the valid range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{field} = {value} is invalid: must be {range}")]
+#[error("{field} = {} is invalid: must be {range}", Num(*value))]
 pub struct ParamError {
     /// The key of the field (`"alpha"`, `"contact.mu"`, …).
     pub field: &'static str,
@@ -294,6 +313,25 @@ impl Physical {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_in_messages_are_written_as_a_person_writes_them() {
+        let shown = |v: f64| Num(v).to_string();
+        assert_eq!(shown(1e300), "1e300");
+        assert_eq!(shown(-1e300), "-1e300");
+        assert_eq!(shown(1e-300), "1e-300");
+        assert_eq!(shown(2.5e-7), "2.5e-7");
+        assert_eq!(shown(0.125), "0.125");
+        assert_eq!(shown(500.0), "500");
+        assert_eq!(shown(0.0), "0");
+        assert_eq!(shown(f64::INFINITY), "inf");
+        assert_eq!(shown(f64::NAN), "NaN");
+        let e = ParamError::new("t_max", -1e300, "finite and > 0 (s)");
+        assert_eq!(
+            e.to_string(),
+            "t_max = -1e300 is invalid: must be finite and > 0 (s)"
+        );
+    }
 
     #[test]
     fn fig7a_test_vector() {

@@ -10,7 +10,7 @@
 use anyhow::anyhow;
 use arrow_array::RecordBatch;
 use arrow_pyarrow::{IntoPyArrow, Table};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
@@ -21,10 +21,11 @@ use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
 use rtw_scan::scan::scan_batch;
 use rtw_scan::scan::single::{simulate_json, simulate_traced_json};
+use std::collections::TryReserveError;
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::Duration;
 
@@ -40,8 +41,12 @@ const PYTHON_TRACE_NAMES: TraceNames = TraceNames {
 /// Most settling steps of `limit_cycle` (as `bifurcation --transient`).
 const MAX_SETTLE_STEPS: usize = 10_000_000;
 
-/// An rtw error as Python's `ValueError`, with every context (`{:#}`).
+/// An rtw error as Python's `ValueError`, with every context (`{:#}`); an
+/// allocation that could not be made as `MemoryError`.
 fn value_error(e: anyhow::Error) -> PyErr {
+    if e.chain().any(|c| c.is::<TryReserveError>()) {
+        return PyMemoryError::new_err(format!("{e:#}"));
+    }
     PyValueError::new_err(format!("{e:#}"))
 }
 
@@ -106,18 +111,21 @@ fn trace(
 /// A scan (config file `path` or TOML `text`, then variant and sets) as a
 /// `pyarrow.Table` of the rows of `rtw-scan run`. It runs on a worker thread
 /// (rayon inside) with the GIL released; this thread polls Python's signal
-/// handlers every [`SIGNAL_POLL`], and on an exception (KeyboardInterrupt)
-/// stops the scan, waits for the samples in flight, and raises it.
+/// handlers every [`SIGNAL_POLL`], calls `progress(done, total)` (rows
+/// computed, rows in all) when given, and on an exception (KeyboardInterrupt,
+/// or one raised by `progress`) stops the scan, waits for the samples in
+/// flight, and raises it. `progress` is called a last time once every row is in.
 #[pyfunction]
-#[pyo3(signature = (path, text, variant, sets, threads))]
-fn scan(
-    py: Python<'_>,
+#[pyo3(signature = (path, text, variant, sets, threads, progress=None))]
+fn scan<'py>(
+    py: Python<'py>,
     path: Option<PathBuf>,
     text: Option<String>,
     variant: Option<PathBuf>,
     sets: Vec<String>,
     threads: Option<usize>,
-) -> PyResult<Bound<'_, PyAny>> {
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     let cfg = match (path, text) {
         (Some(p), None) => load_layered(&p, variant.as_deref(), &sets),
         (None, Some(t)) => parse_layered(&t, variant.as_deref(), &sets),
@@ -131,12 +139,15 @@ fn scan(
                 .ok_or_else(|| PyValueError::new_err("threads: 0 is invalid: must be >= 1"))?,
         ),
     };
+    let total = cfg.total_rows().map_err(value_error)?;
     let stop = Arc::new(AtomicBool::new(false));
+    let rows_done = Arc::new(AtomicU64::new(0));
     let (done, finished) = channel();
     let worker = {
         let stop = Arc::clone(&stop);
+        let rows_done = Arc::clone(&rows_done);
         std::thread::spawn(move || {
-            let result = scan_batch(&cfg, threads, &stop);
+            let result = scan_batch(&cfg, threads, &stop, &rows_done);
             // The receiver is gone only if this function already returned.
             let _ = done.send(());
             result
@@ -152,7 +163,13 @@ fn scan(
             Err(RecvTimeoutError::Timeout) => {}
             Ok(()) | Err(RecvTimeoutError::Disconnected) => break,
         }
-        if let Err(interrupt) = py.check_signals() {
+        let shown = match &progress {
+            Some(f) => f
+                .call1((rows_done.load(Ordering::Relaxed), total))
+                .map(drop),
+            None => Ok(()),
+        };
+        if let Err(interrupt) = shown.and_then(|()| py.check_signals()) {
             stop.store(true, Ordering::SeqCst);
             // The samples in flight finish (each is bounded by t_max and max_steps).
             let _ = py.detach(|| worker.join());
@@ -163,7 +180,12 @@ fn scan(
         .detach(|| worker.join())
         .map_err(|_| PyRuntimeError::new_err("the scan's worker thread panicked"))?;
     match result.map_err(value_error)? {
-        Some(batch) => to_table(py, batch),
+        Some(batch) => {
+            if let Some(f) = &progress {
+                f.call1((rows_done.load(Ordering::Relaxed), total))?;
+            }
+            to_table(py, batch)
+        }
         // Stopped without a signal seen here: only a signal sets `stop`.
         None => Err(PyKeyboardInterrupt::new_err("the scan was stopped")),
     }

@@ -141,7 +141,7 @@ def test_outcome_is_typed_with_the_rows_fields() -> None:
         (lambda: rtw.trace(**FIG7A, dt=0.01, limit="300kB"), ["392.4 kB", "than limit 300.0 kB"]),
         (lambda: rtw.trace(**FIG7A, limit="lots"), ["limit: `lots`: unknown unit", "GB"]),
         (lambda: rtw.trace(**FIG7A, limit="1.2.3GB"), ["limit: `1.2.3GB` is not a size"]),
-        (lambda: rtw.trace(**FIG7A, limit=0), ["limit: `0`: must be a size > 0"]),
+        (lambda: rtw.trace(**FIG7A, limit=0), ["limit: `0`: must be a finite size > 0"]),
         (lambda: rtw.simulate(**FIG7A, config="no/such.toml"), ["no/such.toml"]),
         (lambda: rtw.scan("configs/smoke.toml", set={"contact.mu": 2}), ["simulation.contact.mu: 2 is invalid"]),
         (lambda: rtw.scan("seed = 1\nsamples = 0\n"), ["[params]"]),
@@ -251,3 +251,41 @@ def test_every_public_function_is_documented() -> None:
             continue
         obj = getattr(rtw, name)
         assert obj.__doc__ and len(obj.__doc__) > 40, name
+
+
+def test_scan_files_rewritten_by_pyarrow_and_polars_are_read(cli: Path, tmp_path: Path) -> None:
+    # pyarrow writes snappy by default, polars large strings and a label
+    # dictionary keyed by uint32: rtw-scan reads both as its own file (same
+    # summary); Brotli, which it does not read, is refused by name, not
+    # called corrupt. The key-value metadata is kept, as a user would.
+    polars = pytest.importorskip("polars")
+    # A copy: `summary` rewrites the summary files beside its input.
+    (tmp_path / "rtw").mkdir()
+    src = tmp_path / "rtw" / "samples.parquet"
+    src.write_bytes((ROOT / "results" / "fig-s2" / "samples.parquet").read_bytes())
+    meta = file_metadata(src)
+    table = pq.read_table(src).replace_schema_metadata(meta)
+    ours = subprocess.run(
+        [cli, "summary", src, "--json"], capture_output=True, text=True, check=True
+    ).stdout
+    want = {k: v for k, v in json.loads(ours).items() if k != "file"}
+    for name, t, codec in [
+        ("pyarrow", table, "snappy"),
+        ("polars", polars.from_arrow(table).to_arrow().replace_schema_metadata(meta), "snappy"),
+        ("gzip", table, "gzip"),
+        ("lz4", table, "lz4"),
+    ]:
+        (tmp_path / name).mkdir()
+        f = tmp_path / name / "samples.parquet"
+        pq.write_table(t, f, compression=codec)
+        p = subprocess.run([cli, "summary", f, "--json"], capture_output=True, text=True)
+        assert p.returncode == 0, f"{name}: {p.stderr}"
+        got = {k: v for k, v in json.loads(p.stdout).items() if k != "file"}
+        assert got == want, name
+    (tmp_path / "brotli").mkdir()
+    f = tmp_path / "brotli" / "samples.parquet"
+    pq.write_table(table, f, compression="brotli")
+    p = subprocess.run([cli, "summary", f], capture_output=True, text=True)
+    assert p.returncode == 1
+    assert "compressed with Brotli, which rtw-scan does not read" in p.stderr, p.stderr
+    assert "corrupt" not in p.stderr, p.stderr

@@ -858,3 +858,240 @@ fn every_committed_variant_and_sensitivity_file_is_valid() {
     }
     assert!(n >= 20, "only {n} files");
 }
+
+#[test]
+fn simulate_exits_1_for_a_run_that_did_not_finish() {
+    // `--help` promises 1 for a `diverged` run: a numerical failure (the
+    // fake simulator's ρ < 1.1 runs out of its work budget) as well as a
+    // panic (ρ > 4.75). The row is still printed.
+    let base = [
+        "simulate",
+        "--length",
+        "0.8",
+        "--zeta",
+        "0.05",
+        "--phi",
+        "0.2",
+        "--fake-sim",
+    ];
+    let design = ["--alpha", "0.2", "--fn", "3.0"];
+    for rho in ["1.05", "4.9"] {
+        for json in [&["--json"][..], &[]] {
+            let o = run(&[&base[..], &design, &["--rho", rho], json].concat());
+            assert_eq!(o.status.code(), Some(1), "rho {rho}: {}", stderr(&o));
+            assert!(stdout(&o).contains("diverged"), "{}", stdout(&o));
+            assert!(
+                stderr(&o).contains("the simulation did not finish"),
+                "{}",
+                stderr(&o)
+            );
+        }
+    }
+    // A physical failure finishes: exit 0 (whatever the label).
+    let o = run(&[
+        &base[..],
+        &["--rho", "2.5", "--alpha", "0.1", "--fn", "2.0"],
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("collapse"), "{}", stdout(&o));
+}
+
+#[test]
+fn refusals_name_the_field_and_range_with_numbers_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let out = out.to_str().unwrap();
+    let smoke = config("smoke.toml");
+    let smoke = smoke.to_str().unwrap();
+    // Counts that must be positive: clap's own "number would be zero for
+    // non-zero type" named neither the rule nor the range.
+    for (args, needle) in [
+        (
+            vec!["run", smoke, "--out", out, "--threads", "0"],
+            "'--threads <N>': 0 is invalid: must be an integer >= 1",
+        ),
+        (
+            vec!["run", smoke, "--out", out, "--threads", "two"],
+            "'--threads <N>': two is invalid: must be an integer >= 1",
+        ),
+        (
+            vec!["cluster", "x.parquet", "--k", "0"],
+            "'--k <K>': 0 is invalid: must be an integer >= 1",
+        ),
+        (
+            vec!["summary", "x.parquet", "--k", "0"],
+            "'--k <K>': 0 is invalid: must be an integer >= 1",
+        ),
+    ] {
+        let o = run(&args);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{args:?} accepted");
+        assert!(err.contains(needle), "{args:?}: no {needle:?} in:\n{err}");
+        assert!(!err.contains("non-zero type"), "{err}");
+    }
+    // Fig. 7(a) but the length, which some cases set.
+    let base: Vec<&str> = "simulate --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --fake-sim"
+        .split(' ')
+        .collect();
+    let with = |extra: &[&'static str]| {
+        let length: &[&str] = if extra.contains(&"--length") {
+            &[]
+        } else {
+            &["--length", "0.8"]
+        };
+        [&base[..], length, extra].concat()
+    };
+    // Numbers are shown as a person writes them, never as 300 digits.
+    for (extra, needles) in [
+        (
+            &["--phi", "0.1", "--set", "t_max=1e400"][..],
+            &["t_max", "1e400", "finite and > 0"][..],
+        ),
+        (
+            &["--phi", "0.1", "--set", "t_max=-1e400"],
+            &["t_max", "-1e400", "finite and > 0"],
+        ),
+        (
+            &["--phi", "0.1", "--set", "rtol=1e-400"],
+            &["rtol", "1e-400", "in (0, 0.1]"],
+        ),
+        (
+            &["--phi", "0.1", "--set", "t_max=-1e300"],
+            &["simulation.t_max: -1e300 is invalid: must be finite and > 0"],
+        ),
+        (&["--phi", "0.1", "--set", "rtol=1e-300"], &[]),
+        (&["--phi", "1e300"], &["--phi: 1e300 is invalid"]),
+        (
+            &["--phi", "0.1", "--set", "max_steps=1e400"],
+            &["max_steps", "1e400", ">= 1"],
+        ),
+        (
+            &["--phi", "0.1", "--set", "t_max=fast"],
+            &["simulation.t_max", "\"fast\"", "finite and > 0"],
+        ),
+    ] {
+        let o = run(&with(extra));
+        let err = stderr(&o);
+        if needles.is_empty() {
+            assert!(o.status.success(), "{extra:?}: {err}");
+            continue;
+        }
+        assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{extra:?}: no {n:?} in:\n{err}");
+        }
+        assert!(!err.contains("00000000"), "{extra:?}: {err}");
+    }
+    let o = run(&with(&["--phi", "1e-300", "--length", "1e-300"]));
+    let err = stderr(&o);
+    assert!(err.contains("--length: 1e-300 is invalid"), "{err}");
+    // A config file: the same rule.
+    let cfg = write_config(
+        dir.path(),
+        "c.toml",
+        "seed = 1\nsamples = 2\n[params]\nlength = 0.8\nrho = 2.5\nalpha = 0.1\nfn = { uniform = [2, 1e300] }\nzeta = 0.05\nphi = 0.1\n",
+    );
+    refused(
+        &cfg,
+        &dir.path().join("o2"),
+        &["params.fn.uniform[1] (hi): 1e300 is invalid"],
+    );
+}
+
+/// A finished fake scan of `paper_like(samples, seed)` in `dir/scan`; returns that directory.
+fn fake_scan(dir: &Path, samples: u64, seed: u64) -> std::path::PathBuf {
+    let cfg = write_config(dir, "c.toml", &paper_like(samples, seed));
+    let out = dir.join("scan");
+    let args = [
+        "run",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--fake-sim",
+        "0",
+        "--quiet",
+    ];
+    run_ok(&args);
+    out
+}
+
+/// `src` rewritten as another tool would: strings as large strings, the
+/// label as a dictionary of `UInt32` keys over large strings (polars),
+/// compressed with `codec` (pyarrow's default is snappy), the key-value
+/// metadata kept (pyarrow keeps it).
+fn rewrite_as_another_tool(src: &Path, dest: &Path, codec: parquet::basic::Compression) {
+    use arrow::datatypes::{DataType, Field, Schema};
+    use parquet::arrow::ArrowWriter;
+    use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+    use parquet::file::properties::WriterProperties;
+    use std::sync::Arc;
+    let b = ParquetRecordBatchReaderBuilder::try_new(std::fs::File::open(src).unwrap()).unwrap();
+    let kv = b.metadata().file_metadata().key_value_metadata().cloned();
+    let other = |t: &DataType| match t {
+        DataType::Utf8 => DataType::LargeUtf8,
+        DataType::Dictionary(_, _) => {
+            DataType::Dictionary(Box::new(DataType::UInt32), Box::new(DataType::LargeUtf8))
+        }
+        t => t.clone(),
+    };
+    let fields: Vec<Field> = b
+        .schema()
+        .fields()
+        .iter()
+        .map(|f| f.as_ref().clone().with_data_type(other(f.data_type())))
+        .collect();
+    let schema = Arc::new(Schema::new(fields));
+    let props = WriterProperties::builder()
+        .set_compression(codec)
+        .set_key_value_metadata(kv)
+        .build();
+    let mut w = ArrowWriter::try_new(
+        std::fs::File::create(dest).unwrap(),
+        schema.clone(),
+        Some(props),
+    )
+    .unwrap();
+    for batch in b.build().unwrap() {
+        let batch = batch.unwrap();
+        let cols = batch
+            .columns()
+            .iter()
+            .zip(schema.fields())
+            .map(|(c, f)| arrow::compute::cast(c, f.data_type()).unwrap())
+            .collect();
+        w.write(&arrow::array::RecordBatch::try_new(schema.clone(), cols).unwrap())
+            .unwrap();
+    }
+    w.close().unwrap();
+}
+
+#[test]
+fn parquet_files_rewritten_by_other_tools_are_read() {
+    use parquet::basic::{Compression, GzipLevel};
+    let dir = tempfile::tempdir().unwrap();
+    let out = fake_scan(dir.path(), 60, 5);
+    let summary = |f: &Path| {
+        let o = run_ok(&["summary", f.to_str().unwrap(), "--json"]);
+        let mut v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        v.as_object_mut().unwrap().remove("file");
+        v
+    };
+    let want = summary(&out.join("samples.parquet"));
+    let clusters = |f: &Path| stdout(&run_ok(&["cluster", f.to_str().unwrap(), "--json"]));
+    let want_clusters = clusters(&out.join("samples.parquet"));
+    for (name, codec) in [
+        ("snappy", Compression::SNAPPY),
+        ("gzip", Compression::GZIP(GzipLevel::default())),
+        ("lz4", Compression::LZ4_RAW),
+        ("lz4-hadoop", Compression::LZ4),
+        ("none", Compression::UNCOMPRESSED),
+    ] {
+        let other = dir.path().join(name);
+        std::fs::create_dir(&other).unwrap();
+        let f = other.join("samples.parquet");
+        rewrite_as_another_tool(&out.join("samples.parquet"), &f, codec);
+        assert_eq!(summary(&f), want, "{name}");
+        assert_eq!(clusters(&f), want_clusters, "{name}");
+    }
+}

@@ -136,3 +136,29 @@ fn simulate_takes_a_variant_like_run() {
     assert_eq!(by_variant["outcome"], "skip", "{by_variant}");
     assert_eq!(default["outcome"], "walk", "{default}");
 }
+
+#[test]
+fn simulate_warns_when_the_energy_balance_is_off() {
+    // At the stiff end of the range the default tolerance leaves a 2.2 %
+    // energy-balance error (Fig. 7(a): 0.03 %): `simulate` says so, in text
+    // and JSON modes alike (on stderr, so the JSON stays the row), and the
+    // warning goes away at the tighter tolerance it suggests.
+    let stiff = [
+        "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.4", "--fn", "100", "--zeta",
+        "0", "--phi", "0.3",
+    ];
+    for extra in [&["--json"][..], &[]] {
+        let o = run_ok(&[&stiff[..], extra].concat());
+        let err = stderr(&o);
+        assert!(
+            err.contains("warning: the energy balance is off by 2.")
+                && err.contains("above the bound of 1 %")
+                && err.contains("rtol=1e-6"),
+            "{err}"
+        );
+    }
+    let o = run_ok(&[&stiff[..], &["--set", "rtol=1e-6"]].concat());
+    assert!(!stderr(&o).contains("energy balance"), "{}", stderr(&o));
+    let o = run_ok(&FIG7A);
+    assert!(!stderr(&o).contains("energy balance"), "{}", stderr(&o));
+}

@@ -424,7 +424,9 @@ impl StepMap {
     /// `n` steps from `p`; `None` if one fails or the mode pattern at the end
     /// differs from `p`'s.
     pub fn iterate(&self, p: &SectionPoint, n: usize) -> Result<Vec<Step>, StepError> {
-        let mut steps = Vec::with_capacity(n);
+        // Grown as the steps come (n may be a user's 10⁷ settling steps, most
+        // runs fail long before): no up-front allocation sized by the caller.
+        let mut steps = Vec::with_capacity(n.min(1024));
         let mut q = *p;
         for _ in 0..n {
             let s = self.step(&q)?;

@@ -28,8 +28,10 @@ import json
 import math
 import numbers
 import os
+import sys
+import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
 
@@ -349,9 +351,12 @@ def trace(
         more_options: as for :func:`simulate`.
 
     Raises:
-        ValueError: as :func:`simulate`; for a ``limit`` that is not a size;
-            for a trace estimated above ``limit`` (the message says how big,
-            and to raise ``dt``, lower ``t_max`` or raise ``limit``).
+        ValueError: as :func:`simulate`; for a ``limit`` that is not a size,
+            or above the machine's memory (a longer trace goes to a file:
+            ``rtw-scan simulate --trace``); for a trace estimated above
+            ``limit`` (the message says how big, and to raise ``dt``, lower
+            ``t_max`` or raise ``limit``).
+        MemoryError: the trace does not fit in memory after all.
     """
     extra = dict(more_options)
     if dt is not None:
@@ -363,12 +368,96 @@ def trace(
     return table.replace_schema_metadata(meta)
 
 
+class _Bar:
+    """A scan's progress on stderr, drawn as Python users know it from tqdm.
+
+    A terminal gets a bar redrawn in place (``\\r``), ended by a newline
+    when the scan is done; a notebook (ipykernel's stream, which draws
+    ``\\r`` too) one text line updated in place; any other stream (a log, a
+    pipe) a plain line every 10 % or 10 s and at the end, as ``rtw-scan
+    run`` prints when stderr is not a terminal. No dependency: tqdm is not
+    needed.
+    """
+
+    REDRAW = 0.1  # s between redraws in place
+    LOG_EVERY = 10.0  # s between plain lines
+
+    def __init__(self, stream: TextIO) -> None:
+        self.stream = stream
+        self.started = time.monotonic()
+        self.drawn_at = -math.inf
+        self.decile = 0
+        self.last_done = -1
+        self.in_place = _draws_in_place(stream)
+        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "")
+        self.fill = "█" if encoding == "utf8" or not self.in_place else "#"
+
+    def __call__(self, done: int, total: int) -> None:
+        now = time.monotonic()
+        finished = done >= total
+        if self.in_place:
+            if finished or now - self.drawn_at >= self.REDRAW:
+                self.drawn_at = now
+                self.stream.write("\r" + self._bar(done, total, now) + ("\n" if finished else ""))
+                self.stream.flush()
+            return
+        decile = done * 10 // max(total, 1)
+        if done != self.last_done and (
+            finished or decile > self.decile or now - self.drawn_at >= self.LOG_EVERY
+        ):
+            self.drawn_at, self.decile, self.last_done = now, decile, done
+            self.stream.write(f"rtw.scan: {self._counts(done, total, now)}\n")
+            self.stream.flush()
+
+    def _counts(self, done: int, total: int, now: float) -> str:
+        elapsed = now - self.started
+        rate = done / elapsed if elapsed > 0 else 0.0
+        left = (total - done) / rate if rate > 0 else math.inf
+        pct = 100 * done // max(total, 1)
+        return (
+            f"{done}/{total} ({pct}%) [{_clock(elapsed)}<{_clock(left)}, {rate:.1f} samples/s]"
+        )
+
+    def _bar(self, done: int, total: int, now: float) -> str:
+        elapsed = now - self.started
+        rate = done / elapsed if elapsed > 0 else 0.0
+        left = (total - done) / rate if rate > 0 else math.inf
+        pct = 100 * done // max(total, 1)
+        width = 25
+        full = width * done // max(total, 1)
+        bar = self.fill * full + " " * (width - full)
+        return (
+            f"rtw.scan {pct:3d}%|{bar}| {done}/{total} "
+            f"[{_clock(elapsed)}<{_clock(left)}, {rate:.1f} samples/s]"
+        )
+
+
+def _draws_in_place(stream: TextIO) -> bool:
+    """Whether ``\\r`` redraws a line on ``stream``: a terminal, or a notebook's output."""
+    if type(stream).__module__.startswith("ipykernel"):
+        return True
+    try:
+        return stream.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+def _clock(seconds: float) -> str:
+    """``mm:ss`` (``h:mm:ss`` from an hour on; ``?`` when unknown), as tqdm shows times."""
+    if not math.isfinite(seconds):
+        return "?"
+    m, sec = divmod(int(seconds), 60)
+    h, m = divmod(m, 60)
+    return f"{h}:{m:02d}:{sec:02d}" if h else f"{m:02d}:{sec:02d}"
+
+
 def scan(
     config: Config,
     *,
     variant: Config | None = None,
     set: Mapping[str, Any] | None = None,
     threads: int | None = None,
+    progress: bool | Callable[[int, int], object] = True,
 ) -> pyarrow.Table:
     """Runs a scan in memory: the rows ``rtw-scan run CONFIG`` writes to samples.parquet.
 
@@ -384,10 +473,22 @@ def scan(
         variant: layer this variant file's ``[simulation]`` keys over the config's.
         set: then these options (``{"contact.mu": 0.8}``), as ``--set``.
         threads: worker threads (default: one per core; at most 4 per core).
+        progress: show the scan's progress on stderr (the default): a bar
+            redrawn in place in a terminal, one line updated in place in a
+            notebook, a line every 10 % elsewhere (a log). ``False``: nothing.
+            A callable is called instead with ``(done, total)`` (rows
+            computed, rows in all) every 50 ms and at the end; an exception
+            it raises stops the scan and is raised.
+
+    The rows are held in memory: a scan of more than 1 000 000 rows is
+    refused (``ValueError``); run it with ``rtw-scan run CONFIG --out DIR``,
+    which streams its rows to ``DIR/samples.parquet``, and read that file.
 
     Raises:
-        ValueError: the config, a variant or an option is invalid, or a file
-            cannot be read (the message names the file and the key).
+        ValueError: the config, a variant or an option is invalid, a file
+            cannot be read (the message names the file and the key), or the
+            scan has more rows than a scan in memory may have.
+        MemoryError: the rows do not fit in memory.
         KeyboardInterrupt: interrupted.
     """
     path: str | None = None
@@ -398,7 +499,14 @@ def scan(
         path = os.fspath(config)
     if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
         raise ValueError(f"threads: {threads!r} is invalid: must be an integer >= 1")
-    return _rtw.scan(path, text, _path(variant), _sets(set, {}), threads)
+    if isinstance(progress, bool):
+        stream = sys.stderr
+        report = _Bar(stream) if progress and stream is not None else None
+    elif callable(progress):
+        report = progress
+    else:
+        raise ValueError(f"progress: {progress!r} is invalid: must be True, False or a callable")
+    return _rtw.scan(path, text, _path(variant), _sets(set, {}), threads, report)
 
 
 def limit_cycle(

@@ -5,7 +5,7 @@ inputs (length, rho, alpha, fn, zeta, phi); ``sets`` are ``KEY=VALUE``
 option assignments as ``rtw-scan --set`` takes them.
 """
 
-from typing import Any
+from typing import Any, Callable
 
 import pyarrow
 
@@ -27,6 +27,7 @@ def scan(
     variant: str | None,
     sets: list[str],
     threads: int | None,
+    progress: Callable[[int, int], object] | None = None,
 ) -> pyarrow.Table: ...
 def limit_cycle(
     values: list[float],

@@ -48,7 +48,12 @@ impl Sweep {
         record: usize,
     ) -> Result<Self> {
         if let Err(e) = base.validate() {
-            bail!("--{}: {} is invalid: must be {}", e.field, e.value, e.range);
+            bail!(
+                "--{}: {} is invalid: must be {}",
+                e.field,
+                rtw_model::Num(e.value),
+                e.range
+            );
         }
         validate_options(&options, "simulation")?;
         param.check(&base, &options, from, "--from")?;

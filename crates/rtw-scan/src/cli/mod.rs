@@ -157,6 +157,17 @@ pub fn main() -> ExitCode {
     })
 }
 
+/// Parses a count that must be at least 1 (`--threads`, `--k`) with the
+/// rule in the message: clap's own parser of `NonZeroUsize` says only
+/// "number would be zero for non-zero type".
+pub(super) fn positive(s: &str) -> Result<std::num::NonZeroUsize, String> {
+    s.trim()
+        .parse::<usize>()
+        .ok()
+        .and_then(std::num::NonZeroUsize::new)
+        .ok_or_else(|| format!("{s} is invalid: must be an integer >= 1"))
+}
+
 /// Set by the first signal of a `run`, which then stops after the samples
 /// in flight.
 pub(super) static STOP: AtomicBool = AtomicBool::new(false);

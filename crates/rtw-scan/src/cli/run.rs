@@ -26,7 +26,7 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = super::positive)]
     threads: Option<NonZeroUsize>,
     /// Layer a model variant file (configs/variants/*.toml: name, description, [simulation]) over the
     /// config's [simulation] table; the scan is named CONFIG-NAME+VARIANT-NAME.
@@ -50,7 +50,8 @@ pub(super) struct RunArgs {
     #[arg(long)]
     quiet: bool,
     /// Rows per chunk and row group (a resumed run keeps its own).
-    #[arg(long, hide = true, value_name = "N", default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
+    #[arg(long, hide = true, value_name = "N", value_parser = super::positive,
+          default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
     /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
     #[cfg(feature = "fake-sim")]
@@ -103,7 +104,7 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     let cfg = config::layers::load_layered(&a.config, a.variant.as_deref(), &a.set)?;
-    run::check_threads(a.threads)?;
+    run::check_threads(a.threads, "--threads")?;
     let out = match a.out.clone() {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,

@@ -9,7 +9,8 @@ use crate::io::{destination, files};
 use crate::scan::run::run_one;
 use anyhow::{Context, Result};
 use clap::Args;
-use rtw_model::{Options, Outcome, Params};
+use rtw_model::outcome::Energy;
+use rtw_model::{Label, Options, Outcome, Params};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -108,13 +109,38 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
     } else {
         print!("{}", scan_rows::to_text(&row));
     }
-    match &row.message {
-        Some(m) => {
-            eprintln!("error: the simulation did not finish: {m}");
-            Ok(ExitCode::FAILURE)
-        }
-        None => Ok(ExitCode::SUCCESS),
+    if let Some(e) = row.outcome.map(|o| o.energy)
+        && e.balance_exceeds_bound()
+    {
+        eprintln!("warning: {}", energy_warning(&e));
     }
+    // `diverged` is the one label of a run that did not finish: a panic
+    // (its message) or a numerical failure (what its failure means).
+    if row.label() != Label::Diverged {
+        return Ok(ExitCode::SUCCESS);
+    }
+    let why = row
+        .message
+        .as_deref()
+        .or_else(|| row.outcome.and_then(|o| o.failure).map(|f| f.describe()));
+    eprintln!(
+        "error: the simulation did not finish: {}",
+        why.unwrap_or("diverged")
+    );
+    Ok(ExitCode::FAILURE)
+}
+
+/// What `simulate` says of a run whose energy balance is off by more than
+/// its bound: the integration error is then large enough to doubt the outcome.
+pub(crate) fn energy_warning(e: &Energy) -> String {
+    format!(
+        "the energy balance is off by {:.2} % of the energy at stake (|energy_balance_error| / \
+         max(|energy_initial|, energy_gravity_released)), above the bound of {} % (Fig. 7(a): \
+         0.03 % at the default tolerance): the integration error may change this outcome; rerun \
+         with a tighter tolerance (--set rtol=1e-6) to check it",
+        100.0 * e.relative_balance_error(),
+        100.0 * Energy::BALANCE_BOUND
+    )
 }
 
 #[cfg(test)]

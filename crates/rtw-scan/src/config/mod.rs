@@ -37,8 +37,8 @@ use crate::hash::fnv1a64;
 use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
 use params::Input;
-use raw::{from_value, parse_table, read_text};
-use rtw_model::Options;
+use raw::{from_value_ranged, parse_table, read_text};
+use rtw_model::{Num, Options};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -139,7 +139,10 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
              and a [params] table giving length, rho, alpha, fn, zeta and phi (see configs/paper.toml)"
         );
     }
-    let raw: RawConfig = from_value(toml::Value::Table(table), "")?;
+    let raw: RawConfig = from_value_ranged(toml::Value::Table(table), "", |path| {
+        path.strip_prefix("simulation.")
+            .and_then(layers::option_range)
+    })?;
     if raw.samples < 1 || raw.samples as u64 > MAX_ROWS {
         bail!(
             "samples: {} is invalid: must be an integer >= 1 and at most {MAX_ROWS} (10^12)",
@@ -194,7 +197,7 @@ pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {
         anyhow!(
             "{prefix}.{}: {} is invalid: must be {}",
             e.field,
-            e.value,
+            Num(e.value),
             e.range
         )
     })
@@ -203,7 +206,8 @@ pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {
 /// Deserializes a `[simulation]` table into validated [`Options`]; an
 /// unknown key or a bad value is named as `prefix.key`.
 pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
-    let options: Options = from_value(toml::Value::Table(table), prefix)?;
+    let options: Options =
+        from_value_ranged(toml::Value::Table(table), prefix, layers::option_range)?;
     validate_options(&options, prefix)?;
     Ok(options)
 }
@@ -214,7 +218,7 @@ fn validate_axis(input: Input, axis: &Axis) -> Result<()> {
         input.check(value).map_err(|e| {
             anyhow!(
                 "params.{key}{at}: {} is invalid: must be {}",
-                e.value,
+                Num(e.value),
                 e.range
             )
         })
@@ -225,7 +229,11 @@ fn validate_axis(input: Input, axis: &Axis) -> Result<()> {
             check(*lo, ".uniform[0] (lo)")?;
             check(*hi, ".uniform[1] (hi)")?;
             if lo > hi {
-                bail!("params.{key}.uniform: lo {lo} > hi {hi}: must be lo <= hi");
+                bail!(
+                    "params.{key}.uniform: lo {} > hi {}: must be lo <= hi",
+                    Num(*lo),
+                    Num(*hi)
+                );
             }
             Ok(())
         }

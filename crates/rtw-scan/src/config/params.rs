@@ -9,7 +9,7 @@
 //! checks live there only); `s` is checked through [`Options::validate`].
 
 use anyhow::{Result, bail};
-use rtw_model::{Options, ParamError, Params};
+use rtw_model::{Num, Options, ParamError, Params};
 
 /// One of the six inputs of docs/model.md §1: rtw-model's own vocabulary
 /// (name, get, set, valid range), in the order used everywhere (grid
@@ -25,7 +25,7 @@ pub fn checked_params(values: [f64; 6], prefix: &str) -> Result<Params> {
         anyhow::anyhow!(
             "{prefix}{}: {} is invalid: must be {}",
             e.field,
-            e.value,
+            Num(e.value),
             e.range
         )
     })
@@ -96,7 +96,8 @@ impl SweepParam {
         match self.at(base, options, v) {
             Ok(_) => Ok(()),
             Err(e) => bail!(
-                "{flag}: {v} is invalid for --param {}: {} must be {}",
+                "{flag}: {} is invalid for --param {}: {} must be {}",
+                Num(v),
                 self.name(),
                 e.field,
                 e.range

@@ -28,7 +28,18 @@ pub(crate) fn parse_table(text: &str) -> Result<toml::Table> {
 /// Deserializes `value` into `T`, naming the key path (`prefix` + the path
 /// inside `value`) in any error.
 pub(crate) fn from_value<'de, T: Deserialize<'de>>(value: toml::Value, prefix: &str) -> Result<T> {
+    from_value_ranged(value, prefix, |_| None)
+}
+
+/// [`from_value`], and a value of the wrong type (`t_max = "fast"`) is told
+/// the key's valid range too: `range(path)`, the path inside `value`.
+pub(crate) fn from_value_ranged<'de, T: Deserialize<'de>>(
+    value: toml::Value,
+    prefix: &str,
+    range: impl Fn(&str) -> Option<&'static str>,
+) -> Result<T> {
     serde_path_to_error::deserialize(value).map_err(|e| {
+        let must = range(&e.path().to_string());
         let path = e.path().to_string();
         let key = match (prefix.is_empty(), path == ".") {
             (true, _) => path,
@@ -44,6 +55,10 @@ pub(crate) fn from_value<'de, T: Deserialize<'de>>(value: toml::Value, prefix: &
             .join("\n")
             .replace("unknown field", "unknown key")
             .replace("missing field", "missing key");
+        let inner = match must {
+            Some(r) if inner.starts_with("invalid ") => format!("{inner}: must be {r}"),
+            _ => inner,
+        };
         if key == "." || key.is_empty() {
             anyhow!("{inner}")
         } else {

@@ -26,7 +26,7 @@ use rtw_model::cycles::continuation::{
     Diagram, DiagramOptions, StepMapFamily, StepMapFamily2, diagram,
 };
 use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
-use rtw_model::{Options, Param, Params};
+use rtw_model::{Num, Options, Param, Params};
 
 /// A second input and its range: the plane of the two-parameter curves.
 #[derive(Clone, Copy, Debug)]
@@ -75,14 +75,19 @@ impl Continuation {
         let p0 = param.get(&base);
         if !(range.0 < p0 && p0 < range.1) {
             bail!(
-                "--from {} --to {}: the start's {} = {p0} must lie strictly between them",
-                range.0,
-                range.1,
-                param.name()
+                "--from {} --to {}: the start's {} = {} must lie strictly between them",
+                Num(range.0),
+                Num(range.1),
+                param.name(),
+                Num(p0)
             );
         }
         if !(ds > 0.0 && ds.is_finite() && ds_max >= ds && ds_max.is_finite()) {
-            bail!("--ds {ds} --ds-max {ds_max}: need 0 < ds ≤ ds-max, both finite");
+            bail!(
+                "--ds {} --ds-max {}: need 0 < ds ≤ ds-max, both finite",
+                Num(ds),
+                Num(ds_max)
+            );
         }
         if !(1..=100_000).contains(&max_points) {
             bail!("--max-points {max_points}: must lie in [1, 100000]");
@@ -97,10 +102,11 @@ impl Continuation {
             let v2 = c.param.get(&base);
             if !(c.range.0 < v2 && v2 < c.range.1) {
                 bail!(
-                    "--curve-from {} --curve-to {}: the start's {} = {v2} must lie strictly between them",
-                    c.range.0,
-                    c.range.1,
-                    c.param.name()
+                    "--curve-from {} --curve-to {}: the start's {} = {} must lie strictly between them",
+                    Num(c.range.0),
+                    Num(c.range.1),
+                    c.param.name(),
+                    Num(v2)
                 );
             }
         }

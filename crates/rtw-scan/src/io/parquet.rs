@@ -5,7 +5,8 @@
 //! at its final name is always complete, with the [`ContentHash`] of its rows
 //! and the [`metadata_hash`] of its other metadata in its footer; [`open`]
 //! checks the second before anything is read from the footer, and the first
-//! as the rows are read. Compression is zstd.
+//! as the rows are read. Compression is zstd; files of other tools (snappy, gzip, lz4; large
+//! strings) are read too ([`open`]).
 
 use crate::config;
 use crate::config::variant::Variant;
@@ -17,16 +18,20 @@ use crate::io::metadata::{
 };
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
-use arrow_schema::{Schema, SchemaRef};
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use parquet::arrow::ArrowWriter;
-use parquet::arrow::arrow_reader::{ParquetRecordBatchReader, ParquetRecordBatchReaderBuilder};
+use parquet::arrow::arrow_reader::{
+    ArrowReaderMetadata, ArrowReaderOptions, ParquetRecordBatchReader,
+    ParquetRecordBatchReaderBuilder,
+};
 use parquet::basic::{Compression, ZstdLevel};
-use parquet::file::metadata::KeyValue;
+use parquet::file::metadata::{KeyValue, ParquetMetaData};
 use parquet::file::properties::WriterProperties;
 use parquet::schema::types::ColumnPath;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Most rows per row group of a file rtw-scan writes whole (samples, part
 /// and assignments files). One row group per 256-row chunk made the footer
@@ -301,6 +306,13 @@ fn check_metadata(path: &Path, meta: &BTreeMap<String, String>) -> Result<()> {
 /// Opens a Parquet file for reading, with errors naming the path; its
 /// metadata is checked at once ([`check_metadata`]), its batches against its
 /// content hash as they are read ([`VerifiedReader`]).
+///
+/// Files rewritten by other tools read as rtw-scan's own: any codec but
+/// Brotli and LZO (pyarrow writes snappy by default, others gzip or lz4;
+/// those two are refused up front, naming the codec), and string columns
+/// of any Arrow string type (polars writes large strings, others string
+/// views) read as the plain `Utf8` strings and `Int32`-keyed dictionaries
+/// rtw-scan writes, so their checks and content hash are the same.
 pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
     // Told from the path first: a FIFO or device never ends (and opening a
     // FIFO waits for a writer); a Parquet file is read by seeking.
@@ -311,8 +323,26 @@ pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
         );
     }
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let reopened = file
+        .try_clone()
+        .with_context(|| format!("cannot open {}", path.display()))?;
     let builder = ParquetRecordBatchReaderBuilder::try_new(file)
         .with_context(|| format!("{} is not a readable Parquet file", path.display()))?;
+    refuse_unsupported_codecs(path, builder.metadata())?;
+    let builder = match plain_strings(builder.schema()) {
+        None => builder,
+        Some(schema) => {
+            let options = ArrowReaderOptions::new().with_schema(schema);
+            let meta = ArrowReaderMetadata::try_new(Arc::clone(builder.metadata()), options)
+                .with_context(|| {
+                    format!(
+                        "{}: its string columns cannot be read as strings",
+                        path.display()
+                    )
+                })?;
+            ParquetRecordBatchReaderBuilder::new_with_metadata(reopened, meta)
+        }
+    };
     let meta = builder.metadata().file_metadata();
     let rows = meta.num_rows();
     let metadata: BTreeMap<String, String> = meta
@@ -335,4 +365,70 @@ pub fn open(path: &Path, batch_size: usize) -> Result<ParquetInput> {
         },
         metadata,
     })
+}
+
+/// Refuses a file with a column compressed by a codec rtw-scan cannot
+/// decode (Brotli, LZO), naming it and the codecs it reads, before any page
+/// is read: otherwise the page would "not decode" and the file be called corrupt.
+fn refuse_unsupported_codecs(path: &Path, meta: &ParquetMetaData) -> Result<()> {
+    let unsupported = meta
+        .row_groups()
+        .iter()
+        .flat_map(|g| g.columns())
+        .find_map(|c| match c.compression() {
+            Compression::BROTLI(_) => Some("Brotli"),
+            Compression::LZO => Some("LZO"),
+            _ => None,
+        });
+    match unsupported {
+        Some(c) => Err(anyhow!(
+            "{}: its columns are compressed with {}, which rtw-scan does not read: it reads \
+             zstd, snappy, gzip, lz4 and uncompressed files; rewrite it with one of those (e.g. \
+             pyarrow.parquet.write_table(table, path, compression=\"zstd\"))",
+            path.display(),
+            c
+        )),
+        None => Ok(()),
+    }
+}
+
+/// `schema` with every string column as the types rtw-scan writes: `Utf8`,
+/// and dictionaries of `Int32` keys over `Utf8` (the label column); `None`
+/// when it has no other string type (large strings, string views, other
+/// dictionary keys).
+fn plain_strings(schema: &SchemaRef) -> Option<SchemaRef> {
+    let plain = |t: &DataType| match t {
+        DataType::LargeUtf8 | DataType::Utf8View => Some(DataType::Utf8),
+        DataType::Dictionary(k, v)
+            if matches!(
+                **v,
+                DataType::Utf8 | DataType::LargeUtf8 | DataType::Utf8View
+            ) && (**k != DataType::Int32 || **v != DataType::Utf8) =>
+        {
+            Some(DataType::Dictionary(
+                Box::new(DataType::Int32),
+                Box::new(DataType::Utf8),
+            ))
+        }
+        _ => None,
+    };
+    if !schema
+        .fields()
+        .iter()
+        .any(|f| plain(f.data_type()).is_some())
+    {
+        return None;
+    }
+    let fields: Vec<Field> = schema
+        .fields()
+        .iter()
+        .map(|f| match plain(f.data_type()) {
+            Some(t) => f.as_ref().clone().with_data_type(t),
+            None => f.as_ref().clone(),
+        })
+        .collect();
+    Some(Arc::new(Schema::new_with_metadata(
+        fields,
+        schema.metadata().clone(),
+    )))
 }

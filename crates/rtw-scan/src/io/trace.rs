@@ -184,8 +184,8 @@ pub fn check_trace_size(options: &Options, limit: u64, names: TraceNames) -> Res
              than {limit_name} {}: raise {dt_name}, lower t_max, or raise {limit_name}",
             human_bytes(bytes),
             trace_row_bytes(),
-            options.t_max,
-            options.trace_dt,
+            rtw_model::Num(options.t_max),
+            rtw_model::Num(options.trace_dt),
             if options.trace_dt > 0.0 {
                 String::new()
             } else {
@@ -257,7 +257,7 @@ pub fn parse_size(s: &str) -> Result<u64, String> {
         .parse()
         .map_err(|_| format!("`{s}` is not a size such as 2GB or 500MB"))?;
     if !(v.is_finite() && v > 0.0) {
-        return Err(format!("`{s}`: must be a size > 0"));
+        return Err(format!("`{s}`: must be a finite size > 0"));
     }
     Ok((v * factor).min(u64::MAX as f64) as u64)
 }

@@ -54,7 +54,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::num::NonZeroUsize;
 use std::ops::Range;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, mpsc};
 use std::time::Instant;
 
@@ -66,13 +66,14 @@ pub(crate) const DEFAULT_CHUNK_SIZE: usize = 256;
 /// would start threads until the system stops it.
 pub(crate) const MAX_THREADS_PER_CORE: usize = 4;
 
-/// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores.
-pub(crate) fn check_threads(threads: Option<NonZeroUsize>) -> Result<()> {
+/// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores,
+/// naming it as the caller spells it (`--threads`, Python's `threads`).
+pub(crate) fn check_threads(threads: Option<NonZeroUsize>, name: &str) -> Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, NonZeroUsize::get);
     let cap = MAX_THREADS_PER_CORE * cores;
     match threads {
         Some(n) if n.get() > cap => bail!(
-            "--threads: {n} is invalid: must be at most {cap} ({MAX_THREADS_PER_CORE} per core, {cores} cores)"
+            "{name}: {n} is invalid: must be at most {cap} ({MAX_THREADS_PER_CORE} per core, {cores} cores)"
         ),
         _ => Ok(()),
     }
@@ -131,7 +132,7 @@ pub(crate) fn run_scan(
     let rows = ids.end - ids.start;
     let shard_text = settings.shard.map(|s| s.to_string());
     let config_toml = cfg.to_toml();
-    check_threads(settings.threads)?;
+    check_threads(settings.threads, "--threads")?;
     check_chunk_size(settings.chunk_size.get())?;
     let out = &settings.out_dir;
     std::fs::create_dir_all(out)
@@ -535,30 +536,64 @@ fn compute_chunks(
     outcome
 }
 
-/// The rows of sample ids `ids`, computed in parallel on `pool`, in id
-/// order; `None` once `stop` is set (the rows in flight finish, the rest are
-/// skipped).
-fn compute_rows(pool: &rayon::ThreadPool, ids: Range<u64>, jobs: &Jobs<'_>) -> Option<Vec<Row>> {
-    let results: Vec<Option<Row>> = pool.install(|| {
-        ids.into_par_iter()
-            .map(|id| (!jobs.stop.load(Ordering::SeqCst)).then(|| jobs.row(id)))
-            .collect()
+/// The rows of the first `n` sample ids, computed in parallel on `pool`, in
+/// id order, each counted in `done` as it comes in; `None` once `stop` is
+/// set (the rows in flight finish, the rest are skipped). The rows' memory
+/// is reserved first: an allocation that cannot be made is an error
+/// ([`std::collections::TryReserveError`] in its chain), not an abort.
+fn compute_rows(
+    pool: &rayon::ThreadPool,
+    n: usize,
+    jobs: &Jobs<'_>,
+    done: &AtomicU64,
+) -> Result<Option<Vec<Row>>> {
+    let mut results: Vec<Option<Row>> = Vec::new();
+    results
+        .try_reserve_exact(n)
+        .map_err(|e| anyhow!(e).context(format!("cannot hold the scan's {n} rows in memory")))?;
+    pool.install(|| {
+        (0..n)
+            .into_par_iter()
+            .map(|i| {
+                (!jobs.stop.load(Ordering::SeqCst)).then(|| {
+                    let row = jobs.row(i as u64);
+                    done.fetch_add(1, Ordering::Relaxed);
+                    row
+                })
+            })
+            .collect_into_vec(&mut results)
     });
-    results.into_iter().collect()
+    Ok(results.into_iter().collect())
 }
+
+/// Most rows [`scan_batch`] holds in memory (about 1 kB each with their
+/// table): `rtw.scan` of more is refused, up front, with the way to run it
+/// (`rtw-scan run`, which streams the rows to a file), rather than fail
+/// part way or abort the interpreter when memory runs out.
+pub const MAX_BATCH_ROWS: u64 = 1_000_000;
 
 /// A whole scan computed in memory, as `rtw.scan` does from Python: the
 /// rows `rtw-scan run` writes to `samples.parquet` (same per-sample code,
 /// same values but `wall_time_s`), as one batch whose schema carries the
 /// file's metadata (config, its hash, version, seed, variant, wall time).
-/// `Ok(None)` when `stop` was set before the last row was computed.
+/// `done` counts the rows computed so far (for a progress display).
+/// `Ok(None)` when `stop` was set before the last row was computed. A scan
+/// of more than [`MAX_BATCH_ROWS`] rows is refused.
 pub fn scan_batch(
     cfg: &ScanConfig,
     threads: Option<NonZeroUsize>,
     stop: &AtomicBool,
+    done: &AtomicU64,
 ) -> Result<Option<RecordBatch>> {
     let total = cfg.total_rows()?;
-    check_threads(threads)?;
+    if total > MAX_BATCH_ROWS {
+        bail!(
+            "samples: {total} rows is more than a scan in memory may have: at most {MAX_BATCH_ROWS} \
+             (about 1 GB); run a larger scan with `rtw-scan run CONFIG --out DIR`, which streams its \
+             rows to DIR/samples.parquet, and read that file (polars.scan_parquet reads it lazily)"
+        );
+    }
+    check_threads(threads, "threads")?;
     let pool = worker_pool(threads)?;
     let started = Instant::now();
     let progress = Progress::new(total, ProgressMode::Quiet);
@@ -570,7 +605,7 @@ pub fn scan_batch(
         stop,
         progress: &progress,
     };
-    let Some(rows) = compute_rows(&pool, 0..total, &jobs) else {
+    let Some(rows) = compute_rows(&pool, total as usize, &jobs, done)? else {
         return Ok(None);
     };
     let mut meta = metadata::scan_metadata(cfg);
@@ -978,9 +1013,11 @@ t_max = 2.0
         let never = AtomicBool::new(false);
         let sim: Simulator = &rtw_model::simulate;
         run_scan(&cfg, &settings(dir.path(), 2, 2), sim, &never).unwrap();
-        let b = scan_batch(&cfg, NonZeroUsize::new(2), &never)
+        let done = AtomicU64::new(0);
+        let b = scan_batch(&cfg, NonZeroUsize::new(2), &never, &done)
             .unwrap()
             .unwrap();
+        assert_eq!(done.load(Ordering::SeqCst), 5);
         let meta = b.schema().metadata().clone();
         assert_eq!(meta["rtw.config"], cfg.to_toml());
         assert_eq!(meta["rtw.config_hash"], cfg.hash());
@@ -995,6 +1032,22 @@ t_max = 2.0
         );
         // Stopped before it starts: no rows, no error.
         let stopped = AtomicBool::new(true);
-        assert!(scan_batch(&cfg, None, &stopped).unwrap().is_none());
+        assert!(scan_batch(&cfg, None, &stopped, &done).unwrap().is_none());
+    }
+
+    #[test]
+    fn scan_batch_refuses_more_rows_than_memory_holds_naming_the_cli() {
+        let n = MAX_BATCH_ROWS + 1;
+        let cfg = parse(&CFG.replace("samples = 37", &format!("samples = {n}"))).unwrap();
+        let never = AtomicBool::new(false);
+        let done = AtomicU64::new(0);
+        let e = scan_batch(&cfg, None, &never, &done)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!("{n} rows")) && e.contains("rtw-scan run"),
+            "{e}"
+        );
+        assert_eq!(done.load(Ordering::SeqCst), 0);
     }
 }

@@ -4,9 +4,9 @@
 
 use crate::io::metadata::with_metadata;
 use crate::io::scan_rows::JsonRow;
-use crate::io::trace::{TraceNames, check_trace_size, trace_batch, trace_metadata};
+use crate::io::trace::{TraceNames, check_trace_size, human_bytes, trace_batch, trace_metadata};
 use crate::scan::run::run_one;
-use anyhow::Result;
+use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_model::{Options, Params};
 
@@ -27,12 +27,50 @@ pub fn simulate_traced_json(
     limit: u64,
     names: TraceNames,
 ) -> Result<(String, RecordBatch)> {
+    if let Some(memory) = physical_memory()
+        && limit > memory
+    {
+        bail!(
+            "{}: {} is more than this machine's memory ({}): a trace returned in memory must fit \
+             in it; write a longer trace to a file with `rtw-scan simulate ... --trace FILE.parquet \
+             --trace-limit SIZE`",
+            names.limit,
+            human_bytes(limit as f64),
+            human_bytes(memory as f64)
+        );
+    }
     check_trace_size(options, limit, names)?;
     let mut samples = Vec::new();
+    // The estimate is an upper bound; should memory still run out, the
+    // trace stops growing and the call fails instead of aborting.
+    let mut full = None;
     let row = run_one(0, params, options, |p: &Params, o: &Options| {
-        rtw_model::simulate_traced(p, o, &mut |s| samples.push(*s))
+        rtw_model::simulate_traced(p, o, &mut |s| {
+            if full.is_none() {
+                match samples.try_reserve(1) {
+                    Ok(()) => samples.push(*s),
+                    Err(e) => full = Some(e),
+                }
+            }
+        })
     });
+    if let Some(e) = full {
+        return Err(anyhow!(e).context(format!(
+            "the trace ran out of memory after {} samples: raise {}",
+            samples.len(),
+            names.dt
+        )));
+    }
     let batch = trace_batch(&samples);
     let batch = with_metadata(batch, trace_metadata(&params, options)?)?;
     Ok((serde_json::to_string(&JsonRow(&row))?, batch))
+}
+
+/// The machine's memory in bytes (`MemTotal` of `/proc/meminfo`), where the
+/// system tells it: the bound of what a call may hold in memory.
+pub fn physical_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
 }
