@@ -5,10 +5,10 @@
 
 use crate::config;
 use crate::config::ScanConfig;
+use crate::io::files;
 use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files;
-use crate::io::files;
 use crate::scan::shard::{self, Shard};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::cast::AsArray;
