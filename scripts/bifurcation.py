@@ -1,4 +1,5 @@
-"""Bifurcation diagrams from `rtw-scan bifurcation` output (issue 7).
+"""Bifurcation diagrams from `rtw-scan bifurcation` output: how the recorded
+steps change as one parameter is swept.
 
 Run through scripts/bifurcation.sh, which runs the sweeps. Reads
 NAME.parquet (one row per parameter value) and NAME.steps.parquet (one row

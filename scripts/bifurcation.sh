@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The bifurcation diagrams of results/bifurcation/ (issue 7): φ swept over
+# The bifurcation diagrams of results/bifurcation/ (how the gait changes with
+# the slope): φ swept over
 # [0.02, 0.35] (121 values) at the Fig. 7(a) point with continuation on the
 # step map, for the default model (s = 0.85) and for s = 0 (every other option
 # the default's), run side by side, then the plots and summary.md.

@@ -1,4 +1,6 @@
-"""Continuation diagrams from `rtw-scan continuation` output (issue 17).
+"""Continuation diagrams from `rtw-scan continuation` output: the limit
+cycles' branches over a parameter, stable and unstable, with their Floquet
+multipliers.
 
 Run through scripts/continuation.sh. Nothing is recomputed here: every
 number drawn is read from the files rtw-scan wrote.

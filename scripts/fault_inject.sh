@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Fault injection (issue 14), run by scripts/test.sh: a scan
+# Fault injection, run by scripts/test.sh, so that no fault loses a finished
+# result: a scan
 # (configs/test/fault.toml, 400 samples, about a second on 2 cores) is
 #   1. killed at random points, alternately with SIGKILL and SIGTERM, and
 #      resumed, checking after each kill that no finished chunk was lost;

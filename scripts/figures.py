@@ -1,4 +1,4 @@
-"""Every figure of results/figures/ from rtw-scan's output (issue 4, item 3).
+"""Every figure of results/figures/ from rtw-scan's output.
 
 Run through scripts/figures.sh, which sets up the venv and builds rtw-scan.
 Inputs: the scans results/paper, results/fig-s2 and results/fig-s3

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Executes docs/examples/quickstart.ipynb (issue 16 item 3) top to bottom with
+# Executes docs/examples/quickstart.ipynb (the Python tutorial) top to bottom with
 # nbclient, so the notebook cannot rot: any cell that raises fails this script.
 # The executed copy goes to a temporary folder (its path is printed); the
 # committed notebook is never rewritten, and must carry no outputs.

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sensitivity of the 1000-sample statistic (issue 4): reruns configs/paper.toml
+# Sensitivity of the 1000-sample statistic (how far the outcome shares move
+# with each modelling or numerical choice): reruns configs/paper.toml
 # (the default model) with one choice changed per file of configs/sensitivity/
 # -> results/sensitivity/<name>/, and tabulates every run against the default
 # run results/paper/ (run the main job first) and against the paper

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The Slurm test (issue 6), run by scripts/test.sh: a real one-node Slurm
+# The Slurm test, run by scripts/test.sh, so that sharded scans on a cluster
+# give the single machine's rows: a real one-node Slurm
 # cluster on this machine (scripts/slurm/local-cluster.sh: Debian's slurmctld,
 # slurmd and munge), a 4-task array of configs/smoke.toml through
 # scripts/slurm/scan-array.sbatch, the merge job chained with

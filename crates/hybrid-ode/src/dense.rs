@@ -54,21 +54,6 @@ impl<const N: usize> Dense<N> {
         }
     }
 
-    /// The cubic Hermite interpolant on `[t0, t1]` through `(y0, f0)` and
-    /// `(y1, f1)` (values and derivatives at both ends).
-    pub fn hermite(
-        t0: f64,
-        y0: &[f64; N],
-        f0: &[f64; N],
-        t1: f64,
-        y1: &[f64; N],
-        f1: &[f64; N],
-    ) -> Self {
-        let mut d = Self::constant(t0, y0);
-        d.set_hermite(t0, y0, f0, t1 - t0, t1, y1, f1);
-        d
-    }
-
     /// Cubic Hermite over a step of length `h` (the DP5 form with `r5 = 0`).
     #[inline]
     #[allow(clippy::too_many_arguments)]
@@ -95,13 +80,6 @@ impl<const N: usize> Dense<N> {
             self.coef[1][i] = b;
             self.coef[2][i] = dy - h * f1[i] - b;
         }
-    }
-
-    /// Length of the step the interpolating polynomial was built on (equal
-    /// to `t1 − t0` unless the step was cut at an event).
-    #[inline]
-    pub fn step_len(&self) -> f64 {
-        self.h
     }
 
     /// Number of polynomial coefficient arrays in use: 3 for a cubic Hermite

@@ -216,7 +216,8 @@ pub struct Options {
     /// results/bench/work-precision.md): the cheapest setting whose scan
     /// outcome fractions stay within 1 pp of DOP853 at rtol 1e-13 and whose
     /// f_w errs by < 1 %, with no step cap: the tolerance alone sets the step
-    /// (issue 18). DOP853 is the benchmark's reference; RK4 takes fixed
+    /// (a cap of 0.01 s cost 23 % more right-hand-side evaluations and gained
+    /// no accuracy). DOP853 is the benchmark's reference; RK4 takes fixed
     /// steps `rk4_step`.
     pub method: Method,
     /// Relative tolerance of the adaptive methods.
@@ -227,7 +228,8 @@ pub struct Options {
     pub rk4_step: f64,
     /// Largest adaptive step (s); `inf` (the default): none, the tolerance
     /// alone sets the step. Event detection needs no cap: a guard that
-    /// crosses and comes back inside a step is found too (issue 18).
+    /// crosses and comes back inside a step is found too (each guard's cubic
+    /// model on the step tells where its dense output must be sampled).
     pub h_max: f64,
     /// Work budget (accepted + rejected steps) before `diverged`.
     pub max_steps: u64,

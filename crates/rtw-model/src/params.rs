@@ -297,12 +297,6 @@ impl Physical {
         }
     }
 
-    /// Inertia of a rod about one of its tips, I + m L²/4 = m L²/3.
-    #[inline]
-    pub fn inertia_tip(&self) -> f64 {
-        self.inertia + self.m * self.length * self.length / 4.0
-    }
-
     /// Height of the hub of the rigid star standing on two feet: h₀ = (L/2) cos(π/6).
     #[inline]
     pub fn standing_height(&self) -> f64 {

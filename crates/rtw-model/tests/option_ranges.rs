@@ -1,6 +1,7 @@
 //! Every option's documented range is one the physics survives: at both ends
 //! of each range in `Options::validate`, the Fig. 7(a) point still gives a
-//! physical outcome (issue 14 item 2). A threshold or tolerance that only
+//! physical outcome: a user who stays inside the documented ranges never gets
+//! a nonsense run. A threshold or tolerance that only
 //! decides how a run is integrated or judged must leave Fig. 7(a)'s walk a
 //! walk; an option that changes the physics (gravity, the push, the strings'
 //! natural length, friction) may change the gait but must not make the run

@@ -262,6 +262,8 @@ fn touchdown_leaves_other_rods_untouched() {
     assert_ne!(sys.modes()[2], RodMode::Free);
 }
 
+/// The literal model (docs/model.md §9), whose Fig. 7(a) run the reference
+/// implementation measured; not the adopted default.
 fn fig7a_options() -> Options {
     Options::literal()
 }
@@ -275,15 +277,15 @@ fn fig7a_runs_without_divergence_and_yields_a_stable_gait() {
     // s = 0.85 a period-1 walk with SLSP/DLSP = 0.53/0.47 needing μ ≈ 0.7.
     let p = Params::fig7a();
     let out = simulate(&p, &fig7a_options());
-    assert_eq!(out.label, Label::Skip, "default: {out:?}");
+    assert_eq!(out.label, Label::Skip, "literal: {out:?}");
     let f = out.fractions;
     assert!(
         (0.3..0.45).contains(&f.nlsp) && (0.02..0.1).contains(&f.dlsp),
         "{f:?}"
     );
     assert!((0.8..1.1).contains(&out.speed), "{out:?}");
-    // The default run goes through the slide mode (the Painlevé-type gap at
-    // lift-offs), and on without chatter.
+    // The literal run (μ = ∞) goes through the slide mode (the Painlevé-type
+    // gap at lift-offs), and on without chatter.
     assert!(out.slide_time > 0.0);
     let mut o = fig7a_options();
     o.strings.rest_length_ratio = 0.85;
@@ -340,7 +342,7 @@ fn assert_sound(name: &str, p: Params, o: &Options) -> rtw_model::Outcome {
     assert_ne!(
         fast.label,
         Label::Diverged,
-        "{name} at the default: {fast:?}"
+        "{name} at the default integrator: {fast:?}"
     );
     let o = &Options {
         method: Method::Dop853,

@@ -1,4 +1,4 @@
-"""Gaits you can watch (issue 16 item 2): rtw.draw, rtw.animation and `python -m rtw animate`.
+"""Gaits you can watch: rtw.draw, rtw.animation and `python -m rtw animate`.
 
 The short trace comes from the release binary (`rtw-scan simulate --trace`,
 target/release/rtw-scan or $RTW_SCAN), else from rtw.trace when the compiled

@@ -285,7 +285,8 @@ fn continuation_refuses_bad_flags_naming_them() {
 #[test]
 fn continuation_refuses_to_write_over_a_file_it_did_not_make() {
     // A scan's rows where the diagram would go: refused, the scan's file
-    // untouched (issue 14's rule, for this command's three files).
+    // untouched (rtw never writes over a file it did not make; here for this
+    // command's three files).
     let dir = tempfile::tempdir().unwrap();
     let scan = dir.path().join("scan");
     run_ok(&[

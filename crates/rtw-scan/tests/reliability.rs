@@ -1,9 +1,9 @@
-//! Finished results are never lost (issue 14): no run, merge, summary,
-//! cluster, simulate or bifurcation writes over another scan's results or its
-//! own input without `--force`; sizes are bounded before anything is
-//! allocated; corrupt files are refused; the CLI conventions (issue 15 item
-//! 6): `--quiet`, SIGTERM and SIGHUP like Ctrl-C, `summary --json`, exit
-//! codes in `--help`. Each test failed before its fix.
+//! Finished results are never lost: no run, merge, summary, cluster, simulate
+//! or bifurcation writes over another scan's results or its own input without
+//! `--force`; sizes are bounded before anything is allocated; corrupt files
+//! are refused; and the CLI conventions of docs/cli.md hold: `--quiet`,
+//! SIGTERM and SIGHUP like Ctrl-C, `summary --json`, exit codes in `--help`.
+//! Each test failed before its fix.
 
 mod common;
 
@@ -920,7 +920,7 @@ fn set_values_variant_files_and_empty_configs_get_plain_messages() {
     assert!(!out.exists());
 }
 
-// ---- issue 15 item 6: CLI conventions ----
+// ---- CLI conventions: quiet runs, signals, JSON summaries, exit codes ----
 
 #[test]
 fn quiet_json_summary_and_documented_exit_codes() {

@@ -245,7 +245,7 @@ fn killed_shard_rerun_with_resume_merges_to_the_identical_file() {
     ]);
     assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
     // Shard 2 of another split would replace part-2 of this one: refused
-    // (issue 14), unless forced.
+    // (finished results are never lost), unless forced.
     let args = [
         "run",
         &cfg,

@@ -5,21 +5,17 @@ use crate::bifurcation::summary::{period_str, summary_markdown};
 use crate::bifurcation::sweep::{Sweep, run_sweep};
 use crate::config::layers::simulation_options;
 use crate::config::params::SweepParam;
-use crate::continuation::{
-    self, Continuation, CurveSettings, files as cont_files, summary as cont_summary,
-};
 use crate::io::destination::summary_path;
 use crate::io::files::write_atomic;
 use anyhow::Result;
 use clap::Args;
-use rtw_model::cycles::stepmap::Section;
-use rtw_model::{Options, Param, Params};
+use rtw_model::{Options, Params};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 /// The start of a sweep or a diagram: the base point (default Fig. 7(a))
-/// and the model.
+/// and the model (`bifurcation` and `continuation` take it alike).
 #[derive(Args, Debug)]
 pub(super) struct ModelArgs {
     /// Base point: rod length L [m] (default: Fig. 7(a)).
@@ -53,7 +49,7 @@ pub(super) struct ModelArgs {
 
 impl ModelArgs {
     /// The base point and the resolved options (checked).
-    fn resolve(&self) -> Result<(Params, Options)> {
+    pub(super) fn resolve(&self) -> Result<(Params, Options)> {
         let d = Params::fig7a();
         let base = Params {
             length: self.length.unwrap_or(d.length),
@@ -156,115 +152,6 @@ fn sweep_and_write(sweep: &Sweep, out: &Path, quiet: bool) -> Result<ExitCode> {
             sp.display()
         );
     }
-    print!("{md}");
-    Ok(ExitCode::SUCCESS)
-}
-
-#[derive(Args, Debug)]
-pub(super) struct ContinuationArgs {
-    /// The continued input: length, rho, alpha, fn, zeta or phi.
-    #[arg(long, default_value = "phi")]
-    param: String,
-    /// The branches end below this value.
-    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02)]
-    from: f64,
-    /// The branches end above this value.
-    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35)]
-    to: f64,
-    #[command(flatten)]
-    model: ModelArgs,
-    /// First step, in scaled arclength (coordinates over their scales, the input over 0.1·max(1, |start|)).
-    #[arg(long, default_value_t = 0.02)]
-    ds: f64,
-    /// Largest step, in scaled arclength.
-    #[arg(long, default_value_t = 0.05)]
-    ds_max: f64,
-    /// Most points per branch.
-    #[arg(long, default_value_t = 400)]
-    max_points: usize,
-    /// The step map's section: `stays` (a new foot that stays on the ground: the walk's step) or
-    /// `touch-and-go` (every new foot's touchdown: for skips whose feet touch and lift at once).
-    #[arg(long, default_value = "stays")]
-    section: String,
-    /// Also continue each fold and period doubling of the branches through the start in this second input
-    /// (the boundary of the region where the gait exists and is stable).
-    #[arg(long, value_name = "PARAM")]
-    curve: Option<String>,
-    /// The curves end below this value of the second input.
-    #[arg(long, allow_negative_numbers = true, requires = "curve")]
-    curve_from: Option<f64>,
-    /// The curves end above this value of the second input.
-    #[arg(long, allow_negative_numbers = true, requires = "curve")]
-    curve_to: Option<f64>,
-    /// Branch points (FILE.special.parquet, FILE.curve.parquet and FILE.md are written beside it)
-    /// [default: runs/continuation/PARAM.parquet].
-    #[arg(long, value_name = "FILE.parquet")]
-    out: Option<PathBuf>,
-    /// Write even over files that are not this command's kind.
-    #[arg(long)]
-    force: bool,
-}
-
-/// Parses an input's name, naming the flag and the choices.
-fn input(name: &str, flag: &str) -> Result<Param> {
-    Param::parse(name).ok_or_else(|| {
-        anyhow::anyhow!(
-            "{flag}: unknown input `{name}`: must be one of {}",
-            Param::ALL.map(Param::name).join(", ")
-        )
-    })
-}
-
-pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
-    let (base, options) = a.model.resolve()?;
-    let param = input(&a.param, "--param")?;
-    let curve = match &a.curve {
-        None => None,
-        Some(name) => {
-            let p2 = input(name, "--curve")?;
-            let (Some(lo), Some(hi)) = (a.curve_from, a.curve_to) else {
-                anyhow::bail!("--curve {name}: needs --curve-from and --curve-to");
-            };
-            Some(CurveSettings {
-                param: p2,
-                range: (lo, hi),
-            })
-        }
-    };
-    let section = match a.section.as_str() {
-        "stays" => Section::Stays,
-        "touch-and-go" => Section::TouchAndGo,
-        other => anyhow::bail!("--section {other}: must be `stays` or `touch-and-go`"),
-    };
-    let mut c = Continuation::new(
-        param,
-        base,
-        options,
-        (a.from, a.to),
-        a.ds,
-        a.ds_max,
-        a.max_points,
-        curve,
-    )?;
-    c.cycle.section = section;
-    let out = a.out.unwrap_or_else(|| {
-        Path::new("runs/continuation").join(format!("{}.parquet", param.name()))
-    });
-    cont_files::check_outputs(&out, a.force)?;
-    let t0 = Instant::now();
-    let result = continuation::run(&c)?;
-    let wall = t0.elapsed().as_secs_f64();
-    let rows = cont_files::rows(&c, &result);
-    cont_files::write(&out, &c, &rows, wall)?;
-    let md = cont_summary::summary_markdown(
-        &c,
-        result.diagram.start.period,
-        result.diagram.start.floquet_max(),
-        &rows,
-        result.diagram.branches.len(),
-        wall,
-    );
-    write_atomic(&summary_path(&out), md.as_bytes())?;
     print!("{md}");
     Ok(ExitCode::SUCCESS)
 }

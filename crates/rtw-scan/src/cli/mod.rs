@@ -5,14 +5,16 @@
 
 mod analysis;
 mod bifurcation;
+mod continuation;
 mod run;
 mod simulate;
 
 use crate::io::files;
 use analysis::{ClusterArgs, SummaryArgs};
 use anyhow::{Context, Result};
-use bifurcation::{BifurcationArgs, ContinuationArgs};
+use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
+use continuation::ContinuationArgs;
 use run::{MergeArgs, RunArgs};
 use simulate::SimulateArgs;
 use std::process::ExitCode;
@@ -147,7 +149,7 @@ pub fn main() -> ExitCode {
         Command::Merge(a) => run::cmd_merge(a),
         Command::Simulate(a) => simulate::cmd_simulate(a),
         Command::Bifurcation(a) => bifurcation::cmd_bifurcation(a),
-        Command::Continuation(a) => bifurcation::cmd_continuation(a),
+        Command::Continuation(a) => continuation::cmd_continuation(a),
         Command::Cluster(a) => analysis::cmd_cluster(a),
         Command::Summary(a) => analysis::cmd_summary(a),
     };

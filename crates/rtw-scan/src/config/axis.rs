@@ -31,15 +31,6 @@ pub enum Axis {
 }
 
 impl Axis {
-    /// The grid points of a grid axis (`None` for fixed and uniform axes).
-    pub fn grid_points(&self) -> Option<Vec<f64>> {
-        match self {
-            Axis::Fixed(_) | Axis::Uniform { .. } => None,
-            Axis::List(v) => Some(v.clone()),
-            Axis::Linspace { lo, hi, n } => Some(linspace(*lo, *hi, *n)),
-        }
-    }
-
     /// The number of grid points of a grid axis (`None` for fixed and
     /// uniform axes), without making them: a linspace may have more points
     /// than memory can hold, and is refused by its count alone.
