@@ -96,7 +96,7 @@ impl ParamMap for StepMapFamily {
 
 /// The step map with two inputs as parameters, for the curves of folds and
 /// period doublings in a parameter plane
-/// ([`hybrid_ode::continuation::curve`]).
+/// ([`hybrid_ode::continuation::continue_curve`]).
 #[derive(Clone, Debug)]
 pub struct StepMapFamily2 {
     family: StepMapFamily,

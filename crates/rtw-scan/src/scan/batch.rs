@@ -57,7 +57,7 @@ pub const MAX_BATCH_ROWS: u64 = 1_000_000;
 /// file's metadata (config, its hash, version, seed, variant, wall time).
 /// `done` counts the rows computed so far (for a progress display).
 /// `Ok(None)` when `stop` was set before the last row was computed. A scan
-/// of more than [`MAX_BATCH_ROWS`] rows is refused.
+/// of more than `MAX_BATCH_ROWS` (10⁶) rows is refused.
 pub fn scan_batch(
     cfg: &ScanConfig,
     threads: Option<NonZeroUsize>,
