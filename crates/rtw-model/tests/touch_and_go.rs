@@ -4,7 +4,8 @@
 //! crossed; the touch-and-go section finds the skip that a simulation of the
 //! same robot keeps doing.
 
-use rtw_model::cycles::stepmap::{CycleOptions, Section, StepError, StepMap};
+use rtw_model::cycles::section::Section;
+use rtw_model::cycles::stepmap::{CycleOptions, StepError, StepMap};
 use rtw_model::plant::contact::RodMode;
 use rtw_model::{Label, Options, Params, simulate};
 

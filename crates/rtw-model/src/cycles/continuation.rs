@@ -7,8 +7,9 @@
 //! the branch meets a change of pattern the map is not smooth and the
 //! continuation stops there.
 
+use crate::cycles::limit_cycle::{CycleError, LimitCycle};
 use crate::cycles::section::SectionPoint;
-use crate::cycles::stepmap::{CycleError, CycleOptions, Jacobian, LimitCycle, StepMap};
+use crate::cycles::stepmap::{CycleOptions, Jacobian, StepMap};
 use crate::plant::slots::{self, OMEGA};
 use crate::{Options, Param, Params};
 use hybrid_ode::continuation::{
@@ -95,7 +96,7 @@ impl ParamMap for StepMapFamily {
 
 /// The step map with two inputs as parameters, for the curves of folds and
 /// period doublings in a parameter plane
-/// ([`hybrid_ode::continuation::curve`]).
+/// ([`hybrid_ode::continuation::continue_curve`]).
 #[derive(Clone, Debug)]
 pub struct StepMapFamily2 {
     family: StepMapFamily,

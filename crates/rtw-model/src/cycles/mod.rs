@@ -3,10 +3,12 @@
 //!
 //! | module | what it computes |
 //! |---|---|
-//! | [`section`] | the section's points in canonical labels (the 60° symmetry), the log of a run's crossings |
-//! | [`stepmap`] | the step map, its Jacobian (variational or differences), periods, fixed points, Floquet multipliers |
+//! | [`section`] | which touchdowns cross the section, its points in canonical labels (the 60° symmetry), the log of a run's crossings |
+//! | [`stepmap`] | the step map, its Jacobian (variational or differences), its iterates and periods |
+//! | [`limit_cycle`] | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run |
 //! | [`continuation`] | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) |
 
 pub mod continuation;
+pub mod limit_cycle;
 pub mod section;
 pub mod stepmap;

@@ -23,18 +23,31 @@
 //! contact x (zero by the shift). The section's own constraints (the landing
 //! foot on the ground, at rest after a sticking impact) are thus built in and
 //! the map has no trivial multipliers. A map is smooth only between points of
-//! the same *mode pattern* (which rods touch, how); [`StepMap::step`](crate::cycles::stepmap::StepMap::step) reports
-//! the pattern it lands in, and a fixed point must keep its own.
+//! the same *mode pattern* (which rods touch, how); the step map's `step`
+//! reports the pattern it lands in, and a fixed point must keep its own.
 //!
 
-use crate::cycles::stepmap::Section;
 use crate::outcome::MAX_PERIOD;
 use crate::plant::contact::RodMode;
 use crate::plant::geometry::{SPOKES, Tip};
-use crate::plant::rtw::{Rtw, Transition};
 use crate::plant::slots::{self, DISSIPATED, FRICTION, N, OMEGA, THETA, X};
-use hybrid_ode::{Flow, Observer};
 use std::f64::consts::PI;
+
+/// Which touchdowns of a new foot cross the step map's section.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Section {
+    /// Only a foot that stays on the ground (the walk's step; a
+    /// touch-and-go landing is not a step).
+    #[default]
+    Stays,
+    /// Every touchdown of a new foot, a touch-and-go too: the section of
+    /// skipping gaits whose feet touch and lift again at once (s = 0 on
+    /// steep slopes), which [`Section::Stays`] never crosses. The landing
+    /// rod may then be free, with its tip on the ground: its coordinates
+    /// keep the height and angle that this ties together, so the map has one
+    /// trivial multiplier 0 more.
+    TouchAndGo,
+}
 
 /// Canonical spoke of the stance foot, and of the foot behind it (c−).
 pub(crate) const STANCE_SPOKE: usize = 0;
@@ -223,20 +236,6 @@ impl SectionLog {
         (self.len - n..self.len)
             .map(|k| self.ring[k % LOG_LEN])
             .collect()
-    }
-}
-
-/// The log as an observer of a run: it records every section crossing.
-impl Observer<N, Rtw> for SectionLog {
-    fn on_transition(&mut self, rtw: &Rtw, _t: f64, y: &[f64; N], tr: &Transition) -> Flow {
-        if let Transition::Touchdown { rod, tip, .. } = *tr {
-            self.on_touchdown(&rtw.modes(), y, rod, tip);
-        }
-        Flow::Continue
-    }
-
-    fn reads_interior(&self, _: &Rtw, _t0: f64, _t1: f64) -> bool {
-        false
     }
 }
 

@@ -1,5 +1,5 @@
-//! The RTW's step map on its section ([`crate::cycles::section`]), its
-//! Jacobian, and the limit cycles it finds.
+//! The RTW's step map on its section ([`crate::cycles::section`]) and its
+//! Jacobian; the limit cycles it finds are in [`crate::cycles::limit_cycle`].
 //!
 //! **Jacobian.** By the variational equations integrated alongside the step,
 //! through every impact and mode switch with its saltation matrix
@@ -8,19 +8,21 @@
 //! check one against the other.
 
 use crate::cycles::section::{
-    STANCE_SPOKE, SectionLog, SectionPoint, canonical, canonical_jacobian, new_foot, source,
+    STANCE_SPOKE, SectionPoint, canonical, canonical_jacobian, new_foot, source,
 };
 use crate::options::{LabelOptions, Method, Options};
-use crate::outcome::{
-    ContactFractions, CycleSummary, FailureDetail, Label, MAX_PERIOD, StepShares,
-};
+use crate::outcome::{ContactFractions, FailureDetail, Label, MAX_PERIOD, StepShares};
 use crate::params::{Params, Physical};
 use crate::plant::initial::initial_state;
 use crate::plant::rtw::{AtState, Rtw, Transition};
 use crate::plant::slots::{self, DISSIPATED, FRICTION, N, X};
-use hybrid_ode::limit::{self, FixedPoint, NewtonError};
+use hybrid_ode::limit;
 use hybrid_ode::{Dense, EndReason, EngineOptions, Flow, Observer, StepEnd, Variational, run};
-use nalgebra::{Complex, DMatrix};
+use nalgebra::DMatrix;
+
+/// Which touchdowns cross the map's section, as its settings
+/// ([`CycleOptions::section`]) name it.
+pub use crate::cycles::section::Section;
 
 /// Dimension of the RTW state with its sensitivity.
 const M: usize = N + N * N;
@@ -124,32 +126,6 @@ impl Observer<N, Rtw> for StepLog {
     }
 }
 
-/// Scaled distance under which a simulation's section points count as a
-/// period (a scan's run is integrated at a loose tolerance; Newton then
-/// refines the point at [`CycleOptions`]' tolerance).
-pub const RUN_PERIOD_TOL: f64 = 1e-3;
-
-/// The limit cycle a finished run settled into: its period recognised on the
-/// run's latest section crossings, then Newton on `Pⁿ(z) = z` from the last
-/// one. `None` when no period shows or Newton fails.
-pub fn cycle_of_run(params: &Params, options: &Options, log: &SectionLog) -> Option<CycleSummary> {
-    // Differences: 4× cheaper than the variational equations here, and as
-    // good for a scan column (the tests check the two against each other).
-    let cycle = CycleOptions {
-        jacobian: Jacobian::Differences { rel: 1e-6 },
-        ..CycleOptions::default()
-    };
-    let map = StepMap::new(params, options, &cycle);
-    let hist = log.latest();
-    let n = map.period_of(&hist, cycle.max_period, RUN_PERIOD_TOL)?;
-    let lc = map.solve(hist.last()?, n, &cycle).ok()?;
-    Some(CycleSummary {
-        period: n as u32,
-        floquet_max: lc.floquet_max(),
-        residual: lc.fixed_point.residual,
-    })
-}
-
 /// Settings of the limit-cycle analysis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleOptions {
@@ -176,22 +152,6 @@ pub struct CycleOptions {
     pub jacobian: Jacobian,
     /// Which touchdowns cross the section ([`Section`]).
     pub section: Section,
-}
-
-/// Which touchdowns of a new foot cross the step map's section.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Section {
-    /// Only a foot that stays on the ground (the walk's step; a
-    /// touch-and-go landing is not a step).
-    #[default]
-    Stays,
-    /// Every touchdown of a new foot, a touch-and-go too: the section of
-    /// skipping gaits whose feet touch and lift again at once (s = 0 on
-    /// steep slopes), which [`Section::Stays`] never crosses. The landing
-    /// rod may then be free, with its tip on the ground: its coordinates
-    /// keep the height and angle that this ties together, so the map has one
-    /// trivial multiplier 0 more.
-    TouchAndGo,
 }
 
 /// How the step map's Jacobian is computed.
@@ -373,56 +333,9 @@ fn finish(run: &StepLog, reason: EndReason) -> Result<usize, StepError> {
     }
 }
 
-/// A periodic gait found on the step map.
-#[derive(Clone, Debug)]
-pub struct LimitCycle {
-    /// Period in steps (1: every step the same).
-    pub period: usize,
-    /// The orbit's section points, from the fixed point of `Pⁿ` on.
-    pub orbit: Vec<SectionPoint>,
-    /// The steps along the orbit.
-    pub steps: Vec<Step>,
-    /// The Newton solve of `Pⁿ(z) = z`.
-    pub fixed_point: FixedPoint,
-    /// Floquet multipliers of `Pⁿ`, largest modulus first, without the
-    /// trivial ones ([`limit::nontrivial_multipliers`]).
-    pub multipliers: Vec<Complex<f64>>,
-}
-
-impl LimitCycle {
-    /// Largest multiplier modulus.
-    pub fn floquet_max(&self) -> f64 {
-        limit::spectral_radius(&self.multipliers)
-    }
-
-    /// Stable when every multiplier lies inside the unit circle.
-    pub fn is_stable(&self) -> bool {
-        self.floquet_max() < 1.0
-    }
-
-    /// The gait label of the orbit's contact fractions and steps (docs/model.md §5).
-    pub fn label(&self, labels: &LabelOptions) -> Label {
-        Step::label(&self.steps, labels)
-    }
-}
-
-/// Why no limit cycle was found.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum CycleError {
-    /// A step of the map failed.
-    #[error("a step failed: {0}")]
-    Step(#[from] StepError),
-    /// No period up to this one showed after the settling steps.
-    #[error("no period ≤ {0} on the step map after the settling steps")]
-    NoPeriod(usize),
-    /// Newton did not converge.
-    #[error("Newton: {0}")]
-    Newton(#[from] NewtonError),
-}
-
 impl StepMap {
-    /// `n` steps from `p`; `None` if one fails or the mode pattern at the end
-    /// differs from `p`'s.
+    /// `n` steps from `p`, or the error of the first step that fails. The
+    /// mode pattern at the end is not checked: it may differ from `p`'s.
     pub fn iterate(&self, p: &SectionPoint, n: usize) -> Result<Vec<Step>, StepError> {
         // Grown as the steps come (n may be a user's 10⁷ settling steps, most
         // runs fail long before): no up-front allocation sized by the caller.
@@ -483,60 +396,6 @@ impl StepMap {
                 p.modes == q.modes
                     && limit::scaled_max(&p.coords(), &q.coords(), &self.coord_scale(p)) <= tol
             })
-        })
-    }
-
-    /// The limit cycle a run from `options`' initial state settles into:
-    /// `settle_steps` steps, the period recognised on the section points,
-    /// then Newton on `Pⁿ(z) = z` from the last point, with Jacobians by the
-    /// variational equations, and the Floquet multipliers at the solution.
-    pub fn limit_cycle(
-        &self,
-        options: &Options,
-        cycle: &CycleOptions,
-    ) -> Result<LimitCycle, CycleError> {
-        let first = self.first(options)?;
-        let mut hist = vec![first.to];
-        hist.extend(
-            self.iterate(&first.to, cycle.settle_steps)?
-                .iter()
-                .map(|s| s.to),
-        );
-        let n = self
-            .period_of(&hist, cycle.max_period, cycle.period_tol)
-            .ok_or(CycleError::NoPeriod(cycle.max_period))?;
-        self.solve(hist.last().expect("non-empty"), n, cycle)
-    }
-
-    /// Newton on `Pⁿ(z) = z` from `start`, and the multipliers there.
-    pub fn solve(
-        &self,
-        start: &SectionPoint,
-        n: usize,
-        cycle: &CycleOptions,
-    ) -> Result<LimitCycle, CycleError> {
-        let scale = self.coord_scale(start);
-        let fixed_point = limit::newton(
-            &start.coords(),
-            &scale,
-            cycle.newton_tol,
-            cycle.newton_max_iter,
-            |z| {
-                let (q, j) = self.power_with_jacobian(&start.with_coords(z), n, cycle.jacobian)?;
-                Some((q.coords(), j))
-            },
-        )?;
-        let p = start.with_coords(&fixed_point.z);
-        let steps = self.iterate(&p, n)?;
-        let mut orbit = vec![p];
-        orbit.extend(steps.iter().take(n - 1).map(|s| s.to));
-        let multipliers = limit::nontrivial_multipliers(&fixed_point.jacobian);
-        Ok(LimitCycle {
-            period: n,
-            orbit,
-            steps,
-            fixed_point,
-            multipliers,
         })
     }
 }

@@ -2,8 +2,8 @@
 //! engine, with the statistics of docs/model.md §5 gathered as it goes by
 //! its observer, the `Recorder`.
 
+use crate::cycles::limit_cycle::cycle_of_run;
 use crate::cycles::section::SectionLog;
-use crate::cycles::stepmap::cycle_of_run;
 use crate::options::Options;
 use crate::outcome::{Energy, FailureDetail, Label, Outcome, Stance, TraceSample};
 use crate::params::{Params, Physical};

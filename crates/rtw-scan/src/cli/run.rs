@@ -10,6 +10,7 @@ use crate::scan::progress::ProgressMode;
 use crate::scan::run::{self, RunSettings, RunStatus};
 use crate::scan::shard::{self, Shard};
 use crate::scan::space;
+use crate::scan::workers::check_threads;
 use anyhow::{Result, anyhow};
 use clap::Args;
 use std::num::NonZeroUsize;
@@ -104,7 +105,7 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     let cfg = config::layers::load_layered(&a.config, a.variant.as_deref(), &a.set)?;
-    run::check_threads(a.threads, "--threads")?;
+    check_threads(a.threads, "--threads")?;
     let out = match a.out.clone() {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,

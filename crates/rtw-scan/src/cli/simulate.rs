@@ -6,7 +6,7 @@ use crate::io::metadata::FileKind;
 use crate::io::scan_rows::{self, JsonRow};
 use crate::io::trace::{self, TraceWriter};
 use crate::io::{destination, files};
-use crate::scan::run::run_one;
+use crate::scan::one::run_one;
 use anyhow::{Context, Result};
 use clap::Args;
 use rtw_model::outcome::Energy;

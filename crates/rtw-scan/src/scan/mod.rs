@@ -4,7 +4,11 @@
 //! | module | role |
 //! |---|---|
 //! | [`sample`] | sample id → parameters, from (seed, id) only |
-//! | `run` | parallel chunks into durable files, resume, one sample's row; [`scan_batch`]: a scan in memory |
+//! | `run` | a run into durable files: its chunks, resume, the merge |
+//! | `chunks` | the chunk scheduler: samples in id order, each chunk handed over once its rows are in |
+//! | `batch` | [`scan_batch`]: a scan in memory |
+//! | `one` | one sample's row (panics caught, wall time) |
+//! | `workers` | the worker pool, the thread cap, a worker's sample |
 //! | [`single`] | one run in memory: its `--json` row and its trace (the Python package) |
 //! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks |
 //! | `shard` | `--shard K/N` id ranges; `merge` checks and joins the parts |
@@ -13,8 +17,13 @@
 //! | `lock` | one writer per result |
 //! | `space` | whether a scan's output fits on its disk |
 
+pub(crate) mod batch;
 pub(crate) mod checkpoint;
+pub(crate) mod chunks;
+#[cfg(test)]
+mod fixtures;
 pub(crate) mod lock;
+pub(crate) mod one;
 pub(crate) mod panic;
 pub(crate) mod progress;
 pub(crate) mod run;
@@ -22,5 +31,6 @@ pub mod sample;
 pub(crate) mod shard;
 pub mod single;
 pub(crate) mod space;
+pub(crate) mod workers;
 
-pub use run::scan_batch;
+pub use batch::scan_batch;

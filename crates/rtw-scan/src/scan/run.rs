@@ -31,56 +31,29 @@
 
 use crate::config::ScanConfig;
 use crate::io::files;
-use crate::io::metadata::{
-    self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, META_WALL_TIME, VERSION,
-};
+use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, VERSION};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
 use crate::io::scan_files::concat_scan_files;
-use crate::io::scan_rows::{self, Row};
+use crate::io::scan_rows;
 use crate::scan::checkpoint::{
     Layout, Manifest, chunk_labels, chunks_on_disk, describe_mismatch, is_complete, read_manifest,
     refuse_other_results, remove_partial, remove_stray_temps,
 };
+use crate::scan::chunks::{Todo, compute_chunks};
 use crate::scan::lock::Lock;
-use crate::scan::panic::catch_panic;
+use crate::scan::one::Simulator;
 use crate::scan::progress::{Progress, ProgressMode};
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
+use crate::scan::workers::{Jobs, check_threads, worker_pool};
 use anyhow::{Context, Result, anyhow, bail};
-use arrow_array::RecordBatch;
-use rayon::prelude::*;
-use rtw_model::{Options, Outcome, Params, Physical};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::num::NonZeroUsize;
-use std::ops::Range;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Mutex, mpsc};
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Rows per chunk unless told otherwise.
 pub(crate) const DEFAULT_CHUNK_SIZE: usize = 256;
-
-/// Most worker threads per core accepted by `--threads`: more only adds
-/// switching (10 000 threads took 98 s for 6 samples), and a huge count
-/// would start threads until the system stops it.
-pub(crate) const MAX_THREADS_PER_CORE: usize = 4;
-
-/// Refuses a thread count above [`MAX_THREADS_PER_CORE`] × the cores,
-/// naming it as the caller spells it (`--threads`, Python's `threads`).
-pub(crate) fn check_threads(threads: Option<NonZeroUsize>, name: &str) -> Result<()> {
-    let cores = std::thread::available_parallelism().map_or(1, NonZeroUsize::get);
-    let cap = MAX_THREADS_PER_CORE * cores;
-    match threads {
-        Some(n) if n.get() > cap => bail!(
-            "{name}: {n} is invalid: must be at most {cap} ({MAX_THREADS_PER_CORE} per core, {cores} cores)"
-        ),
-        _ => Ok(()),
-    }
-}
-
-/// A simulator: `rtw_model::simulate` or a test double.
-pub(crate) type Simulator<'a> = &'a (dyn Fn(&Params, &Options) -> Outcome + Sync);
 
 /// How to run a scan (the config says what to run).
 #[derive(Clone, Debug)]
@@ -383,299 +356,19 @@ pub(crate) fn check_chunk_size(n: usize) -> Result<()> {
     Ok(())
 }
 
-/// A pool of `threads` workers (`None`: one per core).
-fn worker_pool(threads: Option<NonZeroUsize>) -> Result<rayon::ThreadPool> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.map_or(0, NonZeroUsize::get))
-        .build()
-        .context("cannot start the worker threads")
-}
-
-/// What every sample of a scan needs: its parameters, the options and the
-/// simulator, the stop flag and the progress counts.
-struct Jobs<'a> {
-    sampler: &'a Sampler,
-    options: &'a Options,
-    sim: Simulator<'a>,
-    stop: &'a AtomicBool,
-    progress: &'a Progress,
-}
-
-impl Jobs<'_> {
-    /// The row of sample `id`, counted in the progress.
-    fn row(&self, id: u64) -> Row {
-        let row = run_one(id, self.sampler.params(id), self.options, self.sim);
-        self.progress.record(row.label());
-        row
-    }
-}
-
-/// The chunks a run still has to compute: those of `0..chunks` not in
-/// `done`, chunk `c` holding the sample ids `range(c)`.
-struct Todo<'a> {
-    chunks: u64,
-    range: &'a (dyn Fn(u64) -> Range<u64> + Sync),
-    done: &'a BTreeSet<u64>,
-}
-
-impl Todo<'_> {
-    /// The first sample to do from chunk `c` on: its chunk and id (the chunk
-    /// is `chunks` when none is left).
-    fn first_from(&self, mut c: u64) -> (u64, u64) {
-        while c < self.chunks && self.done.contains(&c) {
-            c += 1;
-        }
-        let id = if c < self.chunks {
-            (self.range)(c).start
-        } else {
-            0
-        };
-        (c, id)
-    }
-}
-
-/// A chunk in progress: its rows so far, by position, and how many are in.
-struct OpenChunk {
-    rows: Vec<Option<Row>>,
-    filled: usize,
-}
-
-/// Computes the rows of the chunks of `todo` on `pool`, and hands each
-/// chunk, in id order, to `finished` on this thread as soon as its last row
-/// is in: `finished(c, rows, wall)`, `wall` the time since the previous
-/// chunk was handed over (or the start), so that the chunks' times add up to
-/// the run's.
-///
-/// The workers take the samples one at a time in id order, so none waits at
-/// a chunk's end for the others (a barrier per chunk cost 2.6 % of the paper
-/// scan on 2 threads), the chunks finish about in order, and this thread
-/// writes a finished chunk while the workers go on. Nothing is built per
-/// chunk or per sample ahead of time (a scan may have 10¹² samples). Once
-/// `jobs.stop` is set, the rows in flight finish, the chunks they complete
-/// are still handed over, and the rest is dropped: at most the chunks in
-/// progress are lost. An error from `finished` stops the workers the same
-/// way and is returned.
-fn compute_chunks(
-    pool: &rayon::ThreadPool,
-    todo: &Todo<'_>,
-    jobs: &Jobs<'_>,
-    mut finished: impl FnMut(u64, Vec<Row>, f64) -> Result<()>,
-) -> Result<()> {
-    // The next sample to hand out: its chunk and id.
-    let cursor = Mutex::new(todo.first_from(0));
-    let take = || {
-        let mut cur = cursor.lock().unwrap_or_else(|e| e.into_inner());
-        let (c, id) = *cur;
-        if c >= todo.chunks {
-            return None;
-        }
-        *cur = if id + 1 < (todo.range)(c).end {
-            (c, id + 1)
-        } else {
-            todo.first_from(c + 1)
-        };
-        Some((c, id))
-    };
-    let halt = AtomicBool::new(false);
-    let stopped = || jobs.stop.load(Ordering::SeqCst) || halt.load(Ordering::SeqCst);
-    // The chunks in progress. The worker that puts a chunk's last row in
-    // sends the chunk, so this thread wakes once per chunk, not per row.
-    let open: Mutex<BTreeMap<u64, OpenChunk>> = Mutex::new(BTreeMap::new());
-    let put = |c: u64, row: Row| -> Option<Vec<Row>> {
-        let ids = (todo.range)(c);
-        let mut open = open.lock().unwrap_or_else(|e| e.into_inner());
-        // Grown as the rows come (they come about in order), never
-        // allocated for the whole chunk ahead of them.
-        let chunk = open.entry(c).or_insert_with(|| OpenChunk {
-            rows: Vec::new(),
-            filled: 0,
-        });
-        let at = (row.sample_id - ids.start) as usize;
-        if chunk.rows.len() <= at {
-            chunk.rows.resize_with(at + 1, || None);
-        }
-        chunk.rows[at] = Some(row);
-        chunk.filled += 1;
-        if (chunk.filled as u64) < ids.end - ids.start {
-            return None;
-        }
-        let chunk = open.remove(&c).expect("the chunk just filled");
-        Some(chunk.rows.into_iter().flatten().collect())
-    };
-    let (tx, rx) = mpsc::channel::<(u64, Vec<Row>)>();
-    let mut outcome = Ok(());
-    pool.in_place_scope(|scope| {
-        for _ in 0..pool.current_num_threads() {
-            let tx = tx.clone();
-            let (take, put, stopped) = (&take, &put, &stopped);
-            scope.spawn(move |_| {
-                while !stopped() {
-                    let Some((c, id)) = take() else { break };
-                    if let Some(rows) = put(c, jobs.row(id))
-                        && tx.send((c, rows)).is_err()
-                    {
-                        break;
-                    }
-                }
-            });
-        }
-        drop(tx);
-        let mut since = Instant::now();
-        for (c, rows) in rx {
-            if outcome.is_err() {
-                continue;
-            }
-            let wall = since.elapsed().as_secs_f64();
-            since = Instant::now();
-            if let Err(e) = finished(c, rows, wall) {
-                halt.store(true, Ordering::SeqCst);
-                outcome = Err(e);
-            }
-        }
-    });
-    outcome
-}
-
-/// The rows of the first `n` sample ids, computed in parallel on `pool`, in
-/// id order, each counted in `done` as it comes in; `None` once `stop` is
-/// set (the rows in flight finish, the rest are skipped). The rows' memory
-/// is reserved first: an allocation that cannot be made is an error
-/// ([`std::collections::TryReserveError`] in its chain), not an abort.
-fn compute_rows(
-    pool: &rayon::ThreadPool,
-    n: usize,
-    jobs: &Jobs<'_>,
-    done: &AtomicU64,
-) -> Result<Option<Vec<Row>>> {
-    let mut results: Vec<Option<Row>> = Vec::new();
-    results
-        .try_reserve_exact(n)
-        .map_err(|e| anyhow!(e).context(format!("cannot hold the scan's {n} rows in memory")))?;
-    pool.install(|| {
-        (0..n)
-            .into_par_iter()
-            .map(|i| {
-                (!jobs.stop.load(Ordering::SeqCst)).then(|| {
-                    let row = jobs.row(i as u64);
-                    done.fetch_add(1, Ordering::Relaxed);
-                    row
-                })
-            })
-            .collect_into_vec(&mut results)
-    });
-    Ok(results.into_iter().collect())
-}
-
-/// Most rows [`scan_batch`] holds in memory (about 1 kB each with their
-/// table): `rtw.scan` of more is refused, up front, with the way to run it
-/// (`rtw-scan run`, which streams the rows to a file), rather than fail
-/// part way or abort the interpreter when memory runs out.
-pub const MAX_BATCH_ROWS: u64 = 1_000_000;
-
-/// A whole scan computed in memory, as `rtw.scan` does from Python: the
-/// rows `rtw-scan run` writes to `samples.parquet` (same per-sample code,
-/// same values but `wall_time_s`), as one batch whose schema carries the
-/// file's metadata (config, its hash, version, seed, variant, wall time).
-/// `done` counts the rows computed so far (for a progress display).
-/// `Ok(None)` when `stop` was set before the last row was computed. A scan
-/// of more than [`MAX_BATCH_ROWS`] rows is refused.
-pub fn scan_batch(
-    cfg: &ScanConfig,
-    threads: Option<NonZeroUsize>,
-    stop: &AtomicBool,
-    done: &AtomicU64,
-) -> Result<Option<RecordBatch>> {
-    let total = cfg.total_rows()?;
-    if total > MAX_BATCH_ROWS {
-        bail!(
-            "samples: {total} rows is more than a scan in memory may have: at most {MAX_BATCH_ROWS} \
-             (about 1 GB); run a larger scan with `rtw-scan run CONFIG --out DIR`, which streams its \
-             rows to DIR/samples.parquet, and read that file (polars.scan_parquet reads it lazily)"
-        );
-    }
-    check_threads(threads, "threads")?;
-    let pool = worker_pool(threads)?;
-    let started = Instant::now();
-    let progress = Progress::new(total, ProgressMode::Quiet);
-    let sim: Simulator = &rtw_model::simulate;
-    let jobs = Jobs {
-        sampler: &Sampler::new(cfg),
-        options: &cfg.simulation,
-        sim,
-        stop,
-        progress: &progress,
-    };
-    let Some(rows) = compute_rows(&pool, total as usize, &jobs, done)? else {
-        return Ok(None);
-    };
-    let mut meta = metadata::scan_metadata(cfg);
-    meta.push(metadata::kv(
-        META_WALL_TIME,
-        started.elapsed().as_secs_f64().to_string(),
-    ));
-    Ok(Some(metadata::with_metadata(
-        scan_rows::to_batch(&rows),
-        meta,
-    )?))
-}
-
-/// Runs one sample: derived parameters, the simulation (panics caught) and
-/// its wall time. Used by scans and by `rtw-scan simulate`.
-pub(crate) fn run_one(
-    sample_id: u64,
-    params: Params,
-    options: &Options,
-    sim: impl FnOnce(&Params, &Options) -> Outcome,
-) -> Row {
-    let physical = Physical::new(&params, options.normalization, options.g);
-    let started = Instant::now();
-    let (outcome, message) = match params.validate() {
-        Err(e) => (None, Some(format!("invalid parameters: {e}"))),
-        Ok(()) => match catch_panic(|| sim(&params, options)) {
-            Ok(o) => (Some(o), None),
-            Err(msg) => (None, Some(msg)),
-        },
-    };
-    Row {
-        sample_id,
-        params,
-        physical,
-        outcome,
-        message,
-        wall_time_s: started.elapsed().as_secs_f64(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::config::parse;
-    use crate::fake;
     use crate::io::scan_rows::schema;
+    use crate::scan::batch::scan_batch;
+    use crate::scan::fixtures::{CFG, fake_sim};
     use arrow::array::{Array, AsArray, RecordBatch};
     use rtw_model::Label;
     use rtw_model::outcome::FailureDetail;
+    use rtw_model::{Options, Params};
     use std::path::Path;
     use std::sync::atomic::AtomicU64;
-    use std::time::Duration;
-
-    const CFG: &str = r#"
-seed = 11
-samples = 37
-[params]
-length = 0.8
-rho = { uniform = [1, 5] }
-alpha = { uniform = [0, 0.4] }
-fn = { uniform = [1.5, 5] }
-zeta = 0.05
-phi = { uniform = [0.05, 0.3] }
-[simulation]
-t_max = 2.0
-"#;
-
-    fn fake_sim(p: &Params, o: &Options) -> Outcome {
-        fake::simulate(p, o, Duration::ZERO)
-    }
 
     fn settings(dir: &Path, threads: usize, chunk: usize) -> RunSettings {
         RunSettings {
@@ -925,85 +618,6 @@ t_max = 2.0
         assert_eq!(file.metadata[metadata::META_VERSION], VERSION);
     }
 
-    /// The scan's chunks of 4 rows of CFG's 37 samples, every one to do, on
-    /// 2 workers, with `sim`; `finished` as [`compute_chunks`]'.
-    fn chunks_of_cfg(
-        sim: Simulator,
-        finished: impl FnMut(u64, Vec<Row>, f64) -> Result<()>,
-    ) -> Result<()> {
-        let cfg = parse(CFG).unwrap();
-        let pool = worker_pool(NonZeroUsize::new(2)).unwrap();
-        let stop = AtomicBool::new(false);
-        let progress = Progress::new(37, ProgressMode::Quiet);
-        let sampler = Sampler::new(&cfg);
-        let jobs = Jobs {
-            sampler: &sampler,
-            options: &cfg.simulation,
-            sim,
-            stop: &stop,
-            progress: &progress,
-        };
-        let range = |c: u64| c * 4..((c + 1) * 4).min(37);
-        let done = BTreeSet::new();
-        let todo = Todo {
-            chunks: 10,
-            range: &range,
-            done: &done,
-        };
-        compute_chunks(&pool, &todo, &jobs, finished)
-    }
-
-    #[test]
-    fn a_slow_sample_does_not_hold_back_the_chunks_after_it() {
-        // The first sample taken (chunk 0's) takes 400 ms, the others next
-        // to nothing: the other worker finishes the other nine chunks
-        // meanwhile, each handed over whole and in id order. With a barrier
-        // at each chunk's end, chunk 0 would come first.
-        let calls = AtomicU64::new(0);
-        let sim = |p: &Params, o: &Options| {
-            if calls.fetch_add(1, Ordering::SeqCst) == 0 {
-                std::thread::sleep(Duration::from_millis(400));
-            }
-            fake_sim(p, o)
-        };
-        let mut order = Vec::new();
-        chunks_of_cfg(&sim, |c, rows, wall| {
-            let ids: Vec<u64> = rows.iter().map(|r| r.sample_id).collect();
-            assert_eq!(ids, (c * 4..((c + 1) * 4).min(37)).collect::<Vec<_>>());
-            assert!(wall >= 0.0);
-            order.push(c);
-            Ok(())
-        })
-        .unwrap();
-        assert_eq!(order.len(), 10, "{order:?}");
-        assert_eq!(order.last(), Some(&0), "{order:?}");
-        assert_eq!(calls.load(Ordering::SeqCst), 37);
-    }
-
-    #[test]
-    fn a_chunk_that_cannot_be_written_stops_the_workers() {
-        // Writing chunk 2 fails: the error comes back, and the workers stop
-        // after the rows in flight instead of computing the rest (20 ms a
-        // sample: the 25 samples after chunk 2 would take 250 ms on 2
-        // workers, room for a slow machine to hand the error over late).
-        let calls = AtomicU64::new(0);
-        let sim = |p: &Params, o: &Options| {
-            calls.fetch_add(1, Ordering::SeqCst);
-            std::thread::sleep(Duration::from_millis(20));
-            fake_sim(p, o)
-        };
-        let e = chunks_of_cfg(&sim, |c, _, _| {
-            if c == 2 {
-                bail!("disk full (test)")
-            }
-            Ok(())
-        })
-        .unwrap_err();
-        assert!(e.to_string().contains("disk full (test)"), "{e}");
-        let n = calls.load(Ordering::SeqCst);
-        assert!((12..=30).contains(&n), "{n} samples computed");
-    }
-
     #[test]
     fn scan_batch_holds_the_rows_of_run_scan() {
         // The real simulator, a few short runs: the in-memory scan (Python's
@@ -1033,21 +647,5 @@ t_max = 2.0
         // Stopped before it starts: no rows, no error.
         let stopped = AtomicBool::new(true);
         assert!(scan_batch(&cfg, None, &stopped, &done).unwrap().is_none());
-    }
-
-    #[test]
-    fn scan_batch_refuses_more_rows_than_memory_holds_naming_the_cli() {
-        let n = MAX_BATCH_ROWS + 1;
-        let cfg = parse(&CFG.replace("samples = 37", &format!("samples = {n}"))).unwrap();
-        let never = AtomicBool::new(false);
-        let done = AtomicU64::new(0);
-        let e = scan_batch(&cfg, None, &never, &done)
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains(&format!("{n} rows")) && e.contains("rtw-scan run"),
-            "{e}"
-        );
-        assert_eq!(done.load(Ordering::SeqCst), 0);
     }
 }

@@ -5,7 +5,7 @@
 use crate::io::metadata::with_metadata;
 use crate::io::scan_rows::JsonRow;
 use crate::io::trace::{TraceNames, check_trace_size, human_bytes, trace_batch, trace_metadata};
-use crate::scan::run::run_one;
+use crate::scan::one::run_one;
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_model::{Options, Params};
