@@ -1,0 +1,153 @@
+//! The guards that end a mode: which ones the current modes watch, in a
+//! fixed order, their values, and the rates of the kinematic ones.
+
+use super::model::{GuardKind, Rtw};
+use crate::plant::contact::RodMode;
+use crate::plant::geometry::{RodFrame, Tip, V2};
+use crate::plant::slots::{self, N, VX};
+use hybrid_ode::{Crossing, Guards};
+use std::ops::ControlFlow;
+
+impl Rtw {
+    /// The guards of the current modes, in a fixed order that depends only
+    /// on the modes (the engine compares the same index across a step).
+    #[inline]
+    pub fn guard_kinds(&self, mut visit: impl FnMut(GuardKind)) {
+        let _: ControlFlow<()> = self.try_guard_kinds(|kind| {
+            visit(kind);
+            ControlFlow::Continue(())
+        });
+    }
+
+    /// [`guard_kinds`](Self::guard_kinds) until `visit` breaks: the lookup
+    /// of one guard stops at it (root finding asks at every iterate).
+    #[inline]
+    fn try_guard_kinds<B>(
+        &self,
+        mut visit: impl FnMut(GuardKind) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        for (rod, mode) in self.modes.iter().enumerate() {
+            match *mode {
+                RodMode::Free => {
+                    visit(GuardKind::Touchdown {
+                        rod,
+                        tip: Tip::Plus,
+                    })?;
+                    visit(GuardKind::Touchdown {
+                        rod,
+                        tip: Tip::Minus,
+                    })?;
+                }
+                RodMode::Stick { .. } => {
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
+                    if self.mu.is_finite() {
+                        visit(GuardKind::Slip { rod })?;
+                    }
+                }
+                RodMode::Slide { .. } => {
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
+                    visit(GuardKind::Restick { rod })?;
+                }
+            }
+        }
+        visit(GuardKind::ComLow)
+    }
+
+    pub(super) fn guards_of(
+        &self,
+        y: &[f64; N],
+        frames: &[RodFrame; 3],
+        lambda: &[V2; 3],
+        out: &mut Guards,
+    ) {
+        out.clear();
+        self.guard_kinds(|kind| {
+            let value = self.guard_value(kind, y, |rod| frames[rod], |rod| lambda[rod]);
+            out.push(value, Crossing::Falling);
+        });
+    }
+
+    /// The value of guard `kind` at `y`, given each rod's frame and contact
+    /// force λ there (asked for only when this guard needs them).
+    #[inline]
+    pub(super) fn guard_value(
+        &self,
+        kind: GuardKind,
+        y: &[f64; N],
+        frame: impl Fn(usize) -> RodFrame,
+        lambda: impl Fn(usize) -> V2,
+    ) -> f64 {
+        let tip_height =
+            |rod: usize, tip: Tip| frame(rod).point(tip.sign() * self.body.half_length).0[1];
+        match kind {
+            GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
+            GuardKind::LiftOff { rod } => lambda(rod)[1],
+            GuardKind::RodDown { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                tip_height(rod, tip.other())
+            }
+            GuardKind::Restick { rod } => {
+                let RodMode::Slide { dir, .. } = self.modes[rod] else {
+                    unreachable!("restick guard on a sliding rod")
+                };
+                y[slots::at(rod, VX)] * dir + self.restick_speed
+            }
+            GuardKind::Slip { rod } => {
+                let l = lambda(rod);
+                self.mu * l[1] - l[0].abs()
+            }
+            GuardKind::ComLow => {
+                (frame(0).c[1] + frame(1).c[1] + frame(2).c[1]) / 3.0 - self.collapse_height
+            }
+        }
+    }
+
+    /// The time derivative of guard `kind` at a state with frames `frames`
+    /// and `ẏ = dy`, where it is kinematic: a tip height's is the tip's
+    /// vertical velocity, the centre of mass's its mean vertical velocity, a
+    /// re-stick's the sliding tip's acceleration. `None` for a guard on a
+    /// contact force (lift-off, slip), whose rate needs the forces' own.
+    #[inline]
+    pub(super) fn kinematic_guard_rate(
+        &self,
+        kind: GuardKind,
+        dy: &[f64; N],
+        frames: &[RodFrame; 3],
+    ) -> Option<f64> {
+        let tip_rate =
+            |rod: usize, tip: Tip| frames[rod].point(tip.sign() * self.body.half_length).1[1];
+        match kind {
+            GuardKind::Touchdown { rod, tip } => Some(tip_rate(rod, tip)),
+            GuardKind::RodDown { rod } => {
+                let tip = self.modes[rod].tip().expect("grounded rod");
+                Some(tip_rate(rod, tip.other()))
+            }
+            GuardKind::Restick { rod } => {
+                let RodMode::Slide { dir, .. } = self.modes[rod] else {
+                    unreachable!("restick guard on a sliding rod")
+                };
+                Some(dy[slots::at(rod, VX)] * dir)
+            }
+            GuardKind::ComLow => Some((frames[0].v[1] + frames[1].v[1] + frames[2].v[1]) / 3.0),
+            GuardKind::LiftOff { .. } | GuardKind::Slip { .. } => None,
+        }
+    }
+
+    /// The guard of index `index` in the current modes.
+    pub fn guard_kind(&self, index: usize) -> GuardKind {
+        let mut k = 0;
+        let found = self.try_guard_kinds(|kind| {
+            if k == index {
+                return ControlFlow::Break(kind);
+            }
+            k += 1;
+            ControlFlow::Continue(())
+        });
+        match found {
+            ControlFlow::Break(kind) => kind,
+            ControlFlow::Continue(()) => panic!("guard index {index} out of range"),
+        }
+    }
+}
