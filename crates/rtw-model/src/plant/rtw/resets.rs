@@ -105,3 +105,123 @@ impl Rtw {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! One reset at a time on a constructed state (as Drake tests a hybrid
+    //! system's resets): the modes after it, and the state it leaves.
+
+    use super::super::model::{GuardKind, Rtw, Transition};
+    use crate::options::Options;
+    use crate::outcome::FailureDetail;
+    use crate::params::{Params, Physical};
+    use crate::plant::contact::RodMode;
+    use crate::plant::geometry::{Tip, rest_star};
+    use crate::plant::slots::{self, N, VX};
+
+    /// The star turning at ω = −2 on the Plus tip of rod a in `mode`, the others
+    /// free, its centre at rest at first; rod a's tip moves along the ground at `tip_vx` when sliding.
+    fn on_front_foot(mode: RodMode, tip_vx: f64, mu: f64) -> (Rtw, [f64; N]) {
+        let mut o = Options::literal();
+        o.contact.mu = mu;
+        let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
+        let mut sys = Rtw::new(&phys, &o);
+        let th = -std::f64::consts::FRAC_PI_3;
+        let half = sys.body().half_length;
+        let mut rods = rest_star([-half * th.cos(), -half * th.sin()], th);
+        for r in rods.iter_mut() {
+            r.omega = -2.0;
+        }
+        sys.set_modes([mode, RodMode::Free, RodMode::Free]);
+        let mut y = [0.0; N];
+        sys.store(&rods, &mut y);
+        if let RodMode::Slide { .. } = mode {
+            y[slots::at(0, VX)] = tip_vx;
+        }
+        (sys, y)
+    }
+
+    /// Rods b and c, and the dissipated energies, are not the reset's business.
+    fn assert_others_untouched(before: &[f64; N], after: &[f64; N]) {
+        assert_eq!(before[slots::at(1, 0)..], after[slots::at(1, 0)..]);
+    }
+
+    #[test]
+    fn lift_off_leaves_the_stick_and_keeps_the_rod_where_it_was() {
+        let (mut sys, mut y) = on_front_foot(RodMode::Stick { tip: Tip::Plus }, 0.0, f64::INFINITY);
+        let before = y;
+        let rod_before = sys.rods(&y)[0];
+        let t = sys.reset_kind(&mut y, GuardKind::LiftOff { rod: 0 });
+        assert_eq!(t, Transition::ModeChange { rod: 0 });
+        let modes = sys.modes();
+        // The guard found the stick's condition violated: the rod must leave it.
+        assert_ne!(modes[0], RodMode::Stick { tip: Tip::Plus });
+        assert_eq!(modes[1..], [RodMode::Free; 2]);
+        assert_eq!(sys.last_choice.map(|c| c.mode), Some(modes[0]));
+        assert_others_untouched(&before, &y);
+        // A change of mode re-expresses the rod; it does not move it.
+        let rod_after = sys.rods(&y)[0];
+        for (a, b) in [
+            (rod_before.c[0], rod_after.c[0]),
+            (rod_before.c[1], rod_after.c[1]),
+            (rod_before.theta, rod_after.theta),
+            (rod_before.v[0], rod_after.v[0]),
+            (rod_before.v[1], rod_after.v[1]),
+            (rod_before.omega, rod_after.omega),
+        ] {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn restick_stops_the_sliding_tip_on_the_ground() {
+        // Infinite μ: the stopped tip sticks. μ = 0.01, far inside the
+        // star's friction need: it slides on from rest, so the reversed
+        // speed the guard tolerated must have been dropped.
+        for (mu, sticks) in [(f64::INFINITY, true), (0.01, false)] {
+            let slide = RodMode::Slide {
+                tip: Tip::Plus,
+                dir: 1.0,
+            };
+            // The guard fires once the reversed speed exceeds `restick_speed`.
+            let (mut sys, mut y) = on_front_foot(slide, -2e-9, mu);
+            let before = y;
+            let t = sys.reset_kind(&mut y, GuardKind::Restick { rod: 0 });
+            assert_eq!(t, Transition::ModeChange { rod: 0 });
+            let mode = sys.modes()[0];
+            assert_eq!(mode.tip(), Some(Tip::Plus), "μ = {mu}");
+            assert_eq!(
+                matches!(mode, RodMode::Stick { .. }),
+                sticks,
+                "μ = {mu}: {mode:?}"
+            );
+            assert_eq!(
+                y[slots::at(0, VX)],
+                0.0,
+                "μ = {mu}: the tip's speed is dropped"
+            );
+            let (p, v) = sys.body().tip_point(&sys.rods(&y)[0], Tip::Plus);
+            assert_eq!(p[1], 0.0, "μ = {mu}: the tip stays on the ground");
+            assert!(
+                v[0].abs() < 1e-15 && v[1].abs() < 1e-15,
+                "μ = {mu}: tip at rest: {v:?}"
+            );
+            assert_others_untouched(&before, &y);
+        }
+    }
+
+    #[test]
+    fn rod_down_and_low_centre_of_mass_end_the_run_and_change_nothing() {
+        for (kind, detail) in [
+            (GuardKind::RodDown { rod: 0 }, FailureDetail::RodDown),
+            (GuardKind::ComLow, FailureDetail::CentreOfMassLow),
+        ] {
+            let (mut sys, mut y) =
+                on_front_foot(RodMode::Stick { tip: Tip::Plus }, 0.0, f64::INFINITY);
+            let (before, modes) = (y, sys.modes());
+            assert_eq!(sys.reset_kind(&mut y, kind), Transition::Failure(detail));
+            assert_eq!(y, before, "{kind:?}");
+            assert_eq!(sys.modes(), modes, "{kind:?}");
+        }
+    }
+}
