@@ -8,7 +8,7 @@ use hybrid_ode::system::{MAX_GUARDS, fd_delta};
 use hybrid_ode::{Guards, HybridSystem};
 
 /// The RTW as a hybrid system: the dynamics of its modes, every guard firing
-/// on a falling crossing of zero, and the resets of [`GuardKind`]. It is
+/// on a falling crossing of zero, and the resets of [`GuardKind`](super::GuardKind). It is
 /// autonomous (`t` is not used).
 impl HybridSystem<N> for Rtw {
     /// Frames and contact forces λ of the rods.
