@@ -15,17 +15,17 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import polars as pl
 
 sys.path.insert(0, str(Path(__file__).parent))
-from figures import DEFAULT_VARIANT, permutation_p, wilson  # noqa: E402
+from figures import DEFAULT_VARIANT, STABLE, permutation_p, wilson  # noqa: E402
 from variants_report import PAPER, cluster_regions  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-STABLE = ["skip", "walk", "crawl"]
 FAILED = ["collapse", "stall"]
 
 
@@ -33,7 +33,7 @@ def scan(d: Path) -> pl.DataFrame:
     return pl.read_parquet(d / "samples.parquet").with_columns(pl.col("outcome").cast(pl.Utf8))
 
 
-def pct(df: pl.DataFrame, outcomes: list[str]) -> str:
+def pct(df: pl.DataFrame, outcomes: Sequence[str]) -> str:
     k = df.filter(pl.col("outcome").is_in(outcomes)).height
     lo, hi = wilson(np.array([k]), np.array([df.height]))
     return f"{100 * k / df.height:.1f} ({100 * lo[0]:.1f}–{100 * hi[0]:.1f})"

@@ -24,7 +24,7 @@ from pathlib import Path
 import polars as pl
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from figures import DEFAULT_VARIANT  # noqa: E402
+from figures import DEFAULT_VARIANT, STABLE  # noqa: E402
 
 # docs/model.md §8: supplementary Section 2 (percent of all samples).
 PAPER = {"stable": 73.7, "skip": 35.9, "walk": 32.0, "crawl": 5.8}
@@ -42,7 +42,6 @@ Z95 = 1.959963984540054
 # A variant is admissible when the median over the sweep's stable gaits of
 # steps (new-foot touchdowns) per second over f_n lies in this band.
 FIG_S2_BAND = (0.8, 1.25)
-STABLE = ["skip", "walk", "crawl"]
 
 
 def mean_se(xs: list[float]) -> tuple[float, float]:
@@ -73,7 +72,7 @@ def against_paper(mean: float, se: float, paper: float) -> dict:
 def distance_pp(stable: float, percent: dict) -> float:
     """The distance of a 1000-sample statistic to the paper's: sum of the
     absolute differences of stable, skip, walk and crawl (percentage points)."""
-    return abs(stable - PAPER["stable"]) + sum(abs(percent[k] - PAPER[k]) for k in ("skip", "walk", "crawl"))
+    return abs(stable - PAPER["stable"]) + sum(abs(percent[k] - PAPER[k]) for k in STABLE)
 
 
 def cluster_regions(clusters: list[dict]) -> dict:
@@ -112,7 +111,7 @@ def one_variant(d: Path) -> dict:
     cnt = {o["outcome"]: o["count"] for o in summ["outcomes"]}
     stable = summ["stable"]["percent"]
     distance = distance_pp(stable, pct)
-    stable_rows = scan.filter(pl.col("outcome").is_in(["skip", "walk", "crawl"]))
+    stable_rows = scan.filter(pl.col("outcome").is_in(STABLE))
     mu = stable_rows["mu_required"].drop_nulls()
     cl = summ.get("clusters") or {"clusters": []}
     regions = cluster_regions(cl["clusters"])
