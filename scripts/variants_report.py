@@ -443,14 +443,16 @@ def main(root: Path) -> None:
                 f"| {k} | {PAPER[k]} ± {paper_se_pp(PAPER[k]):.1f} | {pm(sh[k])} | {c['diff']:+.1f} | "
                 f"{c['ci95'][0]:+.1f} to {c['ci95'][1]:+.1f} | {'yes' if c['within'] else 'no'} |"
             )
-        short = PAPER["crawl"] - sh["crawl"]["mean"]
+        n = chosen["scan"]["samples"]
         ra = chosen["rolls_away"]
+        # The crawlers missing for the paper's share, in samples of the scan.
+        missing = (PAPER["crawl"] - sh["crawl"]["mean"]) * n / 100
         lines += [
             "",
             f"Crawl: {pm(sh['crawl'])} % against the paper's {PAPER['crawl']} %. On the committed seed, "
-            f"{ra} of {chosen['scan']['samples']} stars roll away as they are set down (they cannot stand "
+            f"{ra} of {n} stars roll away as they are set down (they cannot stand "
             f"still, and count as collapses); for the crawl share to reach the paper's, "
-            f"{short * chosen['scan']['samples'] / 100:.0f} of them ({100 * short / max(ra / chosen['scan']['samples'] * 100, 1e-9):.0f} %) "
+            f"{missing:.0f} of them ({100 * missing / max(ra, 1):.0f} %) "
             "would have to crawl instead.",
         ]
     else:
