@@ -157,3 +157,16 @@ def test_wilson_and_labels_are_rtw_scans() -> None:
     from rtw import draw
 
     assert draw.STABLE == rtw.STABLE_LABELS and draw.FAILED == rtw.FAILURE_LABELS
+
+
+def test_the_python_pages_design_example_prints_what_it_says(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import re
+
+    text = (ROOT / "docs" / "python.md").read_text()
+    (code,) = [b for b in re.findall(r"```python\n(.*?)```", text, re.S) if "rtw.Design(" in b]
+    monkeypatch.chdir(ROOT)
+    exec(compile(code, "docs/python.md", "exec"), {})
+    (said,) = re.findall(r"# (.*)\n", code)
+    assert capsys.readouterr().out.strip() == said.strip()
