@@ -20,6 +20,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
+# The Python scripts call the library through the package (labels, Wilson intervals, the star).
+./scripts/venv.sh
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+  --no-build-isolation ./crates/rtw-py
 for c in paper fig-s2 fig-s3; do
   rm -rf "results/$c"
   target/release/rtw-scan run "configs/$c.toml" --out "results/$c" >/dev/null

@@ -53,6 +53,7 @@ pub(crate) mod hash;
 pub mod io;
 pub mod scan;
 
+pub use analysis::report::{Z95, wilson};
 pub use cli::main;
 
 /// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in

@@ -26,7 +26,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// z for a two-sided 95 % interval.
-const Z95: f64 = 1.959_963_984_540_054;
+pub const Z95: f64 = 1.959_963_984_540_054;
 
 /// The article's shares for the 1000-sample scan (supplementary, Section 2),
 /// in % of all samples.
@@ -35,8 +35,9 @@ pub(crate) const PAPER_SKIP: f64 = 35.9;
 pub(crate) const PAPER_WALK: f64 = 32.0;
 pub(crate) const PAPER_CRAWL: f64 = 5.8;
 
-/// Wilson score interval of a binomial proportion `k / n`, as fractions.
-pub(crate) fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
+/// Wilson score interval of a binomial proportion `k / n`, as fractions,
+/// at the normal quantile `z` ([`Z95`]: 95 %); `(0, 1)` when `n` is 0.
+pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
     if n == 0 {
         return (0.0, 1.0);
     }
