@@ -13,6 +13,7 @@
 #      -> results/fidelity.md
 #   8. the side-by-side table (scripts/reproduction_report.py) -> results/reproduction.md
 #   9. the generated tables of README.md and docs/*.md (scripts/readme_tables.py)
+#  10. the paper scan's report, one HTML page (python -m rtw report) -> results/paper/report.html
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
@@ -36,4 +37,7 @@ done
 .venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null
 .venv/bin/python scripts/readme_tables.py
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+  --no-build-isolation ./crates/rtw-py
+.venv/bin/python -m rtw report results/paper --out results/paper/report.html
 echo "reproduce: done (see git status for what changed)"

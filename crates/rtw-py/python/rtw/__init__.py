@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
+from .report import report
 
 if TYPE_CHECKING:
     import pyarrow
@@ -47,6 +48,7 @@ __all__ = [
     "animate",
     "limit_cycle",
     "modal",
+    "report",
     "scan",
     "simulate",
     "trace",
