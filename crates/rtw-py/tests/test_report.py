@@ -92,8 +92,9 @@ def test_gaits_are_the_scans_runs_drawn_from_rtw_draw(made):
         if not g["t"]:
             continue
         n = len(g["t"])
-        assert g["t"][-1] - g["t"][0] == pytest.approx(rtw.report.__globals__["TRACE_WINDOW"], abs=0.05) \
-            or g["t"][0] == 0.0
+        # The last 8 s of the run (or all of a shorter one), one frame every 0.04 s.
+        assert g["t"][-1] - g["t"][0] == pytest.approx(8.0, abs=0.05) or g["t"][0] == 0.0
+        assert n == pytest.approx((g["t"][-1] - g["t"][0]) / 0.04 + 1, abs=1)
         length = data["columns"]["length"][row]
         for k in (0, n // 2, n - 1):
             for x0, y0, x1, y1 in g["rods"][k]:  # every rod drawn at its length

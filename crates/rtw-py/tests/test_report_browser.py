@@ -46,7 +46,7 @@ def page():
 
     OUT.mkdir(parents=True, exist_ok=True)
     html = OUT / "paper.html"
-    made = subprocess.run([sys.executable, "-m", "rtw", "report", str(SCAN), "--out", str(html), "--force"],
+    made = subprocess.run([sys.executable, "-m", "rtw", "report", "results/paper", "--out", str(html), "--force"],
                           capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert made.returncode == 0, made.stderr
     opts = webdriver.ChromeOptions()

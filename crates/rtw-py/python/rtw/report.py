@@ -45,9 +45,12 @@ OUTCOMES = ("skip", "walk", "crawl", "collapse", "stall", "diverged")
 # shows them all); above it, only the plotted columns do, and all columns only
 # for the samples with a gait (the page says so).
 DETAIL_ROWS = 20_000
-# The most rows a report plots (WebGL parallel coordinates and scatter plots
-# stay interactive up to there; docs/report.md gives the measured sizes and times).
-MAX_ROWS = 200_000
+# The views draw at most PLOT_ROWS samples: above, a seeded random subset of
+# that many (the same in every view, and said on the page), while the counts
+# (summary, brushing) are of every row. A report takes at most MAX_ROWS rows
+# (docs/report.md gives the measured sizes and times).
+PLOT_ROWS = 20_000
+MAX_ROWS = 1_000_000
 # A gait is shown over the last TRACE_WINDOW seconds of its run (the settled
 # gait of a stable run, the fall or the stop of a failed one), one frame every
 # FRAME_DT seconds of simulated time, played in real time.
@@ -227,7 +230,10 @@ def _gait(row: dict[str, Any], config_path: str, options: dict) -> dict[str, Any
     design = Design.from_params(row["length"], row["alpha"], row["phi"], options, k=row["k"])
     tr = Trace(table, design)
     check_geometry(tr)
-    keep = np.nonzero(tr.t >= tr.t[-1] - TRACE_WINDOW - 1e-9)[0]
+    # Frames at even times (the trace also holds the event instants), each the
+    # sample nearest its time, as rtw.animate draws them.
+    start = max(float(tr.t[0]), float(tr.t[-1]) - TRACE_WINDOW)
+    keep = tr.nearest(start + FRAME_DT * np.arange(int((float(tr.t[-1]) - start) / FRAME_DT + 1e-9) + 1))
     d, to_world = design, slope_axes(design.phi)
     (tp, tm), (cp, cm) = rod_points(tr.x[:, keep], tr.y[:, keep], tr.theta[:, keep], d.length / 2, d.r)
     tips = np.stack([tp, tm], axis=2) @ to_world  # [rod, sample, end, xy]
@@ -451,6 +457,13 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
 
     binned = {c: _bins(rows[c], *span(c)) for c in ("alpha", "fn", "phi")}
     combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), rows["outcome"]))
+    if n > PLOT_ROWS:
+        import numpy as np
+
+        rng = np.random.default_rng(int(meta.get("rtw.seed", "0")))
+        data["shown"] = np.sort(rng.choice(n, PLOT_ROWS, replace=False)).tolist()
+    else:
+        data["shown"] = None
     data["parcats"] = {"dims": ["alpha", "fn", "phi", "outcome"], "order": [binned[c][1] for c in binned] + [names],
                        "values": [list(k) for k in combos], "counts": list(combos.values())}
     data["clusters"] = {"centres": _clean(centres), "how": how,

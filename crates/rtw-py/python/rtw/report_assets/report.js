@@ -41,7 +41,15 @@ async function main(D) {
   const cfg = { displaylogo: false, responsive: true };
   // SVG draws a few thousand points faster than a new WebGL context starts; WebGL beyond.
   const scatter = (m) => (m > 5000 ? "scattergl" : "scatter");
-  const idx = (n) => Array.from({ length: n }, (_, i) => i);
+  // The rows drawn: all of them, or above a limit a seeded random subset chosen
+  // in Python (the same in every view); counts are always of every row.
+  const shown = D.shown || Array.from({ length: D.n }, (_, i) => i);
+  const isShown = new Uint8Array(D.n);
+  shown.forEach((i) => { isShown[i] = 1; });
+  document.getElementById("drawn").textContent = D.shown
+    ? `The views draw a random ${shown.length.toLocaleString("en")} of the ${D.n.toLocaleString("en")} samples `
+      + "(the same ones in every view); the counts are of every sample."
+    : `The views draw every one of the ${D.n.toLocaleString("en")} samples.`;
 
   // ---- parallel coordinates with brushing and a count of the selection.
   const pcCols = [...D.inputs, ...D.outputs.filter((c) => !D.inputs.includes(c))];
@@ -53,7 +61,7 @@ async function main(D) {
     const none = lo - 0.1 * ((hi - lo) || 1);
     const values = hasNone ? v.map((x) => (x === null ? none : x)) : v;
     pcValues.push(values);
-    const d = { label: label(c), values, range: [hasNone ? none : lo, hi] };
+    const d = { label: label(c), values: D.shown ? shown.map((i) => values[i]) : values, range: [hasNone ? none : lo, hi] };
     if (hasNone) {
       const ticks = [0, 1, 2, 3, 4].map((k) => lo + (k * (hi - lo)) / 4);
       d.tickvals = [none, ...ticks];
@@ -64,7 +72,7 @@ async function main(D) {
   const pc = document.getElementById("parcoords");
   Plotly.newPlot(pc, [{
     type: "parcoords", dimensions: dims,
-    line: { color: D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
+    line: { color: D.shown ? shown.map((i) => D.outcome[i]) : D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
   }], { margin: { l: 70, r: 70, t: 50, b: 30 } }, cfg);
   const countEl = document.getElementById("count");
   function brushed() {
@@ -115,13 +123,13 @@ async function main(D) {
   // ---- the gait map: every sample, clickable (WebGL).
   const A = D.columns.alpha, F = D.columns.fn, PHI = D.columns.phi;
   const byOutcome = D.outcomes.map(() => []);
-  for (let i = 0; i < D.n; i++) byOutcome[D.outcome[i]].push(i);
+  shown.forEach((i) => byOutcome[D.outcome[i]].push(i));
   const sid = D.columns.sample_id;
   const hover = "sample %{text}<br>α %{x:.4f}<br>f_n %{y:.3f}<extra>%{fullData.name}</extra>";
   const gm = document.getElementById("gaitmap");
   Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
-    type: scatter(D.n), mode: "markers", name: o, x: byOutcome[k].map((i) => A[i]), y: byOutcome[k].map((i) => F[i]),
-    customdata: byOutcome[k], text: byOutcome[k].map((i) => sid[i]), marker: { color: ocolor[k], size: D.n > 20000 ? 3 : 6, opacity: 0.8 },
+    type: scatter(shown.length), mode: "markers", name: o, x: byOutcome[k].map((i) => A[i]), y: byOutcome[k].map((i) => F[i]),
+    customdata: byOutcome[k], text: byOutcome[k].map((i) => sid[i]), marker: { color: ocolor[k], size: shown.length > 5000 ? 3 : 6, opacity: 0.8 },
     hovertemplate: hover,
   })), { xaxis: { title: { text: label("alpha") } }, yaxis: { title: { text: label("fn") } },
          margin: { t: 20 }, legend: { title: { text: "outcome" } } }, cfg);
@@ -134,7 +142,7 @@ async function main(D) {
     `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
   const ccol = (j) => (j >= 0 ? S.cluster[j % S.cluster.length] : "#999");
   const groups = new Map();
-  C.index.forEach((i, k) => { const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
+  C.index.forEach((i, k) => { if (!isShown[i]) return; const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
   const cname = (j) => (j >= 0 && C.centres[j] ? `cluster ${j + 1}: ${C.centres[j].name}` : "unassigned");
   const isCollapse = (i) => D.outcomes[D.outcome[i]] === "collapse";
   const keys = [...groups.keys()].sort((a, b) => a - b);
