@@ -122,7 +122,7 @@ def _read_scan(files: Sequence[Path]):
     return table, metas[0]
 
 
-def _assignments(directory: Path, ids) -> tuple[dict[int, int], str] | None:
+def _assignments(directory: Path) -> tuple[dict[int, int], str] | None:
     """Each failure's cluster from an assignments file in DIR
     (`rtw-scan cluster --assignments`, recognised by its rtw.clusters metadata)."""
     import pyarrow.parquet as pq
@@ -421,7 +421,7 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     centres = (summary or {}).get("clusters", {}).get("clusters", []) if summary else []
 
     failed = [i for i, o in enumerate(rows["outcome"]) if o in ("collapse", "stall")]
-    found = _assignments(base, rows["sample_id"])
+    found = _assignments(base)
     if found:
         assign, how = found
     elif centres and failed:
