@@ -134,3 +134,41 @@ def test_cli_errors_exit_2_with_the_reason(tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 2
     assert "python -m rtw report: error: DIR:" in r.stderr and "no samples.parquet" in r.stderr
+
+
+def test_sensitivity_indices_and_maps_are_shown_when_present(tmp_path):
+    import shutil
+
+    import pyarrow as pa
+
+    for f in ("samples.parquet", "summary.json"):
+        shutil.copy(SCAN / f, tmp_path / f)
+    rows = {"output": ["stable", "stable"], "parameter": ["alpha", "fn"], "S1": [0.4, 0.2],
+            "S1_conf": [0.05, 0.04], "ST": [0.5, 0.3], "ST_conf": [0.06, 0.05]}
+    pq.write_table(pa.table(rows), tmp_path / "indices.parquet")
+    png = ROOT / "results/figures/fig-s4.png"
+    shutil.copy(png, tmp_path / "robustness.png")
+    out = rtw.report(tmp_path, per_outcome=0)
+    assert out == tmp_path / "report.html"
+    data = json.loads(blob(out.read_text(), "data-gz"))
+    assert data["sensitivity"] == {"file": "indices.parquet", "rows": [dict(zip(rows, v)) for v in zip(*rows.values())]}
+    assert [im["name"] for im in data["images"]] == ["robustness.png"]
+    assert base64.b64decode(data["images"][0]["src"].split(",", 1)[1]) == png.read_bytes()
+    # Indices without their confidence are refused, naming what is missing.
+    pq.write_table(pa.table({k: rows[k] for k in ("output", "parameter", "S1", "ST")}), tmp_path / "indices.parquet")
+    with pytest.raises(ValueError, match=r"indices.parquet: lacks the columns S1_conf, ST_conf"):
+        rtw.report(tmp_path, per_outcome=0)
+
+
+def test_an_unmerged_shard_set_is_reported_whole(tmp_path):
+    """The part-*.parquet of a sharded scan, not yet merged: every row of every part."""
+    assert BINARY.is_file(), f"{BINARY} is missing: cargo build --release -p rtw-scan (or set RTW_SCAN)"
+    for k in (0, 1):
+        subprocess.run([str(BINARY), "run", str(ROOT / "configs/smoke.toml"), "--shard", f"{k}/2",
+                        "--out", str(tmp_path)], check=True, capture_output=True)
+    assert not (tmp_path / "samples.parquet").exists()
+    out = rtw.report(tmp_path, per_outcome=1)
+    data = json.loads(blob(out.read_text(), "data-gz"))
+    want = sorted(s for k in (0, 1) for s in pq.read_table(tmp_path / f"part-{k}.parquet")["sample_id"].to_pylist())
+    assert data["columns"]["sample_id"] == want and data["n"] == len(want)
+    assert data["gaits"], "no gait for the smoke scan's outcomes"
