@@ -123,9 +123,14 @@ def test_brushing_alpha_shows_the_count_of_the_parquet_file(page):
     assert text.startswith(f"{sum(want.values()):,} of {len(r['alpha']):,} samples selected")
     for o, c in want.items():
         assert f"{o} {c:,}" in text
+    # The gait map shows the same samples brushed, per outcome.
+    marked = page.execute_script(
+        "return Object.fromEntries(document.getElementById('gaitmap').data.map(t => [t.name, (t.selectedpoints || []).length]))")
+    assert {o: c for o, c in marked.items() if c} == dict(want)
     page.execute_script(f"Plotly.restyle('parcoords', {{'dimensions[{i}].constraintrange': [null]}})")
     time.sleep(0.3)
     assert int(page.execute_script("return document.getElementById('count').dataset.selected")) == len(r["alpha"])
+    assert page.execute_script("return document.getElementById('gaitmap').data.every(t => t.selectedpoints == null)")
     no_console_errors(page)
 
 

@@ -51,6 +51,9 @@ async function main(D) {
       + "(the same ones in every view); the counts are of every sample."
     : `The views draw every one of the ${D.n.toLocaleString("en")} samples.`;
 
+  const byOutcome = D.outcomes.map(() => []);
+  shown.forEach((i) => byOutcome[D.outcome[i]].push(i));
+
   // ---- parallel coordinates with brushing and a count of the selection.
   const pcCols = [...D.inputs, ...D.outputs.filter((c) => !D.inputs.includes(c))];
   const pcValues = [];
@@ -82,6 +85,7 @@ async function main(D) {
       return Array.isArray(r[0]) ? r : [r];
     });
     const per = new Array(K).fill(0);
+    const picked = new Uint8Array(D.n);
     let total = 0;
     for (let i = 0; i < D.n; i++) {
       let ok = true;
@@ -91,7 +95,13 @@ async function main(D) {
         const v = pcValues[j][i];
         ok = r.some(([a, b]) => v >= a && v <= b);
       }
-      if (ok) { total++; per[D.outcome[i]]++; }
+      if (ok) { total++; per[D.outcome[i]]++; picked[i] = 1; }
+    }
+    // The gait map shows the brushed samples, the others faded.
+    const gmap = document.getElementById("gaitmap");
+    if (gmap.data) {
+      const all = ranges.every((r) => !r);
+      Plotly.restyle(gmap, { selectedpoints: byOutcome.map((m) => (all ? null : m.flatMap((i, p) => (picked[i] ? [p] : [])))) });
     }
     window.rtwReport.selected = total;
     window.rtwReport.selectedPer = Object.fromEntries(D.outcomes.map((o, k) => [o, per[k]]));
@@ -122,14 +132,13 @@ async function main(D) {
   mark("the gait map");
   // ---- the gait map: every sample, clickable (WebGL).
   const A = D.columns.alpha, F = D.columns.fn, PHI = D.columns.phi;
-  const byOutcome = D.outcomes.map(() => []);
-  shown.forEach((i) => byOutcome[D.outcome[i]].push(i));
   const sid = D.columns.sample_id;
   const hover = "sample %{text}<br>α %{x:.4f}<br>f_n %{y:.3f}<extra>%{fullData.name}</extra>";
   const gm = document.getElementById("gaitmap");
   Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
     type: scatter(shown.length), mode: "markers", name: o, x: byOutcome[k].map((i) => A[i]), y: byOutcome[k].map((i) => F[i]),
     customdata: byOutcome[k], text: byOutcome[k].map((i) => sid[i]), marker: { color: ocolor[k], size: shown.length > 5000 ? 3 : 6, opacity: 0.8 },
+    unselected: { marker: { opacity: 0.08 } },
     hovertemplate: hover,
   })), { xaxis: { title: { text: label("alpha") } }, yaxis: { title: { text: label("fn") } },
          margin: { t: 20 }, legend: { title: { text: "outcome" } } }, cfg);
