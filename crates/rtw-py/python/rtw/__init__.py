@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
 from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, LimitCycle, Modes, Outcome
+from .report import report
 
 if TYPE_CHECKING:
     import pyarrow
@@ -57,6 +58,7 @@ __all__ = [
     "label",
     "limit_cycle",
     "modal",
+    "report",
     "scan",
     "simulate",
     "trace",
