@@ -520,7 +520,7 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scan::progress::ProgressMode;
+    use crate::scan::progress::Silent;
     use crate::scan::run::{RunSettings, run_scan};
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
@@ -550,14 +550,13 @@ phi = { uniform = [0.05, 0.12] }
             threads: NonZeroUsize::new(2),
             resume: false,
             chunk_size: NonZeroUsize::new(4000).unwrap(),
-            progress: ProgressMode::Quiet,
             shard: None,
             force: false,
         };
         let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
             crate::fake::simulate(p, o, std::time::Duration::ZERO)
         };
-        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false)).unwrap();
+        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false), &Silent).unwrap();
         let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
         let collapses = data.counts[label_index(Label::Collapse)] as usize;
         let stalls = data.counts[label_index(Label::Stall)] as usize;

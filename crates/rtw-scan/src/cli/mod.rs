@@ -6,6 +6,7 @@
 mod analysis;
 mod bifurcation;
 mod continuation;
+mod progress;
 mod run;
 mod simulate;
 

@@ -1,12 +1,12 @@
 //! `run` and `merge`: a scan, whole or in shards, and its summary.
 
+use super::progress::{ProgressMode, StderrProgress};
 use super::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::analysis::report;
 use crate::config::{self, ScanConfig};
 use crate::hash::fnv1a64;
 use crate::io::files;
 use crate::scan::checkpoint::Layout;
-use crate::scan::progress::ProgressMode;
 use crate::scan::run::{self, RunSettings, RunStatus};
 use crate::scan::shard::{self, Shard};
 use crate::scan::space;
@@ -117,22 +117,22 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
         threads: a.threads,
         resume: a.resume,
         chunk_size: a.chunk_size,
-        progress: if a.quiet {
-            ProgressMode::Quiet
-        } else {
-            ProgressMode::Auto
-        },
         shard: a.shard,
         force: a.force,
     };
+    let progress = StderrProgress::new(if a.quiet {
+        ProgressMode::Quiet
+    } else {
+        ProgressMode::Auto
+    });
     #[cfg(feature = "fake-sim")]
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
         let sim = |p: &_, o: &_| crate::fake::simulate(p, o, delay);
-        let status = run::run_scan(&cfg, &settings, &sim, &STOP)?;
+        let status = run::run_scan(&cfg, &settings, &sim, &STOP, &progress)?;
         return finish_run(&a, &out, status);
     }
-    let status = run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP)?;
+    let status = run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP, &progress)?;
     finish_run(&a, &out, status)
 }
 
