@@ -10,7 +10,7 @@
 use crate::analysis::clusters::{
     CLUSTER_MAX_POINTS, ClusterTally, Failure, FailureClusters, FailureSample, cluster_failures,
 };
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
 use crate::io::destination::SUMMARY_MAX_BYTES;
 use crate::io::files::{self, write_atomic};
@@ -233,7 +233,7 @@ pub(crate) struct Summary {
     pub(crate) version: String,
     pub(crate) seed: u64,
     pub(crate) samples: u64,
-    pub(crate) variant: Variant,
+    pub(crate) variant: ModelChoices,
     /// Whether this is the article's scan (its numbers are then given beside ours).
     pub(crate) paper_scan: bool,
     /// Per label: skip, walk, crawl, collapse, stall, diverged.
@@ -296,7 +296,7 @@ pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
         version: data.version.clone(),
         seed: data.config.seed,
         samples: n,
-        variant: Variant::of(&data.config.simulation),
+        variant: ModelChoices::of(&data.config.simulation),
         paper_scan: paper,
         outcomes,
         stable,

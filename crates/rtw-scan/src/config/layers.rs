@@ -16,7 +16,7 @@ use std::path::Path;
 /// under every variant without copying its `[params]`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawVariant {
+struct VariantFile {
     name: String,
     #[serde(default)]
     #[allow(dead_code)] // documentation for the reader of the file
@@ -90,7 +90,7 @@ fn layer_variant_and_sets(
     if let Some(vpath) = variant {
         let vt = parse_table(&read_text(vpath, "variant")?)
             .with_context(|| format!("variant {}", vpath.display()))?;
-        let v: RawVariant = from_value(toml::Value::Table(vt), "")
+        let v: VariantFile = from_value(toml::Value::Table(vt), "")
             .with_context(|| format!("variant {}", vpath.display()))?;
         merge_tables(simulation, v.simulation);
         name = Some(v.name);

@@ -36,7 +36,7 @@ pub(crate) mod variant;
 use crate::hash::fnv1a64;
 use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
-use params::Input;
+use rtw_model::Param;
 use raw::{from_value_ranged, parse_table, read_text};
 use rtw_model::{Num, Options};
 use serde::{Deserialize, Serialize};
@@ -48,7 +48,7 @@ use std::path::Path;
 /// memory or disk. (`sample_id` itself could count to 2⁶³.)
 pub(crate) const MAX_ROWS: u64 = 1_000_000_000_000;
 
-/// The six parameter axes, indexed like [`Input::ALL`].
+/// The six parameter axes, indexed like [`Param::ALL`].
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawParams {
@@ -99,7 +99,7 @@ pub struct ScanConfig {
     pub seed: u64,
     /// Random draws per grid point.
     pub samples: u64,
-    /// Parameter axes, indexed like [`Input::ALL`].
+    /// Parameter axes, indexed like [`Param::ALL`].
     pub params: [Axis; 6],
     /// `[cluster]`: k-means of the failures.
     pub cluster: ClusterConfig,
@@ -165,7 +165,7 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
     validate_options(&raw.simulation, "simulation")?;
     let p = raw.params;
     let params = [p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi];
-    for (input, axis) in Input::ALL.into_iter().zip(&params) {
+    for (input, axis) in Param::ALL.into_iter().zip(&params) {
         validate_axis(input, axis)?;
     }
     let cfg = ScanConfig {
@@ -212,7 +212,7 @@ pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
     Ok(options)
 }
 
-fn validate_axis(input: Input, axis: &Axis) -> Result<()> {
+fn validate_axis(input: Param, axis: &Axis) -> Result<()> {
     let key = input.name();
     let check = |value: f64, at: &str| {
         input.check(value).map_err(|e| {
@@ -278,7 +278,7 @@ impl ScanConfig {
 
     /// `key n × key n …` of the grid axes, for messages.
     fn grid_counts(&self) -> String {
-        Input::ALL
+        Param::ALL
             .iter()
             .zip(&self.params)
             .filter_map(|(i, a)| a.grid_len().map(|n| format!("{} {n}", i.name())))
@@ -309,7 +309,7 @@ impl ScanConfig {
         }
         t.insert("seed".into(), toml::Value::Integer(self.seed as i64));
         t.insert("samples".into(), toml::Value::Integer(self.samples as i64));
-        let params: toml::Table = Input::ALL
+        let params: toml::Table = Param::ALL
             .iter()
             .zip(&self.params)
             .map(|(i, a)| (i.name().to_string(), a.to_toml()))

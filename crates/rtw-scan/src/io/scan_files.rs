@@ -2,7 +2,7 @@
 //! and the concatenation of a run's chunks or a scan's shard parts into one
 //! file.
 
-use crate::config::params::Input;
+use rtw_model::Param;
 use crate::io::metadata::META_WALL_TIME;
 use crate::io::parquet::{self, ParquetFile, READ_BATCH_ROWS};
 use crate::io::scan_rows::{COLUMNS, schema};
@@ -51,7 +51,7 @@ pub(crate) fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64
                 .map_or("null".into(), |v| v.to_string())
         );
     }
-    for input in Input::ALL {
+    for input in Param::ALL {
         let key = input.name();
         let col = f64_column(batch, key).with_context(|| path.display().to_string())?;
         for (r, v) in col.iter().enumerate() {
