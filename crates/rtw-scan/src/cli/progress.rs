@@ -84,7 +84,10 @@ impl StderrProgress {
     fn line(&self) -> String {
         let done = self.done.load(Ordering::Relaxed);
         let new = done - self.previous.load(Ordering::Relaxed);
-        let secs = self.started.get().map_or(0.0, |t| t.elapsed().as_secs_f64());
+        let secs = self
+            .started
+            .get()
+            .map_or(0.0, |t| t.elapsed().as_secs_f64());
         let total = self.total.load(Ordering::Relaxed);
         let rate = new as f64 / secs.max(1e-9);
         let eta = if rate > 0.0 {

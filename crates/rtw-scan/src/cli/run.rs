@@ -1,7 +1,7 @@
 //! `run` and `merge`: a scan, whole or in shards, and its summary.
 
 use super::progress::{ProgressMode, StderrProgress};
-use super::{EXIT_INTERRUPTED, GRACEFUL, STOP};
+use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::analysis::report;
 use crate::config::{self, ScanConfig};
 use crate::hash::fnv1a64;
@@ -27,7 +27,7 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
-    #[arg(long, value_name = "N", value_parser = super::positive)]
+    #[arg(long, value_name = "N", value_parser = super::values::positive)]
     threads: Option<NonZeroUsize>,
     /// Layer a model variant file (configs/variants/*.toml: name, description, [simulation]) over the
     /// config's [simulation] table; the scan is named CONFIG-NAME+VARIANT-NAME.
@@ -51,7 +51,7 @@ pub(super) struct RunArgs {
     #[arg(long)]
     quiet: bool,
     /// Rows per chunk and row group (a resumed run keeps its own).
-    #[arg(long, hide = true, value_name = "N", value_parser = super::positive,
+    #[arg(long, hide = true, value_name = "N", value_parser = super::values::positive,
           default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
     /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.

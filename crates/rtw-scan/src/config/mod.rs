@@ -36,8 +36,8 @@ pub(crate) mod variant;
 use crate::hash::fnv1a64;
 use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
-use rtw_model::Param;
 use raw::{from_value_ranged, parse_table, read_text};
+use rtw_model::Param;
 use rtw_model::{Num, Options};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -140,8 +140,7 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
         );
     }
     let raw: RawConfig = from_value_ranged(toml::Value::Table(table), "", |path| {
-        path.strip_prefix("simulation.")
-            .and_then(layers::option_range)
+        path.strip_prefix("simulation.").and_then(raw::option_range)
     })?;
     if raw.samples < 1 || raw.samples as u64 > MAX_ROWS {
         bail!(
@@ -206,8 +205,7 @@ pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {
 /// Deserializes a `[simulation]` table into validated [`Options`]; an
 /// unknown key or a bad value is named as `prefix.key`.
 pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
-    let options: Options =
-        from_value_ranged(toml::Value::Table(table), prefix, layers::option_range)?;
+    let options: Options = from_value_ranged(toml::Value::Table(table), prefix, raw::option_range)?;
     validate_options(&options, prefix)?;
     Ok(options)
 }
@@ -468,6 +466,12 @@ phi = { uniform = [0.05, 0.3] }
 "#;
         assert!(parse(text).unwrap().is_paper_scan());
         assert!(!parse(BASE).unwrap().is_paper_scan());
+    }
+
+    #[test]
+    fn config_hash_is_the_fnv1a64_of_the_text_in_16_hex_digits() {
+        // FNV-1a 64 of "a" (the FNV test suite of Fowler, Noll and Vo).
+        assert_eq!(config_hash("a"), "af63dc4c8601ec8c");
     }
 
     #[test]

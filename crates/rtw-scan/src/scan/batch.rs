@@ -20,11 +20,7 @@ use std::time::Instant;
 /// set (the rows in flight finish, the rest are skipped). The rows' memory
 /// is reserved first: an allocation that cannot be made is an error
 /// ([`std::collections::TryReserveError`] in its chain), not an abort.
-fn compute_rows(
-    pool: &rayon::ThreadPool,
-    n: usize,
-    jobs: &Jobs<'_>,
-) -> Result<Option<Vec<Row>>> {
+fn compute_rows(pool: &rayon::ThreadPool, n: usize, jobs: &Jobs<'_>) -> Result<Option<Vec<Row>>> {
     let mut results: Vec<Option<Row>> = Vec::new();
     results
         .try_reserve_exact(n)
@@ -32,9 +28,7 @@ fn compute_rows(
     pool.install(|| {
         (0..n)
             .into_par_iter()
-            .map(|i| {
-                (!jobs.stop.load(Ordering::SeqCst)).then(|| jobs.row(i as u64))
-            })
+            .map(|i| (!jobs.stop.load(Ordering::SeqCst)).then(|| jobs.row(i as u64)))
             .collect_into_vec(&mut results)
     });
     Ok(results.into_iter().collect())

@@ -370,8 +370,8 @@ mod tests {
     use crate::config::parse;
     use crate::io::scan_rows::schema;
     use crate::scan::batch::scan_batch;
-    use crate::scan::progress::Silent;
     use crate::scan::fixtures::{CFG, fake_sim};
+    use crate::scan::progress::Silent;
     use arrow::array::{Array, AsArray, RecordBatch};
     use rtw_model::Label;
     use rtw_model::outcome::FailureDetail;
@@ -455,7 +455,14 @@ mod tests {
         let stop = AtomicBool::new(false);
         let a = tempfile::tempdir().unwrap();
         let b = tempfile::tempdir().unwrap();
-        run_scan(&cfg, &settings(a.path(), 2, 1000), &fake_sim, &stop, &Silent).unwrap();
+        run_scan(
+            &cfg,
+            &settings(a.path(), 2, 1000),
+            &fake_sim,
+            &stop,
+            &Silent,
+        )
+        .unwrap();
         run_scan(&cfg, &settings(b.path(), 1, 999), &fake_sim, &stop, &Silent).unwrap();
         // Three shards (parts of 5463 rows, cut into 1000-row chunks), merged.
         let c = tempfile::tempdir().unwrap();
@@ -487,10 +494,17 @@ mod tests {
         let cfg = parse(CFG).unwrap();
         let dir = tempfile::tempdir().unwrap();
         let stop = AtomicBool::new(false);
-        run_scan(&cfg, &settings(dir.path(), 2, 16), &fake_sim, &stop, &Silent).unwrap();
+        run_scan(
+            &cfg,
+            &settings(dir.path(), 2, 16),
+            &fake_sim,
+            &stop,
+            &Silent,
+        )
+        .unwrap();
         let b = rows_without_wall_time(&dir.path().join("samples.parquet"));
-        let labels = crate::io::scan_files::label_column(&b).unwrap();
-        let rho = crate::io::scan_files::f64_column(&b, "rho").unwrap();
+        let labels = crate::io::table::label_column(&b).unwrap();
+        let rho = crate::io::table::f64_column(&b, "rho").unwrap();
         let msg = b.column_by_name("message").unwrap().as_string::<i32>();
         let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
         let mut panicked = 0;
@@ -538,7 +552,14 @@ mod tests {
         let full = tempfile::tempdir().unwrap();
         let part = tempfile::tempdir().unwrap();
         let never = AtomicBool::new(false);
-        run_scan(&cfg, &settings(full.path(), 2, 4), &fake_sim, &never, &Silent).unwrap();
+        run_scan(
+            &cfg,
+            &settings(full.path(), 2, 4),
+            &fake_sim,
+            &never,
+            &Silent,
+        )
+        .unwrap();
 
         // Stop after 7 samples: the chunk in progress is dropped.
         let st = stopped_after(&cfg, part.path(), 6);
@@ -554,7 +575,14 @@ mod tests {
         assert!(!part.path().join("samples.parquet").exists());
 
         // Without --resume the unfinished run is not silently dropped.
-        let e = run_scan(&cfg, &settings(part.path(), 1, 4), &fake_sim, &never, &Silent).unwrap_err();
+        let e = run_scan(
+            &cfg,
+            &settings(part.path(), 1, 4),
+            &fake_sim,
+            &never,
+            &Silent,
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("--resume"), "{e}");
         // A different config cannot resume it.
         let other = parse(&CFG.replace("seed = 11", "seed = 12")).unwrap();

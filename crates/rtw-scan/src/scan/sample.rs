@@ -12,9 +12,9 @@
 
 use crate::config::ScanConfig;
 use crate::config::axis::{Axis, linspace_point};
-use rtw_model::Param;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rtw_model::Param;
 use rtw_model::Params;
 
 /// How one axis produces its value.
