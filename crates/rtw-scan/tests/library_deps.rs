@@ -9,7 +9,8 @@ use std::path::Path;
 fn manifest(rel: &str) -> toml::Table {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(rel);
     let text = std::fs::read_to_string(&path).unwrap();
-    text.parse().unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    text.parse()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 fn table<'a>(t: &'a toml::Table, key: &str) -> &'a toml::Table {

@@ -17,8 +17,8 @@ use anyhow::{Result, anyhow, bail};
 use arrow_array::cast::AsArray;
 use arrow_array::types::{Float64Type, Int32Type, Int64Type};
 use arrow_array::{
-    Array, ArrayRef, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array,
-    RecordBatch, StringArray,
+    Array, ArrayRef, ArrowPrimitiveType, BooleanArray, DictionaryArray, Float64Array, Int32Array,
+    Int64Array, PrimitiveArray, RecordBatch, StringArray,
 };
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use rtw_model::Label;
@@ -141,22 +141,31 @@ pub(crate) fn batch<R>(columns: &[Column<R>], schema: SchemaRef, rows: &[R]) -> 
     RecordBatch::try_new(schema, arrays).expect("the arrays are made from the schema's columns")
 }
 
-/// A `Float64` column of a batch read back, by name.
-pub(crate) fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
+/// A column of primitive type `T` of a batch read back, by name.
+fn primitive_column<'a, T: ArrowPrimitiveType>(
+    batch: &'a RecordBatch,
+    name: &str,
+) -> Result<&'a PrimitiveArray<T>> {
     let col = batch
         .column_by_name(name)
         .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
-    col.as_primitive_opt::<Float64Type>()
-        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Float64", col.data_type()))
+    col.as_primitive_opt::<T>().ok_or_else(|| {
+        anyhow!(
+            "column `{name}` is {}, expected {}",
+            col.data_type(),
+            T::DATA_TYPE
+        )
+    })
+}
+
+/// A `Float64` column of a batch read back, by name.
+pub(crate) fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
+    primitive_column::<Float64Type>(batch, name)
 }
 
 /// An `Int64` column of a batch read back, by name.
 pub(crate) fn i64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Int64Array> {
-    let col = batch
-        .column_by_name(name)
-        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
-    col.as_primitive_opt::<Int64Type>()
-        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Int64", col.data_type()))
+    primitive_column::<Int64Type>(batch, name)
 }
 
 /// The `outcome` column of a batch read back, decoded to labels.
