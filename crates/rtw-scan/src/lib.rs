@@ -2,7 +2,7 @@
 //!
 //! Seeded, parallel parameter scans of the RTW model (`rtw-model`), streamed
 //! to Parquet, with outcome statistics and failure clustering. The binary
-//! `rtw-scan` is a thin shell over [`main`].
+//! `rtw-scan` is a thin shell over `main` (the `cli` feature).
 //!
 //! The folders are the layers, each using only the ones above it in this
 //! table (and `hash`, the fixed hash functions):
@@ -23,9 +23,9 @@
 //! and indicatif) is the default `cli` feature, which only the binary needs:
 //! the library's users (rtw-py, rtw-bench) leave it out, and the library
 //! itself shows nothing on a terminal. What watches a scan, and what stops
-//! it, are passed to it ([`scan::Progress`], a stop flag). The deterministic stand-in simulator
-//! `fake` (hidden flag `--fake-sim`) exists only with the `fake-sim` feature,
-//! which the crate's own tests turn on.
+//! it, are passed to it ([`scan::Progress`], a stop flag). The deterministic
+//! stand-in simulator `fake` (hidden flag `--fake-sim`) exists only with the
+//! `fake-sim` feature, which the crate's own tests turn on.
 //!
 //! ## Usage
 //!
