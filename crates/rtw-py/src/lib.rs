@@ -158,7 +158,7 @@ fn scan<'py>(
         let stop = Arc::clone(&stop);
         let rows_done = Arc::clone(&rows_done);
         std::thread::spawn(move || {
-            let result = scan_batch(&cfg, threads, &stop, &rows_done);
+            let result = scan_batch(&cfg, threads, &stop, &*rows_done);
             // The receiver is gone only if this function already returned.
             let _ = done.send(());
             result

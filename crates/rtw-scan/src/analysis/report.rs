@@ -10,14 +10,15 @@
 use crate::analysis::clusters::{
     CLUSTER_MAX_POINTS, ClusterTally, Failure, FailureClusters, FailureSample, cluster_failures,
 };
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
 use crate::io::destination::SUMMARY_MAX_BYTES;
 use crate::io::files::{self, write_atomic};
 use crate::io::metadata::{META_CONFIG, META_VERSION, META_WALL_TIME};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
-use crate::io::scan_files::{self, f64_column, i64_column, label_column};
+use crate::io::scan_files;
 use crate::io::scan_rows::label_index;
+use crate::io::table::{f64_column, i64_column, label_column};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_model::Label;
@@ -234,7 +235,7 @@ pub(crate) struct Summary {
     pub(crate) version: String,
     pub(crate) seed: u64,
     pub(crate) samples: u64,
-    pub(crate) variant: Variant,
+    pub(crate) variant: ModelChoices,
     /// Whether this is the article's scan (its numbers are then given beside ours).
     pub(crate) paper_scan: bool,
     /// Per label: skip, walk, crawl, collapse, stall, diverged.
@@ -297,7 +298,7 @@ pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
         version: data.version.clone(),
         seed: data.config.seed,
         samples: n,
-        variant: Variant::of(&data.config.simulation),
+        variant: ModelChoices::of(&data.config.simulation),
         paper_scan: paper,
         outcomes,
         stable,
@@ -521,7 +522,7 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scan::progress::ProgressMode;
+    use crate::scan::progress::Silent;
     use crate::scan::run::{RunSettings, run_scan};
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
@@ -551,14 +552,13 @@ phi = { uniform = [0.05, 0.12] }
             threads: NonZeroUsize::new(2),
             resume: false,
             chunk_size: NonZeroUsize::new(4000).unwrap(),
-            progress: ProgressMode::Quiet,
             shard: None,
             force: false,
         };
         let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
             crate::fake::simulate(p, o, std::time::Duration::ZERO)
         };
-        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false)).unwrap();
+        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false), &Silent).unwrap();
         let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
         let collapses = data.counts[label_index(Label::Collapse)] as usize;
         let stalls = data.counts[label_index(Label::Stall)] as usize;

@@ -3,7 +3,7 @@
 //! KEY=VALUE` overrides over both; then [`super::parse`] validates the
 //! result. Every error names the file and the key path.
 
-use super::raw::{from_value, parse_table, read_text};
+use super::raw::{from_value, option_range, parse_table, read_text, set_path};
 use super::{ScanConfig, options_from_table, parse_value};
 use anyhow::{Context, Result, anyhow, bail};
 use rtw_model::Options;
@@ -16,7 +16,7 @@ use std::path::Path;
 /// under every variant without copying its `[params]`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawVariant {
+struct VariantFile {
     name: String,
     #[serde(default)]
     #[allow(dead_code)] // documentation for the reader of the file
@@ -129,7 +129,7 @@ fn layer_variant_and_sets(
     if let Some(vpath) = variant {
         let vt = parse_table(&read_text(vpath, "variant")?)
             .with_context(|| format!("variant {}", vpath.display()))?;
-        let v: RawVariant = from_value(toml::Value::Table(vt), "")
+        let v: VariantFile = from_value(toml::Value::Table(vt), "")
             .with_context(|| format!("variant {}", vpath.display()))?;
         merge_tables(simulation, v.simulation);
         name = Some(v.name);
@@ -246,24 +246,6 @@ pub fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
     set_path(table, key, parsed).map_err(|e| anyhow!("--set {e}"))
 }
 
-/// Sets the dotted `key` (`contact.mu`) of `table` to `value`, making the
-/// tables on the way; the error names the key and the part that is not a table.
-fn set_path(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<()> {
-    let parts: Vec<&str> = key.split('.').collect();
-    let (last, path) = parts.split_last().expect("split yields at least one part");
-    let mut t = table;
-    for (depth, part) in path.iter().enumerate() {
-        let entry = t
-            .entry(part.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        t = entry
-            .as_table_mut()
-            .ok_or_else(|| anyhow!("{key}: `{}` is not a table", parts[..=depth].join(".")))?;
-    }
-    t.insert(last.to_string(), value);
-    Ok(())
-}
-
 /// Whether `literal` is a number written beyond what a 64-bit float holds
 /// (`1e400` reads as inf, `1e-400` as 0): TOML refuses it, and taken as a
 /// string it would be refused as "invalid type: string".
@@ -275,23 +257,6 @@ fn beyond_f64(literal: &str) -> bool {
     let spelled_inf = literal.to_ascii_lowercase().contains("inf");
     (v.is_infinite() && !spelled_inf)
         || (v == 0.0 && mantissa.contains(|c: char| ('1'..='9').contains(&c)))
-}
-
-/// The valid range of the `[simulation]` option `key` (`t_max`,
-/// `contact.mu`) in [`Options::validate`]'s words; `None` for a key without
-/// one (a choice or a flag, whose own message lists what it takes). Found by
-/// validating the default options with the key set to a value no range
-/// holds (NaN, or 0 for an integer key), so the ranges live in rtw-model only.
-pub(crate) fn option_range(key: &str) -> Option<&'static str> {
-    [toml::Value::Float(f64::NAN), toml::Value::Integer(0)]
-        .into_iter()
-        .find_map(|probe| {
-            let mut table = toml::Table::new();
-            set_path(&mut table, key, probe).ok()?;
-            let options: Options = toml::Value::Table(table).try_into().ok()?;
-            let e = options.validate().err()?;
-            (e.field == key).then_some(e.range)
-        })
 }
 
 #[cfg(test)]

@@ -518,8 +518,7 @@ pub(crate) mod tests {
     use super::*;
     use crate::io::metadata::META_SEED;
     use crate::io::parquet::{open, write_file};
-    use crate::io::scan_files::{f64_column, label_column};
-    use crate::io::table::label_type;
+    use crate::io::table::{f64_column, label_column, label_type};
     use ::parquet::file::metadata::KeyValue;
     use arrow_array::Array;
     use arrow_array::cast::AsArray;
