@@ -13,8 +13,7 @@ use arrow_pyarrow::{IntoPyArrow, Table};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
-use rtw_model::plant::strings::StringSet;
+use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::{Options, Params, Physical, modal};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
@@ -245,9 +244,8 @@ fn modes<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (params, options) = inputs(values, config, variant, &sets)?;
     let phys = Physical::new(&params, options.normalization, options.g);
-    let strings = StringSet::new(&phys, &options);
-    let approx = modal::approximate_modes(&phys, &strings);
-    let star = modal::free_star_modes(&phys, &strings);
+    let approx = modal::approximate_modes(&phys, &options.strings);
+    let star = modal::free_star_modes(&phys, &options.strings);
     let d = PyDict::new(py);
     d.set_item("s18_hz", modal::s18_frequency(&phys))?;
     d.set_item("approx_hz", approx.freq_hz)?;
