@@ -19,9 +19,8 @@ use options::PyOverrides;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
+use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
-use rtw_model::plant::strings::StringSet;
 use rtw_model::{Label, Options, Params, Physical, modal};
 use rtw_scan::config::layers::{load_layered_with, parse_layered_with, simulation_options_with};
 use rtw_scan::config::params::checked_params;
@@ -243,9 +242,8 @@ fn modes(
 ) -> PyResult<Modes> {
     let (params, options) = inputs(values, config, variant, options.as_ref())?;
     let phys = Physical::new(&params, options.normalization, options.g);
-    let strings = StringSet::new(&phys, &options);
-    let approx = modal::approximate_modes(&phys, &strings);
-    let star = modal::free_star_modes(&phys, &strings);
+    let approx = modal::approximate_modes(&phys, &options.strings);
+    let star = modal::free_star_modes(&phys, &options.strings);
     Ok(Modes::new(modal::s18_frequency(&phys), &approx, &star))
 }
 

@@ -253,7 +253,7 @@ fields_class! {
 }
 
 impl LimitCycle {
-    pub(crate) fn new(lc: &rtw_model::cycles::limit_cycle::LimitCycle, label: &str) -> Self {
+    pub(crate) fn new(lc: &rtw_model::cycles::LimitCycle, label: &str) -> Self {
         Self {
             period: lc.period,
             fixed_point: Floats(lc.fixed_point.z.clone()),
