@@ -97,6 +97,9 @@ pub enum FailureDetail {
     /// its shape but has no static equilibrium there
     /// (`initial.cannot_stand = "collapse"`).
     StandingRollsAway,
+    /// A tip met the riser of a step (docs/model.md §4, terrain): the walker
+    /// tripped.
+    Riser,
     /// No touchdown for `stall_time`.
     NoTouchdown,
     /// The centre of mass moved less than L/2 downhill over the window.
@@ -113,13 +116,14 @@ pub enum FailureDetail {
 
 impl FailureDetail {
     /// Every failure detail.
-    pub const ALL: [FailureDetail; 12] = [
+    pub const ALL: [FailureDetail; 13] = [
         FailureDetail::RodDown,
         FailureDetail::CentreOfMassLow,
         FailureDetail::NoStandingEquilibrium,
         FailureDetail::StandingRodDown,
         FailureDetail::StandingComLow,
         FailureDetail::StandingRollsAway,
+        FailureDetail::Riser,
         FailureDetail::NoTouchdown,
         FailureDetail::NoProgress,
         FailureDetail::NonFinite,
@@ -137,7 +141,8 @@ impl FailureDetail {
             | FailureDetail::NoStandingEquilibrium
             | FailureDetail::StandingRodDown
             | FailureDetail::StandingComLow
-            | FailureDetail::StandingRollsAway => Label::Collapse,
+            | FailureDetail::StandingRollsAway
+            | FailureDetail::Riser => Label::Collapse,
             FailureDetail::NoTouchdown | FailureDetail::NoProgress => Label::Stall,
             FailureDetail::NonFinite
             | FailureDetail::StepUnderflow
@@ -155,6 +160,7 @@ impl FailureDetail {
             FailureDetail::StandingRodDown => "standing_rod_down",
             FailureDetail::StandingComLow => "standing_com_low",
             FailureDetail::StandingRollsAway => "standing_rolls_away",
+            FailureDetail::Riser => "riser",
             FailureDetail::NoTouchdown => "no_touchdown",
             FailureDetail::NoProgress => "no_progress",
             FailureDetail::NonFinite => "non_finite",
@@ -185,6 +191,7 @@ impl FailureDetail {
             FailureDetail::StandingRollsAway => {
                 "cannot stand still: set down on the slope, it rolls or slides away from its feet"
             }
+            FailureDetail::Riser => "tripped: a tip met the riser of the step",
             FailureDetail::NoTouchdown => "stalled: no touchdown for stall_time",
             FailureDetail::NoProgress => {
                 "stalled: the centre of mass moved less than L/2 downhill over the window"
