@@ -26,6 +26,7 @@
 
 use crate::params::{Normalization, ParamError, check};
 pub use crate::plant::terrain::TerrainOptions;
+pub use crate::run::robustness::RobustnessOptions;
 use hybrid_ode::EngineOptions;
 /// The integration method, as chosen in a config (`"dp54"`, `"dop853"`,
 /// `"rk4"`): the engine's own [`hybrid_ode::Method`].
@@ -277,6 +278,11 @@ pub struct Options {
     /// config's text and hash are those it had before terrain existed.
     #[serde(skip_serializing_if = "TerrainOptions::is_flat")]
     pub terrain: TerrainOptions,
+    /// The robustness measures a stable run adds (`robustness.*`,
+    /// [`RobustnessOptions`]); all off by default, and then left out of a
+    /// serialized config.
+    #[serde(skip_serializing_if = "RobustnessOptions::is_off")]
+    pub robustness: RobustnessOptions,
 }
 
 impl Default for Options {
@@ -303,6 +309,7 @@ impl Default for Options {
             contact: ContactOptions::default(),
             labels: LabelOptions::default(),
             terrain: TerrainOptions::default(),
+            robustness: RobustnessOptions::default(),
         }
     }
 }

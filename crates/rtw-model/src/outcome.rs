@@ -346,8 +346,13 @@ pub struct Outcome {
     /// The gait's limit cycle on the step map, if `Options::limit_cycle`
     /// asked for it and Newton found one.
     pub cycle: Option<CycleSummary>,
-    /// Integrator work, the standing start's included.
+    /// Integrator work, the standing start's included (not the work of the
+    /// robustness measures).
     pub work: IntegratorWork,
+    /// The gait's robustness measures, if `Options::robustness` asked for
+    /// any and the gait is stable (docs/robustness.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robustness: Option<crate::run::robustness::Robustness>,
 }
 
 /// A run's limit cycle on the step map ([`crate::cycles::stepmap`]).
