@@ -350,7 +350,8 @@ pub struct Outcome {
     /// robustness measures).
     pub work: IntegratorWork,
     /// The gait's robustness measures, if `Options::robustness` asked for
-    /// any and the gait is stable (docs/robustness.md).
+    /// any (docs/robustness.md); each measure is `None` unless the gait is
+    /// stable.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub robustness: Option<crate::run::robustness::Robustness>,
 }

@@ -175,8 +175,8 @@ fn closed_form(w: &Wheel, h: f64) -> ClosedForm {
     let th0 = gm - a;
     let th1 = gm + a + delta;
     let rate_1 = c2a * (omega_star.powi(2) + 2.0 * (G / l) * (th0.cos() - th1.cos())).sqrt();
-    let rate_2 = c2a
-        * (rate_1.powi(2) + 2.0 * (G / l) * ((gm - a + delta).cos() - (gm + a).cos())).sqrt();
+    let rate_2 =
+        c2a * (rate_1.powi(2) + 2.0 * (G / l) * ((gm - a + delta).cos() - (gm + a).cos())).sqrt();
     ClosedForm {
         omega_star,
         delta,
@@ -213,12 +213,26 @@ fn the_step_down_map_is_the_closed_form() {
         // starts δ ahead of the flat section, and the cos 2α loss applies to
         // the larger rate the fall gave it.
         let want_theta_1 = w.gamma - w.alpha + cf.delta;
-        assert!((theta_1 - want_theta_1).abs() < 1e-9, "h = {h}: θ₁ {theta_1} vs {want_theta_1}");
-        assert!((rate_1 - cf.rate_1).abs() < 1e-9, "h = {h}: ω₁ {rate_1} vs {}", cf.rate_1);
+        assert!(
+            (theta_1 - want_theta_1).abs() < 1e-9,
+            "h = {h}: θ₁ {theta_1} vs {want_theta_1}"
+        );
+        assert!(
+            (rate_1 - cf.rate_1).abs() < 1e-9,
+            "h = {h}: ω₁ {rate_1} vs {}",
+            cf.rate_1
+        );
         assert!((theta_2 - (w.gamma - w.alpha)).abs() < 1e-9, "h = {h}");
-        assert!((rate_2 - cf.rate_2).abs() < 1e-9, "h = {h}: ω₂ {rate_2} vs {}", cf.rate_2);
+        assert!(
+            (rate_2 - cf.rate_2).abs() < 1e-9,
+            "h = {h}: ω₂ {rate_2} vs {}",
+            cf.rate_2
+        );
         if h == 0.0 {
-            assert!((rate_1 - cf.omega_star).abs() < 1e-9, "flat: the fixed point");
+            assert!(
+                (rate_1 - cf.omega_star).abs() < 1e-9,
+                "flat: the fixed point"
+            );
         } else {
             // Energy: the kinetic energy per mass just before the second
             // impact exceeds the flat stance's by the hub's extra drop (the
@@ -287,7 +301,10 @@ fn the_largest_step_down_the_wheel_rolls_on_from_is_the_closed_form() {
     println!("largest step down: simulated {lo:.9} m, closed form {h_max:.9} m");
     assert!((lo - h_max).abs() < 1e-7, "{lo} vs {h_max}");
     // And it fails the way the closed form says: the wheel flies.
-    assert_eq!(walk(wheel(1.01 * h_max), omega_star, 10).end, Some(Event::Flies));
+    assert_eq!(
+        walk(wheel(1.01 * h_max), omega_star, 10).end,
+        Some(Event::Flies)
+    );
 }
 
 #[test]

@@ -51,8 +51,14 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
     let out = simulate(&p, &o);
     let r = out.robustness.unwrap();
     let (h, fail) = (r.step_down_max.unwrap(), r.step_down_fail.unwrap());
-    println!("Fig. 7(a): step_down_max = {h} m ({:.3} L), first failure {fail} m", h / p.length);
-    assert!(h > 0.0 && fail > h && fail <= 1.05 * h + 1e-3 * p.length, "{h} {fail}");
+    println!(
+        "Fig. 7(a): step_down_max = {h} m ({:.3} L), first failure {fail} m",
+        h / p.length
+    );
+    assert!(
+        h > 0.0 && fail > h && fail <= 1.05 * h + 1e-3 * p.length,
+        "{h} {fail}"
+    );
     for factor in [0.8, 1.0] {
         let (below, survived) = meet_step(&p, &o, factor * h).unwrap();
         assert!(survived, "{factor} × {h}: {below:?}");
@@ -61,5 +67,8 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
     assert!(!survived, "{fail}: {above:?}");
     assert!(above.label.is_failure() || above.label != out.label);
     let (at_125, survived_125) = meet_step(&p, &o, 1.25 * h).unwrap();
-    println!("at 1.25×: survived {survived_125}, {:?} {:?}", at_125.label, at_125.failure);
+    println!(
+        "at 1.25×: survived {survived_125}, {:?} {:?}",
+        at_125.label, at_125.failure
+    );
 }

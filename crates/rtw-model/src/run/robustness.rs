@@ -5,10 +5,12 @@
 //! down of height `h` when it has settled (the state the flat run ended in,
 //! with `stop_when_settled` at a touchdown), the step's edge
 //! [`EDGE_AHEAD`]` × L` ahead of its front-most grounded tip; the run from
-//! there, on the stepped ground, under the same options (up to `t_max` more,
-//! ending once its gait has settled again: at least 36 touchdowns after the
-//! edge), must end in a stable gait with the flat gait's label. Anything else
-//! (a collapse, a trip on the riser, a stall, another gait) fails.
+//! there, on the stepped ground, under the same options for
+//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (`20 / f_w` seconds), must
+//! not fail and must have the flat gait's label over the second half of
+//! them (`analysis_window = 0.5`). Anything else (a collapse, a trip on the
+//! riser, a stall, another gait, or still hopping ten steps after the drop)
+//! fails.
 //!
 //! **Largest survivable step down** (`step_down_max`, m): the heights
 //! `h = 0.05 L · 1.25ᵏ` are tried from below until one fails (at most
@@ -64,6 +66,10 @@ pub struct Robustness {
 /// grounded tip of the settled gait: the next foot lands beyond it, and far
 /// from the riser.
 pub const EDGE_AHEAD: f64 = 0.05;
+/// A step down is survived when, this many steps of the flat gait (at its
+/// touchdown rate `f_w`) after the settled state, the run has not failed
+/// and the second half of them has the flat gait's label.
+pub const SURVIVAL_STEPS: f64 = 20.0;
 /// The first height tried, in rod lengths.
 pub const STEP_DOWN_START: f64 = 0.05;
 /// Each height tried is this many times the last, until one fails.
@@ -136,6 +142,10 @@ pub(crate) fn settled<'a>(
     let mut options = *options;
     options.limit_cycle = false;
     options.robustness = RobustnessOptions::default();
+    // Judged over `SURVIVAL_STEPS` steps of the flat gait after the edge,
+    // the label over their second half.
+    options.t_max = SURVIVAL_STEPS / flat.f_w;
+    options.analysis_window = 0.5;
     Settled {
         params,
         options,
@@ -206,9 +216,9 @@ pub fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(Outcome,
     let mut flat_options = *options;
     flat_options.robustness = RobustnessOptions::default();
     crate::run::simulate::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
-        flat.label
-            .is_stable()
-            .then(|| settled(params, options, phys, rtw, y, flat).meet_step(h, &mut Work::default()))
+        flat.label.is_stable().then(|| {
+            settled(params, options, phys, rtw, y, flat).meet_step(h, &mut Work::default())
+        })
     })
     .flatten()
 }

@@ -6,12 +6,12 @@ use crate::cycles::limit_cycle::cycle_of_run;
 use crate::cycles::section::SectionLog;
 use crate::options::Options;
 use crate::outcome::{Energy, FailureDetail, Label, Outcome, Stance, TraceSample};
-use crate::run::robustness::measure;
 use crate::params::{Params, Physical};
 use crate::plant::initial::initial_state;
 use crate::plant::rtw::{AtState, Rtw, Transition};
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
 use crate::run::gait::{GaitStats, Settled};
+use crate::run::robustness::measure;
 use hybrid_ode::{Dense, EndReason, Flow, Observer, StepEnd, Work, run};
 
 /// Simulates one RTW run.
@@ -206,8 +206,11 @@ fn simulate_inner(
     let (phys, ended) = start_and_run(params, options, trace);
     match ended {
         Ok((mut outcome, rtw, y)) => {
-            if !options.robustness.is_off() && outcome.label.is_stable() {
-                outcome.robustness = Some(measure(params, options, &phys, &rtw, &y, &outcome));
+            if !options.robustness.is_off() {
+                outcome.robustness = Some(match outcome.label.is_stable() {
+                    true => measure(params, options, &phys, &rtw, &y, &outcome),
+                    false => Default::default(),
+                });
             }
             outcome
         }
@@ -233,7 +236,9 @@ fn start_and_run(
     // The work of standing the star up counts as the run's.
     let mut standing = Work::default();
     let ended = match initial_state(&mut rtw, options, &mut standing) {
-        Ok((y, start)) => Ok(run_from(params, options, &phys, rtw, y, start, standing, trace)),
+        Ok((y, start)) => Ok(run_from(
+            params, options, &phys, rtw, y, start, standing, trace,
+        )),
         Err(detail) => Err(failed_at_start(detail, standing)),
     };
     (phys, ended)

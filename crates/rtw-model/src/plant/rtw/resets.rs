@@ -76,7 +76,10 @@ impl Rtw {
         let rods = self.rods(y);
         if !self.terrain.is_flat() {
             let (p, _) = self.body.tip_point(&rods[rod], tip);
-            if self.terrain.met_riser(p[1] - self.ground(p[0]), self.touchdown_height) {
+            if self
+                .terrain
+                .met_riser(p[1] - self.ground(p[0]), self.touchdown_height)
+            {
                 return Transition::Failure(FailureDetail::Riser);
             }
         }
