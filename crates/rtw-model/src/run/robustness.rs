@@ -6,7 +6,8 @@
 //! with `stop_when_settled` at a touchdown), the step's edge
 //! [`EDGE_AHEAD`]` × L` ahead of its front-most grounded tip; the run from
 //! there, on the stepped ground, under the same options for
-//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (`20 / f_w` seconds), must
+//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (`20 / f_w` seconds, at
+//! most `t_max`), must
 //! not fail and must have the flat gait's label over the second half of
 //! them (`analysis_window = 0.5`). Anything else (a collapse, a trip on the
 //! riser, a stall, another gait, or still hopping ten steps after the drop)
@@ -82,7 +83,7 @@ pub const STEP_DOWN_RTOL: f64 = 0.05;
 pub const STEP_DOWN_ATOL: f64 = 1e-3;
 
 /// The settled gait of a stable flat run, ready to meet a step.
-pub(crate) struct Settled<'a> {
+pub(crate) struct SettledGait<'a> {
     params: &'a Params,
     options: Options,
     phys: &'a Physical,
@@ -92,7 +93,7 @@ pub(crate) struct Settled<'a> {
     edge: f64,
 }
 
-impl Settled<'_> {
+impl SettledGait<'_> {
     /// The run over a step of `h`: its outcome and whether the gait survived.
     pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
         let mut sys = self.rtw.clone();
@@ -125,7 +126,7 @@ pub(crate) fn settled<'a>(
     rtw: &'a Rtw,
     y: &'a [f64; N],
     flat: &'a Outcome,
-) -> Settled<'a> {
+) -> SettledGait<'a> {
     let front = rtw
         .rods(y)
         .iter()
@@ -144,9 +145,10 @@ pub(crate) fn settled<'a>(
     options.robustness = RobustnessOptions::default();
     // Judged over `SURVIVAL_STEPS` steps of the flat gait after the edge,
     // the label over their second half.
-    options.t_max = SURVIVAL_STEPS / flat.f_w;
+    // At most the run's own `t_max` (a gait's `f_w` is positive).
+    options.t_max = (SURVIVAL_STEPS / flat.f_w).min(options.t_max);
     options.analysis_window = 0.5;
-    Settled {
+    SettledGait {
         params,
         options,
         phys,
@@ -159,7 +161,7 @@ pub(crate) fn settled<'a>(
 
 /// The largest survivable step down of a settled gait and the failing
 /// height just above it (see the module doc).
-pub(crate) fn step_down_max(s: &Settled<'_>, work: &mut Work) -> (f64, Option<f64>) {
+pub(crate) fn step_down_max(s: &SettledGait<'_>, work: &mut Work) -> (f64, Option<f64>) {
     let length = s.phys.length;
     let (mut lo, mut hi) = (0.0, STEP_DOWN_START * length);
     loop {
