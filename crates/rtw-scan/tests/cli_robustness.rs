@@ -59,3 +59,49 @@ fn terrain_options_run_over_a_step_and_are_validated() {
         &["simulation.terrain.step_at: 0 is invalid", "(0, 1e6]"],
     );
 }
+
+#[test]
+fn a_scan_has_the_step_down_column_only_when_asked_for_and_the_same_rows_besides() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "s.toml", &paper_like(12, 7));
+    let (plain, step) = (dir.path().join("plain"), dir.path().join("step"));
+    // Small chunks: the column must survive the chunks' concatenation.
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        s(&plain),
+        "--quiet",
+        "--chunk-size",
+        "5",
+    ]);
+    run_ok(&[
+        "run",
+        &cfg,
+        "--out",
+        s(&step),
+        "--quiet",
+        "--chunk-size",
+        "5",
+        "--set",
+        "robustness.step_down=true",
+    ]);
+    let (plain, step) = (plain.join("samples.parquet"), step.join("samples.parquet"));
+    let names = column_names(&plain);
+    assert!(!names.iter().any(|n| n == "step_down_max"));
+    let mut with = names.clone();
+    with.push("step_down_max".into());
+    assert_eq!(column_names(&step), with);
+    let (a, b) = (rows(&plain), rows(&step));
+    assert_eq!(a.len(), 12);
+    let mut stable = 0;
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!(a[..], b[..a.len()]);
+        let label = &a[names.iter().position(|n| n == "outcome").unwrap()];
+        let value = &b[a.len()];
+        let is_stable = ["outcome=skip", "outcome=walk", "outcome=crawl"].contains(&label.as_str());
+        stable += is_stable as usize;
+        assert_eq!(value == "step_down_max=null", !is_stable, "{label} {value}");
+    }
+    assert!(stable > 0);
+}
