@@ -26,3 +26,25 @@ def test_a_bad_step_raises_naming_the_key() -> None:
         rtw.simulate(*FIG7A, **{"terrain.step_height": -1})
     step = rtw.simulate(*FIG7A, options={"terrain.step_height": 0.05, "terrain.step_at": 3.0})
     assert step.t_end != rtw.simulate(*FIG7A).t_end
+
+
+SMALL_SCAN = """seed = 3
+samples = 6
+[params]
+length = 0.8
+rho = { uniform = [1, 5] }
+alpha = { uniform = [0, 0.4] }
+fn = { uniform = [1.5, 5] }
+zeta = { uniform = [0.05, 0.1] }
+phi = { uniform = [0.05, 0.3] }
+"""
+
+
+def test_a_scan_has_the_step_down_column_only_when_asked_for() -> None:
+    plain = rtw.scan(SMALL_SCAN, progress=False)
+    assert "step_down_max" not in plain.column_names
+    step = rtw.scan(SMALL_SCAN, set={"robustness.step_down": True}, progress=False)
+    assert step.column_names == plain.column_names + ["step_down_max"]
+    stable = {"skip", "walk", "crawl"}
+    for label, h in zip(step.column("outcome").to_pylist(), step.column("step_down_max").to_pylist()):
+        assert (h is not None) == (label in stable), (label, h)
