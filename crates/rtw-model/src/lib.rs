@@ -51,4 +51,5 @@ pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
 pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
 pub use plant::contact::RodMode;
 pub use plant::geometry::Tip;
+pub use run::robustness::meet_step;
 pub use run::simulate::{simulate, simulate_traced};

@@ -30,6 +30,8 @@
 //! (`initial.omega`, `strings.slack`, `contact.mu`, …); unknown keys are refused.
 
 use crate::params::{Normalization, ParamError, check};
+pub use crate::plant::terrain::TerrainOptions;
+pub use crate::run::robustness::RobustnessOptions;
 use hybrid_ode::EngineOptions;
 /// The integration method, as chosen in a config (`"dp54"`, `"dop853"`,
 /// `"rk4"`): the engine's own [`hybrid_ode::Method`].
@@ -277,6 +279,16 @@ pub struct Options {
     pub contact: ContactOptions,
     /// The gait labels' thresholds.
     pub labels: LabelOptions,
+    /// The ground (`terrain.*`, [`TerrainOptions`]): the flat slope unless a
+    /// step is set. Left out of a serialized config while flat, so a flat
+    /// config's text and hash are those it had before terrain existed.
+    #[serde(skip_serializing_if = "TerrainOptions::is_flat")]
+    pub terrain: TerrainOptions,
+    /// The robustness measures a stable run adds (`robustness.*`,
+    /// [`RobustnessOptions`]); all off by default, and then left out of a
+    /// serialized config.
+    #[serde(skip_serializing_if = "RobustnessOptions::is_off")]
+    pub robustness: RobustnessOptions,
 }
 
 impl Default for Options {
@@ -302,6 +314,8 @@ impl Default for Options {
             strings: StringOptions::default(),
             contact: ContactOptions::default(),
             labels: LabelOptions::default(),
+            terrain: TerrainOptions::default(),
+            robustness: RobustnessOptions::default(),
         }
     }
 }
@@ -418,6 +432,7 @@ impl Options {
             "in [0, 1)",
             |v| (0.0..1.0).contains(&v),
         )?;
+        self.terrain.validate()?;
         let mu = self.contact.mu;
         if !(mu == f64::INFINITY || (mu.is_finite() && (0.0..=MU_MAX_FINITE).contains(&mu))) {
             return Err(ParamError::new(

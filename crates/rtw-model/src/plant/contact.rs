@@ -8,8 +8,8 @@
 //! | mode | slots 0..3 (position) | slots 3..6 (velocity) |
 //! |---|---|---|
 //! | free  | centre x, centre y, θ | ẋ, ẏ, ω |
-//! | stick | contact point x, 0, θ | 0, 0, ω |
-//! | slide | tip x, 0, θ | tip ẋ, 0, ω |
+//! | stick | contact point x, ground height, θ | 0, 0, ω |
+//! | slide | tip x, ground height, θ | tip ẋ, 0, ω |
 //!
 //! Stick and slide share a layout: a stick is a slide whose tip does not move.
 //! Contacts of different rods never couple (strings carry no impulse), so
@@ -149,7 +149,7 @@ impl RodBody {
             RodMode::Stick { tip } | RodMode::Slide { tip, .. } => {
                 let d = self.arm(e, tip);
                 RodFrame {
-                    c: sub([s[0], 0.0], d),
+                    c: sub([s[0], s[1]], d),
                     v: sub([s[3], 0.0], scale(s[5], perp(d))),
                     omega: s[5],
                     e,

@@ -4,6 +4,7 @@
 
 use crate::io::metadata::META_WALL_TIME;
 use crate::io::parquet::{self, ParquetFile, READ_BATCH_ROWS};
+use crate::io::robustness_columns::schema_of_files;
 use crate::io::scan_rows::{COLUMNS, schema};
 use crate::io::table::{f64_column, i64_column};
 use ::parquet::file::metadata::KeyValue;
@@ -137,8 +138,14 @@ pub(crate) fn concat_scan_files(
     metadata: Vec<KeyValue>,
     wall_key: &str,
 ) -> Result<()> {
-    let props = parquet::writer_properties(&schema(), row_group_rows, metadata);
-    let mut file = ParquetFile::create(dest, schema(), props)?;
+    // The scan schema, with the robustness columns the files carry (all
+    // files of a scan were made with its options).
+    let schema = match inputs.first() {
+        Some(first) => schema_of_files(&parquet::open(first, READ_BATCH_ROWS)?.reader.schema()),
+        None => schema(),
+    };
+    let props = parquet::writer_properties(&schema, row_group_rows, metadata);
+    let mut file = ParquetFile::create(dest, schema.clone(), props)?;
     let mut wall = 0.0;
     let mut next = ids.start;
     for path in inputs {
@@ -182,7 +189,10 @@ pub(crate) fn concat_scan_files(
                 );
             }
             check_scan_values(&batch, path, next - batch.num_rows() as u64 - first_row)?;
-            file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
+            file.write(
+                &RecordBatch::try_new(schema.clone(), batch.columns().to_vec())
+                    .with_context(|| format!("{}: not this scan's columns", path.display()))?,
+            )?;
         }
         crate::pause_at("merge");
     }

@@ -415,6 +415,9 @@ impl Serialize for JsonRow<'_> {
                 Get::Label { index, names } => map.serialize_entry(c.name, names()[index(r)])?,
             }
         }
+        for (name, value) in robustness_entries(r) {
+            map.serialize_entry(name, &value.filter(|v| v.is_finite()))?;
+        }
         map.end()
     }
 }
@@ -510,7 +513,27 @@ pub(crate) fn to_text(r: &Row) -> String {
             value.as_deref().unwrap_or("-")
         ));
     }
+    let robustness = robustness_entries(r);
+    if !robustness.is_empty() {
+        out.push_str("[robustness]\n");
+    }
+    for (name, value) in robustness {
+        let value = value.map_or("-".to_string(), |v| format!("{v:.6}"));
+        out.push_str(&format!("  {name:<24} {value}\n"));
+    }
     out
+}
+
+/// The robustness measures a run was asked for (`robustness.*`,
+/// docs/robustness.md), after the scan row's columns in its JSON and text
+/// forms: none unless asked for, so a row's form is unchanged by default.
+pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
+    // `robustness.step_down` is the one measure so far: a run carries
+    // robustness measures exactly when it was asked for.
+    match r.outcome.and_then(|o| o.robustness) {
+        Some(m) => vec![("step_down_max", m.step_down_max)],
+        None => Vec::new(),
+    }
 }
 
 #[cfg(test)]
@@ -561,6 +584,7 @@ pub(crate) mod tests {
                 rhs_evals: 700,
                 events: 50,
             },
+            robustness: None,
         }
     }
 

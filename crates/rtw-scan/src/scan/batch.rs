@@ -3,6 +3,7 @@
 
 use crate::config::ScanConfig;
 use crate::io::metadata::{self, META_WALL_TIME};
+use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_rows::{self, Row};
 use crate::scan::one::Simulator;
 use crate::scan::progress::Progress;
@@ -84,10 +85,8 @@ pub fn scan_batch(
         META_WALL_TIME,
         started.elapsed().as_secs_f64().to_string(),
     ));
-    Ok(Some(metadata::with_metadata(
-        scan_rows::to_batch(&rows),
-        meta,
-    )?))
+    let batch = with_robustness(scan_rows::to_batch(&rows), &rows, &cfg.simulation);
+    Ok(Some(metadata::with_metadata(batch, meta)?))
 }
 
 #[cfg(test)]

@@ -33,6 +33,7 @@ use crate::config::ScanConfig;
 use crate::io::files;
 use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, VERSION};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
+use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows;
 use crate::scan::checkpoint::{
@@ -230,7 +231,8 @@ pub(crate) fn run_scan(
     compute_chunks(&pool, &todo, &jobs, |c, chunk, wall| {
         let mut meta = metadata.clone();
         meta.push(metadata::kv(META_CHUNK_WALL_TIME, wall.to_string()));
-        parquet::write_file(&layout.chunk(c), &scan_rows::to_batch(&chunk), meta)?;
+        let batch = with_robustness(scan_rows::to_batch(&chunk), &chunk, &cfg.simulation);
+        parquet::write_file(&layout.chunk(c), &batch, meta)?;
         written += 1;
         computed += chunk.len() as u64;
         Ok(())
