@@ -162,7 +162,7 @@ pub(crate) static COLUMNS: &[Column<Row>] = &[
         nullable: true,
         unit: "-",
         description: "why the run failed (rod_down, com_low, no_standing_equilibrium, standing_rod_down, \
-                      standing_com_low, standing_rolls_away, no_touchdown, no_progress, non_finite, \
+                      standing_com_low, standing_rolls_away, riser, no_touchdown, no_progress, non_finite, \
                       step_underflow, work_budget, zeno); null for a gait",
         get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())),
     },
@@ -538,6 +538,20 @@ pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
 
 #[cfg(test)]
 pub(crate) mod tests {
+    #[test]
+    fn the_failure_column_description_names_every_failure_detail() {
+        // The description is a fixed string in the file's field metadata; a
+        // failure kind added to rtw-model must be named there too.
+        let col = COLUMNS.iter().find(|c| c.name == "failure").unwrap();
+        for f in rtw_model::outcome::FailureDetail::ALL {
+            assert!(
+                col.description.contains(f.as_str()),
+                "the failure column's description does not name {}",
+                f.as_str()
+            );
+        }
+    }
+
     use super::*;
     use crate::io::metadata::META_SEED;
     use crate::io::parquet::{open, write_file};
