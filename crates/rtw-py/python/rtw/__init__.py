@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
+from .sensitivity import sensitivity
 
 if TYPE_CHECKING:
     import pyarrow
@@ -48,6 +49,7 @@ __all__ = [
     "limit_cycle",
     "modal",
     "scan",
+    "sensitivity",
     "simulate",
     "trace",
 ]
