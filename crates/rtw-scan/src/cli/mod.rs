@@ -68,7 +68,8 @@ enum Command {
         chunks in progress (the workers take the samples in order: those of the samples in flight, one per \
         worker): finish it with --resume. A sample that panics or fails numerically becomes a `diverged` row; \
         the scan goes on.\n\n\
-        Config keys: seed, samples, name (optional); [params] length, rho, alpha, fn, zeta, phi, each a number, \
+        Config keys: seed, samples, name (optional), sampling (random, sobol, halton, lhs, grid or saltelli: the \
+        design of the uniform axes, docs/cli.md); [params] length, rho, alpha, fn, zeta, phi, each a number, \
         { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
         grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
         every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...): \

@@ -38,7 +38,8 @@ enum Source {
 #[derive(Clone, Debug)]
 pub struct Sampler {
     seed: u64,
-    samples: u64,
+    /// Rows per grid point (`samples`, times D + 2 for a Saltelli design).
+    per_grid_point: u64,
     total: u64,
     sources: Vec<Source>,
     design: Option<Design>,
@@ -59,7 +60,7 @@ impl Sampler {
             .collect();
         Self {
             seed: cfg.seed,
-            samples: cfg
+            per_grid_point: cfg
                 .rows_per_grid_point()
                 .expect("validated config has a row count"),
             total: cfg.total_rows().expect("validated config has a row count"),
@@ -85,13 +86,13 @@ impl Sampler {
                 .collect();
             let own: Vec<f64> = uniform.iter().map(|i| u[*i]).collect();
             let mut x = [0.0; 6];
-            design.point(id % self.samples, &own, &mut x[..uniform.len()]);
+            design.point(id % self.per_grid_point, &own, &mut x[..uniform.len()]);
             for (k, i) in uniform.iter().enumerate() {
                 u[*i] = x[k];
             }
         }
         // Mixed-radix decomposition of the grid point, last axis fastest.
-        let mut grid = id / self.samples;
+        let mut grid = id / self.per_grid_point;
         let mut p = rtw_model::Params::fig7a();
         for (i, source) in self.sources.iter().enumerate().rev() {
             let v = match source {
