@@ -305,7 +305,7 @@ fn sensitivity<'py>(
         .into_inner();
     let text = schema.metadata().get("rtw.config").ok_or_else(|| {
         PyValueError::new_err(
-            "table: no `rtw.config` in its schema metadata: not a table of rtw.scan or of a scan file",
+            "table: no `rtw.config` in its schema metadata: not a table of rtw.scan; give a scan file by its path",
         )
     })?;
     let cfg = rtw_scan::config::parse(text).map_err(value_error)?;

@@ -28,7 +28,8 @@ def sensitivity(
 
     Args:
         table: the table :func:`rtw.scan` returns, or a scan file's path
-            (``samples.parquet``); its schema metadata holds the config.
+            (``samples.parquet``, or its directory); the config is read from
+            the table's schema metadata, or the file's.
         resamples: bootstrap resamples of the 95 % intervals.
         seed: seed of the resamples (default: the scan's seed).
 
@@ -47,5 +48,12 @@ def sensitivity(
     if isinstance(table, (str, os.PathLike)):
         import pyarrow.parquet as pq
 
-        table = pq.read_table(os.fspath(table))
+        path = os.fspath(table)
+        if os.path.isdir(path):
+            path = os.path.join(path, "samples.parquet")
+        # The config is in the file's key-value metadata, which pyarrow keeps
+        # out of the table's schema when the file stores an Arrow schema.
+        meta = pq.read_metadata(path).metadata or {}
+        table = pq.read_table(path)
+        table = table.replace_schema_metadata({**(table.schema.metadata or {}), **meta})
     return _rtw.sensitivity(table, resamples, seed)

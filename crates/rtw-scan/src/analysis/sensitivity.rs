@@ -21,21 +21,21 @@
 //! Confidence: `Z₀.₉₇₅ × ` the standard deviation (ddof 1) of the index over
 //! bootstrap resamples (of base rows, or of rows), drawn from a seed.
 
+use crate::config;
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
 use crate::config::params::Input;
-use crate::config;
 use crate::io::metadata::META_CONFIG;
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files::{self, f64_column, label_column};
 use crate::scan::design::Sampling;
 use anyhow::{Context, Result, anyhow, bail};
-use std::path::Path;
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::outcome::Label;
+use std::path::Path;
 use std::sync::Arc;
 
 /// `Φ⁻¹(0.975)`: the half-width of a 95 % normal interval in standard
@@ -145,8 +145,8 @@ pub fn read(path: &Path) -> Result<(ScanConfig, Columns)> {
             path.display()
         )
     })?;
-    let cfg = config::parse(text)
-        .with_context(|| format!("the config stored in {}", path.display()))?;
+    let cfg =
+        config::parse(text).with_context(|| format!("the config stored in {}", path.display()))?;
     let (mut rows, mut next) = (0u64, None);
     let batches = input.reader.map(|b| {
         let b = b.with_context(|| format!("reading {}", path.display()))?;
@@ -183,7 +183,9 @@ fn saltelli_once(y: &[f64], d: usize, rows: &[usize]) -> Vec<(f64, f64)> {
     let all = rows.iter().flat_map(|&j| [a(j), b(j)]);
     let (lo, hi) = all
         .clone()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
     let (_, var) = mean_var(all);
     let n = rows.len() as f64;
     (0..d)
@@ -249,7 +251,9 @@ fn binned_once(x: &[f64], y: &[f64], rows: &[usize]) -> f64 {
     let yr = rows.iter().map(|&i| y[i]);
     let (lo, hi) = yr
         .clone()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
     if hi - lo == 0.0 {
         return 0.0;
     }
@@ -366,8 +370,12 @@ pub fn to_batch(rows: &[Index]) -> RecordBatch {
     RecordBatch::try_new(
         Arc::new(schema),
         vec![
-            Arc::new(StringArray::from_iter_values(rows.iter().map(|r| &r.output))),
-            Arc::new(StringArray::from_iter_values(rows.iter().map(|r| r.parameter))),
+            Arc::new(StringArray::from_iter_values(
+                rows.iter().map(|r| &r.output),
+            )),
+            Arc::new(StringArray::from_iter_values(
+                rows.iter().map(|r| r.parameter),
+            )),
             col(|r| r.s1),
             col(|r| r.s1_conf),
             col(|r| r.st),

@@ -489,18 +489,26 @@ phi = [0.1, 0.2]
         assert_eq!(random.sampling, Sampling::Random);
         // Random sampling is not written, so older scans keep their hash.
         assert!(!random.to_toml().contains("sampling"));
-        let explicit = parse(&BASE.replace("samples = 10", "samples = 10\nsampling = \"random\"")).unwrap();
+        let explicit =
+            parse(&BASE.replace("samples = 10", "samples = 10\nsampling = \"random\"")).unwrap();
         assert_eq!(explicit.hash(), random.hash());
-        let salt = parse(&BASE.replace("samples = 10", "samples = 10\nsampling = \"saltelli\"")).unwrap();
+        let salt =
+            parse(&BASE.replace("samples = 10", "samples = 10\nsampling = \"saltelli\"")).unwrap();
         assert_eq!(salt.sampling, Sampling::Saltelli);
         assert_eq!(parse(&salt.to_toml()).unwrap(), salt);
         assert_ne!(salt.hash(), random.hash());
         // Two uniform axes: 10 base rows × (2 + 2) runs at each of 8 grid points.
         assert_eq!(salt.total_rows().unwrap(), 8 * 10 * 4);
         let e = err(&BASE.replace("samples = 10", "samples = 10\nsampling = \"sobolev\""));
-        assert!(e.contains("sampling: unknown variant `sobolev`") && e.contains("`saltelli`"), "{e}");
+        assert!(
+            e.contains("sampling: unknown variant `sobolev`") && e.contains("`saltelli`"),
+            "{e}"
+        );
         let e = err(&BASE.replace("samples = 10", "samples = 10\nsampling = \"grid\""));
-        assert!(e.contains("samples: 10 is invalid for sampling = \"grid\" with 2 uniform axes"), "{e}");
+        assert!(
+            e.contains("samples: 10 is invalid for sampling = \"grid\" with 2 uniform axes"),
+            "{e}"
+        );
         let fixed = "seed = 1\nsamples = 4\nsampling = \"sobol\"\n[params]\nlength = 0.8\nrho = 2\n\
                      alpha = 0.1\nfn = 3\nzeta = 0.05\nphi = 0.1\n";
         assert!(err(fixed).contains("needs at least one uniform axis"));

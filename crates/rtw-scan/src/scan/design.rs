@@ -357,7 +357,10 @@ fn grid_levels(samples: u64, dims: usize) -> u64 {
     while m > 1 && m.checked_pow(dims as u32).is_none_or(|p| p > samples) {
         m -= 1;
     }
-    while (m + 1).checked_pow(dims as u32).is_some_and(|p| p <= samples) {
+    while (m + 1)
+        .checked_pow(dims as u32)
+        .is_some_and(|p| p <= samples)
+    {
         m += 1;
     }
     m.max(1)
@@ -492,7 +495,11 @@ mod tests {
         let mut p = [0.0; 2];
         g.point(5, &[0.0; 2], &mut p);
         assert_eq!(p, [1.5 / 3.0, 2.5 / 3.0]);
-        assert!(check(Sampling::Grid, 10, 2).unwrap_err().contains("e.g. 9 or 16"));
+        assert!(
+            check(Sampling::Grid, 10, 2)
+                .unwrap_err()
+                .contains("e.g. 9 or 16")
+        );
         assert!(check(Sampling::Grid, 1000, 3).is_ok());
     }
 
