@@ -21,15 +21,13 @@
 //! Confidence: `Z₀.₉₇₅ × ` the standard deviation (ddof 1) of the index over
 //! bootstrap resamples (of base rows, or of rows), drawn from a seed.
 
-use crate::config;
+use crate::analysis::report::open_scan;
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
 use crate::config::params::Input;
-use crate::io::metadata::META_CONFIG;
-use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files::{self, f64_column, label_column};
 use crate::scan::design::Sampling;
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use rand::{RngExt, SeedableRng};
@@ -138,15 +136,7 @@ pub fn columns(
 /// A scan file's config and its inputs and outputs, its rows checked
 /// (values, ids in order from 0) as every reader of scan files checks them.
 pub fn read(path: &Path) -> Result<(ScanConfig, Columns)> {
-    let input = parquet::open(path, READ_BATCH_ROWS)?;
-    let text = input.metadata.get(META_CONFIG).ok_or_else(|| {
-        anyhow!(
-            "{} has no `{META_CONFIG}` metadata: not a scan written by rtw-scan run",
-            path.display()
-        )
-    })?;
-    let cfg =
-        config::parse(text).with_context(|| format!("the config stored in {}", path.display()))?;
+    let (input, cfg) = open_scan(path)?;
     let (mut rows, mut next) = (0u64, None);
     let batches = input.reader.map(|b| {
         let b = b.with_context(|| format!("reading {}", path.display()))?;
