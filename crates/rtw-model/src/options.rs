@@ -185,7 +185,7 @@ impl Default for LabelOptions {
 impl LabelOptions {
     /// docs/model.md §5 as written: any flight (then any triple support) above
     /// 1 % of the window makes the label.
-    pub fn any() -> Self {
+    pub(crate) fn any() -> Self {
         Self {
             flight_steps: 0.0,
             triple_steps: 0.0,
@@ -194,7 +194,7 @@ impl LabelOptions {
     }
 
     /// Checks every threshold, naming its key and range.
-    pub fn validate(&self) -> Result<(), ParamError> {
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
         check("labels.flight", self.flight, "in [0, 1)", |v| {
             (0.0..1.0).contains(&v)
         })?;
@@ -265,7 +265,7 @@ pub struct Options {
     /// A chaotic gait never settles and runs to `t_max`.
     pub stop_when_settled: bool,
     /// After a stable run, find its gait's limit cycle on the step map
-    /// ([`crate::cycles::stepmap`]): the period from the map and the largest Floquet
+    /// ([`crate::cycles::StepMap`]): the period from the map and the largest Floquet
     /// multiplier ([`Outcome::cycle`](crate::Outcome::cycle)). Costs a Newton
     /// solve with variational Jacobians at tight tolerance per periodic run.
     pub limit_cycle: bool,
@@ -308,7 +308,7 @@ impl Default for Options {
 
 /// Largest finite friction coefficient accepted: above 4/3 a uniform rod can
 /// meet the Painlevé paradox (docs/model.md §4).
-pub const MU_MAX_FINITE: f64 = 4.0 / 3.0;
+pub(crate) const MU_MAX_FINITE: f64 = 4.0 / 3.0;
 
 impl Options {
     /// The supplementary taken literally (docs/model.md §9: the
@@ -333,7 +333,7 @@ impl Options {
     }
 
     /// The hybrid engine's settings for a run with these options.
-    pub fn engine(&self) -> EngineOptions {
+    pub(crate) fn engine(&self) -> EngineOptions {
         EngineOptions {
             method: self.method,
             rk4_step: self.rk4_step,

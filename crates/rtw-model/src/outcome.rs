@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 /// Longest gait period (in steps) the model looks for, on the touchdown
 /// return map and on the step map.
-pub const MAX_PERIOD: usize = 12;
+pub(crate) const MAX_PERIOD: usize = 12;
 
 /// The outcome label of a run (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -343,7 +343,7 @@ pub struct Outcome {
     pub work: IntegratorWork,
 }
 
-/// A run's limit cycle on the step map ([`crate::cycles::stepmap`]).
+/// A run's limit cycle on the step map ([`crate::cycles::StepMap`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CycleSummary {
     /// Period in steps (new-foot touchdowns).
@@ -427,7 +427,7 @@ pub(crate) fn step_kind(state_time: &[f64; 4], labels: &LabelOptions) -> (bool, 
 
 impl StepShares {
     /// The step shares of steps given by their seconds per contact state.
-    pub fn of_steps<'a>(
+    pub(crate) fn of_steps<'a>(
         steps: impl IntoIterator<Item = &'a [f64; 4]>,
         labels: &LabelOptions,
     ) -> StepShares {
@@ -444,7 +444,11 @@ impl Label {
     /// else triple support → crawl, else walk. Flight counts when the
     /// window's NLSP fraction exceeds `labels.flight` and at least
     /// `labels.flight_steps` of the steps have flight; triple support likewise.
-    pub fn of_gait(f: &ContactFractions, steps: &StepShares, labels: &LabelOptions) -> Label {
+    pub fn of_gait(
+        f: &ContactFractions,
+        steps: &StepShares,
+        labels: &LabelOptions,
+    ) -> Label {
         if f.nlsp > labels.flight && steps.flight >= labels.flight_steps {
             Label::Skip
         } else if f.tlsp > labels.triple && steps.triple >= labels.triple_steps {

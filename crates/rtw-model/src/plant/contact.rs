@@ -40,7 +40,7 @@ pub enum RodMode {
 impl RodMode {
     /// The tip on the ground, if any.
     #[inline]
-    pub fn tip(self) -> Option<Tip> {
+    pub(crate) fn tip(self) -> Option<Tip> {
         match self {
             RodMode::Free => None,
             RodMode::Stick { tip } | RodMode::Slide { tip, .. } => Some(tip),
@@ -48,7 +48,7 @@ impl RodMode {
     }
 
     /// Trace code: 0 free, ±1 stick on tip ±, ±2 slide on tip ±.
-    pub fn code(self) -> i8 {
+    pub(crate) fn code(self) -> i8 {
         match self {
             RodMode::Free => 0,
             RodMode::Stick { tip } => tip.sign() as i8,
@@ -230,6 +230,7 @@ impl RodBody {
         0.5 * self.m * (r.v[0] * r.v[0] + r.v[1] * r.v[1]) + 0.5 * self.inertia * r.omega * r.omega
     }
 
+    #[cfg(test)]
     /// Angular momentum about a point `p` (z-component).
     pub fn angular_momentum_about(&self, r: &RodState, p: V2) -> f64 {
         self.inertia * r.omega + self.m * cross(sub(r.c, p), r.v)

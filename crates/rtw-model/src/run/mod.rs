@@ -6,4 +6,4 @@
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 
 pub(crate) mod gait;
-pub mod simulate;
+pub(crate) mod simulate;

@@ -21,24 +21,21 @@
 //! Confidence: `Z₀.₉₇₅ × ` the standard deviation (ddof 1) of the index over
 //! bootstrap resamples (of base rows, or of rows), drawn from a seed.
 
-use crate::analysis::report::open_scan;
+use crate::analysis::report::{Z95, open_scan};
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
-use crate::config::params::Input;
-use crate::io::scan_files::{self, f64_column, label_column};
+use crate::io::scan_files;
+use crate::io::table::{f64_column, label_column};
 use crate::scan::design::Sampling;
 use anyhow::{Context, Result, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rtw_model::Param;
 use rtw_model::outcome::Label;
 use std::path::Path;
 use std::sync::Arc;
-
-/// `Φ⁻¹(0.975)`: the half-width of a 95 % normal interval in standard
-/// deviations (scipy.stats.norm.ppf(0.975)).
-const Z95: f64 = 1.959_963_984_540_054;
 
 /// One row of `indices.parquet`.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,7 +90,7 @@ pub fn columns(
     cfg: &ScanConfig,
     batches: impl IntoIterator<Item = Result<RecordBatch>>,
 ) -> Result<Columns> {
-    let uniform: Vec<&'static str> = Input::ALL
+    let uniform: Vec<&'static str> = Param::ALL
         .iter()
         .zip(&cfg.params)
         .filter(|(_, a)| matches!(a, Axis::Uniform { .. }))

@@ -17,7 +17,7 @@ pub(super) struct SensitivityArgs {
     #[arg(long, value_name = "FILE.parquet")]
     out: Option<PathBuf>,
     /// Bootstrap resamples of the confidence intervals.
-    #[arg(long, default_value = "100", value_parser = super::positive)]
+    #[arg(long, default_value = "100", value_parser = super::values::positive)]
     resamples: NonZeroUsize,
     /// Seed of the bootstrap resamples [default: the scan's seed].
     #[arg(long)]

@@ -27,7 +27,7 @@ pub(crate) mod trace;
 
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
-pub use scan_rows::schema;
+pub use scan_rows::{ColumnKind, Kind, Value, row_columns, schema};
 pub use trace::{
     TraceNames, check_trace_size, parse_size, trace_batch, trace_metadata, trace_schema,
 };

@@ -2,16 +2,16 @@
 //! and the concatenation of a run's chunks or a scan's shard parts into one
 //! file.
 
-use crate::config::params::Input;
 use crate::io::metadata::META_WALL_TIME;
 use crate::io::parquet::{self, ParquetFile, READ_BATCH_ROWS};
 use crate::io::scan_rows::{COLUMNS, schema};
+use crate::io::table::{f64_column, i64_column};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::{Context, Result, anyhow, bail};
+use arrow_array::RecordBatch;
 use arrow_array::cast::AsArray;
-use arrow_array::types::{Float64Type, Int32Type, Int64Type};
-use arrow_array::{Array, Float64Array, Int64Array, RecordBatch};
-use rtw_model::Label;
+use arrow_array::types::Int64Type;
+use rtw_model::Param;
 use std::path::{Path, PathBuf};
 
 /// Checks the values of a batch of scan rows that every reader relies on:
@@ -51,7 +51,7 @@ pub(crate) fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64
                 .map_or("null".into(), |v| v.to_string())
         );
     }
-    for input in Input::ALL {
+    for input in Param::ALL {
         let key = input.name();
         let col = f64_column(batch, key).with_context(|| path.display().to_string())?;
         for (r, v) in col.iter().enumerate() {
@@ -118,59 +118,6 @@ pub(crate) fn check_ids(
         next = Some(id.wrapping_add(1));
     }
     Ok(next)
-}
-
-/// A `Float64` column of a scan batch, by name.
-pub(crate) fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
-    let col = batch
-        .column_by_name(name)
-        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
-    col.as_primitive_opt::<Float64Type>()
-        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Float64", col.data_type()))
-}
-
-/// An `Int64` column of a scan batch, by name.
-pub(crate) fn i64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Int64Array> {
-    let col = batch
-        .column_by_name(name)
-        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
-    col.as_primitive_opt::<Int64Type>()
-        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Int64", col.data_type()))
-}
-
-/// The `outcome` column of a scan batch, decoded to labels.
-pub(crate) fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
-    let col = batch
-        .column_by_name("outcome")
-        .ok_or_else(|| anyhow!("column `outcome` is missing"))?;
-    let decode = |s: &str| {
-        s.parse::<Label>()
-            .map_err(|e| anyhow!("column `outcome`: {e}"))
-    };
-    if let Some(dict) = col.as_dictionary_opt::<Int32Type>() {
-        let values = dict
-            .values()
-            .as_string_opt::<i32>()
-            .ok_or_else(|| anyhow!("column `outcome`: dictionary values are not strings"))?;
-        let table: Vec<Label> = values
-            .iter()
-            .map(|v| decode(v.unwrap_or("")))
-            .collect::<Result<_>>()?;
-        dict.keys()
-            .iter()
-            .map(|k| {
-                k.and_then(|k| table.get(k as usize).copied())
-                    .ok_or_else(|| anyhow!("column `outcome`: null or bad key"))
-            })
-            .collect()
-    } else if let Some(s) = col.as_string_opt::<i32>() {
-        s.iter().map(|v| decode(v.unwrap_or(""))).collect()
-    } else {
-        bail!(
-            "column `outcome` is {}, expected a string dictionary",
-            col.data_type()
-        )
-    }
 }
 
 /// Concatenates scan files (a run's chunks, or a scan's shard parts), in

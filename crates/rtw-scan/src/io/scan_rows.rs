@@ -419,6 +419,75 @@ impl Serialize for JsonRow<'_> {
     }
 }
 
+/// The value of one column of a scan row as `simulate --json` has it: an
+/// absent metric and a non-finite float are `None`; `outcome` is the label's
+/// name. What the Python package's `Outcome` holds, without going through
+/// JSON text.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A `Float64` column.
+    Float(Option<f64>),
+    /// An `Int64` column.
+    Int(Option<i64>),
+    /// A `Boolean` column.
+    Bool(Option<bool>),
+    /// A string or label column.
+    Text(Option<String>),
+}
+
+/// The type of a scan row's column as [`Value`] has it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// [`Value::Float`].
+    Float,
+    /// [`Value::Int`].
+    Int,
+    /// [`Value::Bool`].
+    Bool,
+    /// [`Value::Text`].
+    Text,
+}
+
+/// A scan row's column as a library user reads it: name, [`Kind`], and
+/// whether it may be null (`None`). Listed by [`row_columns`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ColumnKind {
+    /// The column's name (`speed`).
+    pub name: &'static str,
+    /// Its type.
+    pub kind: Kind,
+    /// Null when the sample panicked or the metric does not apply.
+    pub nullable: bool,
+}
+
+/// Every column of a scan row in file order, from [`COLUMNS`].
+pub fn row_columns() -> impl ExactSizeIterator<Item = ColumnKind> {
+    COLUMNS.iter().map(|c| ColumnKind {
+        name: c.name,
+        kind: match c.get {
+            Get::F64(_) => Kind::Float,
+            Get::I64(_) => Kind::Int,
+            Get::Bool(_) => Kind::Bool,
+            Get::Str(_) | Get::Label { .. } => Kind::Text,
+        },
+        nullable: c.nullable,
+    })
+}
+
+/// A row's values in column order, as [`JsonRow`] writes them.
+pub(crate) fn values(r: &Row) -> Vec<Value> {
+    COLUMNS
+        .iter()
+        .map(|c| match &c.get {
+            Get::F64(g) => Value::Float(g(r).filter(|v| v.is_finite())),
+            Get::I64(g) => Value::Int(g(r)),
+            Get::Bool(g) => Value::Bool(g(r)),
+            Get::Str(g) => Value::Text(g(r).map(str::to_string)),
+            Get::Label { index, names } => Value::Text(Some(names()[index(r)].to_string())),
+        })
+        .collect()
+}
+
 /// A row as a readable two-column table, grouped by section.
 pub(crate) fn to_text(r: &Row) -> String {
     let mut out = String::new();
@@ -449,8 +518,7 @@ pub(crate) mod tests {
     use super::*;
     use crate::io::metadata::META_SEED;
     use crate::io::parquet::{open, write_file};
-    use crate::io::scan_files::{f64_column, label_column};
-    use crate::io::table::label_type;
+    use crate::io::table::{f64_column, label_column, label_type};
     use ::parquet::file::metadata::KeyValue;
     use arrow_array::Array;
     use arrow_array::cast::AsArray;

@@ -156,16 +156,19 @@ impl Rtw {
         }
     }
 
+    #[cfg(test)]
     /// The rods' inertial constants.
     pub fn body(&self) -> &RodBody {
         &self.body
     }
 
+    #[cfg(test)]
     /// Gravity in the slope frame, g (sin φ, −cos φ).
     pub fn gravity(&self) -> V2 {
         self.gravity
     }
 
+    #[cfg(test)]
     /// The friction coefficient μ (infinite: no slip, frictionless slide).
     pub fn mu(&self) -> f64 {
         self.mu
@@ -176,6 +179,7 @@ impl Rtw {
         self.modes
     }
 
+    #[cfg(test)]
     /// Puts the rods in `modes` (the state's slots must be read in them).
     pub fn set_modes(&mut self, modes: [RodMode; 3]) {
         self.modes = modes;
