@@ -3,7 +3,8 @@
 # configs, in one command (about 10 minutes on 2 cores):
 #   1. the reproduction scans: configs/{paper,fig-s2,fig-s3}.toml -> results/<name>/
 #   2. the variant study (./scripts/variants.sh)  -> results/variants/
-#   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/
+#   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/, and the
+#      Sobol indices of the paper's box (./scripts/sobol_indices.sh) -> results/sensitivity/indices.*
 #   4. the errata checks (rtw-model example errata) -> results/errata.md
 #   5. the figures (./scripts/figures.sh) -> results/figures/, the bifurcation
 #      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/ and the continuation
@@ -35,6 +36,7 @@ else
   ./scripts/variants.sh >/dev/null
 fi
 ./scripts/sensitivity.sh >/dev/null
+./scripts/sobol_indices.sh >/dev/null
 {
   echo "# The errata of docs/model.md §7, checked numerically"
   echo

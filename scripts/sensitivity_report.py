@@ -56,7 +56,10 @@ def main(base: Path, root: Path) -> None:
         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|",
         row("default", "configs/paper.toml as is", base_summ, base_rows, base_rows),
     ]
-    for d in sorted(p for p in root.iterdir() if (p / "summary.json").exists()):
+    # Only the runs of configs/sensitivity/ (results/sensitivity/saltelli/ is
+    # the Saltelli scan of scripts/sobol_indices.sh, another study).
+    runs = (p for p in root.iterdir() if (p / "summary.json").exists())
+    for d in sorted(p for p in runs if (Path("configs/sensitivity") / f"{p.name}.toml").exists()):
         cfg = Path("configs/sensitivity") / f"{d.name}.toml"
         desc = tomllib.loads(cfg.read_text()).get("description", "") if cfg.exists() else ""
         summ, rows = load(d)

@@ -297,6 +297,67 @@ fn label_names(keep: fn(Label) -> bool) -> Vec<&'static str> {
         .collect()
 }
 
+/// Points `0 … n−1` of the Sobol sequence in `dims` dimensions, as rtw-scan's
+/// `sampling = "sobol"` makes them: unscrambled without `seed`
+/// (`scipy.stats.qmc.Sobol(dims, scramble=False)`), else scrambled from
+/// `seed` as a scan with that seed scrambles it.
+#[pyfunction]
+#[pyo3(signature = (dims, n, seed=None))]
+fn sobol_points(dims: usize, n: u64, seed: Option<u64>) -> PyResult<Vec<Vec<f64>>> {
+    use rtw_scan::scan::design::{SOBOL_MAX_DIMS, Sobol};
+    if !(1..=SOBOL_MAX_DIMS).contains(&dims) {
+        return Err(PyValueError::new_err(format!(
+            "dims: {dims} is invalid: must be in [1, {SOBOL_MAX_DIMS}]"
+        )));
+    }
+    if n > 1 << 20 {
+        return Err(PyValueError::new_err(format!(
+            "n: {n} is invalid: must be at most 2^20 (points held in memory)"
+        )));
+    }
+    let s = seed.map_or_else(|| Sobol::plain(dims), |seed| Sobol::scrambled(dims, seed));
+    Ok((0..n)
+        .map(|i| {
+            let mut p = vec![0.0; dims];
+            s.point(i, &mut p);
+            p
+        })
+        .collect())
+}
+
+/// Sobol indices of a scan table's outputs (`rtw-scan sensitivity`): a
+/// `pyarrow.Table` of output, parameter, S1, S1_conf, ST, ST_conf. The
+/// table carries its config in the schema's `rtw.config` metadata (as
+/// `scan` returns it and a scan file holds it).
+#[pyfunction]
+#[pyo3(signature = (table, resamples, seed))]
+fn sensitivity<'py>(
+    py: Python<'py>,
+    table: Bound<'py, PyAny>,
+    resamples: usize,
+    seed: Option<u64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use arrow_pyarrow::FromPyArrow;
+    use rtw_scan::sensitivity as sa;
+    let (batches, schema) = Table::from_pyarrow_bound(&table)
+        .map_err(|e| PyValueError::new_err(format!("table: not a pyarrow table: {e}")))?
+        .into_inner();
+    let text = schema.metadata().get("rtw.config").ok_or_else(|| {
+        PyValueError::new_err(
+            "table: no `rtw.config` in its schema metadata: not a table of rtw.scan; give a scan file by its path",
+        )
+    })?;
+    let cfg = rtw_scan::config::parse(text).map_err(value_error)?;
+    let rows = py
+        .detach(|| {
+            let cols = sa::columns(&cfg, batches.into_iter().map(Ok))?;
+            sa::indices(&cfg, &cols, resamples, seed.unwrap_or(cfg.seed))
+        })
+        .map_err(value_error)?
+        .1;
+    to_table(py, sa::to_batch(&rows))
+}
+
 /// The module `rtw._rtw`.
 #[pymodule]
 fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -305,6 +366,8 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scan, m)?)?;
     m.add_function(wrap_pyfunction!(limit_cycle, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
+    m.add_function(wrap_pyfunction!(sobol_points, m)?)?;
+    m.add_function(wrap_pyfunction!(sensitivity, m)?)?;
     m.add_function(wrap_pyfunction!(label, m)?)?;
     m.add_function(wrap_pyfunction!(wilson, m)?)?;
     m.add_class::<Outcome>()?;

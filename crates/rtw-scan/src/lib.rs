@@ -61,6 +61,8 @@ pub(crate) mod fake;
 pub(crate) mod hash;
 pub mod io;
 pub mod scan;
+/// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
+pub use analysis::sensitivity;
 
 pub use analysis::report::{Z95, wilson};
 #[cfg(feature = "cli")]

@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 from . import _rtw
 from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, LimitCycle, Modes, Outcome
 from .report import report
+from .sensitivity import sensitivity
 
 if TYPE_CHECKING:
     import pyarrow
@@ -60,6 +61,7 @@ __all__ = [
     "modal",
     "report",
     "scan",
+    "sensitivity",
     "simulate",
     "trace",
     "wilson",

@@ -7,8 +7,10 @@
 //! | [`clusters`] | (a bounded sample of) the failures clustered, named by kind, counted exactly |
 //! | [`assignments`] | `cluster --assignments` files: each failure and its cluster |
 //! | [`report`] | shares with Wilson intervals, paper numbers, `summary.json`/`summary.md` |
+//! | [`sensitivity`] | Sobol indices of every output to every uniform input (Saltelli design or given data) |
 
 pub(crate) mod assignments;
 pub(crate) mod clusters;
 pub(crate) mod kmeans;
 pub(crate) mod report;
+pub mod sensitivity;

@@ -118,8 +118,8 @@ fn batch_failures(batch: &RecordBatch, labels: &[Label]) -> Result<Vec<Failure>>
         .collect())
 }
 
-/// Reads a scan's Parquet file: stored config, label counts, failures.
-pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
+/// Opens a scan's Parquet file and parses the config stored in it.
+pub(crate) fn open_scan(path: &Path) -> Result<(parquet::ParquetInput, ScanConfig)> {
     let input = parquet::open(path, READ_BATCH_ROWS)?;
     let text = input.metadata.get(META_CONFIG).ok_or_else(|| {
         anyhow!(
@@ -129,6 +129,12 @@ pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
     })?;
     let config =
         config::parse(text).with_context(|| format!("the config stored in {}", path.display()))?;
+    Ok((input, config))
+}
+
+/// Reads a scan's Parquet file: stored config, label counts, failures.
+pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
+    let (input, config) = open_scan(path)?;
     let mut data = ScanData {
         path: path.to_path_buf(),
         failures: FailureSample::new(CLUSTER_MAX_POINTS, config.seed),

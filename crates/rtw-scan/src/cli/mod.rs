@@ -9,6 +9,7 @@ mod bifurcation;
 mod continuation;
 mod progress;
 mod run;
+mod sensitivity;
 mod signal;
 mod simulate;
 mod values;
@@ -18,6 +19,7 @@ use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
 use continuation::ContinuationArgs;
 use run::{MergeArgs, RunArgs};
+use sensitivity::SensitivityArgs;
 use signal::install_signal_handler;
 use simulate::SimulateArgs;
 use std::process::ExitCode;
@@ -64,7 +66,8 @@ enum Command {
         chunks in progress (the workers take the samples in order: those of the samples in flight, one per \
         worker): finish it with --resume. A sample that panics or fails numerically becomes a `diverged` row; \
         the scan goes on.\n\n\
-        Config keys: seed, samples, name (optional); [params] length, rho, alpha, fn, zeta, phi, each a number, \
+        Config keys: seed, samples, name (optional), sampling (random, sobol, halton, lhs, grid or saltelli: the \
+        design of the uniform axes, docs/cli.md); [params] length, rho, alpha, fn, zeta, phi, each a number, \
         { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
         grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
         every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...): \
@@ -132,6 +135,16 @@ enum Command {
     /// Recompute a finished scan's summary: prints it and rewrites summary.json and summary.md beside the file.
     #[command(after_help = EXIT_CODES)]
     Summary(SummaryArgs),
+    /// Sobol indices (first-order and total, bootstrap intervals) of a scan's outcome classes and outputs.
+    #[command(
+        long_about = "Sobol indices of a finished scan's outputs to its uniform inputs: each outcome label as an \
+        indicator (failed samples included, never dropped), stable, failure, and speed, f_w and floquet_max \
+        (where every row has one). A scan run with sampling = \"saltelli\" gets first-order and total indices \
+        (SALib's sobol estimators); any other scan the given-data binned first-order index (SALib delta's S1; ST \
+        is NaN). Writes FILE.parquet (output, parameter, S1, S1_conf, ST, ST_conf) and prints a table.",
+        after_help = EXIT_CODES
+    )]
+    Sensitivity(SensitivityArgs),
 }
 
 /// Parses the command line, runs it, and turns errors into a message and
@@ -150,6 +163,7 @@ pub fn main() -> ExitCode {
         Command::Continuation(a) => continuation::cmd_continuation(a),
         Command::Cluster(a) => analysis::cmd_cluster(a),
         Command::Summary(a) => analysis::cmd_summary(a),
+        Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e:#}");

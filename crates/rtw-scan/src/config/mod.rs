@@ -3,7 +3,8 @@
 //! ```toml
 //! name = "paper"            # optional
 //! seed = 20240501
-//! samples = 1000            # random draws per grid point
+//! samples = 1000            # draws per grid point
+//! sampling = "random"       # or sobol, halton, lhs, grid, saltelli (scan::design)
 //!
 //! [params]                  # each: fixed, uniform range, or grid
 //! length = 0.8                          # fixed
@@ -34,6 +35,7 @@ pub(crate) mod raw;
 pub(crate) mod variant;
 
 use crate::hash::fnv1a64;
+use crate::scan::design::{self, Sampling};
 use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
 use raw::{from_value_ranged, parse_table, read_text};
@@ -85,6 +87,8 @@ struct RawConfig {
     samples: i64,
     params: RawParams,
     #[serde(default)]
+    sampling: Sampling,
+    #[serde(default)]
     cluster: ClusterConfig,
     #[serde(default)]
     simulation: Options,
@@ -97,8 +101,10 @@ pub struct ScanConfig {
     pub name: Option<String>,
     /// Seed of every random draw: a row depends only on (seed, sample_id).
     pub seed: u64,
-    /// Random draws per grid point.
+    /// Draws per grid point (base rows per grid point of a Saltelli design).
     pub samples: u64,
+    /// The design of the uniform axes (`sampling = "…"`, default random).
+    pub sampling: Sampling,
     /// Parameter axes, indexed like [`Param::ALL`].
     pub params: [Axis; 6],
     /// `[cluster]`: k-means of the failures.
@@ -171,10 +177,12 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
         name: raw.name,
         seed: raw.seed,
         samples: raw.samples as u64,
+        sampling: raw.sampling,
         params,
         cluster: raw.cluster,
         simulation: raw.simulation,
     };
+    design::check(cfg.sampling, cfg.samples, cfg.uniform_axes()).map_err(|e| anyhow!(e))?;
     cfg.total_rows()?;
     Ok(cfg)
 }
@@ -284,10 +292,27 @@ impl ScanConfig {
             .join(" × ")
     }
 
-    /// Rows of the scan: grid points × samples, at most `MAX_ROWS` (10¹²).
+    /// Number of uniform axes: the dimensions of the sampling design.
+    pub fn uniform_axes(&self) -> usize {
+        self.params
+            .iter()
+            .filter(|a| matches!(a, Axis::Uniform { .. }))
+            .count()
+    }
+
+    /// Rows per grid point: `samples`, times `D + 2` for a Saltelli design
+    /// of `D` uniform axes.
+    pub fn rows_per_grid_point(&self) -> Option<u64> {
+        self.sampling
+            .rows_per_grid_point(self.samples, self.uniform_axes())
+    }
+
+    /// Rows of the scan: grid points × rows per grid point, at most
+    /// `MAX_ROWS` (10¹²).
     pub fn total_rows(&self) -> Result<u64> {
         let grid = self.grid_size()?;
-        grid.checked_mul(self.samples)
+        self.rows_per_grid_point()
+            .and_then(|n| grid.checked_mul(n))
             .filter(|rows| *rows <= MAX_ROWS)
             .ok_or_else(|| {
                 anyhow!(
@@ -307,6 +332,11 @@ impl ScanConfig {
         }
         t.insert("seed".into(), toml::Value::Integer(self.seed as i64));
         t.insert("samples".into(), toml::Value::Integer(self.samples as i64));
+        // Random sampling is not written: the configs (and hashes) of the
+        // scans made before designs existed stay what they were.
+        if self.sampling != Sampling::Random {
+            t.insert("sampling".into(), self.sampling.name().into());
+        }
         let params: toml::Table = Param::ALL
             .iter()
             .zip(&self.params)
@@ -449,6 +479,37 @@ phi = [0.1, 0.2]
         assert!(e.contains("cluster.k: 0 is invalid"), "{e}");
         let e = err("seed = 1\nsamples = [");
         assert!(e.contains("invalid TOML"), "{e}");
+    }
+
+    #[test]
+    fn sampling_designs_parse_round_trip_and_change_the_hash() {
+        let random = parse(BASE).unwrap();
+        assert_eq!(random.sampling, Sampling::Random);
+        // Random sampling is not written, so older scans keep their hash.
+        assert!(!random.to_toml().contains("sampling"));
+        let explicit =
+            parse(&BASE.replace("samples = 10", "samples = 10\nsampling = \"random\"")).unwrap();
+        assert_eq!(explicit.hash(), random.hash());
+        let salt =
+            parse(&BASE.replace("samples = 10", "samples = 10\nsampling = \"saltelli\"")).unwrap();
+        assert_eq!(salt.sampling, Sampling::Saltelli);
+        assert_eq!(parse(&salt.to_toml()).unwrap(), salt);
+        assert_ne!(salt.hash(), random.hash());
+        // Two uniform axes: 10 base rows × (2 + 2) runs at each of 8 grid points.
+        assert_eq!(salt.total_rows().unwrap(), 8 * 10 * 4);
+        let e = err(&BASE.replace("samples = 10", "samples = 10\nsampling = \"sobolev\""));
+        assert!(
+            e.contains("sampling: unknown variant `sobolev`") && e.contains("`saltelli`"),
+            "{e}"
+        );
+        let e = err(&BASE.replace("samples = 10", "samples = 10\nsampling = \"grid\""));
+        assert!(
+            e.contains("samples: 10 is invalid for sampling = \"grid\" with 2 uniform axes"),
+            "{e}"
+        );
+        let fixed = "seed = 1\nsamples = 4\nsampling = \"sobol\"\n[params]\nlength = 0.8\nrho = 2\n\
+                     alpha = 0.1\nfn = 3\nzeta = 0.05\nphi = 0.1\n";
+        assert!(err(fixed).contains("needs at least one uniform axis"));
     }
 
     #[test]

@@ -46,6 +46,9 @@ pub(crate) const META_METADATA_HASH: &str = "rtw.metadata_hash";
 pub(crate) const META_CLUSTERS: &str = "rtw.clusters";
 /// Metadata key: the swept parameter of a bifurcation file.
 pub(crate) const META_PARAM: &str = "rtw.bifurcation.param";
+/// Metadata key of `rtw-scan sensitivity`'s indices: JSON (method, scan,
+/// config hash, rows, resamples, seed).
+pub(crate) const META_SENSITIVITY: &str = "rtw.sensitivity";
 /// Metadata key: the continued input of a continuation diagram's files.
 pub(crate) const META_CONT_PARAM: &str = "rtw.continuation.param";
 /// Metadata key: a diagram's second input and its range (`--curve`).
@@ -165,12 +168,16 @@ pub(crate) enum FileKind {
     Bifurcation,
     /// `continuation` diagram files (`rtw.continuation.param`).
     Continuation,
+    /// `sensitivity` indices (`rtw.sensitivity`).
+    Sensitivity,
 }
 
 impl FileKind {
     /// The kind of a file with metadata `meta`, if rtw-scan wrote it.
     pub(crate) fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
-        if meta.contains_key(META_CONT_PARAM) {
+        if meta.contains_key(META_SENSITIVITY) {
+            Some(Self::Sensitivity)
+        } else if meta.contains_key(META_CONT_PARAM) {
             Some(Self::Continuation)
         } else if meta.contains_key(META_PARAM) {
             Some(Self::Bifurcation)
@@ -192,6 +199,7 @@ impl FileKind {
             Self::Trace => "a trace (`simulate --trace`)",
             Self::Bifurcation => "a bifurcation sweep (`bifurcation`)",
             Self::Continuation => "a continuation diagram (`continuation`)",
+            Self::Sensitivity => "sensitivity indices (`sensitivity`)",
         }
     }
 }

@@ -4,6 +4,7 @@
 //! | module | role |
 //! |---|---|
 //! | [`sample`] | sample id → parameters, from (seed, id) only |
+//! | [`design`] | the sampling designs: draw → unit-cube point (Sobol, Halton, LHS, grid, Saltelli) |
 //! | `run` | a run into durable files: its chunks, resume, the merge |
 //! | `chunks` | the chunk scheduler: samples in id order, each chunk handed over once its rows are in |
 //! | `batch` | [`scan_batch`]: a scan in memory |
@@ -20,6 +21,7 @@
 pub(crate) mod batch;
 pub(crate) mod checkpoint;
 pub(crate) mod chunks;
+pub mod design;
 #[cfg(test)]
 mod fixtures;
 pub(crate) mod lock;

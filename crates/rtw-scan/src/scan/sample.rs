@@ -8,10 +8,16 @@
 //! not), so a value depends only on (seed, i, its own range). Any subset,
 //! shard, resume or thread count reproduces the same rows.
 //!
+//! With another `sampling` design ([`super::design`]), the uniform axes of
+//! draw `d = i mod rows_per_grid_point` are instead the coordinates of the
+//! design's point `d` (the uniform axes in [`Param::ALL`] order), mapped to
+//! `lo + x (hi − lo)`; the grid point is `i / rows_per_grid_point`.
+//!
 //! [`Param::ALL`]: rtw_model::Param::ALL
 
 use crate::config::ScanConfig;
 use crate::config::axis::{Axis, linspace_point};
+use crate::scan::design::Design;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::Param;
@@ -32,9 +38,11 @@ enum Source {
 #[derive(Clone, Debug)]
 pub struct Sampler {
     seed: u64,
-    samples: u64,
+    /// Rows per grid point (`samples`, times D + 2 for a Saltelli design).
+    per_grid_point: u64,
     total: u64,
     sources: Vec<Source>,
+    design: Option<Design>,
 }
 
 impl Sampler {
@@ -52,8 +60,11 @@ impl Sampler {
             .collect();
         Self {
             seed: cfg.seed,
-            samples: cfg.samples,
+            per_grid_point: cfg
+                .rows_per_grid_point()
+                .expect("validated config has a row count"),
             total: cfg.total_rows().expect("validated config has a row count"),
+            design: Design::new(cfg.sampling, cfg.seed, cfg.samples, cfg.uniform_axes()),
             sources,
         }
     }
@@ -68,9 +79,20 @@ impl Sampler {
         assert!(id < self.total, "sample_id {id} >= {}", self.total);
         let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
         rng.set_stream(id);
-        let u: [f64; 6] = std::array::from_fn(|_| rng.random::<f64>());
+        let mut u: [f64; 6] = std::array::from_fn(|_| rng.random::<f64>());
+        if let Some(design) = &self.design {
+            let uniform: Vec<usize> = (0..6)
+                .filter(|i| matches!(self.sources[*i], Source::Uniform(..)))
+                .collect();
+            let own: Vec<f64> = uniform.iter().map(|i| u[*i]).collect();
+            let mut x = [0.0; 6];
+            design.point(id % self.per_grid_point, &own, &mut x[..uniform.len()]);
+            for (k, i) in uniform.iter().enumerate() {
+                u[*i] = x[k];
+            }
+        }
         // Mixed-radix decomposition of the grid point, last axis fastest.
-        let mut grid = id / self.samples;
+        let mut grid = id / self.per_grid_point;
         let mut p = rtw_model::Params::fig7a();
         for (i, source) in self.sources.iter().enumerate().rev() {
             let v = match source {
