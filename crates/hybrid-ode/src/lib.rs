@@ -8,6 +8,7 @@ pub mod engine;
 mod events;
 pub mod integrate;
 pub mod limit;
+pub mod nonsmooth;
 pub mod rimless;
 pub mod system;
 mod tableau;
