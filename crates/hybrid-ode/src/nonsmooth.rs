@@ -55,6 +55,11 @@ pub struct GuardMinimum {
     pub guard: usize,
     /// The distance to firing there (≥ 0 unless a crossing was missed).
     pub value: f64,
+    /// At an event: the distance fell up to it (`t` is its time; the mode
+    /// ends there). Zero there is a corner (the guard's zero coincides with
+    /// the event), not a tangency. (A mode's start is no such minimum: a
+    /// reset leaves guards of the rod it moved at zero by construction.)
+    pub at_boundary: bool,
 }
 
 /// Records a run's events (with their crossing slopes) and the local minima
@@ -82,10 +87,11 @@ fn distance(g: &Guards, i: usize) -> f64 {
 }
 
 impl GuardMinima {
-    /// The smallest local minimum recorded, if any.
+    /// The smallest local minimum recorded inside a mode, if any.
     pub fn smallest(&self) -> Option<GuardMinimum> {
         self.minima
             .iter()
+            .filter(|m| !m.at_boundary)
             .copied()
             .min_by(|a, b| a.value.total_cmp(&b.value))
     }
@@ -154,7 +160,12 @@ impl<const N: usize, S: HybridSystem<N>> Observer<N, S> for GuardMinima {
                             } else {
                                 (tm, dm)
                             };
-                            self.minima.push(GuardMinimum { t, guard: i, value });
+                            self.minima.push(GuardMinimum {
+                                t,
+                                guard: i,
+                                value,
+                                at_boundary: false,
+                            });
                         }
                     }
                     self.tail.remove(0);
@@ -163,6 +174,19 @@ impl<const N: usize, S: HybridSystem<N>> Observer<N, S> for GuardMinima {
             }
         }
         if let StepEnd::Event { guard } = end {
+            // The other guards falling up to the event came closest there.
+            if let [(_, ga), (tb, gb)] = self.tail[..] {
+                for i in (0..ga.len.min(gb.len)).filter(|&i| i != guard) {
+                    if distance(&gb, i) < distance(&ga, i) {
+                        self.minima.push(GuardMinimum {
+                            t: tb,
+                            guard: i,
+                            value: distance(&gb, i),
+                            at_boundary: true,
+                        });
+                    }
+                }
+            }
             let mut dy = [0.0; N];
             dense.eval_rate(dense.t1, &mut dy);
             self.events.push(Event {
