@@ -586,6 +586,9 @@ pub struct Segment {
     pub sequence: ModeSequence,
     /// The gait label of its first point's orbit.
     pub label: Label,
+    /// Its section points' template: a branch point `z` is the section
+    /// point `template.with_coords(z)`.
+    pub template: SectionPoint,
     /// Its points (the smooth continuation's branch).
     pub branch: Branch,
     /// How it ended, where its continuation failed at the smallest step
@@ -670,6 +673,7 @@ pub fn continue_segments(
         out.push(Segment {
             sequence: orbit.sequence.clone(),
             label,
+            template,
             branch,
             end,
         });
