@@ -2,8 +2,9 @@
 # The bifurcation diagrams of results/bifurcation/ (how the gait changes with
 # the slope): φ swept over
 # [0.02, 0.35] (121 values) at the Fig. 7(a) point with continuation on the
-# step map, for the default model (s = 0.85) and for s = 0 (every other option
-# the default's), run side by side, then the plots and summary.md.
+# step map, for the default model (its s read from configs/template.toml, which
+# states every default) and for s = 0 (every other option the default's), run
+# side by side, then the plots and summary.md.
 # Sets up the Python venv (.venv, scripts/requirements.txt) and builds rtw-scan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +14,9 @@ cargo build --release -q -p rtw-scan
 bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
 out=results/bifurcation
 mkdir -p "$out"
+# The default strings' natural length, for the titles (crates/rtw-scan/tests/template.rs
+# checks that the template sets every key to its default).
+s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 
 sweep=(bifurcation --param phi --from 0.02 --to 0.35 --points 121 --transient 200 --record 48)
 # The two sweeps are independent (continuation is sequential within each).
@@ -25,7 +29,7 @@ wait "$b"
 
 py=.venv/bin/python
 $py scripts/bifurcation.py "$out/phi-fig7a.parquet" \
-  --title "φ sweep at Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514), default model (s = 0.85)"
+  --title "φ sweep at Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514), default model (s = $s)"
 $py scripts/bifurcation.py "$out/phi-fig7a-s0.parquet" \
   --title "φ sweep at Fig. 7(a), s = 0 (zero-rest-length strings, every other option the default's)"
 
@@ -35,7 +39,7 @@ $py scripts/bifurcation.py "$out/phi-fig7a-s0.parquet" \
   echo "Made by \`./scripts/bifurcation.sh\`: \`rtw-scan ${sweep[*]} [--set strings.rest_length_ratio=0] --out results/bifurcation/NAME.parquet\`,"
   echo "then \`scripts/bifurcation.py\` for the PNGs. Per value: NAME.parquet; per recorded step: NAME.steps.parquet."
   echo
-  echo "## Default model (s = 0.85): phi-fig7a.png"
+  echo "## Default model (s = $s): phi-fig7a.png"
   echo
   cat "$out/phi-fig7a.md"
   echo

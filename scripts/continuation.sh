@@ -17,6 +17,9 @@ cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan
 out=results/continuation
 mkdir -p "$out"
+# The default strings' natural length, for the title (crates/rtw-scan/tests/template.rs
+# checks that the template sets every key to its default).
+s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 bin=target/release/rtw-scan
 walk=(continuation --param phi --from 0.02 --to 0.35 --curve fn --curve-from 2.9 --curve-to 3.9)
 skip=(continuation --param phi --phi 0.34 --from 0.30 --to 0.38 --set strings.rest_length_ratio=0
@@ -32,7 +35,7 @@ rm -rf "$out/plane"
 
 py=.venv/bin/python
 $py scripts/continuation.py diagram "$out/phi-fig7a.parquet" --sweep results/bifurcation/phi-fig7a.parquet \
-  --title "The Fig. 7(a) walk continued in φ (default model, s = 0.85)"
+  --title "The Fig. 7(a) walk continued in φ (default model, s = $s)"
 $py scripts/continuation.py diagram "$out/phi-s0-touch-and-go.parquet" \
   --title "The s = 0 skip continued in φ on the touch-and-go section (from φ = 0.34)"
 plane=$($py scripts/continuation.py plane "$out/phi-fig7a.parquet" "$out/plane/samples.parquet" --check \

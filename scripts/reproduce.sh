@@ -13,6 +13,10 @@
 #      -> results/fidelity.md
 #   8. the side-by-side table (scripts/reproduction_report.py) -> results/reproduction.md
 #   9. the generated tables of README.md and docs/*.md (scripts/readme_tables.py)
+# SKIP_VARIANTS=1 ./scripts/reproduce.sh re-tabulates the variant study from its
+# committed runs instead of rerunning them (REPORT_ONLY=1 ./scripts/variants.sh):
+# every variant file spells out each model choice, so those runs do not depend
+# on rtw's defaults; everything else is rerun.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
@@ -20,7 +24,11 @@ for c in paper fig-s2 fig-s3; do
   rm -rf "results/$c"
   target/release/rtw-scan run "configs/$c.toml" --out "results/$c" >/dev/null
 done
-./scripts/variants.sh >/dev/null
+if [ -n "${SKIP_VARIANTS:-}" ]; then
+  REPORT_ONLY=1 ./scripts/variants.sh >/dev/null
+else
+  ./scripts/variants.sh >/dev/null
+fi
 ./scripts/sensitivity.sh >/dev/null
 {
   echo "# The errata of docs/model.md §7, checked numerically"

@@ -276,9 +276,9 @@ pub struct Energy {
 
 impl Energy {
     /// Largest [`Self::relative_balance_error`] of a run whose integration
-    /// is trusted: the default tolerance keeps Fig. 7(a) at 0.03 %, while at
+    /// is trusted: the default tolerance keeps Fig. 7(a) at 0.015 %, while at
     /// the stiff end of the range (f_n 100, ζ 0, α 0.4, φ 0.3) it leaves
-    /// 2.2 %, where a tighter `rtol` is needed to trust the outcome.
+    /// 1.6 %, where a tighter `rtol` is needed to trust the outcome.
     pub const BALANCE_BOUND: f64 = 0.01;
 
     /// `|balance_error|` as a share of the energy at stake: the larger of

@@ -432,7 +432,7 @@ fn adopted_default_walks_at_fig7a_within_its_friction_cone() {
     // with μ = 0.8, from a standing start; its friction ratio never exceeds μ
     // (Coulomb), and the energy balance (with friction) closes.
     let o = Options::default();
-    assert_eq!(o.strings.rest_length_ratio, 0.85);
+    assert_eq!(o.strings.rest_length_ratio, 0.8875);
     assert!(o.strings.slack);
     assert_eq!(o.contact.mu, 0.8);
     assert_eq!(o.initial.shape, rtw_model::options::InitialShape::Settled);

@@ -70,7 +70,7 @@ def test_design_from_the_trace_metadata_is_the_models(run):
     assert (d.length, d.phi) == (FIG7A["length"], FIG7A["phi"])
     assert math.isclose(d.r, m["r"], rel_tol=1e-12)
     # The default variant's strings (docs/model.md §9): prestressed, slack when short.
-    assert d.rest_length_ratio == 0.85 and d.slack
+    assert d.rest_length_ratio == 0.8875 and d.slack
     # Feet on the ground and the strings' energy exactly the trace's, with the run's k ...
     check_geometry(trace, m["k"])
     # ... and the fitted k is the run's.

@@ -142,10 +142,26 @@ fn simulate_warns_when_the_energy_balance_is_off() {
     // At the stiff end of the range the default tolerance leaves a 2.2 %
     // energy-balance error (Fig. 7(a): 0.03 %): `simulate` says so, in text
     // and JSON modes alike (on stderr, so the JSON stays the row), and the
-    // warning goes away at the tighter tolerance it suggests.
+    // warning goes away at the tighter tolerance it suggests. Measured with
+    // strings of natural length s = 0.85 (at the fitted default 0.8875 the
+    // same point is off by 1.6 %): the test is about the warning, so it
+    // keeps that model.
     let stiff = [
-        "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.4", "--fn", "100", "--zeta",
-        "0", "--phi", "0.3",
+        "simulate",
+        "--length",
+        "0.8",
+        "--rho",
+        "2.5",
+        "--alpha",
+        "0.4",
+        "--fn",
+        "100",
+        "--zeta",
+        "0",
+        "--phi",
+        "0.3",
+        "--set",
+        "strings.rest_length_ratio=0.85",
     ];
     for extra in [&["--json"][..], &[]] {
         let o = run_ok(&[&stiff[..], extra].concat());

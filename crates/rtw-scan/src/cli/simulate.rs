@@ -136,7 +136,7 @@ pub(crate) fn energy_warning(e: &Energy) -> String {
     format!(
         "the energy balance is off by {:.2} % of the energy at stake (|energy_balance_error| / \
          max(|energy_initial|, energy_gravity_released)), above the bound of {} % (Fig. 7(a): \
-         0.03 % at the default tolerance): the integration error may change this outcome; rerun \
+         0.015 % at the default tolerance): the integration error may change this outcome; rerun \
          with a tighter tolerance (--set rtol=1e-6) to check it",
         100.0 * e.relative_balance_error(),
         100.0 * Energy::BALANCE_BOUND
