@@ -12,9 +12,12 @@ use rtw_model::plant::rtw::GuardKind;
 use rtw_model::{Options, Param, Params};
 
 /// The model, the step map's settings and the settled walk at `phi`
-/// (Fig. 7(a) otherwise).
+/// (Fig. 7(a) otherwise), with s = 0.85.
 fn walk(phi: f64) -> (Params, Options, CycleOptions, LimitCycle) {
-    let options = Options::default();
+    // The model these ends were located in: strings of natural length
+    // s = 0.85 (the default until it moved to 0.8875, which moves them).
+    let mut options = Options::default();
+    options.strings.rest_length_ratio = 0.85;
     let base = Params {
         phi,
         ..Params::fig7a()
@@ -35,16 +38,21 @@ fn walk(phi: f64) -> (Params, Options, CycleOptions, LimitCycle) {
 /// the second touchdown's speed growing from zero — a grazing of the
 /// landing tip's height. The orbit goes on past it, with the same
 /// nontrivial multipliers and a Jacobian that jumps.
+/// The walk's map in φ.
+fn in_phi<'a>(base: &'a Params, options: &'a Options, cycle: &'a CycleOptions) -> Setting<'a> {
+    Setting {
+        base,
+        options,
+        cycle,
+        param: Param::Phi,
+    }
+}
+
 #[test]
 fn the_walks_lower_end_is_the_landing_foot_grazing_into_a_bounce() {
     let (base, options, cycle, lc) = walk(0.10);
     assert_eq!(lc.period, 1);
-    let s = Setting {
-        base: &base,
-        options: &options,
-        cycle: &cycle,
-        param: Param::Phi,
-    };
+    let s = in_phi(&base, &options, &cycle);
     let opts = EndOptions {
         probe: 1e-3,
         reach: 0.04,
@@ -99,12 +107,7 @@ fn the_walks_lower_end_is_the_landing_foot_grazing_into_a_bounce() {
 #[test]
 fn the_walks_branch_is_continued_through_the_landing_foots_grazing() {
     let (base, options, cycle, lc) = walk(0.095);
-    let s = Setting {
-        base: &base,
-        options: &options,
-        cycle: &cycle,
-        param: Param::Phi,
-    };
+    let s = in_phi(&base, &options, &cycle);
     let cont = Cont {
         ds: 0.02,
         ds_max: 0.05,
