@@ -51,5 +51,6 @@ pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
 pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
 pub use plant::contact::RodMode;
 pub use plant::geometry::Tip;
+pub use plant::rtw::GuardKind;
 pub use run::robustness::meet_step;
 pub use run::simulate::{simulate, simulate_traced};

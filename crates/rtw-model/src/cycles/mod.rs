@@ -7,9 +7,11 @@
 //! | `stepmap.rs` | the step map, its Jacobian (variational or differences), its iterates and periods | [`StepMap`], [`CycleOptions`], [`Jacobian`], [`Step`], [`StepError`] |
 //! | `limit_cycle.rs` | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run | [`LimitCycle`], [`CycleError`] |
 //! | `continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
+//! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost), and the branch continued through it segment by segment | the module [`nonsmooth`] |
 
 pub(crate) mod continuation;
 pub(crate) mod limit_cycle;
+pub mod nonsmooth;
 pub(crate) mod section;
 pub(crate) mod stepmap;
 

@@ -100,7 +100,7 @@ impl SectionPoint {
     }
 
     /// This point with its coordinates replaced by `z` (same modes).
-    pub(crate) fn with_coords(&self, z: &[f64]) -> SectionPoint {
+    pub fn with_coords(&self, z: &[f64]) -> SectionPoint {
         let mut p = *self;
         for (&s, &v) in self.coordinate_slots().iter().zip(z) {
             p.y[s] = v;

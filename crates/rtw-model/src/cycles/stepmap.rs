@@ -126,6 +126,34 @@ impl Observer<N, Rtw> for StepLog {
     }
 }
 
+/// A step's [`StepLog`] and another observer, both told everything.
+struct Watched<'a, O> {
+    log: StepLog,
+    extra: &'a mut O,
+}
+
+impl<O: Observer<N, Rtw>> Observer<N, Rtw> for Watched<'_, O> {
+    fn on_transition(&mut self, rtw: &Rtw, t: f64, y: &[f64; N], tr: &Transition) -> Flow {
+        let extra = self.extra.on_transition(rtw, t, y, tr);
+        match self.log.on_transition(rtw, t, y, tr) {
+            Flow::Stop => Flow::Stop,
+            Flow::Continue => extra,
+        }
+    }
+
+    fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, end: StepEnd<'_, AtState>) -> Flow {
+        let extra = self.extra.on_step(rtw, dense, end);
+        match self.log.on_step(rtw, dense, end) {
+            Flow::Stop => Flow::Stop,
+            Flow::Continue => extra,
+        }
+    }
+
+    fn reads_interior(&self, rtw: &Rtw, t0: f64, t1: f64) -> bool {
+        self.log.reads_interior(rtw, t0, t1) || self.extra.reads_interior(rtw, t0, t1)
+    }
+}
+
 /// Settings of the limit-cycle analysis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleOptions {
@@ -247,28 +275,46 @@ impl StepMap {
         let mut rtw = self.rtw.clone();
         let (y, _) = initial_state(&mut rtw, options, &mut Default::default())
             .map_err(StepError::Failure)?;
-        self.run_step(rtw, y)
+        self.run_step(rtw, y, &mut ())
     }
 
     /// One step from `p`.
     pub fn step(&self, p: &SectionPoint) -> Result<Step, StepError> {
-        let mut rtw = self.rtw.clone();
-        rtw.modes = p.modes;
-        self.run_step(rtw, p.y)
+        self.step_watched(p, &mut ())
     }
 
-    fn run_step(&self, mut rtw: Rtw, mut y: [f64; N]) -> Result<Step, StepError> {
-        let mut log = StepLog {
-            section: self.section,
-            ..StepLog::default()
+    /// One step from `p` with `extra` watching it too (the events and guard
+    /// minima of [`crate::cycles::nonsmooth`]).
+    pub(crate) fn step_watched<O: Observer<N, Rtw>>(
+        &self,
+        p: &SectionPoint,
+        extra: &mut O,
+    ) -> Result<Step, StepError> {
+        let mut rtw = self.rtw.clone();
+        rtw.modes = p.modes;
+        self.run_step(rtw, p.y, extra)
+    }
+
+    fn run_step<O: Observer<N, Rtw>>(
+        &self,
+        mut rtw: Rtw,
+        mut y: [f64; N],
+        extra: &mut O,
+    ) -> Result<Step, StepError> {
+        let mut both = Watched {
+            log: StepLog {
+                section: self.section,
+                ..StepLog::default()
+            },
+            extra,
         };
-        let end = run(&mut rtw, &mut log, 0.0, &mut y, self.horizon, &self.engine);
-        let j = finish(&log, end.reason)?;
+        let end = run(&mut rtw, &mut both, 0.0, &mut y, self.horizon, &self.engine);
+        let j = finish(&both.log, end.reason)?;
         let to = canonical(&rtw.modes, &y, j, self.section).ok_or(StepError::LandingFootLeft)?;
         Ok(Step {
             to,
             time: end.t,
-            state_time: log.state_time,
+            state_time: both.log.state_time,
             advance: y[slots::at(source(j, 0).0, X)],
         })
     }

@@ -3,7 +3,8 @@
 
 use super::bifurcation::ModelArgs;
 use crate::continuation::{
-    self, Continuation, CurveSettings, files as cont_files, summary as cont_summary,
+    self, Continuation, CurveSettings, files as cont_files, segments as cont_segments,
+    summary as cont_summary,
 };
 use crate::io::destination::summary_path;
 use crate::io::files::write_atomic;
@@ -51,6 +52,10 @@ pub(super) struct ContinuationArgs {
     /// The curves end above this value of the second input.
     #[arg(long, allow_negative_numbers = true, requires = "curve")]
     curve_to: Option<f64>,
+    /// Also continue the gait's branch through the changes of its mode sequence, up to this many segments
+    /// each way, each change located and named (FILE.segments.json and a table in FILE.md; 0: off).
+    #[arg(long, default_value_t = 0, value_name = "N")]
+    through: usize,
     /// Branch points (FILE.special.parquet, FILE.curve.parquet and FILE.md are written beside it)
     /// [default: runs/continuation/PARAM.parquet].
     #[arg(long, value_name = "FILE.parquet")]
@@ -105,13 +110,19 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
     let out = a.out.unwrap_or_else(|| {
         Path::new("runs/continuation").join(format!("{}.parquet", param.name()))
     });
+    if a.through > 100 {
+        anyhow::bail!("--through {}: must lie in [0, 100]", a.through);
+    }
     cont_files::check_outputs(&out, a.force)?;
+    if a.through > 0 {
+        cont_segments::check_output(&out, a.force)?;
+    }
     let t0 = Instant::now();
     let result = continuation::run(&c)?;
     let wall = t0.elapsed().as_secs_f64();
     let rows = cont_files::rows(&c, &result);
     cont_files::write(&out, &c, &rows, wall)?;
-    let md = cont_summary::summary_markdown(
+    let mut md = cont_summary::summary_markdown(
         &c,
         result.diagram.start.period,
         result.diagram.start.floquet_max(),
@@ -119,6 +130,11 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
         result.diagram.branches.len(),
         wall,
     );
+    if a.through > 0 {
+        let dirs = cont_segments::run(&c, &result.diagram.start, a.through);
+        cont_segments::write(&out, &c, &dirs)?;
+        md.push_str(&cont_segments::markdown(&c, &dirs));
+    }
     write_atomic(&summary_path(&out), md.as_bytes())?;
     print!("{md}");
     Ok(ExitCode::SUCCESS)

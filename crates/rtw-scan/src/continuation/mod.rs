@@ -16,6 +16,7 @@
 //! the settings in their metadata, and a Markdown summary `FILE.md`.
 
 pub(crate) mod files;
+pub(crate) mod segments;
 pub(crate) mod summary;
 
 use anyhow::{Result, anyhow, bail};

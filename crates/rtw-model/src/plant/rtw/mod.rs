@@ -27,6 +27,4 @@ mod hybrid;
 mod model;
 mod resets;
 
-#[cfg(any(test, feature = "internals"))]
-pub use model::GuardKind;
-pub use model::{AtState, Rtw, Transition};
+pub use model::{AtState, GuardKind, Rtw, Transition};

@@ -1,0 +1,688 @@
+//! Where a gait's branch leaves its mode sequence, and what happens there:
+//! the nonsmooth bifurcations that end a smooth continuation of the step
+//! map ([`crate::cycles::continuation`]), located and named, and the branch
+//! continued on the other side.
+//!
+//! A fixed point's **mode sequence** is what happens over its `n` steps:
+//! every guard that fires, in order (touchdowns, lift-offs, slips,
+//! re-sticks; [`GuardKind`]), and the contact modes at each section point.
+//! Along a branch it stays the same until, at some value of the input, it
+//! changes. [`locate_end`] finds that value by bisection between the last
+//! value with the old sequence and the first with another, and names the
+//! change ([`EndKind`]):
+//!
+//! * **grazing**: a guard touches zero tangentially — a swinging tip that
+//!   just touches the ground, a contact force that just reaches zero (a
+//!   flight phase appears), a friction ratio that just reaches μ: its
+//!   closest approach over the orbit shrinks to zero at the change (or an
+//!   event's crossing slope does, where an event vanishes);
+//! * **corner**: two events coincide in time and swap;
+//! * **gait lost**: past the change there is no fixed point with the same
+//!   period (the gait fails or turns into another one).
+//!
+//! [`continue_segments`] then restarts the branch past the change with the
+//! new sequence: a branch of [`Segment`]s, each with its mode sequence and
+//! gait label, whose corrector rejects any point of another sequence.
+
+use crate::cycles::continuation::StepMapFamily;
+use crate::cycles::limit_cycle::LimitCycle;
+use crate::cycles::section::SectionPoint;
+use crate::cycles::stepmap::{CycleOptions, StepMap};
+use crate::options::Options;
+use crate::outcome::Label;
+use crate::params::{Param, Params};
+use crate::plant::contact::RodMode;
+use crate::plant::rtw::{AtState, GuardKind, Rtw, Transition};
+use crate::plant::slots::N;
+use hybrid_ode::continuation::{self, Branch, End, MapEval, Options as ContOptions, ParamMap};
+use hybrid_ode::nonsmooth::{GuardMinima, locate_change};
+use hybrid_ode::{Dense, Flow, Observer, StepEnd, limit};
+use nalgebra::{Complex, DMatrix};
+
+/// One event of a periodic orbit: guard `kind` fired in step `step` of the
+/// orbit (in that step's canonical labels: its stance rod is rod 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModeEvent {
+    /// The orbit's step (0 … n − 1).
+    pub step: usize,
+    /// What fired.
+    pub kind: GuardKind,
+    /// The rods' modes after its reset (a touchdown may stick or slide).
+    pub after: [RodMode; 3],
+}
+
+/// The mode sequence of a periodic orbit: its events in order and the
+/// contact modes at each of its section points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModeSequence {
+    /// Every event over the orbit's steps, in order.
+    pub events: Vec<ModeEvent>,
+    /// The rods' modes at each section point.
+    pub section_modes: Vec<[RodMode; 3]>,
+}
+
+impl ModeSequence {
+    /// A short text: each step's events, steps apart by ` | ` (e.g.
+    /// `td b- · lo c | …`).
+    pub fn describe(&self) -> String {
+        let steps = self.section_modes.len();
+        (0..steps)
+            .map(|k| {
+                self.events
+                    .iter()
+                    .filter(|e| e.step == k)
+                    .map(|e| guard_name(e.kind))
+                    .collect::<Vec<_>>()
+                    .join(" · ")
+            })
+            .collect::<Vec<_>>()
+            .join(" | ")
+    }
+}
+
+/// A guard's short name: `td a+` (touchdown of rod a's + tip), `lo b`
+/// (lift-off), `down c` (a rod lies down), `slip a`, `stick a`, `com`,
+/// `edge a` (a sliding tip reaches a step's edge).
+pub fn guard_name(kind: GuardKind) -> String {
+    let rod = |r: usize| ["a", "b", "c"].get(r).copied().unwrap_or("?");
+    match kind {
+        GuardKind::Touchdown { rod: r, tip } => {
+            format!("td {}{}", rod(r), if tip.sign() > 0.0 { "+" } else { "-" })
+        }
+        GuardKind::LiftOff { rod: r } => format!("lo {}", rod(r)),
+        GuardKind::RodDown { rod: r } => format!("down {}", rod(r)),
+        GuardKind::Restick { rod: r } => format!("stick {}", rod(r)),
+        GuardKind::Slip { rod: r } => format!("slip {}", rod(r)),
+        GuardKind::ComLow => "com".to_string(),
+        GuardKind::Edge { rod: r } => format!("edge {}", rod(r)),
+    }
+}
+
+/// Where a guard that did not fire came closest to firing over the orbit
+/// (a local minimum of its distance: tip height, normal force, friction
+/// margin), or an event's crossing slope.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Approach {
+    /// The orbit's step.
+    pub step: usize,
+    /// The guard.
+    pub kind: GuardKind,
+    /// Time since the step's start (s).
+    pub t: f64,
+    /// The distance to firing there (a closest approach), or the guard's
+    /// rate at the event (an event).
+    pub value: f64,
+    /// A closest approach at an event or a mode's start (see
+    /// [`hybrid_ode::nonsmooth::GuardMinimum::at_boundary`]): at zero, a
+    /// corner.
+    pub at_boundary: bool,
+}
+
+/// A periodic orbit at one value of the input, with what its steps did.
+#[derive(Clone, Debug)]
+pub struct Orbit {
+    /// The input's value.
+    pub p: f64,
+    /// The limit cycle (fixed point, steps, Floquet multipliers).
+    pub cycle: LimitCycle,
+    /// Its mode sequence.
+    pub sequence: ModeSequence,
+    /// Closest approaches of the guards that did not fire.
+    pub approaches: Vec<Approach>,
+    /// The events with their crossing slopes (`value`: the guard's rate).
+    pub events: Vec<Approach>,
+}
+
+/// Watches a step: its events and guard minima, named by [`GuardKind`].
+#[derive(Default)]
+struct Watch {
+    minima: GuardMinima,
+    events: Vec<GuardKind>,
+    approaches: Vec<GuardKind>,
+    after: Vec<[RodMode; 3]>,
+}
+
+/// The `index`-th guard of `rtw`'s current modes.
+fn kind_of(rtw: &Rtw, index: usize) -> GuardKind {
+    let mut k = 0;
+    let mut found = GuardKind::ComLow;
+    rtw.guard_kinds(|g| {
+        if k == index {
+            found = g;
+        }
+        k += 1;
+    });
+    found
+}
+
+impl Observer<N, Rtw> for Watch {
+    fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, end: StepEnd<'_, AtState>) -> Flow {
+        let flow = self.minima.on_step(rtw, dense, end);
+        for m in &self.minima.minima[self.approaches.len()..] {
+            self.approaches.push(kind_of(rtw, m.guard));
+        }
+        for e in &self.minima.events[self.events.len()..] {
+            self.events.push(kind_of(rtw, e.guard));
+        }
+        flow
+    }
+
+    fn on_transition(&mut self, rtw: &Rtw, t: f64, y: &[f64; N], tr: &Transition) -> Flow {
+        self.after.push(rtw.modes());
+        self.minima.on_transition(rtw, t, y, tr)
+    }
+}
+
+/// The events and closest approaches of the `n` steps from `orbit[0]`.
+fn watch(map: &StepMap, cycle: LimitCycle, p: f64) -> Option<Orbit> {
+    let mut events = Vec::new();
+    let mut approaches = Vec::new();
+    let mut seq = Vec::new();
+    for (k, at) in cycle.orbit.iter().enumerate() {
+        let mut w = Watch::default();
+        map.step_watched(at, &mut w).ok()?;
+        for ((e, kind), after) in w.minima.events.iter().zip(&w.events).zip(&w.after) {
+            seq.push(ModeEvent {
+                step: k,
+                kind: *kind,
+                after: *after,
+            });
+            events.push(Approach {
+                step: k,
+                kind: *kind,
+                t: e.t,
+                value: e.rate,
+                at_boundary: false,
+            });
+        }
+        for (m, kind) in w.minima.minima.iter().zip(&w.approaches) {
+            approaches.push(Approach {
+                step: k,
+                kind: *kind,
+                t: m.t,
+                value: m.value,
+                at_boundary: m.at_boundary,
+            });
+        }
+    }
+    let section_modes = cycle.orbit.iter().map(|o| o.modes).collect();
+    Some(Orbit {
+        p,
+        cycle,
+        sequence: ModeSequence {
+            events: seq,
+            section_modes,
+        },
+        approaches,
+        events,
+    })
+}
+
+/// The step map of `base` with `param` at `value`; `None` outside its range.
+fn map_at(
+    base: &Params,
+    options: &Options,
+    cycle: &CycleOptions,
+    param: Param,
+    value: f64,
+) -> Option<StepMap> {
+    let mut p = *base;
+    param.set(&mut p, value);
+    p.validate().ok()?;
+    Some(StepMap::new(&p, options, cycle))
+}
+
+/// What a branch is continued in: the model, the map's settings, the input.
+#[derive(Clone, Copy, Debug)]
+pub struct Setting<'a> {
+    /// The inputs other than the continued one.
+    pub base: &'a Params,
+    /// The model.
+    pub options: &'a Options,
+    /// The step map's settings.
+    pub cycle: &'a CycleOptions,
+    /// The continued input.
+    pub param: Param,
+}
+
+impl Setting<'_> {
+    /// The period-`n` orbit at `value` near `start` (Newton on `Pⁿ`; if the
+    /// start's modes do not come back, from its image, whose modes may be the
+    /// new side's), with its mode sequence. `None` where there is none.
+    pub fn orbit(&self, start: &SectionPoint, n: usize, value: f64) -> Option<Orbit> {
+        let map = map_at(self.base, self.options, self.cycle, self.param, value)?;
+        let cycle = match map.solve(start, n, self.cycle) {
+            Ok(c) => c,
+            Err(_) => {
+                let q = map.iterate(start, n).ok()?.last()?.to;
+                map.solve(&q, n, self.cycle).ok()?
+            }
+        };
+        watch(&map, cycle, value)
+    }
+}
+
+/// Settings of [`locate_end`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EndOptions {
+    /// The change is located to this bracket in the input.
+    pub p_tol: f64,
+    /// First probe past the branch's last point, in the input.
+    pub probe: f64,
+    /// Farthest probe past it: no change within it is [`EndKind::NoChange`].
+    pub reach: f64,
+    /// A closest approach (or an event's slope) counts as grazing where it
+    /// has shrunk below this fraction of its value a probe step back.
+    pub grazing_ratio: f64,
+    /// Two events this close in time (s) make a corner.
+    pub corner_dt: f64,
+}
+
+impl Default for EndOptions {
+    fn default() -> Self {
+        Self {
+            p_tol: 1e-7,
+            probe: 1e-4,
+            reach: 0.02,
+            grazing_ratio: 0.05,
+            corner_dt: 1e-5,
+        }
+    }
+}
+
+/// How a branch's mode sequence changed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EndKind {
+    /// A guard touched zero tangentially ([`Approach`] on the old side: its
+    /// closest approach, or the slope of a vanishing event).
+    Grazing(Approach),
+    /// Two events coincided.
+    Corner {
+        /// The first.
+        first: GuardKind,
+        /// The second.
+        second: GuardKind,
+        /// Their time apart on the side where they are nearest (s).
+        dt: f64,
+    },
+    /// No fixed point of the period past the change, and neither a grazing
+    /// nor a corner before it: the gait fails there.
+    GaitLost,
+    /// The sequence changed for no reason found.
+    Other,
+    /// The input's range ends before any change.
+    RangeEnd,
+    /// No change within [`EndOptions::reach`]: the branch ended otherwise
+    /// (a fold the corrector did not pass).
+    NoChange,
+}
+
+impl EndKind {
+    /// The name written in a diagram's files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            EndKind::Grazing(_) => "grazing",
+            EndKind::Corner { .. } => "corner",
+            EndKind::GaitLost => "gait_lost",
+            EndKind::Other => "sequence_change",
+            EndKind::RangeEnd => "end_parameter_range",
+            EndKind::NoChange => "end_no_continuation",
+        }
+    }
+}
+
+/// A located end of a branch.
+#[derive(Clone, Debug)]
+pub struct BranchEnd {
+    /// What happened.
+    pub kind: EndKind,
+    /// The orbit at the last value with the old sequence.
+    pub old: Orbit,
+    /// The orbit at the first value with a new one (`None`: none there).
+    pub new: Option<Orbit>,
+    /// That first value.
+    pub p_new: f64,
+    /// `‖J_new − J_old‖ / ‖J_old‖` (Frobenius) of `∂Pⁿ/∂z` across the change
+    /// (the variational Jacobians, saltation included), where both sides
+    /// have the same section coordinates.
+    pub jacobian_jump: Option<f64>,
+}
+
+impl BranchEnd {
+    /// Floquet multipliers on the old side.
+    pub fn multipliers_old(&self) -> &[Complex<f64>] {
+        &self.old.cycle.multipliers
+    }
+
+    /// Floquet multipliers on the new side (empty: no orbit there).
+    pub fn multipliers_new(&self) -> &[Complex<f64>] {
+        self.new.as_ref().map_or(&[], |o| &o.cycle.multipliers)
+    }
+}
+
+/// Among `near`'s closest approaches and events, the one that shrank most
+/// from `far` (the same occurrence of the same guard in the same step),
+/// below `ratio`.
+fn shrunk(near: &Orbit, far: &Orbit, ratio: f64) -> Option<Approach> {
+    let same = |x: &Approach, y: &Approach| {
+        x.step == y.step && x.kind == y.kind && x.at_boundary == y.at_boundary
+    };
+    let shrink = |a: &[Approach], b: &[Approach]| {
+        a.iter()
+            .enumerate()
+            .filter_map(|(i, x)| {
+                let k = a[..i].iter().filter(|y| same(x, y)).count();
+                let y = b.iter().filter(|y| same(x, y)).nth(k)?;
+                let r = x.value.abs() / y.value.abs();
+                (r.is_finite() && r < ratio).then_some((r, *x))
+            })
+            .collect::<Vec<_>>()
+    };
+    shrink(&near.approaches, &far.approaches)
+        .into_iter()
+        .chain(shrink(&near.events, &far.events))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, a)| a)
+}
+
+/// An event of `new` that `old` does not have (beyond the occurrences of
+/// its guard in its step there) and that fires with almost no slope: below
+/// `ratio` of the steepest event of the same guard on the old side (a tip
+/// that bounces off the ground by a vanishing height and lands again).
+fn appearing(old: &Orbit, new: &Orbit, ratio: f64) -> Option<Approach> {
+    new.events
+        .iter()
+        .enumerate()
+        .filter(|(i, x)| {
+            let same = |y: &&Approach| y.step == x.step && y.kind == x.kind;
+            let k = new.events[..*i].iter().filter(same).count();
+            old.events.iter().filter(same).nth(k).is_none()
+        })
+        .filter_map(|(_, x)| {
+            let steepest = old
+                .events
+                .iter()
+                .filter(|y| y.kind == x.kind)
+                .map(|y| y.value.abs())
+                .fold(0.0, f64::max);
+            let r = x.value.abs() / steepest;
+            (r.is_finite() && r < ratio).then_some((r, *x))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, a)| a)
+}
+
+/// Two events of `o` nearest in time, if within `dt`.
+fn corner(o: &Orbit, dt: f64) -> Option<(GuardKind, GuardKind, f64)> {
+    o.events
+        .windows(2)
+        .filter(|w| w[0].step == w[1].step)
+        .map(|w| (w[0].kind, w[1].kind, w[1].t - w[0].t))
+        .filter(|x| x.2.abs() <= dt)
+        .min_by(|a, b| a.2.abs().total_cmp(&b.2.abs()))
+}
+
+/// Locates and names the end of a branch whose last point is the period-`n`
+/// fixed point `last` at `p_last`, going towards `direction` (±1) in the
+/// input, within `range`: probes past it for the first value where the mode
+/// sequence differs (doubling steps from [`EndOptions::probe`] up to
+/// [`EndOptions::reach`]), bisects to [`EndOptions::p_tol`], and names the
+/// change from the orbits on both sides. `None` if there is no orbit at
+/// `p_last`.
+pub fn locate_end(
+    s: &Setting<'_>,
+    last: &SectionPoint,
+    n: usize,
+    p_last: f64,
+    direction: f64,
+    range: (f64, f64),
+    opts: &EndOptions,
+) -> Option<BranchEnd> {
+    let first = s.orbit(last, n, p_last)?;
+    let inside = |p: f64| range.0 <= p && p <= range.1;
+    // Probe outwards, each orbit from the previous one.
+    let (mut near, mut far) = (first.clone(), first.clone());
+    let mut h = opts.probe;
+    let mut moved = 0.0;
+    let bracket_end = loop {
+        if moved + h > opts.reach {
+            return Some(no_change(first, EndKind::NoChange));
+        }
+        let p = near.p + direction * h;
+        if !inside(p) {
+            return Some(no_change(first, EndKind::RangeEnd));
+        }
+        match s.orbit(&near.cycle.orbit[0], n, p) {
+            Some(o) if o.sequence == near.sequence => {
+                moved += h;
+                h *= 2.0;
+                far = near;
+                near = o;
+            }
+            _ => break p,
+        }
+    };
+    let from = near.cycle.orbit[0];
+    // The orbits the bisection finds (each from the same start, so that the
+    // two sides are the orbits it compared), by value of the input.
+    let mut seen: Vec<(f64, Option<Orbit>)> = Vec::new();
+    let change = locate_change(near.p, bracket_end, opts.p_tol, |p| {
+        let o = s.orbit(&from, n, p);
+        let sig = o.as_ref().map(|o| o.sequence.clone());
+        seen.push((p, o));
+        sig
+    })?;
+    let at = |p: f64| {
+        seen.iter()
+            .find(|(q, _)| *q == p)
+            .and_then(|(_, o)| o.clone())
+    };
+    let old = at(change.old)?;
+    let new = at(change.new);
+    // The farther reference: a probe step back, or the branch's last point.
+    let reference = if far.p == old.p { &first } else { &far };
+    let kind = match shrunk(&old, reference, opts.grazing_ratio) {
+        // A guard's zero reached at an event: the two coincide.
+        Some(a) if a.at_boundary => EndKind::Corner {
+            first: old
+                .events
+                .iter()
+                .filter(|e| e.step == a.step)
+                .min_by(|x, y| (x.t - a.t).abs().total_cmp(&(y.t - a.t).abs()))
+                .map_or(a.kind, |e| e.kind),
+            second: a.kind,
+            dt: 0.0,
+        },
+        Some(a) => EndKind::Grazing(a),
+        None => match new
+            .as_ref()
+            .and_then(|o| appearing(&old, o, opts.grazing_ratio))
+        {
+            Some(a) => EndKind::Grazing(a),
+            None => match corner(&old, opts.corner_dt)
+                .into_iter()
+                .chain(new.as_ref().and_then(|o| corner(o, opts.corner_dt)))
+                .min_by(|x, y| x.2.abs().total_cmp(&y.2.abs()))
+            {
+                Some((first, second, dt)) => EndKind::Corner { first, second, dt },
+                None if new.is_none() => EndKind::GaitLost,
+                None => EndKind::Other,
+            },
+        },
+    };
+    let jacobian_jump = new.as_ref().and_then(|o| {
+        let (a, b) = (
+            &old.cycle.fixed_point.jacobian,
+            &o.cycle.fixed_point.jacobian,
+        );
+        (a.shape() == b.shape() && old.sequence.section_modes == o.sequence.section_modes)
+            .then(|| (b - a).norm() / a.norm())
+    });
+    Some(BranchEnd {
+        kind,
+        p_new: change.new,
+        old,
+        new,
+        jacobian_jump,
+    })
+}
+
+fn no_change(first: Orbit, kind: EndKind) -> BranchEnd {
+    let p = first.p;
+    BranchEnd {
+        kind,
+        old: first,
+        new: None,
+        p_new: p,
+        jacobian_jump: None,
+    }
+}
+
+/// The step map family of one segment: [`StepMapFamily`] that is undefined
+/// wherever the orbit's mode sequence is not the segment's, so that the
+/// corrector cannot jump back across the change it came through.
+struct SegmentFamily<'a> {
+    inner: StepMapFamily,
+    setting: Setting<'a>,
+    template: SectionPoint,
+    n: usize,
+    sequence: ModeSequence,
+}
+
+impl ParamMap for SegmentFamily<'_> {
+    fn eval(&mut self, z: &[f64], p: f64) -> Option<MapEval> {
+        let e = self.inner.eval(z, p)?;
+        let map = map_at(
+            self.setting.base,
+            self.setting.options,
+            self.setting.cycle,
+            self.setting.param,
+            p,
+        )?;
+        // The orbit of the point itself (not yet a fixed point): its events.
+        let mut at = self.template.with_coords(z);
+        let mut events = Vec::new();
+        for k in 0..self.n {
+            let mut w = Watch::default();
+            let step = map.step_watched(&at, &mut w).ok()?;
+            events.extend(
+                w.events
+                    .iter()
+                    .zip(&w.after)
+                    .map(|(&kind, &after)| ModeEvent {
+                        step: k,
+                        kind,
+                        after,
+                    }),
+            );
+            at = step.to;
+        }
+        (events == self.sequence.events).then_some(e)
+    }
+}
+
+/// One segment of a continued branch: one mode sequence.
+#[derive(Clone, Debug)]
+pub struct Segment {
+    /// Its mode sequence.
+    pub sequence: ModeSequence,
+    /// The gait label of its first point's orbit.
+    pub label: Label,
+    /// Its section points' template: a branch point `z` is the section
+    /// point `template.with_coords(z)`.
+    pub template: SectionPoint,
+    /// Its points (the smooth continuation's branch).
+    pub branch: Branch,
+    /// How it ended, where its continuation failed at the smallest step
+    /// (`None`: it left the input's range or reached its point cap).
+    pub end: Option<BranchEnd>,
+}
+
+/// Continues the period-`n` fixed point `start` at `p0` towards
+/// `direction` within `range`, segment by segment: each segment is a smooth
+/// branch in one mode sequence ([`continuation::continue_branch`], its
+/// corrector rejecting points of another sequence); where it ends,
+/// [`locate_end`] names why, and if there is an orbit past the change the
+/// next segment starts from it. At most `max_segments`.
+#[allow(clippy::too_many_arguments)]
+pub fn continue_segments(
+    s: &Setting<'_>,
+    start: &SectionPoint,
+    n: usize,
+    p0: f64,
+    direction: f64,
+    cont: &ContOptions,
+    end_opts: &EndOptions,
+    max_segments: usize,
+) -> Vec<Segment> {
+    let mut out = Vec::new();
+    let Some(mut orbit) = s.orbit(start, n, p0) else {
+        return out;
+    };
+    let multipliers = |j: &DMatrix<f64>| limit::nontrivial_multipliers(j);
+    let range = (cont.p_min, cont.p_max);
+    let mut direction = direction;
+    while out.len() < max_segments {
+        let template = orbit.cycle.orbit[0];
+        let Some(map) = map_at(s.base, s.options, s.cycle, s.param, orbit.p) else {
+            break;
+        };
+        let opts = ContOptions {
+            z_scale: map.coord_scale(&template),
+            ..cont.clone()
+        };
+        let mut family = SegmentFamily {
+            inner: StepMapFamily::new(s.base, s.options, s.cycle, s.param, template, n),
+            setting: *s,
+            template,
+            n,
+            sequence: orbit.sequence.clone(),
+        };
+        let label = orbit.cycle.label(&s.options.labels);
+        let Ok(branch) = continuation::continue_branch(
+            &mut family,
+            &orbit.cycle.fixed_point.z,
+            orbit.p,
+            direction,
+            &opts,
+            &multipliers,
+        ) else {
+            break;
+        };
+        // The way the branch was going at its end: its last step in the
+        // input (the tangent there may have turned, computed with the
+        // Jacobian of the other side of a nonsmooth point).
+        if let [.., a, b] = &branch.points[..]
+            && b.p != a.p
+        {
+            direction = (b.p - a.p).signum();
+        }
+        let end = (branch.end == End::StepTooSmall)
+            .then(|| {
+                let last = branch.points.last().expect("the start");
+                locate_end(
+                    s,
+                    &template.with_coords(&last.z),
+                    n,
+                    last.p,
+                    direction,
+                    range,
+                    end_opts,
+                )
+            })
+            .flatten();
+        let next = end.as_ref().and_then(|e| e.new.clone());
+        out.push(Segment {
+            sequence: orbit.sequence.clone(),
+            label,
+            template,
+            branch,
+            end,
+        });
+        match next {
+            Some(o) => orbit = o,
+            None => break,
+        }
+    }
+    out
+}

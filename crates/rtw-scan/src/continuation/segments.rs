@@ -1,0 +1,270 @@
+//! `continuation --through N`: the gait's branch continued through the
+//! changes of its mode sequence ([`rtw_model::cycles::nonsmooth`]), up to
+//! `N` segments each way from the start, each segment with its mode
+//! sequence and gait label and each end named (grazing, corner, the gait
+//! lost, the range's end). Written as `FILE.segments.json` (every point with
+//! its stability, period, step frequency and label, for the figures and the
+//! check against the attractor sweep) and a table in `FILE.md`.
+
+use super::Continuation;
+use crate::io::files::write_atomic;
+use anyhow::{Result, bail};
+use rtw_model::Num;
+use rtw_model::cycles::LimitCycle;
+use rtw_model::cycles::nonsmooth::{
+    BranchEnd, EndKind, EndOptions, Segment, Setting, continue_segments, guard_name,
+};
+use rtw_model::cycles::{Step, StepMap};
+use serde_json::{Value, json};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// What the file's `kind` says: a file without it is not this command's.
+const KIND: &str = "rtw-scan continuation segments";
+
+/// The segments file beside `out`.
+pub(crate) fn segments_path(out: &Path) -> PathBuf {
+    out.with_extension("segments.json")
+}
+
+/// Refuses to replace a file at the segments path that this command did not
+/// write, unless `force`.
+pub(crate) fn check_output(out: &Path, force: bool) -> Result<()> {
+    let path = segments_path(out);
+    if force || !path.exists() {
+        return Ok(());
+    }
+    let ours = std::fs::read_to_string(&path)
+        .ok()
+        .and_then(|s| serde_json::from_str::<Value>(&s).ok())
+        .is_some_and(|v| v["kind"] == KIND);
+    if !ours {
+        bail!(
+            "--out: {} exists and is not a continuation's segments file (--force to replace it)",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// The segments of one direction from the start.
+pub(crate) struct Direction {
+    /// +1 / −1: first towards larger or smaller values of the input.
+    pub direction: f64,
+    /// The segments in order.
+    pub segments: Vec<Segment>,
+}
+
+/// Both directions from the diagram's start, `max` segments each.
+pub(crate) fn run(c: &Continuation, start: &LimitCycle, max: usize) -> Vec<Direction> {
+    let s = Setting {
+        base: &c.base,
+        options: &c.options,
+        cycle: &c.cycle,
+        param: c.param,
+    };
+    let p0 = c.param.get(&c.base);
+    [1.0, -1.0]
+        .into_iter()
+        .map(|direction| Direction {
+            direction,
+            segments: continue_segments(
+                &s,
+                &start.orbit[0],
+                start.period,
+                p0,
+                direction,
+                &c.diagram.continuation,
+                &EndOptions::default(),
+                max,
+            ),
+        })
+        .collect()
+}
+
+/// The step map at `value` of the continued input.
+fn map_at(c: &Continuation, value: f64) -> Option<StepMap> {
+    let mut p = c.base;
+    c.param.set(&mut p, value);
+    p.validate().ok()?;
+    Some(StepMap::new(&p, &c.options, &c.cycle))
+}
+
+/// What a segment's end is called in the files: its kind, or the smooth
+/// continuation's own end where the segment left the range.
+fn end_name(seg: &Segment) -> &'static str {
+    match &seg.end {
+        Some(e) => e.kind.name(),
+        None => super::end_name(seg.branch.end),
+    }
+}
+
+/// A one-line account of an end: what touched or coincided.
+fn end_detail(e: &BranchEnd) -> String {
+    match &e.kind {
+        EndKind::Grazing(a) => format!(
+            "{} in step {} at t = {:.4} s (closest {:.2e})",
+            guard_name(a.kind),
+            a.step + 1,
+            a.t,
+            a.value
+        ),
+        EndKind::Corner { first, second, dt } => {
+            format!(
+                "{} and {} {:.1e} s apart",
+                guard_name(*first),
+                guard_name(*second),
+                dt
+            )
+        }
+        EndKind::GaitLost => "no orbit of the period past it".into(),
+        EndKind::Other => "the sequence changed otherwise".into(),
+        EndKind::RangeEnd => "the range ends".into(),
+        EndKind::NoChange => "no change of sequence near it".into(),
+    }
+}
+
+fn radius(m: &[nalgebra::Complex<f64>]) -> f64 {
+    hybrid_ode::limit::spectral_radius(m)
+}
+
+/// The file's JSON: settings, then per direction and segment its sequence,
+/// label, end and points.
+pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
+    let directions: Vec<Value> = dirs
+        .iter()
+        .map(|d| {
+            let segments: Vec<Value> = d
+                .segments
+                .iter()
+                .map(|seg| {
+                    let n = seg.sequence.section_modes.len();
+                    let points: Vec<Value> = seg
+                        .branch
+                        .points
+                        .iter()
+                        .map(|pt| {
+                            let steps = map_at(c, pt.p).and_then(|m| {
+                                let z = seg.template.with_coords(&pt.z);
+                                m.iterate(&z, n).ok()
+                            });
+                            let (freq, label) = match &steps {
+                                Some(st) => (
+                                    n as f64 / st.iter().map(|s| s.time).sum::<f64>(),
+                                    Step::label(st, &c.options.labels).as_str(),
+                                ),
+                                None => (f64::NAN, ""),
+                            };
+                            json!({
+                                "p": pt.p,
+                                "stable": pt.stable,
+                                "floquet_max": radius(&pt.multipliers),
+                                "step_frequency": freq,
+                                "label": label,
+                                "omega": seg.template.with_coords(&pt.z).omega(),
+                            })
+                        })
+                        .collect();
+                    let end = seg.end.as_ref().map(|e| {
+                        json!({
+                            "p_old": e.old.p,
+                            "p_new": e.p_new,
+                            "detail": end_detail(e),
+                            "floquet_max_old": radius(e.multipliers_old()),
+                            "floquet_max_new": e.new.as_ref().map(|_| radius(e.multipliers_new())),
+                            "jacobian_jump": e.jacobian_jump,
+                        })
+                    });
+                    json!({
+                        "period": n,
+                        "label": seg.label.as_str(),
+                        "sequence": seg.sequence.describe(),
+                        "end": end_name(seg),
+                        "end_at": end,
+                        "points": points,
+                    })
+                })
+                .collect();
+            json!({ "direction": d.direction, "segments": segments })
+        })
+        .collect();
+    json!({
+        "kind": KIND,
+        "param": c.param.name(),
+        "range": [c.diagram.continuation.p_min, c.diagram.continuation.p_max],
+        "start": c.param.get(&c.base),
+        "length": c.base.length,
+        "directions": directions,
+    })
+}
+
+/// Writes the segments file beside `out`.
+pub(crate) fn write(out: &Path, c: &Continuation, dirs: &[Direction]) -> Result<()> {
+    let v = to_json(c, dirs);
+    write_atomic(
+        &segments_path(out),
+        serde_json::to_string_pretty(&v)?.as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// The segments as a Markdown table for the summary.
+pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\nThrough the changes of mode sequence (`--through`), from {} = {}:\n",
+        c.param.name(),
+        Num(c.param.get(&c.base))
+    );
+    s.push_str(
+        "| way | segment | gait | mode sequence | from | to | stable on | end | at | what | max\\|μ\\| before → after | Jacobian jump |\n",
+    );
+    s.push_str("|---|---:|---|---|---|---|---|---|---|---|---|---|\n");
+    for d in dirs {
+        for (i, seg) in d.segments.iter().enumerate() {
+            let pts = &seg.branch.points;
+            let (first, last) = (pts[0].p, pts[pts.len() - 1].p);
+            let stable: Vec<f64> = pts.iter().filter(|p| p.stable).map(|p| p.p).collect();
+            let stable_on = if stable.is_empty() {
+                "nowhere".to_string()
+            } else {
+                let lo = stable.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = stable.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                format!("{lo:.5}–{hi:.5}")
+            };
+            let (at, what, mu, jump) = match &seg.end {
+                Some(e) => (
+                    format!("{:.6}", e.old.p),
+                    end_detail(e),
+                    format!(
+                        "{:.4} → {}",
+                        radius(e.multipliers_old()),
+                        e.new.as_ref().map_or("none".to_string(), |_| format!(
+                            "{:.4}",
+                            radius(e.multipliers_new())
+                        ))
+                    ),
+                    e.jacobian_jump
+                        .map_or("".to_string(), |j| format!("{j:.3}")),
+                ),
+                None => (
+                    format!("{last:.6}"),
+                    String::new(),
+                    String::new(),
+                    String::new(),
+                ),
+            };
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {first:.5} | {last:.5} | {stable_on} | {} | {at} | {what} | {mu} | {jump} |",
+                if d.direction > 0.0 { "up" } else { "down" },
+                i,
+                seg.label.as_str(),
+                seg.sequence.describe(),
+                end_name(seg).replace('_', " "),
+            );
+        }
+    }
+    s
+}

@@ -1,0 +1,107 @@
+//! `rtw-scan continuation --through N`: the walk's branch continued through
+//! the changes of its mode sequence, each change named, through the binary.
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+
+/// From φ = 0.094 down to 0.0925 the walk's branch meets the grazing of its
+/// landing foot at φ ≈ 0.09313 (the foot starts to bounce; the end that
+/// `continuation` alone calls "no continuation"): two segments, the first
+/// ending in a named grazing, the second at the range's end; upwards one
+/// segment to the range's end.
+#[test]
+fn continuation_through_names_the_grazing_that_ended_the_walks_branch() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("phi.parquet");
+    let o = run_ok(&[
+        "continuation",
+        "--phi",
+        "0.094",
+        // The model of this end: s = 0.85 (at the default 0.8875 it moves).
+        "--set",
+        "strings.rest_length_ratio=0.85",
+        "--from",
+        "0.0925",
+        "--to",
+        "0.0955",
+        "--through",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let doc: Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("phi.segments.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(doc["kind"], "rtw-scan continuation segments");
+    let dirs = doc["directions"].as_array().unwrap();
+    let up = dirs[0]["segments"].as_array().unwrap();
+    let down = dirs[1]["segments"].as_array().unwrap();
+    assert_eq!(up.len(), 1, "{up:#?}");
+    assert_eq!(up[0]["end"], "end_parameter_range");
+    assert_eq!(down.len(), 2, "{down:#?}");
+    assert_eq!(down[0]["end"], "grazing");
+    let at = down[0]["end_at"]["p_old"].as_f64().unwrap();
+    assert!((0.0931..0.0932).contains(&at), "{at}");
+    assert!(
+        down[0]["end_at"]["detail"]
+            .as_str()
+            .unwrap()
+            .starts_with("td b+"),
+        "{}",
+        down[0]["end_at"]
+    );
+    assert_eq!(down[1]["end"], "end_parameter_range");
+    for s in up.iter().chain(down) {
+        assert_eq!(s["label"], "walk");
+        for p in s["points"].as_array().unwrap() {
+            assert_eq!(p["label"], "walk");
+            assert_eq!(p["stable"], true);
+            let f = p["step_frequency"].as_f64().unwrap();
+            // The sweep (results/bifurcation) has 0.2628 s per step at φ = 0.09425.
+            assert!((3.7..3.9).contains(&f), "{p}");
+        }
+    }
+    let md = std::fs::read_to_string(dir.path().join("phi.md")).unwrap();
+    assert_eq!(stdout(&o), md);
+    assert!(md.contains("Through the changes of mode sequence"), "{md}");
+    assert!(
+        md.contains("| down | 0 | walk |") && md.contains("| grazing |"),
+        "{md}"
+    );
+}
+
+#[test]
+fn continuation_through_refuses_a_bad_count_and_a_file_it_did_not_make() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("d.parquet");
+    run_err(
+        &[
+            "continuation",
+            "--through",
+            "101",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["--through 101: must lie in [0, 100]"],
+    );
+    let theirs = dir.path().join("d.segments.json");
+    std::fs::write(&theirs, "{\"not\": \"ours\"}").unwrap();
+    run_err(
+        &[
+            "continuation",
+            "--through",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["d.segments.json exists and is not a continuation's segments file"],
+    );
+    assert_eq!(
+        std::fs::read_to_string(&theirs).unwrap(),
+        "{\"not\": \"ours\"}"
+    );
+    assert!(!out.exists());
+}
