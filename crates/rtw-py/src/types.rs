@@ -7,6 +7,7 @@ use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyComplex, PyDict, PyString, PyTuple};
 use rtw_scan::io::{ColumnKind, Kind, Value, row_columns};
+use rtw_scan::scan::single::RowValues;
 use std::collections::HashMap;
 use std::sync::LazyLock;
 
@@ -42,12 +43,18 @@ static POSITION: LazyLock<HashMap<&'static str, usize>> = LazyLock::new(|| {
 #[derive(PartialEq)]
 pub(crate) struct Outcome {
     values: Vec<Value>,
+    /// The robustness measures the run was asked for (`step_down_max`),
+    /// after the columns, as `--json` prints them; empty by default.
+    robustness: Vec<(&'static str, Value)>,
 }
 
 impl Outcome {
-    pub(crate) fn new(values: Vec<Value>) -> Self {
-        debug_assert_eq!(values.len(), COLUMNS.len());
-        Self { values }
+    pub(crate) fn new(row: RowValues) -> Self {
+        debug_assert_eq!(row.columns.len(), COLUMNS.len());
+        Self {
+            values: row.columns,
+            robustness: row.robustness,
+        }
     }
 }
 
@@ -64,8 +71,11 @@ fn value<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
 impl Outcome {
     /// The field `name`.
     fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        match POSITION.get(name) {
-            Some(&i) => value(py, &self.values[i]),
+        if let Some(&i) = POSITION.get(name) {
+            return value(py, &self.values[i]);
+        }
+        match self.robustness.iter().find(|(k, _)| *k == name) {
+            Some((_, v)) => value(py, v),
             None => Err(PyAttributeError::new_err(format!(
                 "Outcome has no field {name:?}"
             ))),
@@ -78,6 +88,7 @@ impl Outcome {
 
     fn __dir__(&self) -> Vec<&'static str> {
         let mut names: Vec<&str> = COLUMNS.iter().map(|c| c.name).collect();
+        names.extend(self.robustness.iter().map(|(k, _)| *k));
         names.push("to_dict");
         names
     }
@@ -100,6 +111,9 @@ impl Outcome {
         let d = PyDict::new(py);
         for (c, v) in COLUMNS.iter().zip(&self.values) {
             d.set_item(c.name, value(py, v)?)?;
+        }
+        for (k, v) in &self.robustness {
+            d.set_item(*k, value(py, v)?)?;
         }
         Ok(d)
     }

@@ -24,7 +24,11 @@ def test_the_python_page_example_runs(
     monkeypatch.chdir(ROOT)
     exec(compile(code, page, "exec"), {})
     out = capsys.readouterr().out
-    assert out.startswith("walk 1.78"), out
+    # The page says what the first print shows ("# walk 1.72… (Fig. 7(a))"):
+    # the run must print that, so the page cannot go stale when the model does.
+    shown = re.search(r"print\(out\.outcome, out\.speed\)\s+# (\w+ [\d.]+)…", code)
+    assert shown is not None, "the example's first print has no '# label speed…' comment"
+    assert out.startswith(shown.group(1)), (shown.group(1), out)
     # The outcome counts of the smoke scan: 6 rows.
     counts = [int(n) for n in re.findall(r"│ \w+\s+┆ (\d+)\s+│", out)]
     assert sum(counts) == 6, out

@@ -13,7 +13,7 @@ FIG7A = (0.8, 2.5, 0.125, 3.269, 0.0514, 0.15)
 def test_step_down_max_only_when_asked_for() -> None:
     flat = rtw.simulate(*FIG7A)
     assert "step_down_max" not in flat.to_dict()
-    out = rtw.simulate(*FIG7A, **{"robustness.step_down": True})
+    out = rtw.simulate(*FIG7A, options={"robustness.step_down": True})
     assert out.step_down_max is not None and out.step_down_max > 0.0
     # Asking for it changes nothing else in the row.
     for key, value in flat.to_dict().items():
@@ -23,7 +23,7 @@ def test_step_down_max_only_when_asked_for() -> None:
 
 def test_a_bad_step_raises_naming_the_key() -> None:
     with pytest.raises(ValueError, match=r"terrain\.step_height: -1 is invalid"):
-        rtw.simulate(*FIG7A, **{"terrain.step_height": -1})
+        rtw.simulate(*FIG7A, options={"terrain.step_height": -1})
     step = rtw.simulate(*FIG7A, options={"terrain.step_height": 0.05, "terrain.step_at": 3.0})
     assert step.t_end != rtw.simulate(*FIG7A).t_end
 

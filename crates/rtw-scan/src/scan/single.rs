@@ -4,7 +4,7 @@
 
 use crate::io::kv;
 use crate::io::metadata::with_metadata;
-use crate::io::scan_rows::{JsonRow, Value, values};
+use crate::io::scan_rows::{JsonRow, Value, robustness_entries, values};
 use crate::io::trace::{TraceNames, check_trace_size, human_bytes, trace_batch, trace_metadata};
 use crate::scan::one::run_one;
 use anyhow::{Result, anyhow, bail};
@@ -15,11 +15,28 @@ use rtw_model::{Options, Params};
 /// row, the JSON object of `simulate --json`.
 pub const META_OUTCOME: &str = "rtw.outcome";
 
+/// One run's row as `simulate --json` prints it: the values in column order
+/// ([`crate::io::row_columns`]), then the robustness measures the options
+/// asked for (`robustness.*`, after the columns and only when asked for).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowValues {
+    /// The scan row's values, in column order.
+    pub columns: Vec<Value>,
+    /// The robustness measures asked for, by name (`step_down_max`, m).
+    pub robustness: Vec<(&'static str, Value)>,
+}
+
 /// Runs `params` with `options` (panics caught, as in a scan) and returns
-/// its row's values in column order ([`crate::io::row_columns`]), as
-/// `simulate --json` prints them.
-pub fn simulate_row(params: Params, options: &Options) -> Vec<Value> {
-    values(&run_one(0, params, options, rtw_model::simulate))
+/// its row's values, as `simulate --json` prints them.
+pub fn simulate_row(params: Params, options: &Options) -> RowValues {
+    let row = run_one(0, params, options, rtw_model::simulate);
+    RowValues {
+        columns: values(&row),
+        robustness: robustness_entries(&row)
+            .into_iter()
+            .map(|(k, v)| (k, Value::Float(v.filter(|v| v.is_finite()))))
+            .collect(),
+    }
 }
 
 /// The run of [`simulate_row`] as its trace: the columns and field metadata
