@@ -24,7 +24,7 @@ def test_the_python_page_example_runs(
     monkeypatch.chdir(ROOT)
     exec(compile(code, page, "exec"), {})
     out = capsys.readouterr().out
-    assert out.startswith("walk 1.78"), out
+    assert out.startswith("walk 1.72"), out
     # The outcome counts of the smoke scan: 6 rows.
     counts = [int(n) for n in re.findall(r"│ \w+\s+┆ (\d+)\s+│", out)]
     assert sum(counts) == 6, out
