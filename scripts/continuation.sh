@@ -21,7 +21,7 @@ mkdir -p "$out"
 # checks that the template sets every key to its default).
 s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 bin=target/release/rtw-scan
-walk=(continuation --param phi --from 0.02 --to 0.35 --curve fn --curve-from 2.9 --curve-to 3.8)
+walk=(continuation --param phi --from 0.02 --to 0.35 --curve fn --curve-from 2.9 --curve-to 3.9)
 skip=(continuation --param phi --phi 0.34 --from 0.30 --to 0.38 --set strings.rest_length_ratio=0
       --section touch-and-go)
 "$bin" "${walk[@]}" --out "$out/phi-fig7a.parquet" --force >"$out/phi-fig7a.log" &
