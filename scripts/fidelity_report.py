@@ -12,10 +12,11 @@ after, the cross-tabulation of every sample's label, how the shares move
 with each label threshold (the whole curve), and where the crawlers come
 from. Every number is computed here from those files; the only typed numbers
 are the paper's targets (docs/model.md §8). Relabelling at another threshold
-applies the same rule as rtw_model::Label::of_gait to the columns `nlsp`,
-`tlsp`, `flight_steps` and `triple_steps`.
+applies rtw_model::Label::of_gait itself (through the Python package,
+rtw.label) to the columns `nlsp`, `tlsp`, `flight_steps` and `triple_steps`.
 
-Usage: python scripts/fidelity_report.py
+Usage: python scripts/fidelity_report.py (with the package installed in the
+venv: .venv/bin/python -m pip install ./crates/rtw-py)
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ from pathlib import Path
 
 import numpy as np
 import polars as pl
+
+import rtw
 
 ROOT = Path(__file__).resolve().parent.parent
 PAPER = {"stable": 73.7, "skip": 35.9, "walk": 32.0, "crawl": 5.8}
@@ -37,7 +40,7 @@ RUNS = [
     ("settled start, typical step (default rules)", V / "prestress-0.85-settled-mu0.8-slack-steps" / "paper"),
     ("settled start pushing stars that cannot stand, typical step", V / "prestress-0.85-settled-push-mu0.8-slack-steps" / "paper"),
 ]
-STABLE = ["skip", "walk", "crawl"]
+STABLE = list(rtw.STABLE_LABELS)
 
 
 def load(d: Path) -> tuple[pl.DataFrame, dict]:
@@ -53,19 +56,14 @@ def shares(df: pl.DataFrame) -> dict:
 
 
 def relabel(df: pl.DataFrame, flight=0.01, triple=0.01, flight_steps=0.0, triple_steps=0.0) -> pl.Series:
-    """rtw_model::Label::of_gait on the stored columns, for the stable rows."""
-    skip = (pl.col("nlsp") > flight) & (pl.col("flight_steps") >= flight_steps)
-    crawl = (pl.col("tlsp") > triple) & (pl.col("triple_steps") >= triple_steps)
-    stable = pl.col("outcome").is_in(STABLE)
-    return df.select(
-        pl.when(~stable)
-        .then(pl.col("outcome"))
-        .when(skip)
-        .then(pl.lit("skip"))
-        .when(crawl)
-        .then(pl.lit("crawl"))
-        .otherwise(pl.lit("walk"))
-    ).to_series()
+    """Each row's label under these `labels.*` thresholds: the model's rule
+    (rtw.label) on the stored columns of the stable rows; the others keep theirs."""
+    options = {"labels": dict(flight=flight, triple=triple, flight_steps=flight_steps, triple_steps=triple_steps)}
+    cols = df.select("outcome", "nlsp", "tlsp", "flight_steps", "triple_steps")
+    return pl.Series([
+        rtw.label(nlsp, tlsp, fs, ts, options=options) if outcome in STABLE else outcome
+        for outcome, nlsp, tlsp, fs, ts in cols.iter_rows()
+    ])
 
 
 def fmt_row(name: str, s: dict, clusters: str) -> str:

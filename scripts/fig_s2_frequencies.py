@@ -31,6 +31,8 @@ from pathlib import Path
 import numpy as np
 import polars as pl
 
+from rtw import STABLE_LABELS
+
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "results" / "fig-s2"
 FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, zeta=0.0514, phi=0.15)
@@ -65,7 +67,7 @@ def one_point(scan: str, fn: float, extra: list[str], tmp: Path) -> dict:
     tr = pl.read_parquet(trace)
     t = tr["t"].to_numpy()
     half = t >= (t[-1] / 2 if len(t) else 0.0)
-    if row["outcome"] in ("skip", "walk", "crawl") and half.sum() > 64:
+    if row["outcome"] in STABLE_LABELS and half.sum() > 64:
         com_y = (tr["y_a"] + tr["y_b"] + tr["y_c"]).to_numpy() / 3
         rel = np.unwrap(tr["theta_b"].to_numpy() - tr["theta_a"].to_numpy())
         res["hub_height"] = dominant(t[half], com_y[half])
@@ -83,7 +85,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as d:
         rows = [one_point(scan, float(fn), extra, Path(d)) for fn in FNS]
     df = pl.DataFrame(rows)
-    stable = df.filter(pl.col("outcome").is_in(["skip", "walk", "crawl"]))
+    stable = df.filter(pl.col("outcome").is_in(STABLE_LABELS))
     OUT.mkdir(parents=True, exist_ok=True)
     lines = [
         "# Fig. S2: the walking frequency f_w against f_n, by definition of f_w",

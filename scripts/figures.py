@@ -131,14 +131,13 @@ def save(fig, out: Path, name: str) -> Path:
     return path
 
 
-def wilson(k: np.ndarray, n: np.ndarray, z: float = 1.959963984540054) -> tuple[np.ndarray, np.ndarray]:
-    """Wilson score 95 % interval of k successes in n trials (as in rtw-scan's summary)."""
-    n = np.asarray(n, dtype=float)
-    p = np.divide(k, n, out=np.zeros_like(n), where=n > 0)
-    denom = 1 + z * z / n
-    centre = (p + z * z / (2 * n)) / denom
-    half = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
-    return centre - half, centre + half
+def wilson(k: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Wilson score 95 % intervals of k successes in n trials, elementwise:
+    rtw-scan's own (rtw.wilson), as in its summaries."""
+    import rtw
+
+    lo_hi = np.array([rtw.wilson(int(ki), int(ni)) for ki, ni in zip(np.asarray(k), np.asarray(n))]).reshape(-1, 2)
+    return lo_hi[:, 0], lo_hi[:, 1]
 
 
 # -------------------------------------------------------------------- Fig. S2

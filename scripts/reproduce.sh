@@ -13,6 +13,7 @@
 #      -> results/fidelity.md
 #   8. the side-by-side table (scripts/reproduction_report.py) -> results/reproduction.md
 #   9. the generated tables of README.md and docs/*.md (scripts/readme_tables.py)
+#  10. the paper scan's report, one HTML page (python -m rtw report) -> results/paper/report.html
 # SKIP_VARIANTS=1 ./scripts/reproduce.sh re-tabulates the variant study from its
 # committed runs instead of rerunning them (REPORT_ONLY=1 ./scripts/variants.sh):
 # every variant file spells out each model choice, so those runs do not depend
@@ -20,6 +21,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
+# The Python scripts call the library through the package (labels, Wilson intervals, the star).
+./scripts/venv.sh
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+  --no-build-isolation ./crates/rtw-py
 for c in paper fig-s2 fig-s3; do
   rm -rf "results/$c"
   target/release/rtw-scan run "configs/$c.toml" --out "results/$c" >/dev/null
@@ -44,4 +49,7 @@ fi
 .venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null
 .venv/bin/python scripts/readme_tables.py
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+  --no-build-isolation ./crates/rtw-py
+.venv/bin/python -m rtw report results/paper --out results/paper/report.html
 echo "reproduce: done (see git status for what changed)"

@@ -38,11 +38,26 @@ echo "== the Python package rtw (crates/rtw-py): installed into .venv, then pyte
 # builds in the workspace's target/, so an unchanged crate is only relinked.
 PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
   --no-build-isolation ./crates/rtw-py
-.venv/bin/python -m pytest -q crates/rtw-py/tests
+# The scan report's browser test (crates/rtw-py/tests/test_report_browser.py) drives
+# Debian's headless Chromium through its chromedriver: installed here as root when
+# missing; as another user without them that test is skipped, saying so.
+if ! command -v chromium >/dev/null || ! command -v chromedriver >/dev/null; then
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "== installing chromium and chromium-driver (Debian) for the report's browser test"
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver >/dev/null
+  else
+    echo "== report browser test: SKIPPED unless chromium and chromium-driver are installed (not root:"
+    echo "   run sudo apt-get install -y chromium chromium-driver, or this script as root)"
+  fi
+fi
+.venv/bin/python -m pytest -q -rs crates/rtw-py/tests
+echo "   (the report's browser test keeps its screenshot in ${CARGO_TARGET_DIR:-target}/report-test/screenshot.png)"
 echo "== README.md's Python example, in a venv made by its install line (scripts/check_readme_python.sh)"
 ./scripts/check_readme_python.sh
 echo "== the quickstart notebook, executed (scripts/run_notebook.sh)"
 ./scripts/run_notebook.sh
+echo "== no file over 600 lines outside its tests, no import cycle (scripts/check_structure.py)"
+.venv/bin/python scripts/check_structure.py
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
 .venv/bin/python scripts/check_msrv.py
 echo "== fault injection: kills, a full disk, corrupt pages (scripts/fault_inject.sh)"

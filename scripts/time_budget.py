@@ -14,7 +14,7 @@ finding, reset, restart, the discarded rest of the step) and one sample
 (set-up, initial state, labels), with each term's share of the summed sample
 time. The samples differ enough in their events per RHS evaluation for the
 terms to separate (R² is printed). Compare the first row with criterion's
-`rhs` (`cargo bench -p rtw-model --bench model -- rhs`), the RHS alone.
+`rhs` (`cargo bench -p rtw-model --features internals --bench model -- rhs`), the RHS alone.
 
 Usage: scripts/time_budget.py SAMPLES.parquet [SAMPLES.parquet ...]
 (docs/performance.md, "Where the time goes").

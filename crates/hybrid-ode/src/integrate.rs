@@ -72,7 +72,7 @@ impl Method {
 
     /// Right-hand-side evaluations of one step attempt, including the
     /// evaluation at the step's end that the next step reuses (FSAL), but not
-    /// the extra stages of DOP853's dense output ([`DOP853_DENSE_EVALS`]).
+    /// the three extra stages of DOP853's dense output.
     #[inline]
     pub const fn evals_per_step(&self) -> u64 {
         match self {
@@ -444,6 +444,7 @@ pub(crate) fn hinit<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
 /// engine's `rk4_step` plays no part). On return `y` holds the state at `t1`.
 /// Returns the number of right-hand-side evaluations. This is how the
 /// convergence orders are measured; it allocates nothing.
+#[cfg(any(test, feature = "testing"))]
 pub fn fixed_step_solve<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     method: Method,
     mut rhs: F,
@@ -473,6 +474,7 @@ pub fn fixed_step_solve<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>
 /// control, writing the method's full dense output on `[t0, t0 + h]` into
 /// `dense` (the new state is `dense.y1`). Returns the number of
 /// right-hand-side evaluations.
+#[cfg(any(test, feature = "testing"))]
 pub fn step_with_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     method: Method,
     mut rhs: F,

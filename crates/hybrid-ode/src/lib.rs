@@ -2,16 +2,26 @@
 #![warn(missing_docs)]
 
 pub mod continuation;
+#[cfg(feature = "testing")]
 pub mod counting;
-pub mod dense;
-pub mod engine;
+mod dense;
+mod engine;
 mod events;
-pub mod integrate;
+mod integrate;
 pub mod limit;
+#[cfg(feature = "testing")]
 pub mod rimless;
 pub mod system;
 mod tableau;
-pub mod variational;
+mod variational;
+
+/// The one-step kernels of the integrators, outside the engine: for the
+/// integrator's own tests (order, dense output) and the model's benches.
+/// Only with the `testing` feature; not part of the engine's API.
+#[cfg(feature = "testing")]
+pub mod kernels {
+    pub use crate::integrate::{fixed_step_solve, step_with_dense};
+}
 
 pub use dense::Dense;
 pub use engine::{EndReason, EngineOptions, RunEnd, Work, run};

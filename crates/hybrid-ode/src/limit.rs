@@ -4,8 +4,8 @@
 //! A steady gait is a fixed point `z* = P(z*)` of its step map `P` (a period-n
 //! gait: of `Pⁿ`). Its Floquet multipliers are the eigenvalues of `∂P/∂z` at
 //! `z*`; the gait is (linearly) stable when all lie inside the unit circle.
-//! The maps themselves live with their systems ([`crate::rimless`] for
-//! McGeer's wheel; the RTW's step map in `rtw-model`); this module only needs
+//! The maps themselves live with their systems (the `rimless` test fixture
+//! for McGeer's wheel; the RTW's step map in `rtw-model`); this module only needs
 //! them as closures `z ↦ (P(z), ∂P/∂z)`.
 //!
 //! Analysis code, not the hot path: it allocates (small `DMatrix`es).

@@ -1,7 +1,7 @@
 //! Orders of convergence, tolerance, dense output and event location of the
 //! Runge–Kutta methods and the hybrid engine, each against a closed form.
 
-use hybrid_ode::integrate::{fixed_step_solve, step_with_dense};
+use hybrid_ode::kernels::{fixed_step_solve, step_with_dense};
 use hybrid_ode::{
     Crossing, Dense, EndReason, EngineOptions, Flow, Guards, HybridSystem, Method, Observer,
     RunEnd, StepEnd, run,

@@ -4,7 +4,7 @@
 //! `cargo bench -p rtw-model`.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use hybrid_ode::integrate::step_with_dense;
+use hybrid_ode::kernels::step_with_dense;
 use hybrid_ode::{Dense, Guards, HybridSystem, Method};
 use rtw_model::plant::initial::initial_state;
 use rtw_model::plant::rtw::Rtw;

@@ -8,8 +8,8 @@
 //! per point (`branch period φ stable max|μ|`) and one per bifurcation.
 use hybrid_ode::continuation::Options as Cont;
 use hybrid_ode::limit;
-use rtw_model::cycles::continuation::{DiagramOptions, diagram};
-use rtw_model::cycles::stepmap::CycleOptions;
+use rtw_model::cycles::CycleOptions;
+use rtw_model::cycles::{DiagramOptions, diagram};
 use rtw_model::{Options, Param, Params};
 
 fn main() {

@@ -1,9 +1,10 @@
 //! Limit cycle of the Fig. 7(a) gait: `cargo run --release -p rtw-model --example
 //! cycle [s|literal] [steps]`: iterates the step map from the start, solves for
 //! the period-1 fixed point by Newton (variational Jacobians), prints the
-//! multipliers, compares them with central differences of the map at three
-//! steps, and times one step, one variational step and one difference Jacobian.
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
+//! multipliers, compares them with the Jacobian by central differences of the
+//! map at three steps (a Newton solve from the fixed point with
+//! `Jacobian::Differences`), and times one step and one solve of each kind.
+use rtw_model::cycles::{CycleOptions, Jacobian, SectionPoint, StepMap};
 use rtw_model::{Options, Params};
 
 fn main() {
@@ -48,9 +49,14 @@ fn main() {
                 println!("  {:.9} {:+.9}i |{:.9}|", m.re, m.im, m.norm());
             }
             let p = lc.orbit[0];
-            timing(&map, &p);
+            timing(&map, &p, &cycle);
             for rel in [1e-4, 1e-5, 1e-6] {
-                let j = map.fd_jacobian(&p, rel).unwrap();
+                let fd = differences(rel);
+                let j = StepMap::new(&params, &options, &fd)
+                    .solve(&p, 1, &fd)
+                    .unwrap()
+                    .fixed_point
+                    .jacobian;
                 let mu = hybrid_ode::limit::multipliers(&j);
                 println!(
                     "fd {rel:e}: {:?}",
@@ -68,22 +74,28 @@ fn main() {
     }
 }
 
-fn timing(map: &StepMap, p: &rtw_model::cycles::section::SectionPoint) {
+/// Newton with the Jacobian by central differences of relative step `rel`.
+fn differences(rel: f64) -> CycleOptions {
+    CycleOptions {
+        jacobian: Jacobian::Differences { rel },
+        ..CycleOptions::default()
+    }
+}
+
+fn timing(map: &StepMap, p: &SectionPoint, cycle: &CycleOptions) {
     let t = std::time::Instant::now();
     for _ in 0..20 {
         let _ = map.step(p);
     }
     let a = t.elapsed().as_secs_f64() / 20.0;
     let t = std::time::Instant::now();
-    for _ in 0..5 {
-        let _ = map.step_with_jacobian(p);
-    }
-    let b = t.elapsed().as_secs_f64() / 5.0;
+    let _ = map.solve(p, 1, cycle);
+    let b = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
-    let _ = map.fd_jacobian(p, 1e-6);
+    let _ = map.solve(p, 1, &differences(1e-6));
     let c = t.elapsed().as_secs_f64();
     println!(
-        "step {:.3} ms, variational {:.3} ms, fd {:.3} ms",
+        "step {:.3} ms, solve (variational) {:.3} ms, solve (fd) {:.3} ms",
         a * 1e3,
         b * 1e3,
         c * 1e3

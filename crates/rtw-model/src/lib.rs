@@ -6,17 +6,26 @@
 //! contact modes (free, stick, slide), inelastic touchdowns and lift-offs.
 //! It runs on the generic engine of the `hybrid-ode` crate.
 //!
-//! Map of the crate, by layer (each uses only the ones above it):
+//! The public API: [`simulate`] (and [`simulate_traced`]) runs one design
+//! ([`Params`], turned into [`Physical`] constants) with its [`Options`] and
+//! returns an [`Outcome`] with its [`Label`]; [`cycles`] holds the step map,
+//! its limit cycles and their continuation; [`modal`] the eigen-frequencies.
+//!
+//! Map of the crate, by layer (each uses only the ones above it; the private
+//! modules are named in code font):
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | [`params`] | normalized inputs (L, ρ, α, f_n, ζ, φ), their names and ranges ([`Param`]) → physical (m, l_c, I, r, k, c) |
+//! | `params` | normalized inputs (L, ρ, α, f_n, ζ, φ), their names and ranges ([`Param`]) → physical (m, l_c, I, r, k, c) |
 //! | [`options`] | every modelling and numerical choice, with the adopted defaults (docs/model.md §9) |
 //! | [`outcome`] | what a run produces: label, failure, metrics, and the gait-labelling rule |
-//! | [`plant`] | the RTW as a hybrid system: geometry, strings, contact, state slots, the system, its start |
+//! | `plant` | the RTW as a hybrid system: geometry, strings, contact ([`RodMode`]), state slots, the system, its start |
 //! | [`cycles`] | the step map on the section at each new foot's touchdown, limit cycles, Floquet multipliers |
-//! | [`run`](mod@run) | `simulate(params, options) -> Outcome`: the plant run with its recorder |
+//! | `run` | [`simulate`]: the plant run with its recorder |
 //! | [`modal`] | eigen-frequencies of the approximate and of the full model |
+//!
+//! The tests of the private modules are in the crate (`src/tests/` and each
+//! file's `tests` module); `tests/` holds the tests of the public API.
 //!
 //! The crate does no I/O.
 #![warn(missing_docs)]
@@ -25,11 +34,22 @@ pub mod cycles;
 pub mod modal;
 pub mod options;
 pub mod outcome;
-pub mod params;
+mod params;
+// The plant's internals are public only for the criterion bench of the hot
+// path (`--features internals`); they are not part of the library's API.
+#[cfg(feature = "internals")]
 pub mod plant;
-pub mod run;
+#[cfg(not(feature = "internals"))]
+mod plant;
+mod run;
+
+#[cfg(test)]
+mod tests;
 
 pub use options::{Method, Options};
 pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
 pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
+pub use plant::contact::RodMode;
+pub use plant::geometry::Tip;
+pub use run::robustness::meet_step;
 pub use run::simulate::{simulate, simulate_traced};

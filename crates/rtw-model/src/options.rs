@@ -30,6 +30,8 @@
 //! (`initial.omega`, `strings.slack`, `contact.mu`, …); unknown keys are refused.
 
 use crate::params::{Normalization, ParamError, check};
+pub use crate::plant::terrain::TerrainOptions;
+pub use crate::run::robustness::RobustnessOptions;
 use hybrid_ode::EngineOptions;
 /// The integration method, as chosen in a config (`"dp54"`, `"dop853"`,
 /// `"rk4"`): the engine's own [`hybrid_ode::Method`].
@@ -185,7 +187,7 @@ impl Default for LabelOptions {
 impl LabelOptions {
     /// docs/model.md §5 as written: any flight (then any triple support) above
     /// 1 % of the window makes the label.
-    pub fn any() -> Self {
+    pub(crate) fn any() -> Self {
         Self {
             flight_steps: 0.0,
             triple_steps: 0.0,
@@ -194,7 +196,7 @@ impl LabelOptions {
     }
 
     /// Checks every threshold, naming its key and range.
-    pub fn validate(&self) -> Result<(), ParamError> {
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
         check("labels.flight", self.flight, "in [0, 1)", |v| {
             (0.0..1.0).contains(&v)
         })?;
@@ -265,7 +267,7 @@ pub struct Options {
     /// A chaotic gait never settles and runs to `t_max`.
     pub stop_when_settled: bool,
     /// After a stable run, find its gait's limit cycle on the step map
-    /// ([`crate::cycles::stepmap`]): the period from the map and the largest Floquet
+    /// ([`crate::cycles::StepMap`]): the period from the map and the largest Floquet
     /// multiplier ([`Outcome::cycle`](crate::Outcome::cycle)). Costs a Newton
     /// solve with variational Jacobians at tight tolerance per periodic run.
     pub limit_cycle: bool,
@@ -277,6 +279,16 @@ pub struct Options {
     pub contact: ContactOptions,
     /// The gait labels' thresholds.
     pub labels: LabelOptions,
+    /// The ground (`terrain.*`, [`TerrainOptions`]): the flat slope unless a
+    /// step is set. Left out of a serialized config while flat, so a flat
+    /// config's text and hash are those it had before terrain existed.
+    #[serde(skip_serializing_if = "TerrainOptions::is_flat")]
+    pub terrain: TerrainOptions,
+    /// The robustness measures a stable run adds (`robustness.*`,
+    /// [`RobustnessOptions`]); all off by default, and then left out of a
+    /// serialized config.
+    #[serde(skip_serializing_if = "RobustnessOptions::is_off")]
+    pub robustness: RobustnessOptions,
 }
 
 impl Default for Options {
@@ -302,13 +314,15 @@ impl Default for Options {
             strings: StringOptions::default(),
             contact: ContactOptions::default(),
             labels: LabelOptions::default(),
+            terrain: TerrainOptions::default(),
+            robustness: RobustnessOptions::default(),
         }
     }
 }
 
 /// Largest finite friction coefficient accepted: above 4/3 a uniform rod can
 /// meet the Painlevé paradox (docs/model.md §4).
-pub const MU_MAX_FINITE: f64 = 4.0 / 3.0;
+pub(crate) const MU_MAX_FINITE: f64 = 4.0 / 3.0;
 
 impl Options {
     /// The supplementary taken literally (docs/model.md §9: the
@@ -333,7 +347,7 @@ impl Options {
     }
 
     /// The hybrid engine's settings for a run with these options.
-    pub fn engine(&self) -> EngineOptions {
+    pub(crate) fn engine(&self) -> EngineOptions {
         EngineOptions {
             method: self.method,
             rk4_step: self.rk4_step,
@@ -418,6 +432,7 @@ impl Options {
             "in [0, 1)",
             |v| (0.0..1.0).contains(&v),
         )?;
+        self.terrain.validate()?;
         let mu = self.contact.mu;
         if !(mu == f64::INFINITY || (mu.is_finite() && (0.0..=MU_MAX_FINITE).contains(&mu))) {
             return Err(ParamError::new(

@@ -2,11 +2,12 @@
 //! and the rule that labels a gait (Table S1).
 
 use crate::options::LabelOptions;
+pub use crate::run::robustness::Robustness;
 use serde::{Deserialize, Serialize};
 
 /// Longest gait period (in steps) the model looks for, on the touchdown
 /// return map and on the step map.
-pub const MAX_PERIOD: usize = 12;
+pub(crate) const MAX_PERIOD: usize = 12;
 
 /// The outcome label of a run (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -97,6 +98,9 @@ pub enum FailureDetail {
     /// its shape but has no static equilibrium there
     /// (`initial.cannot_stand = "collapse"`).
     StandingRollsAway,
+    /// A tip met the riser of a step (docs/model.md §4, terrain): the walker
+    /// tripped.
+    Riser,
     /// No touchdown for `stall_time`.
     NoTouchdown,
     /// The centre of mass moved less than L/2 downhill over the window.
@@ -113,13 +117,14 @@ pub enum FailureDetail {
 
 impl FailureDetail {
     /// Every failure detail.
-    pub const ALL: [FailureDetail; 12] = [
+    pub const ALL: [FailureDetail; 13] = [
         FailureDetail::RodDown,
         FailureDetail::CentreOfMassLow,
         FailureDetail::NoStandingEquilibrium,
         FailureDetail::StandingRodDown,
         FailureDetail::StandingComLow,
         FailureDetail::StandingRollsAway,
+        FailureDetail::Riser,
         FailureDetail::NoTouchdown,
         FailureDetail::NoProgress,
         FailureDetail::NonFinite,
@@ -137,7 +142,8 @@ impl FailureDetail {
             | FailureDetail::NoStandingEquilibrium
             | FailureDetail::StandingRodDown
             | FailureDetail::StandingComLow
-            | FailureDetail::StandingRollsAway => Label::Collapse,
+            | FailureDetail::StandingRollsAway
+            | FailureDetail::Riser => Label::Collapse,
             FailureDetail::NoTouchdown | FailureDetail::NoProgress => Label::Stall,
             FailureDetail::NonFinite
             | FailureDetail::StepUnderflow
@@ -155,6 +161,7 @@ impl FailureDetail {
             FailureDetail::StandingRodDown => "standing_rod_down",
             FailureDetail::StandingComLow => "standing_com_low",
             FailureDetail::StandingRollsAway => "standing_rolls_away",
+            FailureDetail::Riser => "riser",
             FailureDetail::NoTouchdown => "no_touchdown",
             FailureDetail::NoProgress => "no_progress",
             FailureDetail::NonFinite => "non_finite",
@@ -185,6 +192,7 @@ impl FailureDetail {
             FailureDetail::StandingRollsAway => {
                 "cannot stand still: set down on the slope, it rolls or slides away from its feet"
             }
+            FailureDetail::Riser => "tripped: a tip met the riser of the step",
             FailureDetail::NoTouchdown => "stalled: no touchdown for stall_time",
             FailureDetail::NoProgress => {
                 "stalled: the centre of mass moved less than L/2 downhill over the window"
@@ -339,11 +347,17 @@ pub struct Outcome {
     /// The gait's limit cycle on the step map, if `Options::limit_cycle`
     /// asked for it and Newton found one.
     pub cycle: Option<CycleSummary>,
-    /// Integrator work, the standing start's included.
+    /// Integrator work, the standing start's included (not the work of the
+    /// robustness measures).
     pub work: IntegratorWork,
+    /// The gait's robustness measures, if `Options::robustness` asked for
+    /// any (docs/robustness.md); each measure is `None` unless the gait is
+    /// stable.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robustness: Option<Robustness>,
 }
 
-/// A run's limit cycle on the step map ([`crate::cycles::stepmap`]).
+/// A run's limit cycle on the step map ([`crate::cycles::StepMap`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CycleSummary {
     /// Period in steps (new-foot touchdowns).
@@ -427,7 +441,7 @@ pub(crate) fn step_kind(state_time: &[f64; 4], labels: &LabelOptions) -> (bool, 
 
 impl StepShares {
     /// The step shares of steps given by their seconds per contact state.
-    pub fn of_steps<'a>(
+    pub(crate) fn of_steps<'a>(
         steps: impl IntoIterator<Item = &'a [f64; 4]>,
         labels: &LabelOptions,
     ) -> StepShares {

@@ -37,7 +37,7 @@ pub struct ParamError {
 
 impl ParamError {
     /// The error for `value` of `field`, which must be `range`.
-    pub fn new(field: &'static str, value: f64, range: &'static str) -> Self {
+    pub(crate) fn new(field: &'static str, value: f64, range: &'static str) -> Self {
         Self {
             field,
             value,
@@ -205,7 +205,7 @@ impl Param {
     }
 
     /// Whether `value` is valid: finite and in [`range`](Param::range).
-    pub fn admits(self, value: f64) -> bool {
+    pub(crate) fn admits(self, value: f64) -> bool {
         // Six orders of magnitude around the article's box for the scales;
         // at each end the Fig. 7(a) point still gives a physical outcome
         // (tests/option_ranges.rs). Beyond them the integrator's absolute
@@ -299,7 +299,7 @@ impl Physical {
 
     /// Height of the hub of the rigid star standing on two feet: h₀ = (L/2) cos(π/6).
     #[inline]
-    pub fn standing_height(&self) -> f64 {
+    pub(crate) fn standing_height(&self) -> f64 {
         0.5 * self.length * (PI / 6.0).cos()
     }
 }

@@ -14,8 +14,8 @@
 
 use hybrid_ode::continuation::{self, End, Kind, Options as Cont, Options2};
 use hybrid_ode::limit;
-use rtw_model::cycles::continuation::{StepMapFamily, StepMapFamily2};
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
+use rtw_model::cycles::{CycleOptions, StepMap};
+use rtw_model::cycles::{StepMapFamily, StepMapFamily2};
 use rtw_model::{Label, Options, Param, Params, simulate};
 
 /// The period-1 walk at φ = 0.2 (Fig. 7(a) otherwise), its map in φ and

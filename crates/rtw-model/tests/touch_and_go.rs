@@ -4,9 +4,9 @@
 //! crossed; the touch-and-go section finds the skip that a simulation of the
 //! same robot keeps doing.
 
-use rtw_model::cycles::section::Section;
-use rtw_model::cycles::stepmap::{CycleOptions, StepError, StepMap};
-use rtw_model::plant::contact::RodMode;
+use rtw_model::RodMode;
+use rtw_model::cycles::Section;
+use rtw_model::cycles::{CycleOptions, StepError, StepMap};
 use rtw_model::{Label, Options, Params, simulate};
 
 fn steep_s0() -> (Params, Options) {

@@ -2,25 +2,31 @@
 //! (`python/rtw/__init__.py` is its documented face).
 //!
 //! Only conversions and GIL handling live here: inputs and options are
-//! checked by rtw-scan's config layers (the messages of the CLI), runs and
-//! scans are rtw-scan's and rtw-model's own code, and tables cross into
-//! Python through the Arrow C data interface (arrow-pyarrow: pyarrow imports
-//! the Rust buffers, no value is copied or boxed as a Python object).
+//! checked by rtw-scan's config layers (the messages of the CLI; options
+//! arrive as typed values, `options.rs`), runs and scans are rtw-scan's and
+//! rtw-model's own code, results are typed objects (`types.rs`), and tables
+//! cross into Python through the Arrow C data interface (arrow-pyarrow:
+//! pyarrow imports the Rust buffers, no value is copied or boxed as a
+//! Python object).
+
+mod options;
+mod types;
 
 use anyhow::anyhow;
 use arrow_array::RecordBatch;
 use arrow_pyarrow::{IntoPyArrow, Table};
+use options::PyOverrides;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
-use rtw_model::plant::strings::StringSet;
-use rtw_model::{Options, Params, Physical, modal};
-use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
+use pyo3::types::{PyDict, PyTuple};
+use rtw_model::cycles::{CycleOptions, StepMap};
+use rtw_model::outcome::{ContactFractions, StepShares};
+use rtw_model::{Label, Options, Params, Physical, modal};
+use rtw_scan::config::layers::{load_layered_with, parse_layered_with, simulation_options_with};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
 use rtw_scan::scan::scan_batch;
-use rtw_scan::scan::single::{simulate_json, simulate_traced_json};
+use rtw_scan::scan::single::{simulate_row, simulate_traced};
 use std::collections::TryReserveError;
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
@@ -28,6 +34,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::Duration;
+use types::{LimitCycle, Modes, Outcome};
 
 /// How often a running scan looks for a signal (Ctrl-C) in Python.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
@@ -51,16 +58,17 @@ fn value_error(e: anyhow::Error) -> PyErr {
 }
 
 /// The six inputs and the layered options (config's `[simulation]`, variant,
-/// `KEY=VALUE` sets), checked as `rtw-scan simulate` checks them.
+/// the `options` dict), checked as `rtw-scan simulate` checks them.
 fn inputs(
     values: [f64; 6],
     config: Option<PathBuf>,
     variant: Option<PathBuf>,
-    sets: &[String],
+    options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(Params, Options)> {
     let params = checked_params(values, "").map_err(value_error)?;
-    let options =
-        simulation_options(config.as_deref(), variant.as_deref(), sets).map_err(value_error)?;
+    let overrides = PyOverrides::new(options)?;
+    let options = simulation_options_with(config.as_deref(), variant.as_deref(), overrides.layer())
+        .map_err(value_error)?;
     Ok((params, options))
 }
 
@@ -72,40 +80,40 @@ fn to_table(py: Python<'_>, batch: RecordBatch) -> PyResult<Bound<'_, PyAny>> {
         .into_pyarrow(py)
 }
 
-/// One run: its row as the JSON object of `rtw-scan simulate --json`.
+/// One run: its row, the fields of `rtw-scan simulate --json`.
 #[pyfunction]
-#[pyo3(signature = (values, config, variant, sets))]
+#[pyo3(signature = (values, config, variant, options))]
 fn simulate(
     py: Python<'_>,
     values: [f64; 6],
     config: Option<PathBuf>,
     variant: Option<PathBuf>,
-    sets: Vec<String>,
-) -> PyResult<String> {
-    let (params, options) = inputs(values, config, variant, &sets)?;
-    py.detach(|| simulate_json(params, &options))
-        .map_err(value_error)
+    options: Option<Bound<'_, PyDict>>,
+) -> PyResult<Outcome> {
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
+    Ok(Outcome::new(py.detach(|| simulate_row(params, &options))))
 }
 
-/// One run and its trace: (the `--json` row, a `pyarrow.Table` of the
-/// `simulate --trace` columns). `limit` caps the trace's size in memory
-/// before compression (`2GB`, `500MB`, bytes), as `--trace-limit` does.
+/// One run's trace: a `pyarrow.Table` of the `simulate --trace` columns,
+/// the run's row as JSON in its metadata (`rtw.outcome`). `limit` caps the
+/// trace's size in memory before compression (`2GB`, `500MB`, bytes), as
+/// `--trace-limit` does.
 #[pyfunction]
-#[pyo3(signature = (values, config, variant, sets, limit))]
-fn trace(
-    py: Python<'_>,
+#[pyo3(signature = (values, config, variant, options, limit))]
+fn trace<'py>(
+    py: Python<'py>,
     values: [f64; 6],
     config: Option<PathBuf>,
     variant: Option<PathBuf>,
-    sets: Vec<String>,
+    options: Option<Bound<'py, PyDict>>,
     limit: String,
-) -> PyResult<(String, Bound<'_, PyAny>)> {
+) -> PyResult<Bound<'py, PyAny>> {
     let limit = parse_size(&limit).map_err(|e| PyValueError::new_err(format!("limit: {e}")))?;
-    let (params, options) = inputs(values, config, variant, &sets)?;
-    let (json, batch) = py
-        .detach(|| simulate_traced_json(params, &options, limit, PYTHON_TRACE_NAMES))
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
+    let batch = py
+        .detach(|| simulate_traced(params, &options, limit, PYTHON_TRACE_NAMES))
         .map_err(value_error)?;
-    Ok((json, to_table(py, batch)?))
+    to_table(py, batch)
 }
 
 /// A scan (config file `path` or TOML `text`, then variant and sets) as a
@@ -116,19 +124,21 @@ fn trace(
 /// or one raised by `progress`) stops the scan, waits for the samples in
 /// flight, and raises it. `progress` is called a last time once every row is in.
 #[pyfunction]
-#[pyo3(signature = (path, text, variant, sets, threads, progress=None))]
+#[pyo3(signature = (path, text, variant, options, threads, progress=None))]
+#[allow(clippy::too_many_arguments)]
 fn scan<'py>(
     py: Python<'py>,
     path: Option<PathBuf>,
     text: Option<String>,
     variant: Option<PathBuf>,
-    sets: Vec<String>,
+    options: Option<Bound<'py, PyDict>>,
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let overrides = PyOverrides::new(options.as_ref())?;
     let cfg = match (path, text) {
-        (Some(p), None) => load_layered(&p, variant.as_deref(), &sets),
-        (None, Some(t)) => parse_layered(&t, variant.as_deref(), &sets),
+        (Some(p), None) => load_layered_with(&p, variant.as_deref(), overrides.layer()),
+        (None, Some(t)) => parse_layered_with(&t, variant.as_deref(), overrides.layer()),
         _ => Err(anyhow!("give a config path or TOML text")),
     }
     .map_err(value_error)?;
@@ -147,7 +157,7 @@ fn scan<'py>(
         let stop = Arc::clone(&stop);
         let rows_done = Arc::clone(&rows_done);
         std::thread::spawn(move || {
-            let result = scan_batch(&cfg, threads, &stop, &rows_done);
+            let result = scan_batch(&cfg, threads, &stop, &*rows_done);
             // The receiver is gone only if this function already returned.
             let _ = done.send(());
             result
@@ -193,18 +203,18 @@ fn scan<'py>(
 
 /// The limit cycle the run from the options' initial state settles into
 /// (rtw-model's step map: `settle_steps` steps, the period found on the
-/// section, Newton on `Pⁿ(z) = z`, Floquet multipliers), as a dict.
+/// section, Newton on `Pⁿ(z) = z`, Floquet multipliers).
 #[pyfunction]
-#[pyo3(signature = (values, config, variant, sets, settle_steps))]
-fn limit_cycle<'py>(
-    py: Python<'py>,
+#[pyo3(signature = (values, config, variant, options, settle_steps))]
+fn limit_cycle(
+    py: Python<'_>,
     values: [f64; 6],
     config: Option<PathBuf>,
     variant: Option<PathBuf>,
-    sets: Vec<String>,
+    options: Option<Bound<'_, PyDict>>,
     settle_steps: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let (params, options) = inputs(values, config, variant, &sets)?;
+) -> PyResult<LimitCycle> {
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
     if !(1..=MAX_SETTLE_STEPS).contains(&settle_steps) {
         return Err(PyValueError::new_err(format!(
             "settle_steps: {settle_steps} is invalid: must be an integer >= 1 and at most {MAX_SETTLE_STEPS}"
@@ -217,45 +227,74 @@ fn limit_cycle<'py>(
     let lc = py
         .detach(|| StepMap::new(&params, &options, &cycle).limit_cycle(&options, &cycle))
         .map_err(|e| PyRuntimeError::new_err(format!("no limit cycle: {e}")))?;
-    let d = PyDict::new(py);
-    d.set_item("period", lc.period)?;
-    d.set_item("fixed_point", lc.fixed_point.z.clone())?;
-    d.set_item("residual", lc.fixed_point.residual)?;
-    d.set_item("iterations", lc.fixed_point.iterations)?;
-    let multipliers: Vec<(f64, f64)> = lc.multipliers.iter().map(|m| (m.re, m.im)).collect();
-    d.set_item("multipliers", multipliers)?;
-    d.set_item("floquet_max", lc.floquet_max())?;
-    d.set_item("stable", lc.is_stable())?;
-    d.set_item("label", lc.label(&options.labels).as_str())?;
-    let step_times: Vec<f64> = lc.steps.iter().map(|s| s.time).collect();
-    d.set_item("step_times", step_times)?;
-    Ok(d)
+    Ok(LimitCycle::new(&lc, lc.label(&options.labels).as_str()))
 }
 
 /// The eigen-frequencies of rtw-model's `modal`: S18's f_n, the approximate
-/// 3-rotor model's modes and the free 9-DOF star's, as a dict.
+/// 3-rotor model's modes and the free 9-DOF star's.
 #[pyfunction]
-#[pyo3(signature = (values, config, variant, sets))]
-fn modes<'py>(
-    py: Python<'py>,
+#[pyo3(signature = (values, config, variant, options))]
+fn modes(
     values: [f64; 6],
     config: Option<PathBuf>,
     variant: Option<PathBuf>,
-    sets: Vec<String>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let (params, options) = inputs(values, config, variant, &sets)?;
+    options: Option<Bound<'_, PyDict>>,
+) -> PyResult<Modes> {
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
     let phys = Physical::new(&params, options.normalization, options.g);
-    let strings = StringSet::new(&phys, &options);
-    let approx = modal::approximate_modes(&phys, &strings);
-    let star = modal::free_star_modes(&phys, &strings);
-    let d = PyDict::new(py);
-    d.set_item("s18_hz", modal::s18_frequency(&phys))?;
-    d.set_item("approx_hz", approx.freq_hz)?;
-    d.set_item("approx_damped_hz", approx.damped_freq_hz)?;
-    d.set_item("approx_damping_ratio", approx.damping_ratio)?;
-    d.set_item("star_hz", star.freq_hz.to_vec())?;
-    d.set_item("star_rigid_modes", star.rigid_modes)?;
-    Ok(d)
+    let approx = modal::approximate_modes(&phys, &options.strings);
+    let star = modal::free_star_modes(&phys, &options.strings);
+    Ok(Modes::new(modal::s18_frequency(&phys), &approx, &star))
+}
+
+/// The label rtw-model gives a stable gait (Table S1's rule) with these
+/// contact fractions over its window (`nlsp`, `tlsp`) and shares of steps
+/// with flight and with triple support, under the options' `labels.*`
+/// thresholds (the `options` dict over the defaults).
+#[pyfunction]
+#[pyo3(signature = (nlsp, tlsp, flight_steps, triple_steps, options))]
+fn label(
+    nlsp: f64,
+    tlsp: f64,
+    flight_steps: f64,
+    triple_steps: f64,
+    options: Option<Bound<'_, PyDict>>,
+) -> PyResult<&'static str> {
+    let overrides = PyOverrides::new(options.as_ref())?;
+    let options = simulation_options_with(None, None, overrides.layer()).map_err(value_error)?;
+    let fractions = ContactFractions {
+        nlsp,
+        tlsp,
+        ..ContactFractions::default()
+    };
+    let steps = StepShares {
+        flight: flight_steps,
+        triple: triple_steps,
+        ..StepShares::default()
+    };
+    Ok(Label::of_gait(&fractions, &steps, &options.labels).as_str())
+}
+
+/// The Wilson score interval (lo, hi) of `k` successes in `n` trials, as
+/// fractions, at normal quantile `z`: the intervals of rtw-scan's summaries.
+#[pyfunction]
+#[pyo3(signature = (k, n, z))]
+fn wilson(k: u64, n: u64, z: f64) -> PyResult<(f64, f64)> {
+    if k > n {
+        return Err(PyValueError::new_err(format!(
+            "k: {k} is invalid: must be at most n ({n})"
+        )));
+    }
+    Ok(rtw_scan::wilson(k, n, z))
+}
+
+/// Label names in `Label::ALL`'s order, those for which `keep` holds.
+fn label_names(keep: fn(Label) -> bool) -> Vec<&'static str> {
+    Label::ALL
+        .into_iter()
+        .filter(|l| keep(*l))
+        .map(Label::as_str)
+        .collect()
 }
 
 /// The module `rtw._rtw`.
@@ -266,6 +305,21 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scan, m)?)?;
     m.add_function(wrap_pyfunction!(limit_cycle, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
+    m.add_function(wrap_pyfunction!(label, m)?)?;
+    m.add_function(wrap_pyfunction!(wilson, m)?)?;
+    m.add_class::<Outcome>()?;
+    m.add_class::<LimitCycle>()?;
+    m.add_class::<Modes>()?;
+    m.add("LABELS", PyTuple::new(m.py(), label_names(|_| true))?)?;
+    m.add(
+        "STABLE_LABELS",
+        PyTuple::new(m.py(), label_names(Label::is_stable))?,
+    )?;
+    m.add(
+        "FAILURE_LABELS",
+        PyTuple::new(m.py(), label_names(Label::is_failure))?,
+    )?;
+    m.add("Z95", rtw_scan::Z95)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

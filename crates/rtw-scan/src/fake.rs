@@ -79,5 +79,6 @@ pub(crate) fn simulate(p: &Params, o: &Options, delay: Duration) -> Outcome {
             rhs_evals: 7000,
             events: 100,
         },
+        robustness: None,
     }
 }

@@ -2,7 +2,7 @@
 //!
 //! Seeded, parallel parameter scans of the RTW model (`rtw-model`), streamed
 //! to Parquet, with outcome statistics and failure clustering. The binary
-//! `rtw-scan` is a thin shell over [`main`].
+//! `rtw-scan` is a thin shell over `main` (the `cli` feature).
 //!
 //! The folders are the layers, each using only the ones above it in this
 //! table (and `hash`, the fixed hash functions):
@@ -16,12 +16,16 @@
 //! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
 //! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
 //! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
-//! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands |
+//! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands; the progress bar and the signal handler (the `cli` feature only) |
 //!
 //! The public API is what the binary, `rtw-bench` and the tests use; the
-//! rest is private to the crate. The deterministic stand-in simulator
-//! `fake` (hidden flag `--fake-sim`) exists only with the `fake-sim` feature,
-//! which the crate's own tests turn on.
+//! rest is private to the crate. The command line (`cli`, with clap, ctrlc
+//! and indicatif) is the default `cli` feature, which only the binary needs:
+//! the library's users (rtw-py, rtw-bench) leave it out, and the library
+//! itself shows nothing on a terminal. What watches a scan, and what stops
+//! it, are passed to it ([`scan::Progress`], a stop flag). The deterministic
+//! stand-in simulator `fake` (hidden flag `--fake-sim`) exists only with the
+//! `fake-sim` feature, which the crate's own tests turn on.
 //!
 //! ## Usage
 //!
@@ -40,9 +44,14 @@
 //! `scripts/check_parquet.py`.
 
 #![warn(missing_docs)]
+// Without the command line, the crate-private parts that only it calls
+// (analysis, bifurcation, continuation, the merge) have no caller; the
+// default build, which has one, still reports dead code.
+#![cfg_attr(not(feature = "cli"), allow(dead_code))]
 
 pub(crate) mod analysis;
 pub(crate) mod bifurcation;
+#[cfg(feature = "cli")]
 mod cli;
 pub mod config;
 pub(crate) mod continuation;
@@ -53,6 +62,8 @@ pub(crate) mod hash;
 pub mod io;
 pub mod scan;
 
+pub use analysis::report::{Z95, wilson};
+#[cfg(feature = "cli")]
 pub use cli::main;
 
 /// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in

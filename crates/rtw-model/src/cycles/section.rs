@@ -82,7 +82,7 @@ pub struct SectionPoint {
 
 impl SectionPoint {
     /// The state slots that are the map's coordinates in this point's modes.
-    pub fn coordinate_slots(&self) -> Vec<usize> {
+    pub(crate) fn coordinate_slots(&self) -> Vec<usize> {
         let mut out = Vec::with_capacity(N);
         for (i, &mode) in self.modes.iter().enumerate() {
             let own = slots::coordinates(mode);
@@ -100,7 +100,7 @@ impl SectionPoint {
     }
 
     /// This point with its coordinates replaced by `z` (same modes).
-    pub fn with_coords(&self, z: &[f64]) -> SectionPoint {
+    pub(crate) fn with_coords(&self, z: &[f64]) -> SectionPoint {
         let mut p = *self;
         for (&s, &v) in self.coordinate_slots().iter().zip(z) {
             p.y[s] = v;

@@ -3,7 +3,7 @@
 //!
 //! **Jacobian.** By the variational equations integrated alongside the step,
 //! through every impact and mode switch with its saltation matrix
-//! ([`hybrid_ode::variational`]), then through the relabelling (linear); or by
+//! ([`hybrid_ode::Variational`]), then through the relabelling (linear); or by
 //! central differences of the map ([`hybrid_ode::limit::fd_jacobian`]). The tests
 //! check one against the other.
 
@@ -51,7 +51,7 @@ impl Step {
     }
 
     /// Contact-state fractions of `steps` together.
-    pub fn fractions(steps: &[Step]) -> ContactFractions {
+    pub(crate) fn fractions(steps: &[Step]) -> ContactFractions {
         let mut t = [0.0; 4];
         for s in steps {
             for (a, b) in t.iter_mut().zip(s.state_time) {
@@ -275,7 +275,10 @@ impl StepMap {
 
     /// One step from `p` and the map's Jacobian `∂z'/∂z` there, by the
     /// variational equations. The step's `state_time` is not gathered (zero).
-    pub fn step_with_jacobian(&self, p: &SectionPoint) -> Result<(Step, DMatrix<f64>), StepError> {
+    pub(crate) fn step_with_jacobian(
+        &self,
+        p: &SectionPoint,
+    ) -> Result<(Step, DMatrix<f64>), StepError> {
         let mut rtw = self.rtw.clone();
         rtw.modes = p.modes;
         let log = StepLog {
@@ -310,7 +313,7 @@ impl StepMap {
     /// The map's Jacobian at `p` by central differences of the map, with
     /// steps `rel · scale` in each coordinate. `None` if a perturbed step
     /// fails or lands in another mode pattern.
-    pub fn fd_jacobian(&self, p: &SectionPoint, rel: f64) -> Option<DMatrix<f64>> {
+    pub(crate) fn fd_jacobian(&self, p: &SectionPoint, rel: f64) -> Option<DMatrix<f64>> {
         let z = p.coords();
         let to = self.step(p).ok()?.to;
         let step: Vec<f64> = self.coord_scale(p).iter().map(|s| rel * s).collect();
@@ -352,7 +355,7 @@ impl StepMap {
     /// `Pⁿ` at `p` and its Jacobian (the chain rule over the `n` steps, each
     /// by `method`); `None` if a step fails or the orbit does not come back to
     /// `p`'s mode pattern.
-    pub fn power_with_jacobian(
+    pub(crate) fn power_with_jacobian(
         &self,
         p: &SectionPoint,
         n: usize,

@@ -8,8 +8,8 @@
 //! | mode | slots 0..3 (position) | slots 3..6 (velocity) |
 //! |---|---|---|
 //! | free  | centre x, centre y, θ | ẋ, ẏ, ω |
-//! | stick | contact point x, 0, θ | 0, 0, ω |
-//! | slide | tip x, 0, θ | tip ẋ, 0, ω |
+//! | stick | contact point x, ground height, θ | 0, 0, ω |
+//! | slide | tip x, ground height, θ | tip ẋ, 0, ω |
 //!
 //! Stick and slide share a layout: a stick is a slide whose tip does not move.
 //! Contacts of different rods never couple (strings carry no impulse), so
@@ -40,7 +40,7 @@ pub enum RodMode {
 impl RodMode {
     /// The tip on the ground, if any.
     #[inline]
-    pub fn tip(self) -> Option<Tip> {
+    pub(crate) fn tip(self) -> Option<Tip> {
         match self {
             RodMode::Free => None,
             RodMode::Stick { tip } | RodMode::Slide { tip, .. } => Some(tip),
@@ -48,7 +48,7 @@ impl RodMode {
     }
 
     /// Trace code: 0 free, ±1 stick on tip ±, ±2 slide on tip ±.
-    pub fn code(self) -> i8 {
+    pub(crate) fn code(self) -> i8 {
         match self {
             RodMode::Free => 0,
             RodMode::Stick { tip } => tip.sign() as i8,
@@ -149,7 +149,7 @@ impl RodBody {
             RodMode::Stick { tip } | RodMode::Slide { tip, .. } => {
                 let d = self.arm(e, tip);
                 RodFrame {
-                    c: sub([s[0], 0.0], d),
+                    c: sub([s[0], s[1]], d),
                     v: sub([s[3], 0.0], scale(s[5], perp(d))),
                     omega: s[5],
                     e,
@@ -230,6 +230,7 @@ impl RodBody {
         0.5 * self.m * (r.v[0] * r.v[0] + r.v[1] * r.v[1]) + 0.5 * self.inertia * r.omega * r.omega
     }
 
+    #[cfg(test)]
     /// Angular momentum about a point `p` (z-component).
     pub fn angular_momentum_about(&self, r: &RodState, p: V2) -> f64 {
         self.inertia * r.omega + self.m * cross(sub(r.c, p), r.v)

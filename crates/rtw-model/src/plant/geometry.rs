@@ -52,7 +52,7 @@ pub enum Tip {
 impl Tip {
     /// ±1.
     #[inline]
-    pub fn sign(self) -> f64 {
+    pub(crate) fn sign(self) -> f64 {
         match self {
             Tip::Plus => 1.0,
             Tip::Minus => -1.0,
@@ -61,7 +61,7 @@ impl Tip {
 
     /// The rod's other tip.
     #[inline]
-    pub fn other(self) -> Tip {
+    pub(crate) fn other(self) -> Tip {
         match self {
             Tip::Plus => Tip::Minus,
             Tip::Minus => Tip::Plus,

@@ -7,6 +7,7 @@
 //! | [`contact`] | per-rod modes: free / stick / slide dynamics, λ, impacts, mode choice |
 //! | [`slots`] | the state vector's layout, named slot by slot |
 //! | [`rtw`] | the RTW as a [`HybridSystem`](hybrid_ode::HybridSystem): dynamics, guards, resets |
+//! | [`terrain`] | the ground: the flat slope, or a step down |
 //! | [`initial`] | the initial state (rigid star, static equilibrium, or set down and settled) |
 
 pub mod contact;
@@ -15,3 +16,4 @@ pub mod initial;
 pub mod rtw;
 pub mod slots;
 pub mod strings;
+pub mod terrain;

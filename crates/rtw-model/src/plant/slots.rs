@@ -7,7 +7,7 @@
 //! | slot | free | stick | slide |
 //! |---|---|---|---|
 //! | [`X`] | centre x | contact point x | tip x |
-//! | [`Y`] | centre y | 0 | 0 |
+//! | [`Y`] | centre y | ground height (0 on the flat slope) | ground height |
 //! | [`THETA`] | θ | θ | θ |
 //! | [`VX`] | ẋ | 0 | tip ẋ |
 //! | [`VY`] | ẏ | 0 | 0 |

@@ -11,7 +11,7 @@ const PERIOD_TOL: f64 = 1e-3;
 /// Returns a run's latest touchdowns must repeat over before an early stop
 /// (`Options::stop_when_settled`) calls its gait settled; at least 3 periods
 /// of the longest period searched for.
-pub const SETTLE_RETURNS: usize = 36;
+pub(crate) const SETTLE_RETURNS: usize = 36;
 
 /// What the run looked like at one touchdown, for the settled window.
 #[derive(Clone, Copy, Debug, Default)]
@@ -35,7 +35,7 @@ struct Mark {
 /// ending at the touchdown where the return map was found converged: what a
 /// full-length run measures over its analysis window, for a periodic gait.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Settled {
+pub(crate) struct Settled {
     /// Window `[t0, t1]` between two touchdowns, `period × m` returns long.
     pub t0: f64,
     pub t1: f64,
@@ -51,7 +51,7 @@ pub struct Settled {
 
 /// Statistics gathered as a run goes.
 #[derive(Clone, Debug)]
-pub struct GaitStats {
+pub(crate) struct GaitStats {
     /// Start of the analysis window.
     pub window_start: f64,
     /// Seconds in each contact state (0…3 rods on the ground) within the window.
@@ -91,7 +91,7 @@ pub struct GaitStats {
 
 impl GaitStats {
     /// Statistics over the window from `window_start` on, judging steps by `labels`.
-    pub fn new(window_start: f64, labels: LabelOptions) -> Self {
+    pub(crate) fn new(window_start: f64, labels: LabelOptions) -> Self {
         Self {
             window_start,
             state_time: [0.0; 4],
@@ -118,7 +118,7 @@ impl GaitStats {
     }
 
     /// Accounts for `[t0, t1]` spent in one contact state with `sliding` rods sliding.
-    pub fn on_interval(&mut self, t0: f64, t1: f64, contact_state: usize, sliding: usize) {
+    pub(crate) fn on_interval(&mut self, t0: f64, t1: f64, contact_state: usize, sliding: usize) {
         self.slide_time += sliding as f64 * (t1 - t0);
         self.run_state_time[contact_state] += t1 - t0;
         self.step_time[contact_state] += t1 - t0;
@@ -128,7 +128,7 @@ impl GaitStats {
         }
     }
 
-    pub fn on_touchdown(&mut self, t: f64, rod: usize, tip: Tip, omega_after: f64) {
+    pub(crate) fn on_touchdown(&mut self, t: f64, rod: usize, tip: Tip, omega_after: f64) {
         self.touchdowns += 1;
         self.last_touchdown = t;
         let newfoot = self.last_tip[rod] != Some(tip);
@@ -160,12 +160,12 @@ impl GaitStats {
     }
 
     /// Shares of the window's whole steps with flight and with triple support.
-    pub fn step_shares(&self) -> StepShares {
+    pub(crate) fn step_shares(&self) -> StepShares {
         self.window_steps.shares()
     }
 
     /// Contact-state fractions over the window.
-    pub fn fractions(&self) -> ContactFractions {
+    pub(crate) fn fractions(&self) -> ContactFractions {
         let total: f64 = self.state_time.iter().sum();
         let f = |i: usize| {
             if total > 0.0 {
@@ -185,7 +185,7 @@ impl GaitStats {
     /// The smallest `n ≤ MAX_PERIOD` such that the last touchdowns of the
     /// window repeat every `n` (step time and post-impact ω within a relative
     /// 1e-3), or 0 if none. Needs at least `3n` and 8 returns.
-    pub fn period(&self) -> u32 {
+    pub(crate) fn period(&self) -> u32 {
         let len = self.returns_len.min(RETURN_MAP_LEN);
         find_period(len, |k| {
             self.returns[(self.returns_len - len + k) % RETURN_MAP_LEN]
@@ -197,7 +197,13 @@ impl GaitStats {
     /// and the largest friction ratio needed since the previous touchdown.
     /// Returns the settled statistics once the latest [`SETTLE_RETURNS`]
     /// returns repeat with a period (the same test as [`GaitStats::period`]).
-    pub fn mark(&mut self, t: f64, omega_after: f64, com_x: f64, mu: f64) -> Option<Settled> {
+    pub(crate) fn mark(
+        &mut self,
+        t: f64,
+        omega_after: f64,
+        com_x: f64,
+        mu: f64,
+    ) -> Option<Settled> {
         const M: usize = SETTLE_RETURNS + 1;
         self.marks[self.marks_len % M] = Mark {
             t,

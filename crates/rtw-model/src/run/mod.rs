@@ -3,7 +3,9 @@
 //! | module | what it computes |
 //! |---|---|
 //! | [`simulate`](mod@simulate) | `simulate(params, options) -> Outcome`: the plant run with its recorder |
+//! | `robustness` (crate-private; `meet_step` is re-exported) | how much disturbance a gait survives: the largest step down |
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 
 pub(crate) mod gait;
-pub mod simulate;
+pub(crate) mod robustness;
+pub(crate) mod simulate;

@@ -11,6 +11,7 @@ use crate::plant::initial::initial_state;
 use crate::plant::rtw::{AtState, Rtw, Transition};
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
 use crate::run::gait::{GaitStats, Settled};
+use crate::run::robustness::measure;
 use hybrid_ode::{Dense, EndReason, Flow, Observer, StepEnd, Work, run};
 
 /// Simulates one RTW run.
@@ -202,6 +203,31 @@ fn simulate_inner(
     options: &Options,
     trace: Option<&mut dyn FnMut(&TraceSample)>,
 ) -> Outcome {
+    let (phys, ended) = start_and_run(params, options, trace);
+    match ended {
+        Ok((mut outcome, rtw, y)) => {
+            if !options.robustness.is_off() {
+                outcome.robustness = Some(match outcome.label.is_stable() {
+                    true => measure(params, options, &phys, &rtw, &y, &outcome),
+                    false => Default::default(),
+                });
+            }
+            outcome
+        }
+        Err(failed) => failed,
+    }
+}
+
+/// The run's end: its outcome, and the system and state it ended in.
+type Ended = (Outcome, Rtw, [f64; N]);
+
+/// Sets the star down and runs it: the physical parameters, and the run's
+/// end, or the outcome of a star that could not start.
+fn start_and_run(
+    params: &Params,
+    options: &Options,
+    trace: Option<&mut dyn FnMut(&TraceSample)>,
+) -> (Physical, Result<Ended, Outcome>) {
     if let Err(e) = params.validate().and_then(|_| options.validate()) {
         panic!("simulate: {e}");
     }
@@ -209,10 +235,42 @@ fn simulate_inner(
     let mut rtw = Rtw::new(&phys, options);
     // The work of standing the star up counts as the run's.
     let mut standing = Work::default();
-    let (mut y, start) = match initial_state(&mut rtw, options, &mut standing) {
-        Ok(started) => started,
-        Err(detail) => return failed_at_start(detail, standing),
+    let ended = match initial_state(&mut rtw, options, &mut standing) {
+        Ok((y, start)) => Ok(run_from(
+            params, options, &phys, rtw, y, start, standing, trace,
+        )),
+        Err(detail) => Err(failed_at_start(detail, standing)),
     };
+    (phys, ended)
+}
+
+/// Runs `params` under `options` (which must be valid) and hands `f` the
+/// physical parameters, the system and state the run ended in and its
+/// outcome; `None` if the star could not start.
+pub(crate) fn with_end_state<T>(
+    params: &Params,
+    options: &Options,
+    f: impl FnOnce(&Physical, &Rtw, &[f64; N], &Outcome) -> T,
+) -> Option<T> {
+    let (phys, ended) = start_and_run(params, options, None);
+    let (outcome, rtw, y) = ended.ok()?;
+    Some(f(&phys, &rtw, &y, &outcome))
+}
+
+/// The run from state `y` of `rtw` (standing as `start`, after `standing`
+/// work to set it down) to its end: its outcome, and the system and state
+/// it ended in. The system is autonomous, so the run's clock starts at 0.
+#[allow(clippy::too_many_arguments)] // the pieces of a started run
+pub(crate) fn run_from(
+    params: &Params,
+    options: &Options,
+    phys: &Physical,
+    mut rtw: Rtw,
+    mut y: [f64; N],
+    start: Stance,
+    standing: Work,
+    trace: Option<&mut dyn FnMut(&TraceSample)>,
+) -> (Outcome, Rtw, [f64; N]) {
     let window_start = options.t_max * (1.0 - options.analysis_window);
     let mut rec = Recorder {
         stats: GaitStats::new(window_start, options.labels),
@@ -304,7 +362,7 @@ fn simulate_inner(
         Some(log) if label.is_stable() => cycle_of_run(params, options, log),
         _ => None,
     };
-    Outcome {
+    let outcome = Outcome {
         label,
         failure,
         start,
@@ -325,7 +383,9 @@ fn simulate_inner(
             work += standing;
             work
         },
-    }
+        robustness: None,
+    };
+    (outcome, rtw, y)
 }
 
 /// The outcome of a run that could not start, after `work` trying.
@@ -349,5 +409,6 @@ fn failed_at_start(detail: FailureDetail, work: Work) -> Outcome {
         period: 0,
         cycle: None,
         work,
+        robustness: None,
     }
 }

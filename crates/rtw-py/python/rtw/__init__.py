@@ -11,11 +11,15 @@ the extension module ``rtw._rtw``)::
     table = rtw.scan("configs/smoke.toml")               # a pyarrow.Table
     df = __import__("polars").from_arrow(table)          # or table.to_pandas()
 
-Options are the keys of ``rtw-scan simulate --set`` (docs/model.md §9):
-keyword arguments for the undotted ones (``t_max=5.0``), and
-``options={"contact.mu": 0.8}`` (or ``**{"contact.mu": 0.8}``) for the
-dotted ones. Bad inputs and options raise ``ValueError`` with the command
-line's message, naming the key and its valid range.
+A design's six inputs are keyword arguments or one :class:`Design`.
+Options are the keys of ``rtw-scan simulate --set`` (docs/model.md §9), in
+the keyword ``options=`` of every function (``{"contact.mu": 0.8}`` or
+``{"contact": {"mu": 0.8}}``), and, for one design, as keyword arguments
+(``t_max=5.0``); their values go to the config layer as typed values, not
+text. Bad inputs and options raise ``ValueError`` with the command line's
+message, naming the key and its valid range. Results are typed, frozen
+objects (:class:`Outcome`, :class:`LimitCycle`, :class:`Modes`) whose fields
+are the Rust definitions' (``_rtw.pyi`` is checked against them).
 
 Tables cross from Rust through the Arrow C data interface: pyarrow imports
 the Rust buffers as they are, without copying them or making a Python object
@@ -24,16 +28,18 @@ per value.
 
 from __future__ import annotations
 
-import json
 import math
 import numbers
 import os
 import sys
 import time
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
+from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, LimitCycle, Modes, Outcome
+from .report import report
 
 if TYPE_CHECKING:
     import pyarrow
@@ -41,15 +47,22 @@ if TYPE_CHECKING:
 __version__: str = _rtw.__version__
 
 __all__ = [
+    "FAILURE_LABELS",
+    "LABELS",
+    "STABLE_LABELS",
+    "Design",
     "LimitCycle",
     "Modes",
     "Outcome",
     "animate",
+    "label",
     "limit_cycle",
     "modal",
+    "report",
     "scan",
     "simulate",
     "trace",
+    "wilson",
 ]
 
 Config = str | os.PathLike[str]
@@ -65,242 +78,107 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module 'rtw' has no attribute {name!r}")
 
 
-class Outcome:
-    """One run's row: the fields of ``rtw-scan simulate --json``, as attributes.
-
-    The same keys as a ``samples.parquet`` row (docs/data-dictionary.md), in
-    column order: the inputs, the derived physical parameters, ``outcome``
-    (the label), ``failure`` and ``message`` (``None`` when the run
-    finished), the gait metrics, the limit-cycle summary, the work counts and
-    ``wall_time_s`` (the run's own time in Rust). Metrics that do not apply,
-    and non-finite values, are ``None``, as in the JSON. Immutable;
-    :meth:`to_dict` gives a plain ``dict``.
-
-    ``period`` is the gait's period as the ``period`` column has it: in
-    touchdowns on the touchdown return map of this run, or, with
-    ``limit_cycle=True`` and a cycle found, in steps on the step map
-    (``LimitCycle.period``); the two can differ for one walk
-    (docs/data-dictionary.md).
-    """
-
-    __slots__ = ("_fields",)
-
-    sample_id: int
-    length: float
-    rho: float
-    alpha: float
-    fn: float
-    zeta: float
-    phi: float
-    m: float
-    l_c: float
-    inertia: float
-    r: float
-    k: float
-    c: float
-    outcome: str
-    failure: str | None
-    message: str | None
-    start: str | None
-    t_end: float | None
-    nlsp: float | None
-    slsp: float | None
-    dlsp: float | None
-    tlsp: float | None
-    window_steps: int | None
-    flight_steps: float | None
-    triple_steps: float | None
-    touchdowns: int | None
-    f_w: float | None
-    f_w_newfoot: float | None
-    speed: float | None
-    mu_required: float | None
-    slide_time: float | None
-    energy_initial: float | None
-    energy_last: float | None
-    energy_gravity_released: float | None
-    energy_impact_loss: float | None
-    energy_damping_loss: float | None
-    energy_friction_loss: float | None
-    energy_balance_error: float | None
-    period: int | None
-    floquet_max: float | None
-    cycle_residual: float | None
-    steps: int | None
-    rejected: int | None
-    rhs_evals: int | None
-    events: int | None
-    wall_time_s: float
-
-    def __init__(self, fields: Mapping[str, Any]) -> None:
-        object.__setattr__(self, "_fields", dict(fields))
-
-    def __getattr__(self, name: str) -> Any:
-        try:
-            return self._fields[name]
-        except KeyError:
-            raise AttributeError(f"Outcome has no field {name!r}") from None
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        raise AttributeError("Outcome is immutable")
-
-    def __dir__(self) -> list[str]:
-        return [*self._fields, "to_dict"]
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, Outcome) and self._fields == other._fields
-
-    __hash__ = None  # type: ignore[assignment]
-
-    def __repr__(self) -> str:
-        keys = ("outcome", "failure", "speed", "f_w", "period", "t_end")
-        shown = ", ".join(f"{k}={self._fields.get(k)!r}" for k in keys)
-        return f"Outcome({shown}, ...)"
-
-    def to_dict(self) -> dict[str, Any]:
-        """The fields as a new ``dict``, in column order (what ``--json`` prints)."""
-        return dict(self._fields)
-
-
 @dataclass(frozen=True)
-class LimitCycle:
-    """A periodic gait on the step map (the section at each new foot's touchdown).
+class Design:
+    """One design: the six inputs of docs/model.md §1, as a scan row's columns name them.
+
+    Every function of one design takes a ``Design`` or the six inputs as
+    keyword arguments (``rtw.simulate(length=0.8, rho=2.5, ...)``); a
+    ``Design`` is checked to hold numbers, the model checks their ranges.
 
     Attributes:
-        period: the step map's period in steps (1: every step the same), the
-            fixed point of ``Pⁿ``. Not the ``Outcome.period`` of a run
-            without ``limit_cycle=True``, which counts touchdowns on the
-            touchdown return map of the simulated run.
-        fixed_point: the fixed point ``z`` of ``Pⁿ`` (the map's coordinates in
-            the orbit's contact modes).
-        residual: ``max |Pⁿ(z) − z| / scale`` at the solution.
-        iterations: Newton iterations taken.
-        multipliers: the nontrivial Floquet multipliers of ``Pⁿ``, largest
-            modulus first.
-        floquet_max: the largest multiplier modulus.
-        stable: every multiplier inside the unit circle.
-        label: the gait label of the orbit's steps (walk, skip, crawl, ...).
-        step_times: the duration of each step of the orbit (s).
-    """
-
-    period: int
-    fixed_point: tuple[float, ...]
-    residual: float
-    iterations: int
-    multipliers: tuple[complex, ...]
-    floquet_max: float
-    stable: bool
-    label: str
-    step_times: tuple[float, ...]
-
-
-@dataclass(frozen=True)
-class Modes:
-    """Eigen-frequencies of one design (rtw-model's ``modal``), in Hz.
-
-    Attributes:
-        s18_hz: the supplementary's S18 ``f_n`` of the derived constants.
-        approx_hz: undamped frequencies of the approximate 3-rotor model's
-            oscillating modes (``√3 f_n`` twice at zero rest length).
-        approx_damped_hz: damped frequencies of its complex pairs.
-        approx_damping_ratio: their damping ratios, same order.
-        star_hz: the nine frequencies of the free 9-DOF star, sorted; the
-            first ``star_rigid_modes`` are rigid (≈ 0).
-        star_rigid_modes: how many of ``star_hz`` are rigid modes (3).
-    """
-
-    s18_hz: float
-    approx_hz: tuple[float, ...]
-    approx_damped_hz: tuple[float, ...]
-    approx_damping_ratio: tuple[float, ...]
-    star_hz: tuple[float, ...]
-    star_rigid_modes: int
-
-
-def _literal(key: str, value: Any) -> str:
-    """``value`` as the VALUE of ``--set KEY=VALUE``."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        # As on the command line: TOML if it parses (`0.8`, `"eigen"`), else a bare string.
-        return value
-    raise ValueError(
-        f"{key}: {value!r} is invalid: must be a bool, int, float or str (an option's value)"
-    )
-
-
-def _sets(options: Mapping[str, Any] | None, extra: Mapping[str, Any]) -> list[str]:
-    """Options (``options=`` then keyword arguments) as ``--set`` assignments."""
-    merged = {**(options or {}), **extra}
-    sets = []
-    for key, value in merged.items():
-        if not isinstance(key, str) or "=" in key or not key:
-            raise ValueError(f"{key!r}: not an option key (a dotted name such as contact.mu)")
-        sets.append(f"{key}={_literal(key, value)}")
-    return sets
-
-
-def _path(config: Config | None) -> str | None:
-    return None if config is None else os.fspath(config)
-
-
-def _inputs(
-    length: float, rho: float, alpha: float, fn: float, zeta: float, phi: float
-) -> list[float]:
-    values = [length, rho, alpha, fn, zeta, phi]
-    names = ("length", "rho", "alpha", "fn", "zeta", "phi")
-    for name, v in zip(names, values):
-        if isinstance(v, bool) or not isinstance(v, numbers.Real):
-            raise ValueError(f"{name}: {v!r} is invalid: must be a number")
-    return [float(v) for v in values]
-
-
-def _native_args(
-    inputs: tuple[float, float, float, float, float, float],
-    config: Config | None,
-    variant: Config | None,
-    options: Mapping[str, Any] | None,
-    more_options: Mapping[str, Any],
-) -> tuple[list[float], str | None, str | None, list[str]]:
-    """The arguments every native call of one design takes: inputs, config, variant, sets."""
-    return _inputs(*inputs), _path(config), _path(variant), _sets(options, more_options)
-
-
-def simulate(
-    length: float,
-    rho: float,
-    alpha: float,
-    fn: float,
-    zeta: float,
-    phi: float,
-    *,
-    config: Config | None = None,
-    variant: Config | None = None,
-    options: Mapping[str, Any] | None = None,
-    **more_options: Any,
-) -> Outcome:
-    """Runs one design, as ``rtw-scan simulate --json`` does.
-
-    Args:
         length: rod length L (m).
         rho: mass per length ρ (kg/m).
         alpha: connection ratio α, in [0, 0.49].
         fn: eigen-frequency f_n (Hz).
         zeta: damping ratio ζ.
         phi: slope φ (rad).
+    """
+
+    length: float
+    rho: float
+    alpha: float
+    fn: float
+    zeta: float
+    phi: float
+
+    def __post_init__(self) -> None:
+        for name in _INPUTS:
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, numbers.Real):
+                raise ValueError(f"{name}: {v!r} is invalid: must be a number")
+            object.__setattr__(self, name, float(v))
+
+
+_INPUTS = tuple(f.name for f in fields(Design))
+
+
+def _design(who: str, given: tuple[Any, ...], kwargs: dict[str, Any]) -> list[float]:
+    """The six inputs of a call: a ``Design``, or numbers by position then by
+    keyword (taken out of ``kwargs``, which then holds only options)."""
+    if len(given) == 1 and isinstance(given[0], Design):
+        clash = [n for n in _INPUTS if n in kwargs]
+        if clash:
+            raise TypeError(f"{who}() got a Design and the input {clash[0]!r}: give one of them")
+        d = given[0]
+    else:
+        if len(given) > len(_INPUTS):
+            raise TypeError(f"{who}() takes a Design or at most 6 inputs, got {len(given)}")
+        values = dict(zip(_INPUTS, given))
+        for name in _INPUTS[len(given):]:
+            if name in kwargs:
+                values[name] = kwargs.pop(name)
+        clash = [n for n in _INPUTS[: len(given)] if n in kwargs]
+        if clash:
+            raise TypeError(f"{who}() got multiple values for the input {clash[0]!r}")
+        missing = [n for n in _INPUTS if n not in values]
+        if missing:
+            raise TypeError(
+                f"{who}() is missing the input(s) {', '.join(missing)}: give a Design or "
+                "length, rho, alpha, fn, zeta and phi"
+            )
+        d = Design(**values)
+    return [d.length, d.rho, d.alpha, d.fn, d.zeta, d.phi]
+
+
+def _options(options: Mapping[str, Any] | None, extra: Mapping[str, Any]) -> dict[str, Any] | None:
+    """``options=`` then the keyword arguments, as one dict for the config layer."""
+    if options is not None and not isinstance(options, Mapping):
+        raise ValueError(f"options: {options!r} is invalid: must be a dict of option keys and values")
+    merged = {**(options or {}), **extra}
+    return merged or None
+
+
+def _path(config: Config | None) -> str | None:
+    return None if config is None else os.fspath(config)
+
+
+def simulate(
+    *design: Design | float,
+    config: Config | None = None,
+    variant: Config | None = None,
+    options: Mapping[str, Any] | None = None,
+    **more: Any,
+) -> Outcome:
+    """Runs one design, as ``rtw-scan simulate --json`` does.
+
+    ``rtw.simulate(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514,
+    phi=0.15)``, or ``rtw.simulate(Design(...))``: every function of one
+    design (:func:`trace`, :func:`limit_cycle`, :func:`modal`) takes its
+    inputs and options this way.
+
+    Args:
+        design: a :class:`Design`; or give its six inputs ``length``,
+            ``rho``, ``alpha``, ``fn``, ``zeta``, ``phi`` as keyword
+            arguments (or, in that order, by position).
         config: take the ``[simulation]`` options of this config file.
         variant: then layer this variant file's (configs/variants/*.toml).
-        options: then these ``--set`` options, dotted keys allowed
-            (``{"contact.mu": 0.8}``).
-        **more_options: then these (``t_max=5.0``, ``**{"contact.mu": 0.8}``).
+        options: then these options (docs/model.md §9), by dotted key
+            (``{"contact.mu": 0.8}``) or nested (``{"contact": {"mu": 0.8}}``);
+            values are bool, int, float, str, or lists of them.
+        **more: the six inputs when no ``Design`` is given; then more
+            options, which win over ``options`` (``t_max=5.0``,
+            ``**{"contact.mu": 0.8}``).
 
     Returns:
         The run's :class:`Outcome`. A run that did not finish is returned too,
@@ -309,26 +187,20 @@ def simulate(
     Raises:
         ValueError: an input or option is invalid (the message names it and
             its valid range), or a file cannot be read.
+        TypeError: an input is missing or given twice.
     """
-    inputs = (length, rho, alpha, fn, zeta, phi)
-    row = _rtw.simulate(*_native_args(inputs, config, variant, options, more_options))
-    return Outcome(json.loads(row))
+    values = _design("simulate", design, more)
+    return _rtw.simulate(values, _path(config), _path(variant), _options(options, more))
 
 
 def trace(
-    length: float,
-    rho: float,
-    alpha: float,
-    fn: float,
-    zeta: float,
-    phi: float,
-    *,
+    *design: Design | float,
     dt: float | None = None,
     limit: str | int = "2GB",
     config: Config | None = None,
     variant: Config | None = None,
     options: Mapping[str, Any] | None = None,
-    **more_options: Any,
+    **more: Any,
 ) -> pyarrow.Table:
     """Runs one design and returns its time series, as ``rtw-scan simulate --trace``.
 
@@ -347,8 +219,7 @@ def trace(
             ``--trace-limit``: a size such as ``"2GB"`` or ``"500MB"``
             (decimal units), or bytes. The run is refused, not cut, when its
             estimate (samples × 196 bytes) is larger.
-        length, rho, alpha, fn, zeta, phi, config, variant, options,
-        more_options: as for :func:`simulate`.
+        design, config, variant, options, more: as for :func:`simulate`.
 
     Raises:
         ValueError: as :func:`simulate`; for a ``limit`` that is not a size,
@@ -358,14 +229,10 @@ def trace(
             ``t_max`` or raise ``limit``).
         MemoryError: the trace does not fit in memory after all.
     """
-    extra = dict(more_options)
+    values = _design("trace", design, more)
     if dt is not None:
-        extra["trace_dt"] = dt
-    inputs = (length, rho, alpha, fn, zeta, phi)
-    row, table = _rtw.trace(*_native_args(inputs, config, variant, options, extra), str(limit))
-    meta = dict(table.schema.metadata or {})
-    meta[b"rtw.outcome"] = row.encode()
-    return table.replace_schema_metadata(meta)
+        more["trace_dt"] = dt
+    return _rtw.trace(values, _path(config), _path(variant), _options(options, more), str(limit))
 
 
 class _Bar:
@@ -455,9 +322,10 @@ def scan(
     config: Config,
     *,
     variant: Config | None = None,
-    set: Mapping[str, Any] | None = None,
+    options: Mapping[str, Any] | None = None,
     threads: int | None = None,
     progress: bool | Callable[[int, int], object] = True,
+    set: Mapping[str, Any] | None = None,
 ) -> pyarrow.Table:
     """Runs a scan in memory: the rows ``rtw-scan run CONFIG`` writes to samples.parquet.
 
@@ -471,7 +339,8 @@ def scan(
         config: a config file path, or TOML text (a ``str`` holding a newline
             or ``=``), as ``rtw-scan run`` reads.
         variant: layer this variant file's ``[simulation]`` keys over the config's.
-        set: then these options (``{"contact.mu": 0.8}``), as ``--set``.
+        options: then these options (``{"contact.mu": 0.8}``), as ``--set``
+            and as for :func:`simulate`.
         threads: worker threads (default: one per core; at most 4 per core).
         progress: show the scan's progress on stderr (the default): a bar
             redrawn in place in a terminal, one line updated in place in a
@@ -479,6 +348,8 @@ def scan(
             A callable is called instead with ``(done, total)`` (rows
             computed, rows in all) every 50 ms and at the end; an exception
             it raises stops the scan and is raised.
+        set: the former name of ``options``: deprecated (a
+            ``DeprecationWarning``), removed in the next release.
 
     The rows are held in memory: a scan of more than 1 000 000 rows is
     refused (``ValueError``); run it with ``rtw-scan run CONFIG --out DIR``,
@@ -506,22 +377,25 @@ def scan(
         report = progress
     else:
         raise ValueError(f"progress: {progress!r} is invalid: must be True, False or a callable")
-    return _rtw.scan(path, text, _path(variant), _sets(set, {}), threads, report)
+    if set is not None:
+        warnings.warn(
+            "rtw.scan(set=...) is deprecated: use options=..., the keyword of every rtw function",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        if options is not None:
+            raise TypeError("scan() got both set= and options=: give options= only")
+        options = set
+    return _rtw.scan(path, text, _path(variant), _options(options, {}), threads, report)
 
 
 def limit_cycle(
-    length: float,
-    rho: float,
-    alpha: float,
-    fn: float,
-    zeta: float,
-    phi: float,
-    *,
+    *design: Design | float,
     settle_steps: int = 60,
     config: Config | None = None,
     variant: Config | None = None,
     options: Mapping[str, Any] | None = None,
-    **more_options: Any,
+    **more: Any,
 ) -> LimitCycle:
     """The limit cycle the run from the initial state settles into, and its stability.
 
@@ -534,45 +408,27 @@ def limit_cycle(
 
     Args:
         settle_steps: steps iterated before looking for the period.
-        length, rho, alpha, fn, zeta, phi, config, variant, options,
-        more_options: as for :func:`simulate`.
+        design, config, variant, options, more: as for :func:`simulate`.
 
     Raises:
         ValueError: an input or option is invalid.
         RuntimeError: no limit cycle (a step failed, no period, or Newton
             did not converge), with the reason.
     """
-    inputs = (length, rho, alpha, fn, zeta, phi)
+    values = _design("limit_cycle", design, more)
     if isinstance(settle_steps, bool) or not isinstance(settle_steps, int) or settle_steps < 1:
         raise ValueError(f"settle_steps: {settle_steps!r} is invalid: must be an integer >= 1")
-    d = _rtw.limit_cycle(
-        *_native_args(inputs, config, variant, options, more_options), settle_steps
-    )
-    return LimitCycle(
-        period=d["period"],
-        fixed_point=tuple(d["fixed_point"]),
-        residual=d["residual"],
-        iterations=d["iterations"],
-        multipliers=tuple(complex(re, im) for re, im in d["multipliers"]),
-        floquet_max=d["floquet_max"],
-        stable=d["stable"],
-        label=d["label"],
-        step_times=tuple(d["step_times"]),
+    return _rtw.limit_cycle(
+        values, _path(config), _path(variant), _options(options, more), settle_steps
     )
 
 
 def modal(
-    length: float,
-    rho: float,
-    alpha: float,
-    fn: float,
-    zeta: float,
-    phi: float,
-    *,
+    *design: Design | float,
     config: Config | None = None,
     variant: Config | None = None,
     options: Mapping[str, Any] | None = None,
-    **more_options: Any,
+    **more: Any,
 ) -> Modes:
     """The eigen-frequencies of one design: S18's f_n, the approximate model's, the free star's.
 
@@ -580,19 +436,53 @@ def modal(
     and the normalization come from the options, as in a run.
 
     Args:
-        length, rho, alpha, fn, zeta, phi, config, variant, options,
-        more_options: as for :func:`simulate`.
+        design, config, variant, options, more: as for :func:`simulate`.
 
     Raises:
         ValueError: an input or option is invalid.
     """
-    inputs = (length, rho, alpha, fn, zeta, phi)
-    d = _rtw.modes(*_native_args(inputs, config, variant, options, more_options))
-    return Modes(
-        s18_hz=d["s18_hz"],
-        approx_hz=tuple(d["approx_hz"]),
-        approx_damped_hz=tuple(d["approx_damped_hz"]),
-        approx_damping_ratio=tuple(d["approx_damping_ratio"]),
-        star_hz=tuple(d["star_hz"]),
-        star_rigid_modes=d["star_rigid_modes"],
-    )
+    values = _design("modal", design, more)
+    return _rtw.modes(values, _path(config), _path(variant), _options(options, more))
+
+
+def label(
+    nlsp: float,
+    tlsp: float,
+    flight_steps: float,
+    triple_steps: float,
+    *,
+    options: Mapping[str, Any] | None = None,
+    **more: Any,
+) -> str:
+    """The label the model gives a stable gait: ``"skip"``, ``"walk"`` or ``"crawl"``.
+
+    Table S1's rule as rtw-model applies it (docs/model.md §5): flight
+    (``nlsp`` above ``labels.flight`` and ``flight_steps`` at least
+    ``labels.flight_steps``) makes a skip, else triple support likewise a
+    crawl, else a walk. The arguments are a scan row's columns of the same
+    names, so a stored stable row can be relabelled under other thresholds.
+
+    Args:
+        nlsp, tlsp: the gait window's fractions of time with no foot and
+            with three feet on the ground.
+        flight_steps, triple_steps: the shares of its steps with flight and
+            with triple support.
+        options, more: the ``labels.*`` thresholds over the defaults, as
+            for :func:`simulate` (``{"labels.flight_steps": 0.0}``).
+
+    Raises:
+        ValueError: an option is invalid (named, with its range).
+    """
+    return _rtw.label(nlsp, tlsp, flight_steps, triple_steps, _options(options, more))
+
+
+def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
+    """The Wilson score interval ``(lo, hi)`` of ``k`` successes in ``n`` trials, as fractions.
+
+    The interval of rtw-scan's summaries (``z`` = :data:`Z95`, 95 %);
+    ``(0.0, 1.0)`` when ``n`` is 0.
+
+    Raises:
+        ValueError: ``k`` > ``n``; OverflowError: a negative count.
+    """
+    return _rtw.wilson(k, n, z)

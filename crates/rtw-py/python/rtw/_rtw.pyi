@@ -1,31 +1,113 @@
-"""Type stubs of the native module ``rtw._rtw`` (crates/rtw-py/src/lib.rs).
+"""Type stubs of the native module ``rtw._rtw`` (crates/rtw-py/src).
 
-Private: use the documented functions of :mod:`rtw`. ``values`` are the six
-inputs (length, rho, alpha, fn, zeta, phi); ``sets`` are ``KEY=VALUE``
-option assignments as ``rtw-scan --set`` takes them.
+Private but for the classes, which :mod:`rtw` re-exports: use the documented
+functions of :mod:`rtw`. ``values`` are the six inputs (length, rho, alpha,
+fn, zeta, phi); ``options`` is the options dict (dotted keys or nested
+dicts), handed to the config layer as typed values.
+
+tests/test_types.py checks every class's fields here against the module's
+(``Outcome``'s against rtw-scan's row columns: names, order, types and
+nullability), and every function's parameters.
 """
 
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 import pyarrow
 
 __version__: str
+LABELS: tuple[str, ...]
+STABLE_LABELS: tuple[str, ...]
+FAILURE_LABELS: tuple[str, ...]
+Z95: float
+
+class Outcome:
+    sample_id: int
+    length: float
+    rho: float
+    alpha: float
+    fn: float
+    zeta: float
+    phi: float
+    m: float
+    l_c: float
+    inertia: float
+    r: float
+    k: float
+    c: float
+    outcome: str
+    failure: str | None
+    message: str | None
+    start: str | None
+    t_end: float | None
+    nlsp: float | None
+    slsp: float | None
+    dlsp: float | None
+    tlsp: float | None
+    window_steps: int | None
+    flight_steps: float | None
+    triple_steps: float | None
+    touchdowns: int | None
+    f_w: float | None
+    f_w_newfoot: float | None
+    speed: float | None
+    mu_required: float | None
+    slide_time: float | None
+    energy_initial: float | None
+    energy_last: float | None
+    energy_gravity_released: float | None
+    energy_impact_loss: float | None
+    energy_damping_loss: float | None
+    energy_friction_loss: float | None
+    energy_balance_error: float | None
+    period: int | None
+    floquet_max: float | None
+    cycle_residual: float | None
+    steps: int | None
+    rejected: int | None
+    rhs_evals: int | None
+    events: int | None
+    wall_time_s: float
+    def to_dict(self) -> dict[str, Any]: ...
+
+class LimitCycle:
+    period: int
+    fixed_point: tuple[float, ...]
+    residual: float
+    iterations: int
+    multipliers: tuple[complex, ...]
+    floquet_max: float
+    stable: bool
+    label: str
+    step_times: tuple[float, ...]
+    def to_dict(self) -> dict[str, Any]: ...
+
+class Modes:
+    s18_hz: float
+    approx_hz: tuple[float, ...]
+    approx_damped_hz: tuple[float, ...]
+    approx_damping_ratio: tuple[float, ...]
+    star_hz: tuple[float, ...]
+    star_rigid_modes: int
+    def to_dict(self) -> dict[str, Any]: ...
 
 def simulate(
-    values: list[float], config: str | None, variant: str | None, sets: list[str]
-) -> str: ...
+    values: list[float],
+    config: str | None,
+    variant: str | None,
+    options: Mapping[str, Any] | None,
+) -> Outcome: ...
 def trace(
     values: list[float],
     config: str | None,
     variant: str | None,
-    sets: list[str],
+    options: Mapping[str, Any] | None,
     limit: str,
-) -> tuple[str, pyarrow.Table]: ...
+) -> pyarrow.Table: ...
 def scan(
     path: str | None,
     text: str | None,
     variant: str | None,
-    sets: list[str],
+    options: Mapping[str, Any] | None,
     threads: int | None,
     progress: Callable[[int, int], object] | None = None,
 ) -> pyarrow.Table: ...
@@ -33,9 +115,20 @@ def limit_cycle(
     values: list[float],
     config: str | None,
     variant: str | None,
-    sets: list[str],
+    options: Mapping[str, Any] | None,
     settle_steps: int,
-) -> dict[str, Any]: ...
+) -> LimitCycle: ...
 def modes(
-    values: list[float], config: str | None, variant: str | None, sets: list[str]
-) -> dict[str, Any]: ...
+    values: list[float],
+    config: str | None,
+    variant: str | None,
+    options: Mapping[str, Any] | None,
+) -> Modes: ...
+def label(
+    nlsp: float,
+    tlsp: float,
+    flight_steps: float,
+    triple_steps: float,
+    options: Mapping[str, Any] | None,
+) -> str: ...
+def wilson(k: int, n: int, z: float) -> tuple[float, float]: ...

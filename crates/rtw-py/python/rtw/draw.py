@@ -1,6 +1,7 @@
 """The star's geometry and drawing, shared by the figures and the animation.
 
-Pure Python (numpy + matplotlib). A trace is any table with the columns
+Python (numpy + matplotlib; the outcome labels are rtw-model's, from the native
+module). A trace is any table with the columns
 `rtw-scan simulate --trace` writes (and `rtw.trace` returns): a
 `pyarrow.Table`, a polars or pandas DataFrame, or a mapping of column name to
 array. Columns are taken whole as numpy arrays; nothing loops over rows.
@@ -23,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ._rtw import FAILURE_LABELS, STABLE_LABELS
+
 RODS = "abc"
 # Outcome styles, shared by every figure.
 OUTCOME_COLOR = {
@@ -33,8 +36,9 @@ OUTCOME_COLOR = {
     "stall": "#666666",
     "diverged": "#000000",
 }
-STABLE = ("skip", "walk", "crawl")
-FAILED = ("collapse", "stall")
+# The labels as rtw-model defines them (Label::is_stable, Label::is_failure).
+STABLE = STABLE_LABELS
+FAILED = FAILURE_LABELS
 # contact_state = number of rods on the ground.
 STATE_NAMES = ("NLSP", "SLSP", "DLSP", "TLSP")
 STATE_COLOR = {"NLSP": "#e6ab02", "SLSP": "#1f78b4", "DLSP": "#33a02c", "TLSP": "#6a3d9a"}

@@ -10,14 +10,15 @@
 use crate::analysis::clusters::{
     CLUSTER_MAX_POINTS, ClusterTally, Failure, FailureClusters, FailureSample, cluster_failures,
 };
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
 use crate::io::destination::SUMMARY_MAX_BYTES;
 use crate::io::files::{self, write_atomic};
 use crate::io::metadata::{META_CONFIG, META_VERSION, META_WALL_TIME};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
-use crate::io::scan_files::{self, f64_column, i64_column, label_column};
+use crate::io::scan_files;
 use crate::io::scan_rows::label_index;
+use crate::io::table::{f64_column, i64_column, label_column};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_model::Label;
@@ -26,7 +27,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// z for a two-sided 95 % interval.
-const Z95: f64 = 1.959_963_984_540_054;
+pub const Z95: f64 = 1.959_963_984_540_054;
 
 /// The article's shares for the 1000-sample scan (supplementary, Section 2),
 /// in % of all samples.
@@ -35,8 +36,9 @@ pub(crate) const PAPER_SKIP: f64 = 35.9;
 pub(crate) const PAPER_WALK: f64 = 32.0;
 pub(crate) const PAPER_CRAWL: f64 = 5.8;
 
-/// Wilson score interval of a binomial proportion `k / n`, as fractions.
-pub(crate) fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
+/// Wilson score interval of a binomial proportion `k / n`, as fractions,
+/// at the normal quantile `z` ([`Z95`]: 95 %); `(0, 1)` when `n` is 0.
+pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
     if n == 0 {
         return (0.0, 1.0);
     }
@@ -233,7 +235,7 @@ pub(crate) struct Summary {
     pub(crate) version: String,
     pub(crate) seed: u64,
     pub(crate) samples: u64,
-    pub(crate) variant: Variant,
+    pub(crate) variant: ModelChoices,
     /// Whether this is the article's scan (its numbers are then given beside ours).
     pub(crate) paper_scan: bool,
     /// Per label: skip, walk, crawl, collapse, stall, diverged.
@@ -296,7 +298,7 @@ pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
         version: data.version.clone(),
         seed: data.config.seed,
         samples: n,
-        variant: Variant::of(&data.config.simulation),
+        variant: ModelChoices::of(&data.config.simulation),
         paper_scan: paper,
         outcomes,
         stable,
@@ -520,7 +522,7 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scan::progress::ProgressMode;
+    use crate::scan::progress::Silent;
     use crate::scan::run::{RunSettings, run_scan};
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
@@ -550,14 +552,13 @@ phi = { uniform = [0.05, 0.12] }
             threads: NonZeroUsize::new(2),
             resume: false,
             chunk_size: NonZeroUsize::new(4000).unwrap(),
-            progress: ProgressMode::Quiet,
             shard: None,
             force: false,
         };
         let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
             crate::fake::simulate(p, o, std::time::Duration::ZERO)
         };
-        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false)).unwrap();
+        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false), &Silent).unwrap();
         let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
         let collapses = data.counts[label_index(Label::Collapse)] as usize;
         let stalls = data.counts[label_index(Label::Stall)] as usize;

@@ -4,7 +4,7 @@
 //! them.
 
 use crate::bifurcation::sweep::{LABELS, PointRow, StepRow, Sweep};
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::io::destination::{self, Output};
 use crate::io::metadata::{
     FileKind, META_CYCLE, META_OPTIONS, META_PARAM, META_PARAMS, META_RECORD, META_TRANSIENT,
@@ -262,7 +262,7 @@ fn file_metadata(sweep: &Sweep, wall_time_s: f64) -> Result<Vec<KeyValue>> {
         kv(META_PARAM, sweep.param.name().into()),
         kv(META_PARAMS, serde_json::to_string(&sweep.base)?),
         kv(META_OPTIONS, toml::to_string(&sweep.options)?),
-        kv(META_VARIANT, Variant::of(&sweep.options).to_string()),
+        kv(META_VARIANT, ModelChoices::of(&sweep.options).to_string()),
         kv(META_CYCLE, format!("{:?}", sweep.cycle)),
         kv(META_TRANSIENT, sweep.transient.to_string()),
         kv(META_RECORD, sweep.record.to_string()),

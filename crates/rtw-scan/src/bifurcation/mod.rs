@@ -1,5 +1,5 @@
 //! Bifurcation diagrams: one parameter swept with continuation on the step
-//! map ([`rtw_model::cycles::stepmap`]), a step quantity recorded after transients,
+//! map ([`rtw_model::cycles::StepMap`]), a step quantity recorded after transients,
 //! and the limit cycle's Floquet multipliers at every value.
 //!
 //! At each value, in sweep order, the map starts from the previous value's

@@ -2,7 +2,7 @@
 //! changes and where the leading multiplier crosses the unit circle.
 
 use crate::bifurcation::sweep::{PointRow, Sweep};
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use std::fmt::Write as _;
 
 /// The bifurcation type a leading multiplier `μ` points to as it reaches the
@@ -57,7 +57,7 @@ pub(crate) fn summary_markdown(sweep: &Sweep, rows: &[PointRow], wall_time_s: f6
         sweep.record,
         sweep.cycle.method,
         sweep.cycle.rtol,
-        Variant::of(&sweep.options),
+        ModelChoices::of(&sweep.options),
     );
     let _ = writeln!(s);
     let _ = writeln!(

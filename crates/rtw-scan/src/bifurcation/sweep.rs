@@ -7,9 +7,9 @@ use crate::config::params::SweepParam;
 use crate::config::validate_options;
 use anyhow::{Result, bail};
 use hybrid_ode::limit;
-use rtw_model::cycles::limit_cycle::{CycleError, LimitCycle};
-use rtw_model::cycles::section::SectionPoint;
-use rtw_model::cycles::stepmap::{CycleOptions, Step, StepError, StepMap};
+use rtw_model::cycles::{
+    CycleError, CycleOptions, LimitCycle, SectionPoint, Step, StepError, StepMap,
+};
 use rtw_model::{Label, Options, Params};
 use std::time::Instant;
 

@@ -15,7 +15,7 @@ pub(super) struct ClusterArgs {
     /// A samples.parquet written by `rtw-scan run`.
     samples: PathBuf,
     /// Number of clusters [default: the config's cluster.k].
-    #[arg(long, value_parser = super::positive)]
+    #[arg(long, value_parser = super::values::positive)]
     k: Option<NonZeroUsize>,
     /// Print JSON instead of a table.
     #[arg(long)]
@@ -34,7 +34,7 @@ pub(super) struct SummaryArgs {
     /// A samples.parquet written by `rtw-scan run`.
     samples: PathBuf,
     /// Number of failure clusters [default: the config's cluster.k].
-    #[arg(long, value_parser = super::positive)]
+    #[arg(long, value_parser = super::values::positive)]
     k: Option<NonZeroUsize>,
     /// Print the summary as JSON (what summary.json holds) instead of Markdown.
     #[arg(long)]

@@ -10,7 +10,7 @@ use crate::io::files::write_atomic;
 use anyhow::Result;
 use clap::Args;
 use rtw_model::Param;
-use rtw_model::cycles::stepmap::Section;
+use rtw_model::cycles::Section;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;

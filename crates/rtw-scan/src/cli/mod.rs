@@ -1,28 +1,26 @@
 //! The command line, a thin layer: clap arguments → validated settings →
 //! calls into config, scan, io, analysis and bifurcation. One file per
-//! subcommand family; this one holds the command tree, the exit codes and
-//! the signal handling.
+//! subcommand family; this one holds the command tree and the exit codes,
+//! `signal` the signal handling, `values` the parsers of flag values, and
+//! `progress` the progress shown on stderr.
 
 mod analysis;
 mod bifurcation;
 mod continuation;
+mod progress;
 mod run;
+mod signal;
 mod simulate;
+mod values;
 
-use crate::io::files;
 use analysis::{ClusterArgs, SummaryArgs};
-use anyhow::{Context, Result};
 use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
 use continuation::ContinuationArgs;
 use run::{MergeArgs, RunArgs};
+use signal::install_signal_handler;
 use simulate::SimulateArgs;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Exit code of a command stopped by SIGINT (Ctrl-C), SIGTERM (what Slurm
-/// and `kill` send) or SIGHUP (a closed terminal): 128 + SIGINT, for all three.
-pub(super) const EXIT_INTERRUPTED: u8 = 130;
 
 /// The exit codes every command documents in its `--help`.
 const EXIT_CODES: &str = "Exit status:\n  \
@@ -157,43 +155,6 @@ pub fn main() -> ExitCode {
         eprintln!("error: {e:#}");
         ExitCode::FAILURE
     })
-}
-
-/// Parses a count that must be at least 1 (`--threads`, `--k`) with the
-/// rule in the message: clap's own parser of `NonZeroUsize` says only
-/// "number would be zero for non-zero type".
-pub(super) fn positive(s: &str) -> Result<std::num::NonZeroUsize, String> {
-    s.trim()
-        .parse::<usize>()
-        .ok()
-        .and_then(std::num::NonZeroUsize::new)
-        .ok_or_else(|| format!("{s} is invalid: must be an integer >= 1"))
-}
-
-/// Set by the first signal of a `run`, which then stops after the samples
-/// in flight.
-pub(super) static STOP: AtomicBool = AtomicBool::new(false);
-/// Whether the command in progress stops gracefully on a first signal
-/// (`run`); every other command removes its temporary files and exits.
-pub(super) static GRACEFUL: AtomicBool = AtomicBool::new(false);
-
-/// SIGINT, SIGTERM and SIGHUP (ctrlc's `termination` feature) all end a
-/// command the same way, with [`EXIT_INTERRUPTED`].
-fn install_signal_handler() -> Result<()> {
-    ctrlc::set_handler(|| {
-        if GRACEFUL.load(Ordering::SeqCst) {
-            if !STOP.swap(true, Ordering::SeqCst) {
-                eprintln!(
-                    "rtw-scan: interrupted: finishing the samples in flight (interrupt again to quit at once)"
-                );
-                return;
-            }
-            eprintln!("rtw-scan: second interrupt, exiting now");
-        }
-        files::remove_live_files();
-        std::process::exit(EXIT_INTERRUPTED.into());
-    })
-    .context("cannot install the signal handler")
 }
 
 #[cfg(test)]

@@ -1,12 +1,12 @@
 //! `run` and `merge`: a scan, whole or in shards, and its summary.
 
-use super::{EXIT_INTERRUPTED, GRACEFUL, STOP};
+use super::progress::{ProgressMode, StderrProgress};
+use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::analysis::report;
 use crate::config::{self, ScanConfig};
 use crate::hash::fnv1a64;
 use crate::io::files;
 use crate::scan::checkpoint::Layout;
-use crate::scan::progress::ProgressMode;
 use crate::scan::run::{self, RunSettings, RunStatus};
 use crate::scan::shard::{self, Shard};
 use crate::scan::space;
@@ -27,7 +27,7 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
-    #[arg(long, value_name = "N", value_parser = super::positive)]
+    #[arg(long, value_name = "N", value_parser = super::values::positive)]
     threads: Option<NonZeroUsize>,
     /// Layer a model variant file (configs/variants/*.toml: name, description, [simulation]) over the
     /// config's [simulation] table; the scan is named CONFIG-NAME+VARIANT-NAME.
@@ -51,7 +51,7 @@ pub(super) struct RunArgs {
     #[arg(long)]
     quiet: bool,
     /// Rows per chunk and row group (a resumed run keeps its own).
-    #[arg(long, hide = true, value_name = "N", value_parser = super::positive,
+    #[arg(long, hide = true, value_name = "N", value_parser = super::values::positive,
           default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
     /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
@@ -117,22 +117,22 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
         threads: a.threads,
         resume: a.resume,
         chunk_size: a.chunk_size,
-        progress: if a.quiet {
-            ProgressMode::Quiet
-        } else {
-            ProgressMode::Auto
-        },
         shard: a.shard,
         force: a.force,
     };
+    let progress = StderrProgress::new(if a.quiet {
+        ProgressMode::Quiet
+    } else {
+        ProgressMode::Auto
+    });
     #[cfg(feature = "fake-sim")]
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
         let sim = |p: &_, o: &_| crate::fake::simulate(p, o, delay);
-        let status = run::run_scan(&cfg, &settings, &sim, &STOP)?;
+        let status = run::run_scan(&cfg, &settings, &sim, &STOP, &progress)?;
         return finish_run(&a, &out, status);
     }
-    let status = run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP)?;
+    let status = run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP, &progress)?;
     finish_run(&a, &out, status)
 }
 

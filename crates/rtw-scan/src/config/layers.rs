@@ -3,7 +3,7 @@
 //! KEY=VALUE` overrides over both; then [`super::parse`] validates the
 //! result. Every error names the file and the key path.
 
-use super::raw::{from_value, parse_table, read_text};
+use super::raw::{from_value, option_range, parse_table, read_text, set_path};
 use super::{ScanConfig, options_from_table, parse_value};
 use anyhow::{Context, Result, anyhow, bail};
 use rtw_model::Options;
@@ -16,7 +16,7 @@ use std::path::Path;
 /// under every variant without copying its `[params]`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawVariant {
+struct VariantFile {
     name: String,
     #[serde(default)]
     #[allow(dead_code)] // documentation for the reader of the file
@@ -25,11 +25,41 @@ struct RawVariant {
     simulation: toml::Table,
 }
 
+/// The top layer of options, over a config's `[simulation]` table and a
+/// variant's: the command line's `--set` assignments, or typed values (the
+/// Python package's `options=` dict, converted from Python objects without
+/// passing through text).
+#[derive(Clone, Copy, Debug)]
+pub enum Overrides<'a> {
+    /// `KEY=VALUE` assignments, in order, each read by [`apply_set`].
+    Sets(&'a [String]),
+    /// Values by dotted key (`contact.mu`), in order; a later key wins.
+    Values(&'a [(String, toml::Value)]),
+}
+
+impl Overrides<'_> {
+    fn is_empty(&self) -> bool {
+        match self {
+            Overrides::Sets(s) => s.is_empty(),
+            Overrides::Values(v) => v.is_empty(),
+        }
+    }
+}
+
 /// Loads a scan config, layers a variant file's `[simulation]` keys over its
 /// own (the variant wins; the scan is then named `NAME+VARIANT`), then the
 /// `--set KEY=VALUE` overrides, and validates the result. Errors name the
 /// file and the key.
 pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
+    load_layered_with(path, variant, Overrides::Sets(sets))
+}
+
+/// [`load_layered`] with either kind of [`Overrides`].
+pub fn load_layered_with(
+    path: &Path,
+    variant: Option<&Path>,
+    sets: Overrides<'_>,
+) -> Result<ScanConfig> {
     let (table, simulation) = read_split(path)?;
     let stem = path
         .file_stem()
@@ -43,17 +73,26 @@ pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Res
 /// Python given TOML): a variant's name is appended to the config's `name`
 /// (or to `scan` when it has none).
 pub fn parse_layered(text: &str, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
+    parse_layered_with(text, variant, Overrides::Sets(sets))
+}
+
+/// [`parse_layered`] with either kind of [`Overrides`].
+pub fn parse_layered_with(
+    text: &str,
+    variant: Option<&Path>,
+    sets: Overrides<'_>,
+) -> Result<ScanConfig> {
     let (table, simulation) = split_simulation(parse_table(text)?).context("config text")?;
     layered(table, simulation, "scan", variant, sets)
         .with_context(|| format!("{} text", layered_what(variant, sets)))
 }
 
 /// How a layered config is named in errors.
-fn layered_what(variant: Option<&Path>, sets: &[String]) -> &'static str {
-    if variant.is_some() || !sets.is_empty() {
-        "config (with variant and --set)"
-    } else {
-        "config"
+fn layered_what(variant: Option<&Path>, sets: Overrides<'_>) -> &'static str {
+    match sets {
+        _ if variant.is_none() && sets.is_empty() => "config",
+        Overrides::Sets(_) => "config (with variant and --set)",
+        Overrides::Values(_) => "config (with variant and options)",
     }
 }
 
@@ -64,7 +103,7 @@ fn layered(
     mut simulation: toml::Table,
     stem: &str,
     variant: Option<&Path>,
-    sets: &[String],
+    sets: Overrides<'_>,
 ) -> Result<ScanConfig> {
     let suffix = layer_variant_and_sets(&mut simulation, variant, sets)?;
     table.insert("simulation".into(), simulation.into());
@@ -79,24 +118,38 @@ fn layered(
 }
 
 /// Layers a variant file's `[simulation]` keys (the variant wins), then the
-/// `--set KEY=VALUE` overrides, over the `[simulation]` table `simulation`;
-/// returns the variant's name. Errors name the file and the key.
+/// overrides, over the `[simulation]` table `simulation`; returns the
+/// variant's name. Errors name the file and the key.
 fn layer_variant_and_sets(
     simulation: &mut toml::Table,
     variant: Option<&Path>,
-    sets: &[String],
+    sets: Overrides<'_>,
 ) -> Result<Option<String>> {
     let mut name = None;
     if let Some(vpath) = variant {
         let vt = parse_table(&read_text(vpath, "variant")?)
             .with_context(|| format!("variant {}", vpath.display()))?;
-        let v: RawVariant = from_value(toml::Value::Table(vt), "")
+        let v: VariantFile = from_value(toml::Value::Table(vt), "")
             .with_context(|| format!("variant {}", vpath.display()))?;
         merge_tables(simulation, v.simulation);
         name = Some(v.name);
     }
-    for s in sets {
-        apply_set(simulation, s)?;
+    match sets {
+        Overrides::Sets(sets) => {
+            for s in sets {
+                apply_set(simulation, s)?;
+            }
+        }
+        Overrides::Values(values) => {
+            for (key, value) in values {
+                if key.is_empty() || key.split('.').any(str::is_empty) {
+                    bail!(
+                        "options: {key:?} is not an option key (a dotted name such as contact.mu)"
+                    );
+                }
+                set_path(simulation, key, value.clone()).map_err(|e| anyhow!("options: {e}"))?;
+            }
+        }
     }
     Ok(name)
 }
@@ -109,6 +162,15 @@ pub fn simulation_options(
     config_file: Option<&Path>,
     variant: Option<&Path>,
     sets: &[String],
+) -> Result<Options> {
+    simulation_options_with(config_file, variant, Overrides::Sets(sets))
+}
+
+/// [`simulation_options`] with either kind of [`Overrides`].
+pub fn simulation_options_with(
+    config_file: Option<&Path>,
+    variant: Option<&Path>,
+    sets: Overrides<'_>,
 ) -> Result<Options> {
     let mut table = match config_file {
         Some(path) => read_split(path)?.1,
@@ -184,24 +246,6 @@ pub fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
     set_path(table, key, parsed).map_err(|e| anyhow!("--set {e}"))
 }
 
-/// Sets the dotted `key` (`contact.mu`) of `table` to `value`, making the
-/// tables on the way; the error names the key and the part that is not a table.
-fn set_path(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<()> {
-    let parts: Vec<&str> = key.split('.').collect();
-    let (last, path) = parts.split_last().expect("split yields at least one part");
-    let mut t = table;
-    for (depth, part) in path.iter().enumerate() {
-        let entry = t
-            .entry(part.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        t = entry
-            .as_table_mut()
-            .ok_or_else(|| anyhow!("{key}: `{}` is not a table", parts[..=depth].join(".")))?;
-    }
-    t.insert(last.to_string(), value);
-    Ok(())
-}
-
 /// Whether `literal` is a number written beyond what a 64-bit float holds
 /// (`1e400` reads as inf, `1e-400` as 0): TOML refuses it, and taken as a
 /// string it would be refused as "invalid type: string".
@@ -213,23 +257,6 @@ fn beyond_f64(literal: &str) -> bool {
     let spelled_inf = literal.to_ascii_lowercase().contains("inf");
     (v.is_infinite() && !spelled_inf)
         || (v == 0.0 && mantissa.contains(|c: char| ('1'..='9').contains(&c)))
-}
-
-/// The valid range of the `[simulation]` option `key` (`t_max`,
-/// `contact.mu`) in [`Options::validate`]'s words; `None` for a key without
-/// one (a choice or a flag, whose own message lists what it takes). Found by
-/// validating the default options with the key set to a value no range
-/// holds (NaN, or 0 for an integer key), so the ranges live in rtw-model only.
-pub(crate) fn option_range(key: &str) -> Option<&'static str> {
-    [toml::Value::Float(f64::NAN), toml::Value::Integer(0)]
-        .into_iter()
-        .find_map(|probe| {
-            let mut table = toml::Table::new();
-            set_path(&mut table, key, probe).ok()?;
-            let options: Options = toml::Value::Table(table).try_into().ok()?;
-            let e = options.validate().err()?;
-            (e.field == key).then_some(e.range)
-        })
 }
 
 #[cfg(test)]
@@ -314,6 +341,41 @@ mod tests {
             parse_layered("simulation = 1\n", None, &[]).unwrap_err()
         );
         assert!(e.contains("`simulation` is not a table"), "{e}");
+    }
+
+    #[test]
+    fn typed_values_layer_as_the_sets_do() {
+        let sets = [
+            "contact.mu=0.8".to_string(),
+            "t_max=5.5".into(),
+            "method=rk4".into(),
+        ];
+        let values = [
+            ("contact.mu".to_string(), toml::Value::Float(0.8)),
+            ("t_max".to_string(), toml::Value::Float(5.5)),
+            ("method".to_string(), toml::Value::String("rk4".into())),
+        ];
+        let from_sets = simulation_options(None, None, &sets).unwrap();
+        let from_values = simulation_options_with(None, None, Overrides::Values(&values)).unwrap();
+        assert_eq!(
+            toml::to_string(&from_sets).unwrap(),
+            toml::to_string(&from_values).unwrap()
+        );
+        assert_eq!(from_values.t_max, 5.5);
+        let bad = |key: &str, value: toml::Value| {
+            let values = [(key.to_string(), value)];
+            format!(
+                "{:#}",
+                simulation_options_with(None, None, Overrides::Values(&values)).unwrap_err()
+            )
+        };
+        let e = bad("contact..mu", toml::Value::Float(0.8));
+        assert!(e.contains("\"contact..mu\" is not an option key"), "{e}");
+        let e = bad("contact.mu", toml::Value::Float(-1.0));
+        assert!(e.contains("simulation.contact.mu: -1 is invalid"), "{e}");
+        // A string is a string: no TOML read of it.
+        let e = bad("t_max", toml::Value::String("5".into()));
+        assert!(e.contains("simulation.t_max"), "{e}");
     }
 
     #[test]

@@ -36,8 +36,8 @@ pub(crate) mod variant;
 use crate::hash::fnv1a64;
 use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
-use params::Input;
 use raw::{from_value_ranged, parse_table, read_text};
+use rtw_model::Param;
 use rtw_model::{Num, Options};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -48,7 +48,7 @@ use std::path::Path;
 /// memory or disk. (`sample_id` itself could count to 2⁶³.)
 pub(crate) const MAX_ROWS: u64 = 1_000_000_000_000;
 
-/// The six parameter axes, indexed like [`Input::ALL`].
+/// The six parameter axes, indexed like [`Param::ALL`].
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawParams {
@@ -99,7 +99,7 @@ pub struct ScanConfig {
     pub seed: u64,
     /// Random draws per grid point.
     pub samples: u64,
-    /// Parameter axes, indexed like [`Input::ALL`].
+    /// Parameter axes, indexed like [`Param::ALL`].
     pub params: [Axis; 6],
     /// `[cluster]`: k-means of the failures.
     pub cluster: ClusterConfig,
@@ -140,8 +140,7 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
         );
     }
     let raw: RawConfig = from_value_ranged(toml::Value::Table(table), "", |path| {
-        path.strip_prefix("simulation.")
-            .and_then(layers::option_range)
+        path.strip_prefix("simulation.").and_then(raw::option_range)
     })?;
     if raw.samples < 1 || raw.samples as u64 > MAX_ROWS {
         bail!(
@@ -165,7 +164,7 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
     validate_options(&raw.simulation, "simulation")?;
     let p = raw.params;
     let params = [p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi];
-    for (input, axis) in Input::ALL.into_iter().zip(&params) {
+    for (input, axis) in Param::ALL.into_iter().zip(&params) {
         validate_axis(input, axis)?;
     }
     let cfg = ScanConfig {
@@ -206,13 +205,12 @@ pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {
 /// Deserializes a `[simulation]` table into validated [`Options`]; an
 /// unknown key or a bad value is named as `prefix.key`.
 pub fn options_from_table(table: toml::Table, prefix: &str) -> Result<Options> {
-    let options: Options =
-        from_value_ranged(toml::Value::Table(table), prefix, layers::option_range)?;
+    let options: Options = from_value_ranged(toml::Value::Table(table), prefix, raw::option_range)?;
     validate_options(&options, prefix)?;
     Ok(options)
 }
 
-fn validate_axis(input: Input, axis: &Axis) -> Result<()> {
+fn validate_axis(input: Param, axis: &Axis) -> Result<()> {
     let key = input.name();
     let check = |value: f64, at: &str| {
         input.check(value).map_err(|e| {
@@ -278,7 +276,7 @@ impl ScanConfig {
 
     /// `key n × key n …` of the grid axes, for messages.
     fn grid_counts(&self) -> String {
-        Input::ALL
+        Param::ALL
             .iter()
             .zip(&self.params)
             .filter_map(|(i, a)| a.grid_len().map(|n| format!("{} {n}", i.name())))
@@ -309,7 +307,7 @@ impl ScanConfig {
         }
         t.insert("seed".into(), toml::Value::Integer(self.seed as i64));
         t.insert("samples".into(), toml::Value::Integer(self.samples as i64));
-        let params: toml::Table = Input::ALL
+        let params: toml::Table = Param::ALL
             .iter()
             .zip(&self.params)
             .map(|(i, a)| (i.name().to_string(), a.to_toml()))
@@ -468,6 +466,12 @@ phi = { uniform = [0.05, 0.3] }
 "#;
         assert!(parse(text).unwrap().is_paper_scan());
         assert!(!parse(BASE).unwrap().is_paper_scan());
+    }
+
+    #[test]
+    fn config_hash_is_the_fnv1a64_of_the_text_in_16_hex_digits() {
+        // FNV-1a 64 of "a" (the FNV test suite of Fowler, Noll and Vo).
+        assert_eq!(config_hash("a"), "af63dc4c8601ec8c");
     }
 
     #[test]

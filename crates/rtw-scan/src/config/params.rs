@@ -1,20 +1,17 @@
-//! The parameter vocabulary of rtw-scan, in one place: the six inputs a
-//! scan samples ([`Input`], the `[params]` keys and the first Parquet
-//! columns) and the parameters a bifurcation sweep can vary ([`SweepParam`]:
+//! The parameter vocabulary of rtw-scan, in one place: the six parameters
+//! a scan samples (rtw-model's [`Param`], the `[params]` keys and the first
+//! Parquet columns) and the parameters a bifurcation sweep can vary ([`SweepParam`]:
 //! the inputs and `s`). Config parsing, `--set`, sweeps and the checks of
 //! values read back from files all name, read, write and validate a
 //! parameter through these types.
 //!
-//! The inputs are rtw-model's [`rtw_model::Param`] (their names, ranges and
-//! checks live there only); `s` is checked through [`Options::validate`].
+//! A design's six parameters are rtw-model's [`Param`], under the one name
+//! the model, the paper (docs/model.md §1, "Parameters") and the `[params]`
+//! table use (their names, ranges and checks live there only); `s` is
+//! checked through [`Options::validate`].
 
 use anyhow::{Result, bail};
-use rtw_model::{Num, Options, ParamError, Params};
-
-/// One of the six inputs of docs/model.md §1: rtw-model's own vocabulary
-/// (name, get, set, valid range), in the order used everywhere (grid
-/// product, sampling, columns, the index of `ScanConfig::params`).
-pub use rtw_model::Param as Input;
+use rtw_model::{Num, Options, Param, ParamError, Params};
 
 /// The six inputs (L, ρ, α, f_n, ζ, φ) as validated [`Params`]; an invalid
 /// one is named `{prefix}{name}` (`--alpha` on the command line, `alpha`
@@ -35,8 +32,8 @@ pub fn checked_params(values: [f64; 6], prefix: &str) -> Result<Params> {
 /// `s`, the strings' rest-length ratio (`strings.rest_length_ratio`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SweepParam {
-    /// One of the six inputs.
-    Input(Input),
+    /// One of the six parameters of a design.
+    Param(Param),
     /// `strings.rest_length_ratio`, named `s`.
     RestLengthRatio,
 }
@@ -44,12 +41,12 @@ pub enum SweepParam {
 impl SweepParam {
     /// Every sweepable parameter, the inputs first.
     pub const ALL: [SweepParam; 7] = [
-        Self::Input(Input::Length),
-        Self::Input(Input::Rho),
-        Self::Input(Input::Alpha),
-        Self::Input(Input::Fn),
-        Self::Input(Input::Zeta),
-        Self::Input(Input::Phi),
+        Self::Param(Param::Length),
+        Self::Param(Param::Rho),
+        Self::Param(Param::Alpha),
+        Self::Param(Param::Fn),
+        Self::Param(Param::Zeta),
+        Self::Param(Param::Phi),
         Self::RestLengthRatio,
     ];
 
@@ -67,7 +64,7 @@ impl SweepParam {
     /// The name of `--param` and of the sweep files' `param` column.
     pub fn name(self) -> &'static str {
         match self {
-            Self::Input(i) => i.name(),
+            Self::Param(i) => i.name(),
             Self::RestLengthRatio => "s",
         }
     }
@@ -83,7 +80,7 @@ impl SweepParam {
     ) -> Result<(Params, Options), ParamError> {
         let (mut p, mut o) = (*base, *options);
         match self {
-            Self::Input(i) => i.set(&mut p, v),
+            Self::Param(i) => i.set(&mut p, v),
             Self::RestLengthRatio => o.strings.rest_length_ratio = v,
         }
         p.validate()?;
@@ -113,11 +110,11 @@ mod tests {
     #[test]
     fn inputs_read_back_what_they_set_and_name_the_params_fields() {
         let mut p = Params::fig7a();
-        for (k, i) in Input::ALL.into_iter().enumerate() {
+        for (k, i) in Param::ALL.into_iter().enumerate() {
             i.set(&mut p, 0.01 * (k + 1) as f64);
         }
         assert_eq!(
-            Input::ALL.map(|i| i.get(&p)),
+            Param::ALL.map(|i| i.get(&p)),
             [0.01, 0.02, 0.03, 0.04, 0.05, 0.06]
         );
         assert_eq!(
@@ -125,9 +122,9 @@ mod tests {
             (0.01, 0.02, 0.03, 0.04, 0.05, 0.06)
         );
         // An out-of-range value is named by rtw-model with the field's name.
-        let e = Input::Phi.check(2.0).unwrap_err();
+        let e = Param::Phi.check(2.0).unwrap_err();
         assert_eq!(e.field, "phi");
-        assert!(Input::Alpha.check(0.2).is_ok());
+        assert!(Param::Alpha.check(0.2).is_ok());
     }
 
     #[test]

@@ -1,8 +1,10 @@
 //! The lowest layer of a config: a file read as UTF-8 text, the text as a
-//! TOML table, a table deserialized with every error naming its key path.
+//! TOML table, a table deserialized with every error naming its key path,
+//! a dotted key set in a table, and the valid range of a `[simulation]` key.
 
 use crate::io::files::{CONFIG_MAX_BYTES, read_limited};
 use anyhow::{Result, anyhow};
+use rtw_model::Options;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -65,4 +67,39 @@ pub(crate) fn from_value_ranged<'de, T: Deserialize<'de>>(
             anyhow!("{key}: {inner}")
         }
     })
+}
+
+/// Sets the dotted `key` (`contact.mu`) of `table` to `value`, making the
+/// tables on the way; the error names the key and the part that is not a table.
+pub(crate) fn set_path(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<()> {
+    let parts: Vec<&str> = key.split('.').collect();
+    let (last, path) = parts.split_last().expect("split yields at least one part");
+    let mut t = table;
+    for (depth, part) in path.iter().enumerate() {
+        let entry = t
+            .entry(part.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        t = entry
+            .as_table_mut()
+            .ok_or_else(|| anyhow!("{key}: `{}` is not a table", parts[..=depth].join(".")))?;
+    }
+    t.insert(last.to_string(), value);
+    Ok(())
+}
+
+/// The valid range of the `[simulation]` option `key` (`t_max`,
+/// `contact.mu`) in [`Options::validate`]'s words; `None` for a key without
+/// one (a choice or a flag, whose own message lists what it takes). Found by
+/// validating the default options with the key set to a value no range
+/// holds (NaN, or 0 for an integer key), so the ranges live in rtw-model only.
+pub(crate) fn option_range(key: &str) -> Option<&'static str> {
+    [toml::Value::Float(f64::NAN), toml::Value::Integer(0)]
+        .into_iter()
+        .find_map(|probe| {
+            let mut table = toml::Table::new();
+            set_path(&mut table, key, probe).ok()?;
+            let options: Options = toml::Value::Table(table).try_into().ok()?;
+            let e = options.validate().err()?;
+            (e.field == key).then_some(e.range)
+        })
 }

@@ -9,7 +9,7 @@ use std::fmt;
 
 /// The model variant of docs/model.md §9 that a run used: every open choice.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub(crate) struct Variant {
+pub(crate) struct ModelChoices {
     pub(crate) rest_length_ratio: f64,
     /// Friction coefficient; `inf` (no slip) is `null` in JSON, which has no
     /// infinity (the one rule of every JSON rtw-scan writes: a non-finite
@@ -28,7 +28,7 @@ pub(crate) struct Variant {
     pub(crate) t_max: f64,
 }
 
-impl Variant {
+impl ModelChoices {
     pub(crate) fn of(o: &Options) -> Self {
         Self {
             rest_length_ratio: o.strings.rest_length_ratio,
@@ -56,7 +56,7 @@ pub(crate) fn enum_name<T: Serialize>(v: &T) -> String {
     }
 }
 
-impl fmt::Display for Variant {
+impl fmt::Display for ModelChoices {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
@@ -92,7 +92,7 @@ mod tests {
 
     #[test]
     fn variant_names_every_choice() {
-        let v = Variant::of(&Options::literal()).to_string();
+        let v = ModelChoices::of(&Options::literal()).to_string();
         for s in [
             "rest_length_ratio=0",
             "mu=inf",

@@ -4,7 +4,7 @@
 //! their metadata.
 
 use super::{Continuation, Result2, critical, end_name, kind_name};
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::io::destination::{self, Output, companion};
 use crate::io::metadata::{
     FileKind, META_CONT_CURVE, META_CONT_PARAM, META_CYCLE, META_OPTIONS, META_PARAMS,
@@ -487,7 +487,7 @@ fn file_metadata(c: &Continuation, wall_time_s: f64) -> Result<Vec<KeyValue>> {
         kv(META_CONT_PARAM, c.param.name().into()),
         kv(META_PARAMS, serde_json::to_string(&c.base)?),
         kv(META_OPTIONS, toml::to_string(&c.options)?),
-        kv(META_VARIANT, Variant::of(&c.options).to_string()),
+        kv(META_VARIANT, ModelChoices::of(&c.options).to_string()),
         kv(META_CYCLE, format!("{:?}", c.cycle)),
         kv(META_WALL_TIME, format!("{wall_time_s:.3}")),
     ];

@@ -1,6 +1,6 @@
 //! Continuation diagrams: a gait's limit cycle followed in one input by
 //! pseudo-arclength continuation on the step map
-//! ([`rtw_model::cycles::continuation::diagram`]), stable and unstable, with
+//! ([`rtw_model::cycles::diagram`]), stable and unstable, with
 //! its bifurcations located on the Floquet multipliers and the period-2
 //! branches born at its period doublings; and, optionally, each fold or
 //! period doubling found continued in a second input: the boundary of the
@@ -22,10 +22,9 @@ use anyhow::{Result, anyhow, bail};
 use hybrid_ode::continuation::{self, Curve, End, Kind, Options as ContOptions, Options2};
 use hybrid_ode::limit;
 use nalgebra::{Complex, DMatrix};
-use rtw_model::cycles::continuation::{
-    Diagram, DiagramOptions, StepMapFamily, StepMapFamily2, diagram,
+use rtw_model::cycles::{
+    CycleOptions, Diagram, DiagramOptions, StepMap, StepMapFamily, StepMapFamily2, diagram,
 };
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
 use rtw_model::{Num, Options, Param, Params};
 
 /// A second input and its range: the plane of the two-parameter curves.

@@ -3,7 +3,7 @@
 
 use super::Continuation;
 use super::files::Rows;
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use std::fmt::Write as _;
 
 /// The ranges of value over which a branch's points are stable, in branch
@@ -54,7 +54,7 @@ pub(crate) fn summary_markdown(
         c.param.get(&c.base),
         c.cycle.method,
         c.cycle.rtol,
-        Variant::of(&c.options),
+        ModelChoices::of(&c.options),
         wall_time_s,
     );
     s.push('\n');

@@ -2,7 +2,7 @@
 //! keys, a scan's metadata, the kind of file they tell, and the refusal to
 //! write one kind of file over another.
 
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
 use anyhow::{Result, bail};
 use arrow_array::RecordBatch;
@@ -17,7 +17,7 @@ pub(crate) const META_CONFIG: &str = "rtw.config";
 pub(crate) const META_VERSION: &str = "rtw.version";
 /// Metadata key: the scan seed.
 pub(crate) const META_SEED: &str = "rtw.seed";
-/// Metadata key: one-line model variant summary ([`crate::config::Variant`]).
+/// Metadata key: one-line model variant summary ([`crate::config::variant::ModelChoices`]).
 pub(crate) const META_VARIANT: &str = "rtw.variant";
 /// Metadata key: seconds spent computing the rows (summed over resumed
 /// sessions and, in a merged file, over the shards).
@@ -148,7 +148,7 @@ pub(crate) fn scan_metadata(cfg: &ScanConfig) -> Vec<KeyValue> {
         kv(META_CONFIG_HASH, cfg.hash()),
         kv(META_VERSION, VERSION.to_string()),
         kv(META_SEED, cfg.seed.to_string()),
-        kv(META_VARIANT, Variant::of(&cfg.simulation).to_string()),
+        kv(META_VARIANT, ModelChoices::of(&cfg.simulation).to_string()),
     ]
 }
 

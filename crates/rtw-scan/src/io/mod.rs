@@ -5,6 +5,7 @@
 //! |---|---|
 //! | `table` | a file's columns listed once (name, unit, meaning, getter) → schema and batches |
 //! | `scan_rows` | the scan row and its table; its JSON and text forms |
+//! | `robustness_columns` | the optional robustness columns of a scan (`robustness.*`) |
 //! | `scan_files` | scan batches read back and checked; chunks and parts concatenated |
 //! | `parquet` | Parquet files written atomically with a content hash, read back verified |
 //! | `content_hash` | the hash of a table's values, independent of batches and pages, and of its metadata |
@@ -20,6 +21,7 @@ pub(crate) mod destination;
 pub(crate) mod files;
 pub(crate) mod metadata;
 pub(crate) mod parquet;
+pub(crate) mod robustness_columns;
 pub(crate) mod scan_files;
 pub(crate) mod scan_rows;
 pub(crate) mod table;
@@ -27,7 +29,7 @@ pub(crate) mod trace;
 
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
-pub use scan_rows::schema;
+pub use scan_rows::{ColumnKind, Kind, Value, row_columns, schema};
 pub use trace::{
     TraceNames, check_trace_size, parse_size, trace_batch, trace_metadata, trace_schema,
 };

@@ -9,7 +9,7 @@
 //! strings) are read too ([`open`]).
 
 use crate::config;
-use crate::config::variant::Variant;
+use crate::config::variant::ModelChoices;
 use crate::io::content_hash::{ContentHash, metadata_hash};
 use crate::io::files::{Temp, temp_file_for};
 use crate::io::metadata::{
@@ -291,7 +291,7 @@ fn check_metadata(path: &Path, meta: &BTreeMap<String, String>) -> Result<()> {
     };
     let expect = [
         (META_SEED, cfg.seed.to_string()),
-        (META_VARIANT, Variant::of(&cfg.simulation).to_string()),
+        (META_VARIANT, ModelChoices::of(&cfg.simulation).to_string()),
     ];
     for (key, want) in expect {
         if let Some(got) = meta.get(key).filter(|got| **got != want) {

@@ -2,16 +2,17 @@
 //! and the concatenation of a run's chunks or a scan's shard parts into one
 //! file.
 
-use crate::config::params::Input;
 use crate::io::metadata::META_WALL_TIME;
 use crate::io::parquet::{self, ParquetFile, READ_BATCH_ROWS};
+use crate::io::robustness_columns::schema_of_files;
 use crate::io::scan_rows::{COLUMNS, schema};
+use crate::io::table::{f64_column, i64_column};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::{Context, Result, anyhow, bail};
+use arrow_array::RecordBatch;
 use arrow_array::cast::AsArray;
-use arrow_array::types::{Float64Type, Int32Type, Int64Type};
-use arrow_array::{Array, Float64Array, Int64Array, RecordBatch};
-use rtw_model::Label;
+use arrow_array::types::Int64Type;
+use rtw_model::Param;
 use std::path::{Path, PathBuf};
 
 /// Checks the values of a batch of scan rows that every reader relies on:
@@ -51,7 +52,7 @@ pub(crate) fn check_scan_values(batch: &RecordBatch, path: &Path, first_row: u64
                 .map_or("null".into(), |v| v.to_string())
         );
     }
-    for input in Input::ALL {
+    for input in Param::ALL {
         let key = input.name();
         let col = f64_column(batch, key).with_context(|| path.display().to_string())?;
         for (r, v) in col.iter().enumerate() {
@@ -120,59 +121,6 @@ pub(crate) fn check_ids(
     Ok(next)
 }
 
-/// A `Float64` column of a scan batch, by name.
-pub(crate) fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
-    let col = batch
-        .column_by_name(name)
-        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
-    col.as_primitive_opt::<Float64Type>()
-        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Float64", col.data_type()))
-}
-
-/// An `Int64` column of a scan batch, by name.
-pub(crate) fn i64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Int64Array> {
-    let col = batch
-        .column_by_name(name)
-        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
-    col.as_primitive_opt::<Int64Type>()
-        .ok_or_else(|| anyhow!("column `{name}` is {}, expected Int64", col.data_type()))
-}
-
-/// The `outcome` column of a scan batch, decoded to labels.
-pub(crate) fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
-    let col = batch
-        .column_by_name("outcome")
-        .ok_or_else(|| anyhow!("column `outcome` is missing"))?;
-    let decode = |s: &str| {
-        s.parse::<Label>()
-            .map_err(|e| anyhow!("column `outcome`: {e}"))
-    };
-    if let Some(dict) = col.as_dictionary_opt::<Int32Type>() {
-        let values = dict
-            .values()
-            .as_string_opt::<i32>()
-            .ok_or_else(|| anyhow!("column `outcome`: dictionary values are not strings"))?;
-        let table: Vec<Label> = values
-            .iter()
-            .map(|v| decode(v.unwrap_or("")))
-            .collect::<Result<_>>()?;
-        dict.keys()
-            .iter()
-            .map(|k| {
-                k.and_then(|k| table.get(k as usize).copied())
-                    .ok_or_else(|| anyhow!("column `outcome`: null or bad key"))
-            })
-            .collect()
-    } else if let Some(s) = col.as_string_opt::<i32>() {
-        s.iter().map(|v| decode(v.unwrap_or(""))).collect()
-    } else {
-        bail!(
-            "column `outcome` is {}, expected a string dictionary",
-            col.data_type()
-        )
-    }
-}
-
 /// Concatenates scan files (a run's chunks, or a scan's shard parts), in
 /// order, into `dest` with `metadata` and [`META_WALL_TIME`] = the sum of the
 /// inputs' `wall_key` values. The rows are cut into row groups of
@@ -190,8 +138,14 @@ pub(crate) fn concat_scan_files(
     metadata: Vec<KeyValue>,
     wall_key: &str,
 ) -> Result<()> {
-    let props = parquet::writer_properties(&schema(), row_group_rows, metadata);
-    let mut file = ParquetFile::create(dest, schema(), props)?;
+    // The scan schema, with the robustness columns the files carry (all
+    // files of a scan were made with its options).
+    let schema = match inputs.first() {
+        Some(first) => schema_of_files(&parquet::open(first, READ_BATCH_ROWS)?.reader.schema()),
+        None => schema(),
+    };
+    let props = parquet::writer_properties(&schema, row_group_rows, metadata);
+    let mut file = ParquetFile::create(dest, schema.clone(), props)?;
     let mut wall = 0.0;
     let mut next = ids.start;
     for path in inputs {
@@ -235,7 +189,10 @@ pub(crate) fn concat_scan_files(
                 );
             }
             check_scan_values(&batch, path, next - batch.num_rows() as u64 - first_row)?;
-            file.write(&RecordBatch::try_new(schema(), batch.columns().to_vec())?)?;
+            file.write(
+                &RecordBatch::try_new(schema.clone(), batch.columns().to_vec())
+                    .with_context(|| format!("{}: not this scan's columns", path.display()))?,
+            )?;
         }
         crate::pause_at("merge");
     }

@@ -162,7 +162,7 @@ pub(crate) static COLUMNS: &[Column<Row>] = &[
         nullable: true,
         unit: "-",
         description: "why the run failed (rod_down, com_low, no_standing_equilibrium, standing_rod_down, \
-                      standing_com_low, standing_rolls_away, no_touchdown, no_progress, non_finite, \
+                      standing_com_low, standing_rolls_away, riser, no_touchdown, no_progress, non_finite, \
                       step_underflow, work_budget, zeno); null for a gait",
         get: Get::Str(|r| r.outcome.and_then(|o| o.failure).map(|f| f.as_str())),
     },
@@ -415,8 +415,80 @@ impl Serialize for JsonRow<'_> {
                 Get::Label { index, names } => map.serialize_entry(c.name, names()[index(r)])?,
             }
         }
+        for (name, value) in robustness_entries(r) {
+            map.serialize_entry(name, &value.filter(|v| v.is_finite()))?;
+        }
         map.end()
     }
+}
+
+/// The value of one column of a scan row as `simulate --json` has it: an
+/// absent metric and a non-finite float are `None`; `outcome` is the label's
+/// name. What the Python package's `Outcome` holds, without going through
+/// JSON text.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A `Float64` column.
+    Float(Option<f64>),
+    /// An `Int64` column.
+    Int(Option<i64>),
+    /// A `Boolean` column.
+    Bool(Option<bool>),
+    /// A string or label column.
+    Text(Option<String>),
+}
+
+/// The type of a scan row's column as [`Value`] has it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// [`Value::Float`].
+    Float,
+    /// [`Value::Int`].
+    Int,
+    /// [`Value::Bool`].
+    Bool,
+    /// [`Value::Text`].
+    Text,
+}
+
+/// A scan row's column as a library user reads it: name, [`Kind`], and
+/// whether it may be null (`None`). Listed by [`row_columns`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ColumnKind {
+    /// The column's name (`speed`).
+    pub name: &'static str,
+    /// Its type.
+    pub kind: Kind,
+    /// Null when the sample panicked or the metric does not apply.
+    pub nullable: bool,
+}
+
+/// Every column of a scan row in file order, from [`COLUMNS`].
+pub fn row_columns() -> impl ExactSizeIterator<Item = ColumnKind> {
+    COLUMNS.iter().map(|c| ColumnKind {
+        name: c.name,
+        kind: match c.get {
+            Get::F64(_) => Kind::Float,
+            Get::I64(_) => Kind::Int,
+            Get::Bool(_) => Kind::Bool,
+            Get::Str(_) | Get::Label { .. } => Kind::Text,
+        },
+        nullable: c.nullable,
+    })
+}
+
+/// A row's values in column order, as [`JsonRow`] writes them.
+pub(crate) fn values(r: &Row) -> Vec<Value> {
+    COLUMNS
+        .iter()
+        .map(|c| match &c.get {
+            Get::F64(g) => Value::Float(g(r).filter(|v| v.is_finite())),
+            Get::I64(g) => Value::Int(g(r)),
+            Get::Bool(g) => Value::Bool(g(r)),
+            Get::Str(g) => Value::Text(g(r).map(str::to_string)),
+            Get::Label { index, names } => Value::Text(Some(names()[index(r)].to_string())),
+        })
+        .collect()
 }
 
 /// A row as a readable two-column table, grouped by section.
@@ -441,16 +513,49 @@ pub(crate) fn to_text(r: &Row) -> String {
             value.as_deref().unwrap_or("-")
         ));
     }
+    let robustness = robustness_entries(r);
+    if !robustness.is_empty() {
+        out.push_str("[robustness]\n");
+    }
+    for (name, value) in robustness {
+        let value = value.map_or("-".to_string(), |v| format!("{v:.6}"));
+        out.push_str(&format!("  {name:<24} {value}\n"));
+    }
     out
+}
+
+/// The robustness measures a run was asked for (`robustness.*`,
+/// docs/robustness.md), after the scan row's columns in its JSON and text
+/// forms: none unless asked for, so a row's form is unchanged by default.
+pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
+    // `robustness.step_down` is the one measure so far: a run carries
+    // robustness measures exactly when it was asked for.
+    match r.outcome.and_then(|o| o.robustness) {
+        Some(m) => vec![("step_down_max", m.step_down_max)],
+        None => Vec::new(),
+    }
 }
 
 #[cfg(test)]
 pub(crate) mod tests {
+    #[test]
+    fn the_failure_column_description_names_every_failure_detail() {
+        // The description is a fixed string in the file's field metadata; a
+        // failure kind added to rtw-model must be named there too.
+        let col = COLUMNS.iter().find(|c| c.name == "failure").unwrap();
+        for f in rtw_model::outcome::FailureDetail::ALL {
+            assert!(
+                col.description.contains(f.as_str()),
+                "the failure column's description does not name {}",
+                f.as_str()
+            );
+        }
+    }
+
     use super::*;
     use crate::io::metadata::META_SEED;
     use crate::io::parquet::{open, write_file};
-    use crate::io::scan_files::{f64_column, label_column};
-    use crate::io::table::label_type;
+    use crate::io::table::{f64_column, label_column, label_type};
     use ::parquet::file::metadata::KeyValue;
     use arrow_array::Array;
     use arrow_array::cast::AsArray;
@@ -493,6 +598,7 @@ pub(crate) mod tests {
                 rhs_evals: 700,
                 events: 50,
             },
+            robustness: None,
         }
     }
 

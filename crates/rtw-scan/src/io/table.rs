@@ -4,18 +4,24 @@
 //! rows (`scan_rows::COLUMNS`) and the bifurcation files are written this
 //! way.
 //!
+//! The columns of a batch read back are taken by name and type
+//! ([`f64_column`], [`i64_column`], [`label_column`]).
+//!
 //! Each column's unit and meaning go to its Arrow field metadata under the
 //! keys [`UNIT`] and [`DESCRIPTION`], so a reader finds them in the file
 //! itself (pyarrow: `pq.read_schema(path).field("fn").metadata`). Units: SI
 //! symbols; `1` for a dimensionless number (a ratio, a fraction, a count);
 //! `-` for what is not a quantity (ids, labels, text, flags).
 
-use arrow_array::types::Int32Type;
+use anyhow::{Result, anyhow, bail};
+use arrow_array::cast::AsArray;
+use arrow_array::types::{Float64Type, Int32Type, Int64Type};
 use arrow_array::{
-    ArrayRef, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array, RecordBatch,
-    StringArray,
+    Array, ArrayRef, ArrowPrimitiveType, BooleanArray, DictionaryArray, Float64Array, Int32Array,
+    Int64Array, PrimitiveArray, RecordBatch, StringArray,
 };
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
+use rtw_model::Label;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -133,4 +139,66 @@ pub(crate) fn schema<R>(columns: &[Column<R>]) -> SchemaRef {
 pub(crate) fn batch<R>(columns: &[Column<R>], schema: SchemaRef, rows: &[R]) -> RecordBatch {
     let arrays: Vec<ArrayRef> = columns.iter().map(|c| c.array(rows)).collect();
     RecordBatch::try_new(schema, arrays).expect("the arrays are made from the schema's columns")
+}
+
+/// A column of primitive type `T` of a batch read back, by name.
+fn primitive_column<'a, T: ArrowPrimitiveType>(
+    batch: &'a RecordBatch,
+    name: &str,
+) -> Result<&'a PrimitiveArray<T>> {
+    let col = batch
+        .column_by_name(name)
+        .ok_or_else(|| anyhow!("column `{name}` is missing"))?;
+    col.as_primitive_opt::<T>().ok_or_else(|| {
+        anyhow!(
+            "column `{name}` is {}, expected {}",
+            col.data_type(),
+            T::DATA_TYPE
+        )
+    })
+}
+
+/// A `Float64` column of a batch read back, by name.
+pub(crate) fn f64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Float64Array> {
+    primitive_column::<Float64Type>(batch, name)
+}
+
+/// An `Int64` column of a batch read back, by name.
+pub(crate) fn i64_column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a Int64Array> {
+    primitive_column::<Int64Type>(batch, name)
+}
+
+/// The `outcome` column of a batch read back, decoded to labels.
+pub(crate) fn label_column(batch: &RecordBatch) -> Result<Vec<Label>> {
+    let col = batch
+        .column_by_name("outcome")
+        .ok_or_else(|| anyhow!("column `outcome` is missing"))?;
+    let decode = |s: &str| {
+        s.parse::<Label>()
+            .map_err(|e| anyhow!("column `outcome`: {e}"))
+    };
+    if let Some(dict) = col.as_dictionary_opt::<Int32Type>() {
+        let values = dict
+            .values()
+            .as_string_opt::<i32>()
+            .ok_or_else(|| anyhow!("column `outcome`: dictionary values are not strings"))?;
+        let table: Vec<Label> = values
+            .iter()
+            .map(|v| decode(v.unwrap_or("")))
+            .collect::<Result<_>>()?;
+        dict.keys()
+            .iter()
+            .map(|k| {
+                k.and_then(|k| table.get(k as usize).copied())
+                    .ok_or_else(|| anyhow!("column `outcome`: null or bad key"))
+            })
+            .collect()
+    } else if let Some(s) = col.as_string_opt::<i32>() {
+        s.iter().map(|v| decode(v.unwrap_or(""))).collect()
+    } else {
+        bail!(
+            "column `outcome` is {}, expected a string dictionary",
+            col.data_type()
+        )
+    }
 }

@@ -3,29 +3,25 @@
 
 use crate::config::ScanConfig;
 use crate::io::metadata::{self, META_WALL_TIME};
+use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_rows::{self, Row};
 use crate::scan::one::Simulator;
-use crate::scan::progress::{Progress, ProgressMode};
+use crate::scan::progress::Progress;
 use crate::scan::sample::Sampler;
 use crate::scan::workers::{Jobs, check_threads, worker_pool};
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rayon::prelude::*;
 use std::num::NonZeroUsize;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// The rows of the first `n` sample ids, computed in parallel on `pool`, in
-/// id order, each counted in `done` as it comes in; `None` once `stop` is
+/// id order, each reported to `jobs.progress` as it comes in; `None` once `stop` is
 /// set (the rows in flight finish, the rest are skipped). The rows' memory
 /// is reserved first: an allocation that cannot be made is an error
 /// ([`std::collections::TryReserveError`] in its chain), not an abort.
-fn compute_rows(
-    pool: &rayon::ThreadPool,
-    n: usize,
-    jobs: &Jobs<'_>,
-    done: &AtomicU64,
-) -> Result<Option<Vec<Row>>> {
+fn compute_rows(pool: &rayon::ThreadPool, n: usize, jobs: &Jobs<'_>) -> Result<Option<Vec<Row>>> {
     let mut results: Vec<Option<Row>> = Vec::new();
     results
         .try_reserve_exact(n)
@@ -33,13 +29,7 @@ fn compute_rows(
     pool.install(|| {
         (0..n)
             .into_par_iter()
-            .map(|i| {
-                (!jobs.stop.load(Ordering::SeqCst)).then(|| {
-                    let row = jobs.row(i as u64);
-                    done.fetch_add(1, Ordering::Relaxed);
-                    row
-                })
-            })
+            .map(|i| (!jobs.stop.load(Ordering::SeqCst)).then(|| jobs.row(i as u64)))
             .collect_into_vec(&mut results)
     });
     Ok(results.into_iter().collect())
@@ -55,14 +45,15 @@ pub const MAX_BATCH_ROWS: u64 = 1_000_000;
 /// rows `rtw-scan run` writes to `samples.parquet` (same per-sample code,
 /// same values but `wall_time_s`), as one batch whose schema carries the
 /// file's metadata (config, its hash, version, seed, variant, wall time).
-/// `done` counts the rows computed so far (for a progress display).
+/// `progress` watches the rows come in (an [`std::sync::atomic::AtomicU64`]
+/// counts them, for a progress display).
 /// `Ok(None)` when `stop` was set before the last row was computed. A scan
 /// of more than `MAX_BATCH_ROWS` (10⁶) rows is refused.
 pub fn scan_batch(
     cfg: &ScanConfig,
     threads: Option<NonZeroUsize>,
     stop: &AtomicBool,
-    done: &AtomicU64,
+    progress: &dyn Progress,
 ) -> Result<Option<RecordBatch>> {
     let total = cfg.total_rows()?;
     if total > MAX_BATCH_ROWS {
@@ -75,27 +66,27 @@ pub fn scan_batch(
     check_threads(threads, "threads")?;
     let pool = worker_pool(threads)?;
     let started = Instant::now();
-    let progress = Progress::new(total, ProgressMode::Quiet);
+    progress.start(total);
     let sim: Simulator = &rtw_model::simulate;
     let jobs = Jobs {
         sampler: &Sampler::new(cfg),
         options: &cfg.simulation,
         sim,
         stop,
-        progress: &progress,
+        progress,
     };
-    let Some(rows) = compute_rows(&pool, total as usize, &jobs, done)? else {
+    let Some(rows) = compute_rows(&pool, total as usize, &jobs)? else {
+        progress.finish(false);
         return Ok(None);
     };
+    progress.finish(true);
     let mut meta = metadata::scan_metadata(cfg);
     meta.push(metadata::kv(
         META_WALL_TIME,
         started.elapsed().as_secs_f64().to_string(),
     ));
-    Ok(Some(metadata::with_metadata(
-        scan_rows::to_batch(&rows),
-        meta,
-    )?))
+    let batch = with_robustness(scan_rows::to_batch(&rows), &rows, &cfg.simulation);
+    Ok(Some(metadata::with_metadata(batch, meta)?))
 }
 
 #[cfg(test)]
@@ -103,6 +94,7 @@ mod tests {
     use super::*;
     use crate::config::parse;
     use crate::scan::fixtures::CFG;
+    use std::sync::atomic::AtomicU64;
 
     #[test]
     fn scan_batch_refuses_more_rows_than_memory_holds_naming_the_cli() {

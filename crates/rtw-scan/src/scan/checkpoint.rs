@@ -8,7 +8,7 @@ use crate::config::ScanConfig;
 use crate::io::files;
 use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
-use crate::io::scan_files;
+use crate::io::{scan_files, table};
 use crate::scan::shard::{self, Shard};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::cast::AsArray;
@@ -96,7 +96,7 @@ pub(crate) fn chunk_labels(
             next += 1;
         }
         scan_files::check_scan_values(&batch, path, labels.len() as u64)?;
-        labels.extend(scan_files::label_column(&batch)?);
+        labels.extend(table::label_column(&batch)?);
     }
     Ok(labels)
 }

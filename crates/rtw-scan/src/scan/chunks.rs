@@ -143,7 +143,7 @@ mod tests {
     use crate::config::parse;
     use crate::scan::fixtures::{CFG, fake_sim};
     use crate::scan::one::Simulator;
-    use crate::scan::progress::{Progress, ProgressMode};
+    use crate::scan::progress::Silent;
     use crate::scan::sample::Sampler;
     use crate::scan::workers::worker_pool;
     use anyhow::bail;
@@ -161,14 +161,13 @@ mod tests {
         let cfg = parse(CFG).unwrap();
         let pool = worker_pool(NonZeroUsize::new(2)).unwrap();
         let stop = AtomicBool::new(false);
-        let progress = Progress::new(37, ProgressMode::Quiet);
         let sampler = Sampler::new(&cfg);
         let jobs = Jobs {
             sampler: &sampler,
             options: &cfg.simulation,
             sim,
             stop: &stop,
-            progress: &progress,
+            progress: &Silent,
         };
         let range = |c: u64| c * 4..((c + 1) * 4).min(37);
         let done = BTreeSet::new();

@@ -12,7 +12,7 @@
 //! | [`single`] | one run in memory: its `--json` row and its trace (the Python package) |
 //! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks |
 //! | `shard` | `--shard K/N` id ranges; `merge` checks and joins the parts |
-//! | `progress` | progress on stderr |
+//! | [`progress`] | what watches a scan: the [`Progress`] observer |
 //! | `panic` | a sample's panic caught as its message |
 //! | `lock` | one writer per result |
 //! | `space` | whether a scan's output fits on its disk |
@@ -25,7 +25,7 @@ mod fixtures;
 pub(crate) mod lock;
 pub(crate) mod one;
 pub(crate) mod panic;
-pub(crate) mod progress;
+pub mod progress;
 pub(crate) mod run;
 pub mod sample;
 pub(crate) mod shard;
@@ -34,3 +34,4 @@ pub(crate) mod space;
 pub(crate) mod workers;
 
 pub use batch::scan_batch;
+pub use progress::{Progress, Silent};

@@ -1,163 +1,59 @@
-//! Progress on stderr: a bar on a terminal, plain lines otherwise.
+//! What watches a scan as it runs ([`Progress`]): the library reports to it
+//! and shows nothing itself. The command line's bar and lines on stderr, and
+//! Python's `progress(done, total)` callback, are implementations of it.
 
-use crate::io::scan_rows::label_index;
-use indicatif::{ProgressBar, ProgressStyle};
 use rtw_model::Label;
-use std::io::IsTerminal;
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::{Duration, Instant};
 
-/// How progress is shown on stderr.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum ProgressMode {
-    /// A bar when stderr is a terminal, else plain lines.
-    Auto,
-    /// Plain lines every 5 s or 10 %.
-    Lines,
-    /// Nothing.
-    Quiet,
+/// Watches a scan: the runner calls it from its worker threads as the rows
+/// come in, and with what the user of a run into files should know. Every
+/// method but [`Progress::computed`] does nothing unless implemented.
+pub trait Progress: Sync {
+    /// The run starts, after its checks, with `total` rows to hold (a
+    /// shard's own rows for a shard), those kept from an interrupted run
+    /// included.
+    fn start(&self, total: u64) {
+        let _ = total;
+    }
+
+    /// A row kept from an interrupted run (`--resume`), with its label.
+    fn kept(&self, label: Label) {
+        let _ = label;
+    }
+
+    /// A row just computed, with its label.
+    fn computed(&self, label: Label);
+
+    /// A detail of the run's progress (a damaged chunk computed again), for
+    /// a display that shows the progress.
+    fn note(&self, text: &str) {
+        let _ = text;
+    }
+
+    /// Something the user must learn even when no progress is shown: a file
+    /// rtw-scan did not make, left in place.
+    fn warn(&self, text: &str) {
+        let _ = text;
+    }
+
+    /// The run ended: every row in (`complete`), or stopped with its
+    /// finished chunks kept.
+    fn finish(&self, complete: bool) {
+        let _ = complete;
+    }
 }
 
-/// Progress on stderr: a bar on a terminal, plain lines otherwise.
-pub(crate) struct Progress {
-    bar: Option<ProgressBar>,
-    lines: Option<Mutex<LineState>>,
-    counts: [AtomicU64; 6],
-    done: AtomicU64,
-    previous: AtomicU64,
-    total: u64,
-    started: Instant,
+/// Nothing watches the scan.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn computed(&self, _: Label) {}
 }
 
-struct LineState {
-    last: Instant,
-    decile: u64,
-    /// `done` at the last line printed.
-    printed: u64,
-}
-
-impl Progress {
-    const EVERY: Duration = Duration::from_secs(5);
-
-    pub(crate) fn new(total: u64, mode: ProgressMode) -> Self {
-        let terminal = std::io::stderr().is_terminal();
-        let bar = (mode == ProgressMode::Auto && terminal).then(|| {
-            let bar = ProgressBar::new(total);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "{elapsed_precise} [{wide_bar}] {pos}/{len} {per_sec} ETA {eta}\n{msg}",
-                )
-                .expect("valid template")
-                .progress_chars("=> "),
-            );
-            bar.enable_steady_tick(Duration::from_millis(200));
-            bar
-        });
-        let lines = (mode == ProgressMode::Lines || (mode == ProgressMode::Auto && !terminal))
-            .then(|| {
-                Mutex::new(LineState {
-                    last: Instant::now(),
-                    decile: 0,
-                    printed: 0,
-                })
-            });
-        Self {
-            bar,
-            lines,
-            counts: Default::default(),
-            done: AtomicU64::new(0),
-            previous: AtomicU64::new(0),
-            total,
-            started: Instant::now(),
-        }
-    }
-
-    fn count(&self, label: Label) {
-        let i = label_index(label);
-        self.counts[i].fetch_add(1, Ordering::Relaxed);
-        self.done.fetch_add(1, Ordering::Relaxed);
-    }
-
-    /// A row found on disk (resume).
-    pub(crate) fn record_previous(&self, label: Label) {
-        self.count(label);
-        self.previous.fetch_add(1, Ordering::Relaxed);
-        if let Some(bar) = &self.bar {
-            bar.inc(1);
-            bar.reset_eta();
-        }
-    }
-
-    /// A row just computed.
-    pub(crate) fn record(&self, label: Label) {
-        self.count(label);
-        if let Some(bar) = &self.bar {
-            bar.inc(1);
-            bar.set_message(self.counts_text());
-        }
-        if let Some(lines) = &self.lines {
-            let mut st = lines.lock().expect("progress lock");
-            let done = self.done.load(Ordering::Relaxed);
-            let decile = done * 10 / self.total.max(1);
-            if st.last.elapsed() >= Self::EVERY || decile > st.decile {
-                st.last = Instant::now();
-                st.decile = decile;
-                st.printed = done;
-                eprintln!("{}", self.line());
-            }
-        }
-    }
-
-    fn counts_text(&self) -> String {
-        Label::ALL
-            .iter()
-            .zip(&self.counts)
-            .map(|(l, c)| format!("{l} {}", c.load(Ordering::Relaxed)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
-
-    fn line(&self) -> String {
-        let done = self.done.load(Ordering::Relaxed);
-        let new = done - self.previous.load(Ordering::Relaxed);
-        let secs = self.started.elapsed().as_secs_f64();
-        let rate = new as f64 / secs.max(1e-9);
-        let eta = if rate > 0.0 {
-            format!("{:.0} s", (self.total - done) as f64 / rate)
-        } else {
-            "?".into()
-        };
-        format!(
-            "[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2} samples/s, ETA {eta} | {}",
-            self.total,
-            100.0 * done as f64 / self.total.max(1) as f64,
-            self.counts_text()
-        )
-    }
-
-    pub(crate) fn println(&self, msg: &str) {
-        match &self.bar {
-            Some(bar) => bar.println(msg),
-            None if self.lines.is_some() => eprintln!("{msg}"),
-            None => {}
-        }
-    }
-
-    pub(crate) fn finish(&self, complete: bool) {
-        if let Some(bar) = &self.bar {
-            bar.set_message(self.counts_text());
-            if complete {
-                bar.finish()
-            } else {
-                bar.abandon()
-            }
-        }
-        if let Some(lines) = &self.lines {
-            let st = lines.lock().expect("progress lock");
-            if st.printed != self.done.load(Ordering::Relaxed) {
-                eprintln!("{}", self.line());
-            }
-        }
+/// A counter of the rows computed, read from another thread while the scan
+/// runs (Python's `rtw.scan` calls `progress(done, total)` with it).
+impl Progress for AtomicU64 {
+    fn computed(&self, _: Label) {
+        self.fetch_add(1, Ordering::Relaxed);
     }
 }

@@ -33,6 +33,7 @@ use crate::config::ScanConfig;
 use crate::io::files;
 use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, VERSION};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
+use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows;
 use crate::scan::checkpoint::{
@@ -42,7 +43,7 @@ use crate::scan::checkpoint::{
 use crate::scan::chunks::{Todo, compute_chunks};
 use crate::scan::lock::Lock;
 use crate::scan::one::Simulator;
-use crate::scan::progress::{Progress, ProgressMode};
+use crate::scan::progress::Progress;
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
 use crate::scan::workers::{Jobs, check_threads, worker_pool};
@@ -64,7 +65,6 @@ pub(crate) struct RunSettings {
     pub(crate) resume: bool,
     /// Rows per chunk; a resumed run keeps the size it was started with.
     pub(crate) chunk_size: NonZeroUsize,
-    pub(crate) progress: ProgressMode,
     /// Run only this shard's id range, into `part-K.parquet`.
     pub(crate) shard: Option<Shard>,
     /// Write even over another scan's results (or its unfinished run) in
@@ -90,12 +90,15 @@ pub(crate) enum RunStatus {
     },
 }
 
-/// Runs (or resumes) a scan into `settings.out_dir`.
+/// Runs (or resumes) a scan into `settings.out_dir`: `stop` set (by a
+/// signal handler, say) ends it after the samples in flight, and `progress`
+/// watches it.
 pub(crate) fn run_scan(
     cfg: &ScanConfig,
     settings: &RunSettings,
     sim: Simulator,
     stop: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Result<RunStatus> {
     let total = cfg.total_rows()?;
     let ids = match settings.shard {
@@ -129,7 +132,7 @@ pub(crate) fn run_scan(
     if settings.resume && is_complete(&layout.samples, &config_toml, shard_text.as_deref()) {
         // Complete: at most the clean-up of a run killed after its merge is left.
         if layout.partial.is_dir() {
-            report_unknown(&layout.partial, &remove_partial(&layout.partial)?);
+            report_unknown(progress, &layout.partial, &remove_partial(&layout.partial)?);
         }
         return Ok(RunStatus::Complete {
             samples: layout.samples,
@@ -137,7 +140,13 @@ pub(crate) fn run_scan(
             computed: 0,
         });
     }
-    let chunk_size = match unfinished_run(&layout, settings, cfg, rows, shard_text.as_deref())? {
+    let chunk_size = match unfinished_run(
+        &layout,
+        settings,
+        cfg,
+        (rows, shard_text.as_deref()),
+        progress,
+    )? {
         Some(manifest) => manifest.chunk_size,
         None => {
             // No finished chunk to keep: (re)start. A `.partial` without a
@@ -159,11 +168,11 @@ pub(crate) fn run_scan(
     };
     let unknown = remove_stray_temps(&layout.partial)?;
     if !unknown.is_empty() {
-        eprintln!(
+        progress.warn(&format!(
             "rtw-scan: ignoring {} in {}: not made by rtw-scan (left as they are)",
             unknown.join(", "),
             layout.partial.display()
-        );
+        ));
     }
 
     let cs = chunk_size as u64;
@@ -179,7 +188,7 @@ pub(crate) fn run_scan(
     // counts: found by listing `.partial`, so the work before the first
     // sample grows with the chunks kept, not with the scan's size.
     let mut done = BTreeSet::new();
-    let progress = Progress::new(rows, settings.progress);
+    progress.start(rows);
     for c in chunks_on_disk(&layout.partial)? {
         let path = layout.chunk(c);
         if stop.load(Ordering::SeqCst) {
@@ -193,10 +202,10 @@ pub(crate) fn run_scan(
         match checked {
             Ok(labels) => {
                 done.insert(c);
-                labels.into_iter().for_each(|l| progress.record_previous(l));
+                labels.into_iter().for_each(|l| progress.kept(l));
             }
             Err(e) => {
-                progress.println(&format!("redoing {}: {e:#}", path.display()));
+                progress.note(&format!("redoing {}: {e:#}", path.display()));
                 std::fs::remove_file(&path)
                     .with_context(|| format!("cannot remove {}", path.display()))?;
             }
@@ -211,7 +220,7 @@ pub(crate) fn run_scan(
         options: &cfg.simulation,
         sim,
         stop,
-        progress: &progress,
+        progress,
     };
     let todo = Todo {
         chunks,
@@ -222,7 +231,8 @@ pub(crate) fn run_scan(
     compute_chunks(&pool, &todo, &jobs, |c, chunk, wall| {
         let mut meta = metadata.clone();
         meta.push(metadata::kv(META_CHUNK_WALL_TIME, wall.to_string()));
-        parquet::write_file(&layout.chunk(c), &scan_rows::to_batch(&chunk), meta)?;
+        let batch = with_robustness(scan_rows::to_batch(&chunk), &chunk, &cfg.simulation);
+        parquet::write_file(&layout.chunk(c), &batch, meta)?;
         written += 1;
         computed += chunk.len() as u64;
         Ok(())
@@ -248,7 +258,7 @@ pub(crate) fn run_scan(
         META_CHUNK_WALL_TIME,
     )?;
     crate::pause_at("merged");
-    report_unknown(&layout.partial, &remove_partial(&layout.partial)?);
+    report_unknown(progress, &layout.partial, &remove_partial(&layout.partial)?);
     Ok(RunStatus::Complete {
         samples: layout.samples,
         rows,
@@ -267,8 +277,8 @@ fn unfinished_run(
     layout: &Layout,
     settings: &RunSettings,
     cfg: &ScanConfig,
-    rows: u64,
-    shard: Option<&str>,
+    (rows, shard): (u64, Option<&str>),
+    progress: &dyn Progress,
 ) -> Result<Option<Manifest>> {
     let partial = &layout.partial;
     if !layout.manifest().exists() {
@@ -280,7 +290,7 @@ fn unfinished_run(
                     partial.display()
                 );
             }
-            report_unknown(partial, &remove_partial(partial)?);
+            report_unknown(progress, partial, &remove_partial(partial)?);
         }
         return Ok(None);
     }
@@ -313,7 +323,7 @@ fn unfinished_run(
         .err(),
     };
     if settings.force && (m.is_err() || refusal.is_some()) {
-        report_unknown(partial, &remove_partial(partial)?);
+        report_unknown(progress, partial, &remove_partial(partial)?);
         return Ok(None);
     }
     let m = m?;
@@ -332,13 +342,13 @@ fn unfinished_run(
 }
 
 /// Says which entries of `partial` rtw-scan left in place, not having made them.
-fn report_unknown(partial: &std::path::Path, unknown: &[String]) {
+fn report_unknown(progress: &dyn Progress, partial: &std::path::Path, unknown: &[String]) {
     if !unknown.is_empty() {
-        eprintln!(
+        progress.warn(&format!(
             "rtw-scan: kept {}: it holds {}, not made by rtw-scan",
             partial.display(),
             unknown.join(", ")
-        );
+        ));
     }
 }
 
@@ -363,6 +373,7 @@ mod tests {
     use crate::io::scan_rows::schema;
     use crate::scan::batch::scan_batch;
     use crate::scan::fixtures::{CFG, fake_sim};
+    use crate::scan::progress::Silent;
     use arrow::array::{Array, AsArray, RecordBatch};
     use rtw_model::Label;
     use rtw_model::outcome::FailureDetail;
@@ -376,7 +387,6 @@ mod tests {
             threads: NonZeroUsize::new(threads),
             resume: false,
             chunk_size: NonZeroUsize::new(chunk).unwrap(),
-            progress: ProgressMode::Quiet,
             shard: None,
             force: false,
         }
@@ -399,8 +409,8 @@ mod tests {
         let stop = AtomicBool::new(false);
         let a = tempfile::tempdir().unwrap();
         let b = tempfile::tempdir().unwrap();
-        run_scan(&cfg, &settings(a.path(), 1, 5), &fake_sim, &stop).unwrap();
-        let st = run_scan(&cfg, &settings(b.path(), 2, 8), &fake_sim, &stop).unwrap();
+        run_scan(&cfg, &settings(a.path(), 1, 5), &fake_sim, &stop, &Silent).unwrap();
+        let st = run_scan(&cfg, &settings(b.path(), 2, 8), &fake_sim, &stop, &Silent).unwrap();
         assert!(
             matches!(
                 st,
@@ -447,14 +457,21 @@ mod tests {
         let stop = AtomicBool::new(false);
         let a = tempfile::tempdir().unwrap();
         let b = tempfile::tempdir().unwrap();
-        run_scan(&cfg, &settings(a.path(), 2, 1000), &fake_sim, &stop).unwrap();
-        run_scan(&cfg, &settings(b.path(), 1, 999), &fake_sim, &stop).unwrap();
+        run_scan(
+            &cfg,
+            &settings(a.path(), 2, 1000),
+            &fake_sim,
+            &stop,
+            &Silent,
+        )
+        .unwrap();
+        run_scan(&cfg, &settings(b.path(), 1, 999), &fake_sim, &stop, &Silent).unwrap();
         // Three shards (parts of 5463 rows, cut into 1000-row chunks), merged.
         let c = tempfile::tempdir().unwrap();
         for index in 0..3 {
             let mut s = settings(c.path(), 2, 1000);
             s.shard = Some(Shard { index, count: 3 });
-            run_scan(&cfg, &s, &fake_sim, &stop).unwrap();
+            run_scan(&cfg, &s, &fake_sim, &stop, &Silent).unwrap();
         }
         crate::scan::shard::merge_parts(c.path(), false).unwrap();
         let cap = MAX_ROW_GROUP_ROWS as i64;
@@ -479,10 +496,17 @@ mod tests {
         let cfg = parse(CFG).unwrap();
         let dir = tempfile::tempdir().unwrap();
         let stop = AtomicBool::new(false);
-        run_scan(&cfg, &settings(dir.path(), 2, 16), &fake_sim, &stop).unwrap();
+        run_scan(
+            &cfg,
+            &settings(dir.path(), 2, 16),
+            &fake_sim,
+            &stop,
+            &Silent,
+        )
+        .unwrap();
         let b = rows_without_wall_time(&dir.path().join("samples.parquet"));
-        let labels = crate::io::scan_files::label_column(&b).unwrap();
-        let rho = crate::io::scan_files::f64_column(&b, "rho").unwrap();
+        let labels = crate::io::table::label_column(&b).unwrap();
+        let rho = crate::io::table::f64_column(&b, "rho").unwrap();
         let msg = b.column_by_name("message").unwrap().as_string::<i32>();
         let failure = b.column_by_name("failure").unwrap().as_string::<i32>();
         let mut panicked = 0;
@@ -521,7 +545,7 @@ mod tests {
             }
             fake_sim(p, o)
         };
-        run_scan(cfg, &settings(dir, 1, 4), &stopping, &stop).unwrap()
+        run_scan(cfg, &settings(dir, 1, 4), &stopping, &stop, &Silent).unwrap()
     }
 
     #[test]
@@ -530,7 +554,14 @@ mod tests {
         let full = tempfile::tempdir().unwrap();
         let part = tempfile::tempdir().unwrap();
         let never = AtomicBool::new(false);
-        run_scan(&cfg, &settings(full.path(), 2, 4), &fake_sim, &never).unwrap();
+        run_scan(
+            &cfg,
+            &settings(full.path(), 2, 4),
+            &fake_sim,
+            &never,
+            &Silent,
+        )
+        .unwrap();
 
         // Stop after 7 samples: the chunk in progress is dropped.
         let st = stopped_after(&cfg, part.path(), 6);
@@ -546,13 +577,20 @@ mod tests {
         assert!(!part.path().join("samples.parquet").exists());
 
         // Without --resume the unfinished run is not silently dropped.
-        let e = run_scan(&cfg, &settings(part.path(), 1, 4), &fake_sim, &never).unwrap_err();
+        let e = run_scan(
+            &cfg,
+            &settings(part.path(), 1, 4),
+            &fake_sim,
+            &never,
+            &Silent,
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("--resume"), "{e}");
         // A different config cannot resume it.
         let other = parse(&CFG.replace("seed = 11", "seed = 12")).unwrap();
         let mut s = settings(part.path(), 2, 4);
         s.resume = true;
-        let e = run_scan(&other, &s, &fake_sim, &never).unwrap_err();
+        let e = run_scan(&other, &s, &fake_sim, &never, &Silent).unwrap_err();
         assert!(e.to_string().contains("different config"), "{e}");
         // A stray temporary file and a corrupt chunk are cleaned up.
         std::fs::write(
@@ -561,7 +599,7 @@ mod tests {
         )
         .unwrap();
         std::fs::write(part.path().join(".partial/chunk-00002.parquet"), b"junk").unwrap();
-        let st = run_scan(&cfg, &s, &fake_sim, &never).unwrap();
+        let st = run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         assert!(
             matches!(st, RunStatus::Complete { computed: 33, .. }),
             "{st:?}"
@@ -571,7 +609,7 @@ mod tests {
             rows_without_wall_time(&part.path().join("samples.parquet"))
         );
         // Resuming a finished run does nothing.
-        let st = run_scan(&cfg, &s, &fake_sim, &never).unwrap();
+        let st = run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         assert!(
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
@@ -607,7 +645,7 @@ mod tests {
         assert!(kept >= 2, "{kept} chunks");
         let mut s = settings(dir.path(), 2, 4);
         s.resume = true;
-        let st = run_scan(&cfg, &s, &fake_sim, &never).unwrap();
+        let st = run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         // Chunk 0's 4 rows are computed again with the others not kept.
         let computed = 37 - 4 * (kept - 1);
         assert!(
@@ -626,7 +664,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let never = AtomicBool::new(false);
         let sim: Simulator = &rtw_model::simulate;
-        run_scan(&cfg, &settings(dir.path(), 2, 2), sim, &never).unwrap();
+        run_scan(&cfg, &settings(dir.path(), 2, 2), sim, &never, &Silent).unwrap();
         let done = AtomicU64::new(0);
         let b = scan_batch(&cfg, NonZeroUsize::new(2), &never, &done)
             .unwrap()

@@ -1,20 +1,20 @@
 //! Sample `i` of a scan → its [`Params`], reproducibly.
 //!
 //! Rows are numbered `sample_id = grid_point × samples + draw`. The grid
-//! point is the mixed-radix index over the grid axes in [`Input::ALL`] order
+//! point is the mixed-radix index over the grid axes in [`Param::ALL`] order
 //! (the last grid axis varies fastest). The uniform axes of sample `i` come
 //! from ChaCha8 seeded with the scan's seed on stream `i`: one `u ∈ [0, 1)`
 //! is drawn for each of the six parameters in order (whether it is uniform or
 //! not), so a value depends only on (seed, i, its own range). Any subset,
 //! shard, resume or thread count reproduces the same rows.
 //!
-//! [`Input::ALL`]: crate::config::params::Input::ALL
+//! [`Param::ALL`]: rtw_model::Param::ALL
 
 use crate::config::ScanConfig;
 use crate::config::axis::{Axis, linspace_point};
-use crate::config::params::Input;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rtw_model::Param;
 use rtw_model::Params;
 
 /// How one axis produces its value.
@@ -88,7 +88,7 @@ impl Sampler {
                     v
                 }
             };
-            Input::ALL[i].set(&mut p, v);
+            Param::ALL[i].set(&mut p, v);
         }
         p
     }

@@ -1,32 +1,38 @@
-//! One run as `rtw-scan simulate` makes it, in memory: its row as the JSON
-//! object `simulate --json` prints and its trace as the table
-//! `simulate --trace` writes. The Python package returns these.
+//! One run as `rtw-scan simulate` makes it, in memory: its row's values (what
+//! `simulate --json` prints) and its trace as the table `simulate --trace`
+//! writes. The Python package returns these.
 
+use crate::io::kv;
 use crate::io::metadata::with_metadata;
-use crate::io::scan_rows::JsonRow;
+use crate::io::scan_rows::{JsonRow, Value, values};
 use crate::io::trace::{TraceNames, check_trace_size, human_bytes, trace_batch, trace_metadata};
 use crate::scan::one::run_one;
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_model::{Options, Params};
 
+/// Schema-metadata key of a trace returned in memory that holds its run's
+/// row, the JSON object of `simulate --json`.
+pub const META_OUTCOME: &str = "rtw.outcome";
+
 /// Runs `params` with `options` (panics caught, as in a scan) and returns
-/// its row as the JSON object of `simulate --json`, keys in column order.
-pub fn simulate_json(params: Params, options: &Options) -> Result<String> {
-    let row = run_one(0, params, options, rtw_model::simulate);
-    Ok(serde_json::to_string(&JsonRow(&row))?)
+/// its row's values in column order ([`crate::io::row_columns`]), as
+/// `simulate --json` prints them.
+pub fn simulate_row(params: Params, options: &Options) -> Vec<Value> {
+    values(&run_one(0, params, options, rtw_model::simulate))
 }
 
-/// [`simulate_json`] with the run's trace: the columns and field metadata
+/// The run of [`simulate_row`] as its trace: the columns and field metadata
 /// of a `simulate --trace` file, its file metadata (version, parameters,
-/// options) in the schema. A trace estimated above `limit` bytes is refused
-/// before the run, in the caller's `names`.
-pub fn simulate_traced_json(
+/// options) and the run's row as JSON ([`META_OUTCOME`]) in the schema. A
+/// trace estimated above `limit` bytes is refused before the run, in the
+/// caller's `names`.
+pub fn simulate_traced(
     params: Params,
     options: &Options,
     limit: u64,
     names: TraceNames,
-) -> Result<(String, RecordBatch)> {
+) -> Result<RecordBatch> {
     if let Some(memory) = physical_memory()
         && limit > memory
     {
@@ -61,9 +67,9 @@ pub fn simulate_traced_json(
             names.dt
         )));
     }
-    let batch = trace_batch(&samples);
-    let batch = with_metadata(batch, trace_metadata(&params, options)?)?;
-    Ok((serde_json::to_string(&JsonRow(&row))?, batch))
+    let mut metadata = trace_metadata(&params, options)?;
+    metadata.push(kv(META_OUTCOME, serde_json::to_string(&JsonRow(&row))?));
+    Ok(with_metadata(trace_batch(&samples), metadata)?)
 }
 
 /// The machine's memory in bytes (`MemTotal` of `/proc/meminfo`), where the

@@ -44,14 +44,14 @@ pub(crate) struct Jobs<'a> {
     pub(crate) options: &'a Options,
     pub(crate) sim: Simulator<'a>,
     pub(crate) stop: &'a AtomicBool,
-    pub(crate) progress: &'a Progress,
+    pub(crate) progress: &'a dyn Progress,
 }
 
 impl Jobs<'_> {
     /// The row of sample `id`, counted in the progress.
     pub(crate) fn row(&self, id: u64) -> Row {
         let row = run_one(id, self.sampler.params(id), self.options, self.sim);
-        self.progress.record(row.label());
+        self.progress.computed(row.label());
         row
     }
 }

@@ -7,6 +7,7 @@ use crate::plant::geometry::{RodFrame, V2};
 use crate::plant::slots::N;
 
 impl Rtw {
+    #[cfg(test)]
     /// The largest friction ratio |λ_x|/λ_y over the sticking rods whose
     /// normal force exceeds 5 % of a rod's weight (docs/model.md §4's
     /// `mu_required`; the raw ratio is infinite at every lift-off), or 0.

@@ -51,6 +51,7 @@ impl Rtw {
         AtState { frames, lambda }
     }
 
+    #[cfg(test)]
     /// Contact forces λ of the rods at `y` (zero when free).
     pub fn contact_forces(&self, y: &[f64; N]) -> [V2; 3] {
         self.contact_forces_of(&self.frames(y))

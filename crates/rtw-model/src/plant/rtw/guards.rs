@@ -49,6 +49,9 @@ impl Rtw {
                     visit(GuardKind::LiftOff { rod })?;
                     visit(GuardKind::RodDown { rod })?;
                     visit(GuardKind::Restick { rod })?;
+                    if !self.terrain.is_flat() {
+                        visit(GuardKind::Edge { rod })?;
+                    }
                 }
             }
         }
@@ -79,8 +82,11 @@ impl Rtw {
         frame: impl Fn(usize) -> RodFrame,
         lambda: impl Fn(usize) -> V2,
     ) -> f64 {
-        let tip_height =
-            |rod: usize, tip: Tip| frame(rod).point(tip.sign() * self.body.half_length).0[1];
+        // A tip's height above the ground under it (crate::plant::terrain).
+        let tip_height = |rod: usize, tip: Tip| {
+            let p = frame(rod).point(tip.sign() * self.body.half_length).0;
+            p[1] - self.ground(p[0])
+        };
         match kind {
             GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
             GuardKind::LiftOff { rod } => lambda(rod)[1],
@@ -99,8 +105,11 @@ impl Rtw {
                 self.mu * l[1] - l[0].abs()
             }
             GuardKind::ComLow => {
-                (frame(0).c[1] + frame(1).c[1] + frame(2).c[1]) / 3.0 - self.collapse_height
+                let (a, b, c) = (frame(0).c, frame(1).c, frame(2).c);
+                let ground = self.ground((a[0] + b[0] + c[0]) / 3.0);
+                (a[1] + b[1] + c[1]) / 3.0 - ground - self.collapse_height
             }
+            GuardKind::Edge { rod } => self.edge_guard(y, rod),
         }
     }
 
@@ -113,6 +122,7 @@ impl Rtw {
     pub(super) fn kinematic_guard_rate(
         &self,
         kind: GuardKind,
+        y: &[f64; N],
         dy: &[f64; N],
         frames: &[RodFrame; 3],
     ) -> Option<f64> {
@@ -131,6 +141,7 @@ impl Rtw {
                 Some(dy[slots::at(rod, VX)] * dir)
             }
             GuardKind::ComLow => Some((frames[0].v[1] + frames[1].v[1] + frames[2].v[1]) / 3.0),
+            GuardKind::Edge { rod } => Some(self.edge_guard_rate(y, dy, rod)),
             GuardKind::LiftOff { .. } | GuardKind::Slip { .. } => None,
         }
     }

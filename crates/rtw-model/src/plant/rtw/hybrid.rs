@@ -83,7 +83,7 @@ impl HybridSystem<N> for Rtw {
         }
         let mut k = 0;
         self.guard_kinds(|kind| {
-            out[k] = match self.kinematic_guard_rate(kind, dy, &at.frames) {
+            out[k] = match self.kinematic_guard_rate(kind, y, dy, &at.frames) {
                 Some(rate) => rate,
                 None if d == 0.0 => 0.0,
                 None => {

@@ -27,4 +27,6 @@ mod hybrid;
 mod model;
 mod resets;
 
-pub use model::{AtState, GuardKind, Rtw, Transition};
+#[cfg(any(test, feature = "internals"))]
+pub use model::GuardKind;
+pub use model::{AtState, Rtw, Transition};

@@ -8,6 +8,7 @@ use crate::plant::contact::{ImpactKind, RodBody, RodMode};
 use crate::plant::geometry::{RodFrame, RodState, Tip, V2};
 use crate::plant::slots::{self, N, THETA};
 use crate::plant::strings::StringSet;
+use crate::plant::terrain::TerrainOptions;
 use hybrid_ode::EndsRun;
 
 /// What a guard watches.
@@ -26,6 +27,9 @@ pub enum GuardKind {
     Slip { rod: usize },
     /// The centre of mass sinks below the collapse height.
     ComLow,
+    /// A sliding tip reaches the edge of a step
+    /// ([`crate::plant::terrain`]); watched only on a terrain with a step.
+    Edge { rod: usize },
 }
 
 /// What a reset did, for the run's observer.
@@ -106,6 +110,8 @@ pub struct Rtw {
     /// dynamic relaxation). It vanishes at rest, so the state it settles to
     /// is a static equilibrium of the real forces. Zero in every run.
     pub(crate) relax: f64,
+    /// The ground ([`crate::plant::terrain`]).
+    pub(crate) terrain: TerrainOptions,
 }
 
 impl Rtw {
@@ -130,6 +136,7 @@ impl Rtw {
             last_choice: None,
             replay: None,
             relax: 0.0,
+            terrain: opts.terrain,
         }
     }
 
@@ -153,19 +160,23 @@ impl Rtw {
     pub fn store(&self, rods: &[RodState; 3], y: &mut [f64; N]) {
         for (i, r) in rods.iter().enumerate() {
             self.body.slots(self.modes[i], r, slots::rod_mut(y, i));
+            self.set_level(y, i);
         }
     }
 
+    #[cfg(test)]
     /// The rods' inertial constants.
     pub fn body(&self) -> &RodBody {
         &self.body
     }
 
+    #[cfg(test)]
     /// Gravity in the slope frame, g (sin φ, −cos φ).
     pub fn gravity(&self) -> V2 {
         self.gravity
     }
 
+    #[cfg(test)]
     /// The friction coefficient μ (infinite: no slip, frictionless slide).
     pub fn mu(&self) -> f64 {
         self.mu
@@ -176,6 +187,7 @@ impl Rtw {
         self.modes
     }
 
+    #[cfg(test)]
     /// Puts the rods in `modes` (the state's slots must be read in them).
     pub fn set_modes(&mut self, modes: [RodMode; 3]) {
         self.modes = modes;

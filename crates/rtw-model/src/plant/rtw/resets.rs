@@ -33,6 +33,7 @@ impl Rtw {
             }
             GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
             GuardKind::ComLow => Transition::Failure(FailureDetail::CentreOfMassLow),
+            GuardKind::Edge { rod } => self.leave_edge(y, rod),
         }
     }
 
@@ -67,11 +68,21 @@ impl Rtw {
         });
         self.body
             .slots(self.modes[rod], &rods[rod], slots::rod_mut(y, rod));
+        self.set_level(y, rod);
     }
 
     /// Touchdown of a free rod's tip: the impact, then the mode choice.
     pub fn touchdown(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
         let rods = self.rods(y);
+        if !self.terrain.is_flat() {
+            let (p, _) = self.body.tip_point(&rods[rod], tip);
+            if self
+                .terrain
+                .met_riser(p[1] - self.ground(p[0]), self.touchdown_height)
+            {
+                return Transition::Failure(FailureDetail::Riser);
+            }
+        }
         let impact = match self.replay.and_then(|c| c.impact) {
             Some(kind) => self.body.impact(&rods[rod], tip, kind),
             None => self.body.touchdown(&rods[rod], tip, self.mu),
@@ -79,7 +90,7 @@ impl Rtw {
         let mut after = impact.after;
         // Put the tip exactly on the ground (it was declared a hair below).
         let (p, _) = self.body.tip_point(&after, tip);
-        after.c[1] -= p[1];
+        after.c[1] -= p[1] - self.ground(p[0]);
         let mut rods = rods;
         rods[rod] = after;
         // Mode choice needs the loads with the rod in its new place.
@@ -98,6 +109,7 @@ impl Rtw {
         });
         self.body
             .slots(self.modes[rod], &after, slots::rod_mut(y, rod));
+        self.set_level(y, rod);
         Transition::Touchdown {
             rod,
             tip,

@@ -3,9 +3,9 @@
 //! differences of the map (McGeer's wheel, with closed forms, is checked in
 //! hybrid-ode's tests).
 
+use crate::cycles::{CycleOptions, StepMap};
+use crate::{Method, Options, Params};
 use hybrid_ode::limit::{self, nontrivial_multipliers};
-use rtw_model::cycles::stepmap::{CycleOptions, StepMap};
-use rtw_model::{Method, Options, Params};
 
 /// The Fig. 7(a) walk under the model this check was written for: the
 /// default's choices with strings of natural length s = 0.85. (At the

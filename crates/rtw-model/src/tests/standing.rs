@@ -5,13 +5,13 @@
 //! acceleration vanishes, every foot presses on the ground and its force lies
 //! inside the friction cone.
 
+use crate::options::{CannotStand, InitialShape, Options};
+use crate::outcome::{FailureDetail, Stance};
+use crate::plant::initial::{Start, initial_state};
+use crate::plant::rtw::Rtw;
+use crate::plant::slots::{self, N, VELOCITIES};
+use crate::{Label, Params, Physical, simulate};
 use hybrid_ode::Work;
-use rtw_model::options::{CannotStand, InitialShape, Options};
-use rtw_model::outcome::{FailureDetail, Stance};
-use rtw_model::plant::initial::{Start, initial_state};
-use rtw_model::plant::rtw::Rtw;
-use rtw_model::plant::slots::{self, N, VELOCITIES};
-use rtw_model::{Label, Params, Physical, simulate};
 
 /// The paper-box sample (seed 20240501) that stands on three feet: soft
 /// (f_n 1.58 Hz) and nearly without hub (α 0.055).

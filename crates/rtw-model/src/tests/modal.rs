@@ -1,15 +1,15 @@
-//! Modal analysis against closed forms (see the documentation of `rtw_model::modal`).
+//! Modal analysis against closed forms (see the documentation of `crate::modal`).
 
+use crate::modal::linear::{
+    approx_damping_closed_form, approx_decay_rate_closed_form, approx_stiffness_closed_form,
+    approximate_modes_of as approximate_modes, critical_damping_closed_form, free_star_closed_form,
+    free_star_modes_of as free_star_modes, s18_frequency, star_rest_forces,
+};
+use crate::options::Damping;
+use crate::plant::strings::StringSet;
+use crate::{Normalization, Params, Physical};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rtw_model::modal::{
-    approx_damping_closed_form, approx_decay_rate_closed_form, approx_stiffness_closed_form,
-    approximate_modes, critical_damping_closed_form, free_star_closed_form, free_star_modes,
-    s18_frequency, star_rest_forces,
-};
-use rtw_model::options::Damping;
-use rtw_model::plant::strings::StringSet;
-use rtw_model::{Normalization, Params, Physical};
 use std::f64::consts::PI;
 
 fn strings(ph: &Physical, s: f64, damping: Damping) -> StringSet {

@@ -5,11 +5,11 @@
 //! old default) makes steps long enough for a tip to touch and lift, or a
 //! contact force to dip, between two step ends.
 
+use crate::plant::initial::initial_state;
+use crate::plant::rtw::{AtState, GuardKind, Rtw};
+use crate::plant::slots::N;
+use crate::{Options, Params, Physical};
 use hybrid_ode::{Dense, Flow, Guards, HybridSystem, Observer, StepEnd, Work, run};
-use rtw_model::plant::initial::initial_state;
-use rtw_model::plant::rtw::{AtState, GuardKind, Rtw};
-use rtw_model::plant::slots::N;
-use rtw_model::{Options, Params, Physical};
 
 /// Samples per step of the dense output.
 const SAMPLES: usize = 64;

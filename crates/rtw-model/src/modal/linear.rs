@@ -1,95 +1,7 @@
-//! Linear modal analysis: the supplementary's approximate 3-rotor model
-//! (S1–S18), linearized correctly, and the full free 9-DOF star.
-//!
-//! Both analyses linearize [`StringSet::loads`] numerically (central finite
-//! differences, step `1e-6` rad on angles and `1e-6 r` on positions) at the
-//! rest shape, without gravity or ground, and compare with closed forms that
-//! are also exported here, so that the tests check one against the other.
-//!
-//! # The approximate model, and how it differs from S18
-//!
-//! Three rods of inertia `I` pinned at one common centre, `q = (θa, θb, θc)`
-//! at rest at `(θa, θa + π/3, θa + 2π/3)`, `M = I·Id`. With
-//! `K = −∂τ/∂q`, `C = −∂τ/∂q̇` the state matrix is
-//! `A = [[0, Id], [−M⁻¹K, −M⁻¹C]]` ([`approximate_modes`]).
-//!
-//! The supplementary's linearization (S7–S16) is wrong in three ways
-//! (docs/model.md §7):
-//!
-//! * S7–S10 write `−3/π` for the rest angle `θa − θb`; it is `−π/3`.
-//! * S1 with S5–S6 has the sign of `F` reversed: `F` is the gradient of the
-//!   string potential, so the motion is `M q̈ = −F`, not `M q̈ = F`.
-//! * It expands every `sin/cos(θi − θj)` about `−π/3`, although `θa − θc`
-//!   rests at `−2π/3`.
-//!
-//! Linearized correctly (zero rest length, as S5–S6), with `r = L/2 − l_c`
-//! and `Λ = [[2,−1,−1],[−1,2,−1],[−1,−1,2]]`:
-//!
-//! * stiffness `K = k r² Λ` (eigenvalues 0 — the common rotation, the one
-//!   zero mode — and `3 k r²` twice);
-//! * damping `C = (3/2) c r² Λ` for the `along` damper (S6), and
-//!   `C = c r² [[4,−1,−1],[−1,4,−1],[−1,−1,4]]` for the `relative` one
-//!   (which also damps the common rotation: a real eigenvalue `−2 c r²/I`);
-//! * so the oscillating modes are one double pair
-//!   `λ = −σ ± i √(ω² − σ²)` with `ω = √(3 k r²/I) = √3 · 2π f_n`, where
-//!   `f_n = (L − 2 l_c)/(4π) √(k/I)` is S18's value ([`s18_frequency`]): the
-//!   true frequency is `√3 · f_n`, not `f_n`;
-//! * the decay rate is `σ = 9 c r²/(4 I)` (`along`; `5 c r²/(2 I)` for
-//!   `relative`), so the true damping ratio is `σ/ω = 9 c r/(4 √(3 k I))`,
-//!   which with S22's `c` is `9/(5√3) · ζ ≈ 1.039 ζ`;
-//! * critical damping (the pair turns real when `σ = ω`) is
-//!   `c_crit = 4 √(3 k I)/(9 r)` (`along`), against S17's `(4/5) √(k I)/r`
-//!   (`relative`: `2 √(3 k I)/(5 r)`); [`approximate_modes`] also finds it by
-//!   bisection on `c`.
-//!
-//! S14's two different pairs (with `5c` and `9c`) and their positive real
-//! parts are artefacts of the wrong sign and of the wrong expansion point. The
-//! design parameter stays `f_n` as S18 defines it: the normalization
-//! S21–S22 ([`Normalization::Supplementary`](crate::Normalization)) is kept as
-//! printed, and [`Normalization::Eigen`](crate::Normalization) is the
-//! alternative that makes the true frequency `f_n` and the true damping
-//! ratio `ζ` (`k/3`, `c = 4 I ζ (2π f_n)/(9 r²)`).
-//!
-//! With a natural length `ℓ₀ = s r` the tension is `k (ℓ − ℓ₀)` and the same
-//! computation gives `K = k r² (1 + s/2) Λ` (the damping is unchanged).
-//!
-//! # The free 9-DOF star
-//!
-//! [`free_star_modes`]: the star with `(x, y, θ)` per rod, `M = diag(m, m, I)`
-//! per rod, linearized at [`rest_star`] (an equilibrium for every `s < 1`,
-//! by symmetry), solving `K v = ω² M v` through `M^{-1/2} K M^{-1/2}`.
-//! Because every string has length `r` at rest, its Hessian is
-//! `k ∇ℓ ∇ℓᵀ + k (1 − s) r ∇²ℓ`, i.e. `K(s) = (1 − s) K(0) + s K₁` with
-//! `K₁ = k Σ ∇ℓ ∇ℓᵀ`. Central symmetry decouples the translations of the
-//! centres from the rotations at first order, and 3-fold symmetry fixes the
-//! mode shapes, which gives the closed form ([`free_star_closed_form`],
-//! checked by the tests to 1e-6):
-//!
-//! * 3 rigid modes (two translations, one rotation);
-//! * the rotor pair of the approximate model (centres at rest):
-//!   `√3 f_n · √(1 + s/2)` — it *stiffens* with prestress;
-//! * four relative translations with `ω² = 6 k/m · {1, 1 − s/2, 1 − s/2, 1 − s}`:
-//!   at `s = 0` a quadruple frequency `√(6 k/m)/2π = √2 f_n/(1 − 2α)`; for
-//!   `s > 0` one stays, a pair softens as `√(1 − s/2)`, and one — the
-//!   tensegrity's infinitesimal mechanism, each rod sliding along its own
-//!   axis with `δc = (+e_a, −e_b, +e_c)`, which changes no string length at
-//!   first order and is held only by prestress — softens as `√(1 − s)`.
-//!
-//! At the Fig. 7(a) point (`k = 500`, `r = 0.3`, `m = 2`, `I = 0.10667`,
-//! `f_n = 3.269`), in Hz:
-//!
-//! | s | rigid | mechanism | pair | translation | rotor pair |
-//! |---|---|---|---|---|---|
-//! | 0 | 0 ×3 | 6.164 | 6.164 ×2 | 6.164 | 5.662 ×2 |
-//! | 0.85 | 0 ×3 | 2.387 | 4.674 ×2 | 6.164 | 6.759 ×2 |
-//!
-//! This confirms docs/model.md §9 (5.66 Hz ×2 = `√3 f_n` and 6.16 Hz ×4 at
-//! `s = 0`, one 6.16 Hz mode softening as `√(1 − s)`), and completes it: two
-//! more 6.16 Hz modes soften as `√(1 − s/2)` and the 5.66 Hz pair stiffens
-//! as `√(1 + s/2)`.
-//!
-//! The module does no I/O.
+//! The linear analyses themselves, on a string set ([`StringSet`]); the
+//! module documentation of [`crate::modal`] derives them.
 
+#[cfg(test)]
 use crate::options::Damping;
 use crate::params::Physical;
 use crate::plant::geometry::{RodFrame, RodState, rest_star};
@@ -107,10 +19,10 @@ const ZERO_TOL: f64 = 1e-8;
 const OSC_TOL: f64 = 1e-6;
 
 /// 9 × 9 real matrix (the full star's stiffness).
-pub type Matrix9 = SMatrix<f64, 9, 9>;
+pub(crate) type Matrix9 = SMatrix<f64, 9, 9>;
 
 /// The rest angles of the approximate model: θa = 0, θb = π/3, θc = 2π/3.
-pub const REST_ANGLES: [f64; 3] = [0.0, FRAC_PI_3, 2.0 * FRAC_PI_3];
+pub(crate) const REST_ANGLES: [f64; 3] = [0.0, FRAC_PI_3, 2.0 * FRAC_PI_3];
 
 /// Modes of the approximate 3-rotor model (S1–S6), correctly linearized.
 #[derive(Clone, Debug, PartialEq)]
@@ -154,7 +66,7 @@ pub struct StarModes {
     /// `freq_hz[j]`. Within a repeated frequency the basis is arbitrary.
     pub shapes: [[f64; 9]; 9],
     /// The symmetrized stiffness `K = −∂(F, τ)/∂(x, y, θ)` (N/m, N, N·m).
-    pub stiffness: Matrix9,
+    pub stiffness: SMatrix<f64, 9, 9>,
 }
 
 /// S18 as printed: `f_n = (L − 2 l_c)/(4π) · √(k/I)` (Hz).
@@ -169,15 +81,16 @@ fn rest_ratio(strings: &StringSet) -> f64 {
 
 /// Closed form of the approximate model's stiffness: `K = κ [[2,−1,−1],[−1,2,−1],[−1,−1,2]]`
 /// with `κ = k r² (1 + s/2)` (`s = ℓ₀/r`; `κ = k r²` for S5's zero rest length).
-pub fn approx_stiffness_closed_form(strings: &StringSet) -> Matrix3<f64> {
+pub(crate) fn approx_stiffness_closed_form(strings: &StringSet) -> Matrix3<f64> {
     let kappa = strings.k * strings.r * strings.r * (1.0 + 0.5 * rest_ratio(strings));
     laplacian() * kappa
 }
 
+#[cfg(test)]
 /// Closed form of the approximate model's damping matrix: `along`:
 /// `(3/2) c r² [[2,−1,−1],[−1,2,−1],[−1,−1,2]]`; `relative`:
 /// `c r² [[4,−1,−1],[−1,4,−1],[−1,−1,4]]`.
-pub fn approx_damping_closed_form(strings: &StringSet) -> Matrix3<f64> {
+pub(crate) fn approx_damping_closed_form(strings: &StringSet) -> Matrix3<f64> {
     let cr2 = strings.c * strings.r * strings.r;
     match strings.damping {
         Damping::Along => laplacian() * (1.5 * cr2),
@@ -190,17 +103,19 @@ fn laplacian() -> Matrix3<f64> {
     Matrix3::from_fn(|i, j| if i == j { 2.0 } else { -1.0 })
 }
 
+#[cfg(test)]
 /// Closed form of the approximate model's oscillating (double) pair: undamped
 /// frequency `√(3 κ / I)/2π` (Hz), `κ` as in [`approx_stiffness_closed_form`];
 /// `= √3 · f_n` (S18) for zero rest length.
-pub fn approx_frequency_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
+pub(crate) fn approx_frequency_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
     let kappa = strings.k * strings.r * strings.r * (1.0 + 0.5 * rest_ratio(strings));
     (3.0 * kappa / phys.inertia).sqrt() / (2.0 * PI)
 }
 
+#[cfg(test)]
 /// Closed form of the decay rate `σ = −Re λ` of the oscillating pair (1/s):
 /// `9 c r² / (4 I)` (`along`), `5 c r² / (2 I)` (`relative`).
-pub fn approx_decay_rate_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
+pub(crate) fn approx_decay_rate_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
     let cr2 = strings.c * strings.r * strings.r;
     match strings.damping {
         Damping::Along => 9.0 * cr2 / (4.0 * phys.inertia),
@@ -208,10 +123,11 @@ pub fn approx_decay_rate_closed_form(phys: &Physical, strings: &StringSet) -> f6
     }
 }
 
+#[cfg(test)]
 /// Closed form of the critical damping `c_crit` (decay rate = natural frequency):
 /// `along`: `4 √(3 κ I) / (9 r²)`, i.e. `4 √(3 k I) / (9 r)` at zero rest length
 /// (S17 prints `(4/5) √(k I) / r`); `relative`: `2 √(3 κ I) / (5 r²)`.
-pub fn critical_damping_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
+pub(crate) fn critical_damping_closed_form(phys: &Physical, strings: &StringSet) -> f64 {
     let r2 = strings.r * strings.r;
     let kappa = strings.k * r2 * (1.0 + 0.5 * rest_ratio(strings));
     let root = (3.0 * kappa * phys.inertia).sqrt();
@@ -223,7 +139,7 @@ pub fn critical_damping_closed_form(phys: &Physical, strings: &StringSet) -> f64
 
 /// String torques on three rods pinned at a common centre (the approximate
 /// model), at angles `theta` and angular velocities `omega`.
-pub fn rotor_torques(strings: &StringSet, theta: [f64; 3], omega: [f64; 3]) -> [f64; 3] {
+pub(crate) fn rotor_torques(strings: &StringSet, theta: [f64; 3], omega: [f64; 3]) -> [f64; 3] {
     let frames: [RodFrame; 3] = std::array::from_fn(|i| {
         RodFrame::new(&RodState {
             c: [0.0, 0.0],
@@ -237,7 +153,7 @@ pub fn rotor_torques(strings: &StringSet, theta: [f64; 3], omega: [f64; 3]) -> [
 
 /// `K = −∂τ/∂q` and `C = −∂τ/∂q̇` of the approximate model at [`REST_ANGLES`],
 /// by central finite differences of [`StringSet::loads`].
-pub fn approx_matrices(strings: &StringSet) -> (Matrix3<f64>, Matrix3<f64>) {
+pub(crate) fn approx_matrices(strings: &StringSet) -> (Matrix3<f64>, Matrix3<f64>) {
     let h = FD_STEP;
     let mut k = Matrix3::zeros();
     let mut c = Matrix3::zeros();
@@ -292,7 +208,7 @@ fn oscillating_pairs(eig: &[Complex<f64>], zero: f64) -> Vec<Complex<f64>> {
 /// Modes of the approximate model (S1–S6): rods of inertia `I = phys.inertia`
 /// pinned at one common centre, no gravity, strings `strings`, linearized at
 /// the rest angles by finite differences (see the module documentation).
-pub fn approximate_modes(phys: &Physical, strings: &StringSet) -> ApproxModes {
+pub(crate) fn approximate_modes_of(phys: &Physical, strings: &StringSet) -> ApproxModes {
     let inertia = phys.inertia;
     let (k, c) = approx_matrices(strings);
 
@@ -427,7 +343,7 @@ fn star_forces(strings: &StringSet, dz: &[f64; 9]) -> [f64; 9] {
 /// The free star's stiffness `K = −∂(F, τ)/∂(x, y, θ)` at the rest shape
 /// (`rest_star([0, 0], 0)`), central finite differences (step `1e-6 r` on
 /// positions, `1e-6` rad on angles), symmetrized.
-pub fn star_stiffness(strings: &StringSet) -> Matrix9 {
+pub(crate) fn star_stiffness(strings: &StringSet) -> Matrix9 {
     let mut k = Matrix9::zeros();
     for j in 0..9 {
         let h = if j % 3 < 2 {
@@ -446,16 +362,17 @@ pub fn star_stiffness(strings: &StringSet) -> Matrix9 {
     (k + k.transpose()) * 0.5
 }
 
+#[cfg(test)]
 /// The free star's generalized string forces at the rest shape (zero: the
 /// regular star is an equilibrium for every `s < 1`, by symmetry).
-pub fn star_rest_forces(strings: &StringSet) -> [f64; 9] {
+pub(crate) fn star_rest_forces(strings: &StringSet) -> [f64; 9] {
     star_forces(strings, &[0.0; 9])
 }
 
 /// Modes of the free 9-DOF star (no gravity, no ground): `K v = ω² M v` with
 /// `M = diag(m, m, I)` per rod, solved as the symmetric eigenproblem of
 /// `M^{-1/2} K M^{-1/2}`.
-pub fn free_star_modes(phys: &Physical, strings: &StringSet) -> StarModes {
+pub(crate) fn free_star_modes_of(phys: &Physical, strings: &StringSet) -> StarModes {
     let k = star_stiffness(strings);
     let mass: [f64; 9] = std::array::from_fn(|n| if n % 3 < 2 { phys.m } else { phys.inertia });
     let inv_sqrt: [f64; 9] = std::array::from_fn(|n| 1.0 / mass[n].sqrt());
@@ -483,11 +400,12 @@ pub fn free_star_modes(phys: &Physical, strings: &StringSet) -> StarModes {
     }
 }
 
+#[cfg(test)]
 /// Closed form of the free star's nine frequencies (Hz), sorted (see the
 /// module documentation): three rigid modes (0), the rotor pair
 /// `√(3 k r² (1 + s/2) / I)/2π` (×2) and four relative translations
 /// `√(6 k/m · {1 − s, 1 − s/2, 1 − s/2, 1})/2π`, with `s = ℓ₀/r`.
-pub fn free_star_closed_form(phys: &Physical, strings: &StringSet) -> [f64; 9] {
+pub(crate) fn free_star_closed_form(phys: &Physical, strings: &StringSet) -> [f64; 9] {
     let s = rest_ratio(strings);
     let rotor = approx_frequency_closed_form(phys, strings);
     let w2_t = 6.0 * strings.k / phys.m;

@@ -1,14 +1,14 @@
 //! Physics invariants of the RTW model, each against a conservation law or a
 //! closed form (the reference is stated at each assertion).
 
+use crate::options::{Damping, Method, Options};
+use crate::plant::contact::RodMode;
+use crate::plant::geometry::{RodState, Tip, cross, perp, rest_star, scale, sub};
+use crate::plant::initial::initial_state;
+use crate::plant::rtw::Rtw;
+use crate::plant::slots::{self, DISSIPATED, N, OMEGA, VX, VY};
+use crate::{Label, Params, Physical, simulate};
 use hybrid_ode::{EndReason, EngineOptions, Flow, Guards, HybridSystem, run};
-use rtw_model::options::{Damping, Method, Options};
-use rtw_model::plant::contact::RodMode;
-use rtw_model::plant::geometry::{RodState, Tip, cross, perp, rest_star, scale, sub};
-use rtw_model::plant::initial::initial_state;
-use rtw_model::plant::rtw::Rtw;
-use rtw_model::plant::slots::{self, DISSIPATED, N, OMEGA, VX, VY};
-use rtw_model::{Label, Params, Physical, simulate};
 
 /// The RTW's continuous dynamics in fixed modes, with no guards: for the
 /// invariants of one mode.
@@ -330,7 +330,7 @@ fn energy_balance_closes_over_whole_runs_with_impacts_and_damping() {
 /// settings, and, at DOP853 rtol 1e-10 (the balance is a statement about
 /// the integration error, which the loose default tolerance does not bound
 /// this tightly), with the energy balance closed.
-fn assert_sound(name: &str, p: Params, o: &Options) -> rtw_model::Outcome {
+fn assert_sound(name: &str, p: Params, o: &Options) -> crate::Outcome {
     let d = Options::default();
     let at_default = Options {
         method: d.method,
@@ -435,7 +435,7 @@ fn adopted_default_walks_at_fig7a_within_its_friction_cone() {
     assert_eq!(o.strings.rest_length_ratio, 0.8875);
     assert!(o.strings.slack);
     assert_eq!(o.contact.mu, 0.8);
-    assert_eq!(o.initial.shape, rtw_model::options::InitialShape::Settled);
+    assert_eq!(o.initial.shape, crate::options::InitialShape::Settled);
     assert_eq!((o.labels.flight_steps, o.labels.triple_steps), (0.5, 0.5));
     // At the default (scan) accuracy, and at a tight one where the energy
     // balance is a physics check rather than a measure of integration error.
@@ -480,7 +480,7 @@ fn grazing_touchdown_is_handled() {
 fn static_start_is_an_equilibrium() {
     // With ω = 0 the static shape must stay put: nothing moves.
     let mut o = Options::literal();
-    o.initial.shape = rtw_model::options::InitialShape::Static;
+    o.initial.shape = crate::options::InitialShape::Static;
     o.initial.omega = 0.0;
     o.strings.rest_length_ratio = 0.85;
     let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);

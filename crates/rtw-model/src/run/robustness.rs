@@ -1,0 +1,226 @@
+//! How much disturbance a gait survives (docs/robustness.md): the largest
+//! step down it walks on from.
+//!
+//! **Survives** (docs/model.md §5, "Robustness"): the gait is met by a step
+//! down of height `h` when it has settled (the state the flat run ended in,
+//! with `stop_when_settled` at a touchdown), the step's edge
+//! [`EDGE_AHEAD`]` × L` ahead of its front-most grounded tip; the run from
+//! there, on the stepped ground, under the same options for
+//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (`20 / f_w` seconds, at
+//! most `t_max`), must
+//! not fail and must have the flat gait's label over the second half of
+//! them (`analysis_window = 0.5`). Anything else (a collapse, a trip on the
+//! riser, a stall, another gait, or still hopping ten steps after the drop)
+//! fails.
+//!
+//! **Largest survivable step down** (`step_down_max`, m): the heights
+//! `h = 0.05 L · 1.25ᵏ` are tried from below until one fails (at most
+//! [`STEP_DOWN_CAP`]` × L`, reported as the cap when even it survives), then
+//! the last survivor and the first failure are bisected until they are
+//! within [`STEP_DOWN_RTOL`] of the survivor or [`STEP_DOWN_ATOL`]` × L`,
+//! whichever is larger; the survivor is reported. Survival is not monotone
+//! in `h` for large drops (at Fig. 7(a) the walk survives every step up to
+//! 2.6 m, and then 2.8 m and 3.0–3.4 m but not 2.7 or 2.9 m: how a star lands
+//! from a large drop is chaotic), so the ladder climbs from below in
+//! steps of 1.25: every rung below the reported height survived, the first
+//! one above it failed.
+
+use crate::options::Options;
+use crate::outcome::Outcome;
+use crate::params::{Params, Physical};
+use crate::plant::rtw::Rtw;
+use crate::plant::slots::{DISSIPATED, FRICTION, N};
+use crate::plant::terrain::TerrainOptions;
+use crate::run::simulate::run_from;
+use hybrid_ode::Work;
+use serde::{Deserialize, Serialize};
+
+/// Which robustness measures a stable run adds (the keys `robustness.*` of a
+/// config's `[simulation]` table). All off by default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RobustnessOptions {
+    /// Measure the largest survivable step down (`step_down_max`).
+    pub step_down: bool,
+}
+
+impl RobustnessOptions {
+    /// Is every measure off?
+    pub fn is_off(&self) -> bool {
+        !self.step_down
+    }
+}
+
+/// A gait's robustness measures (each `None` unless asked for).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Robustness {
+    /// The largest survivable step down (m), see the module doc.
+    pub step_down_max: Option<f64>,
+    /// The height the gait failed at just above it: the bisection's upper
+    /// end (`None` when even the cap survived).
+    pub step_down_fail: Option<f64>,
+    /// Integrator work of the measures' runs.
+    pub work: Work,
+}
+
+/// The step's edge lies this many rod lengths ahead of the front-most
+/// grounded tip of the settled gait: the next foot lands beyond it, and far
+/// from the riser.
+pub const EDGE_AHEAD: f64 = 0.05;
+/// A step down is survived when, this many steps of the flat gait (at its
+/// touchdown rate `f_w`) after the settled state, the run has not failed
+/// and the second half of them has the flat gait's label.
+pub const SURVIVAL_STEPS: f64 = 20.0;
+/// The first height tried, in rod lengths.
+pub const STEP_DOWN_START: f64 = 0.05;
+/// Each height tried is this many times the last, until one fails.
+pub const STEP_DOWN_RATIO: f64 = 1.25;
+/// The largest height tried, in rod lengths.
+pub const STEP_DOWN_CAP: f64 = 16.0;
+/// Bisection stops within this fraction of the survivor …
+pub const STEP_DOWN_RTOL: f64 = 0.05;
+/// … or this many rod lengths, whichever is larger.
+pub const STEP_DOWN_ATOL: f64 = 1e-3;
+
+/// The settled gait of a stable flat run, ready to meet a step.
+pub(crate) struct SettledGait<'a> {
+    params: &'a Params,
+    options: Options,
+    phys: &'a Physical,
+    rtw: &'a Rtw,
+    y: &'a [f64; N],
+    flat: &'a Outcome,
+    edge: f64,
+}
+
+impl SettledGait<'_> {
+    /// The run over a step of `h`: its outcome and whether the gait survived.
+    pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
+        let mut sys = self.rtw.clone();
+        sys.terrain = TerrainOptions::step(h, self.edge);
+        // The energy dissipated so far is the flat run's, not this one's.
+        let mut y = *self.y;
+        y[DISSIPATED] = 0.0;
+        y[FRICTION] = 0.0;
+        let (o, _, _) = run_from(
+            self.params,
+            &self.options,
+            self.phys,
+            sys,
+            y,
+            self.flat.start,
+            Work::default(),
+            None,
+        );
+        *work += o.work;
+        (o, o.label == self.flat.label)
+    }
+}
+
+/// The settled state of a flat run that ended in `rtw`, `y` with outcome
+/// `flat`.
+pub(crate) fn settled<'a>(
+    params: &'a Params,
+    options: &Options,
+    phys: &'a Physical,
+    rtw: &'a Rtw,
+    y: &'a [f64; N],
+    flat: &'a Outcome,
+) -> SettledGait<'a> {
+    let front = rtw
+        .rods(y)
+        .iter()
+        .zip(rtw.modes())
+        .filter_map(|(r, m)| m.tip().map(|tip| rtw.body.tip_point(r, tip).0[0]))
+        .fold(f64::NEG_INFINITY, f64::max);
+    // Every stable gait has a foot down at a touchdown; a run that ended
+    // mid-flight (no early stop) measures from its centre of mass instead.
+    let front = if front.is_finite() {
+        front
+    } else {
+        rtw.centre_of_mass(y)[0]
+    };
+    let mut options = *options;
+    options.limit_cycle = false;
+    options.robustness = RobustnessOptions::default();
+    // Judged over `SURVIVAL_STEPS` steps of the flat gait after the edge,
+    // the label over their second half.
+    // At most the run's own `t_max` (a gait's `f_w` is positive).
+    options.t_max = (SURVIVAL_STEPS / flat.f_w).min(options.t_max);
+    options.analysis_window = 0.5;
+    SettledGait {
+        params,
+        options,
+        phys,
+        rtw,
+        y,
+        flat,
+        edge: front + EDGE_AHEAD * phys.length,
+    }
+}
+
+/// The largest survivable step down of a settled gait and the failing
+/// height just above it (see the module doc).
+pub(crate) fn step_down_max(s: &SettledGait<'_>, work: &mut Work) -> (f64, Option<f64>) {
+    let length = s.phys.length;
+    let (mut lo, mut hi) = (0.0, STEP_DOWN_START * length);
+    loop {
+        if !s.meet_step(hi, work).1 {
+            break;
+        }
+        lo = hi;
+        if hi >= STEP_DOWN_CAP * length {
+            return (lo, None);
+        }
+        hi = (STEP_DOWN_RATIO * hi).min(STEP_DOWN_CAP * length);
+    }
+    while hi - lo > (STEP_DOWN_RTOL * lo).max(STEP_DOWN_ATOL * length) {
+        let mid = 0.5 * (lo + hi);
+        if s.meet_step(mid, work).1 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (lo, Some(hi))
+}
+
+/// The measures `options.robustness` asks for, of the stable flat run that
+/// ended in `rtw`, `y` with outcome `flat`.
+pub(crate) fn measure(
+    params: &Params,
+    options: &Options,
+    phys: &Physical,
+    rtw: &Rtw,
+    y: &[f64; N],
+    flat: &Outcome,
+) -> Robustness {
+    let s = settled(params, options, phys, rtw, y, flat);
+    let mut work = Work::default();
+    let (step_down_max, step_down_fail) = match options.robustness.step_down {
+        true => {
+            let (max, fail) = step_down_max(&s, &mut work);
+            (Some(max), fail)
+        }
+        false => (None, None),
+    };
+    Robustness {
+        step_down_max,
+        step_down_fail,
+        work,
+    }
+}
+
+/// A stable gait's settled state met by a step of `h` (m): the outcome of
+/// the run over it and whether it survived (see the module doc). `None`
+/// when the flat run is not a stable gait.
+pub fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(Outcome, bool)> {
+    let mut flat_options = *options;
+    flat_options.robustness = RobustnessOptions::default();
+    crate::run::simulate::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
+        flat.label.is_stable().then(|| {
+            settled(params, options, phys, rtw, y, flat).meet_step(h, &mut Work::default())
+        })
+    })
+    .flatten()
+}

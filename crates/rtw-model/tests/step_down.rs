@@ -1,0 +1,74 @@
+//! The RTW over a step down (docs/robustness.md): the flat slope is
+//! untouched by the terrain, and the largest survivable step down is a
+//! boundary of direct simulation.
+
+use rtw_model::meet_step;
+use rtw_model::options::{RobustnessOptions, TerrainOptions};
+use rtw_model::{Options, Params, simulate};
+
+#[test]
+fn a_step_of_height_zero_or_out_of_reach_is_the_flat_run_bit_for_bit() {
+    let p = Params::fig7a();
+    let flat = simulate(&p, &Options::default());
+    for terrain in [
+        TerrainOptions::step(0.0, 3.0),
+        // A real step the run never reaches: its ground hooks and edge
+        // guards run all along, and change nothing.
+        TerrainOptions::step(0.1, 1e6),
+    ] {
+        let o = Options {
+            terrain,
+            ..Options::default()
+        };
+        let stepped = simulate(&p, &o);
+        assert_eq!(format!("{stepped:?}"), format!("{flat:?}"), "{terrain:?}");
+    }
+}
+
+#[test]
+fn a_step_met_on_the_way_changes_the_run() {
+    // A control for the test above: the same step, met.
+    let p = Params::fig7a();
+    let flat = simulate(&p, &Options::default());
+    let o = Options {
+        terrain: TerrainOptions::step(0.1, 3.0),
+        ..Options::default()
+    };
+    assert_ne!(simulate(&p, &o).t_end, flat.t_end);
+}
+
+/// At 0.8× the reported height the gait survives; the first failure above
+/// it is within the bisection's tolerance (5 %). At 1.25× the Fig. 7(a)
+/// walk survives again: survival is not monotone for drops of several rod
+/// lengths (docs/robustness.md), which the test records rather than hides.
+#[test]
+fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
+    let p = Params::fig7a();
+    let o = Options {
+        robustness: RobustnessOptions { step_down: true },
+        ..Options::default()
+    };
+    let out = simulate(&p, &o);
+    let r = out.robustness.unwrap();
+    let (h, fail) = (r.step_down_max.unwrap(), r.step_down_fail.unwrap());
+    println!(
+        "Fig. 7(a): step_down_max = {h} m ({:.3} L), first failure {fail} m",
+        h / p.length
+    );
+    assert!(
+        h > 0.0 && fail > h && fail <= 1.05 * h + 1e-3 * p.length,
+        "{h} {fail}"
+    );
+    for factor in [0.8, 1.0] {
+        let (below, survived) = meet_step(&p, &o, factor * h).unwrap();
+        assert!(survived, "{factor} × {h}: {below:?}");
+    }
+    let (above, survived) = meet_step(&p, &o, fail).unwrap();
+    assert!(!survived, "{fail}: {above:?}");
+    assert!(above.label.is_failure() || above.label != out.label);
+    let (at_125, survived_125) = meet_step(&p, &o, 1.25 * h).unwrap();
+    println!(
+        "at 1.25×: survived {survived_125}, {:?} {:?}",
+        at_125.label, at_125.failure
+    );
+}

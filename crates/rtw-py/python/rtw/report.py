@@ -1,0 +1,509 @@
+"""A scan as one HTML page you can open: ``rtw.report(DIR)`` / ``python -m rtw report DIR``.
+
+The page is one self-contained file (docs/report.md): Plotly.js and the data
+are inlined (gzip, base64; the browser inflates them with its own
+DecompressionStream), so it opens offline from disk with no server and no CDN.
+It shows the scan's header and summary, parallel coordinates of the inputs
+and chosen outputs with brushing, parallel categories of the outcome against
+binned inputs, the failure clusters of Fig. S4 in 3-D and in its three 2-D
+projections with the k-means centres, the sensitivity indices when the
+directory has them, and for a clicked sample all its columns and its gait,
+animated.
+
+The gaits are computed here, in Python: each representative sample (the
+failure nearest each cluster centre, a few per outcome, and any asked for) is
+run again with ``rtw.trace`` under the scan's own stored config, checked
+against its row (same outcome) and against the model's geometry
+(``rtw.draw.check_geometry``), and turned into world-frame segments with
+``rtw.draw`` (rods, strings, ground, feet and their contact modes). The page's
+script only draws those segments; it never re-derives the robot.
+
+Only the standard library is imported here at module level, so that
+``import rtw`` stays light; numpy and Plotly's bundle (the ``report`` extra:
+``pip install 'rtw[report]'``) are needed when a report is made.
+"""
+
+from __future__ import annotations
+
+import base64
+import gzip
+import html
+import json
+import math
+import os
+import tempfile
+import tomllib
+from collections import Counter
+from pathlib import Path
+from typing import Any, Iterable, Sequence
+
+# The paper's five design inputs (L is fixed by its scan); L joins them when a scan varies it.
+INPUTS = ("rho", "alpha", "fn", "zeta", "phi")
+DEFAULT_OUTPUTS = ("speed", "f_w", "mu_required")
+OUTCOMES = ("skip", "walk", "crawl", "collapse", "stall", "diverged")
+# Every column of every row goes into the page up to this many rows (a click
+# shows them all); above it, only the plotted columns do, and all columns only
+# for the samples with a gait (the page says so).
+DETAIL_ROWS = 20_000
+# The views draw at most PLOT_ROWS samples: above, a seeded random subset of
+# that many (the same in every view, and said on the page), while the counts
+# (summary, brushing) are of every row. A report takes at most MAX_ROWS rows
+# (docs/report.md gives the measured sizes and times).
+PLOT_ROWS = 20_000
+MAX_ROWS = 1_000_000
+# A gait is shown over the last TRACE_WINDOW seconds of its run (the settled
+# gait of a stable run, the fall or the stop of a failed one), one frame every
+# FRAME_DT seconds of simulated time, played in real time.
+TRACE_WINDOW = 8.0
+FRAME_DT = 0.04
+PER_OUTCOME = 2
+# The marker the page carries, by which the report recognises its own files
+# (it never writes over a file it did not make).
+GENERATOR = '<meta name="generator" content="rtw report">'
+ASSETS = Path(__file__).with_name("report_assets")
+
+
+class ReportError(ValueError):
+    """The directory cannot be reported on (no scan, bad options); the message says why."""
+
+
+def _plotly_bundle() -> str:
+    try:
+        import plotly
+    except ImportError:
+        raise ImportError("rtw.report needs Plotly's JavaScript bundle from the `plotly` package: "
+                          "pip install 'rtw[report]'") from None
+    path = Path(plotly.__file__).with_name("package_data") / "plotly.min.js"
+    if not path.is_file():
+        raise ImportError(f"the plotly package has no {path.name} at {path}: reinstall it "
+                          "(pip install --force-reinstall 'rtw[report]')")
+    return path.read_text(encoding="utf-8")
+
+
+def _b64gz(text: str) -> str:
+    # mtime=0: the same report gives the same bytes.
+    return base64.b64encode(gzip.compress(text.encode("utf-8"), compresslevel=9, mtime=0)).decode("ascii")
+
+
+def _meta(md: dict | None) -> dict[str, str]:
+    return {(k.decode() if isinstance(k, bytes) else k): (v.decode() if isinstance(v, bytes) else v)
+            for k, v in (md or {}).items()}
+
+
+def _scan_files(directory: Path) -> list[Path]:
+    """The scan's row files: DIR/samples.parquet (a plain or merged scan), or
+    the parts DIR/part-*.parquet of an unmerged shard set; DIR may name a file."""
+    if directory.is_file():
+        return [directory]
+    if not directory.is_dir():
+        raise FileNotFoundError(f"DIR: {directory} is neither a scan directory nor a Parquet file")
+    merged = directory / "samples.parquet"
+    if merged.is_file():
+        return [merged]
+    parts = sorted(directory.glob("part-*.parquet"))
+    if parts:
+        return parts
+    raise ReportError(f"DIR: {directory} holds no samples.parquet and no part-*.parquet "
+                      "(a directory written by `rtw-scan run --out DIR` or `rtw-scan merge`)")
+
+
+def _read_scan(files: Sequence[Path]):
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    metas = [_meta(pq.read_metadata(f).metadata) for f in files]
+    for f, m in zip(files, metas):
+        if "rtw.config" not in m:
+            raise ReportError(f"{f}: not a scan file written by rtw-scan (no rtw.config in its metadata)")
+        if m.get("rtw.config_hash") != metas[0].get("rtw.config_hash"):
+            raise ReportError(f"{f}: another scan's part (config hash {m.get('rtw.config_hash')}, "
+                              f"{files[0].name} has {metas[0].get('rtw.config_hash')})")
+    table = pa.concat_tables([pq.read_table(f) for f in files]).sort_by("sample_id")
+    return table, metas[0]
+
+
+def _assignments(directory: Path) -> tuple[dict[int, int], str] | None:
+    """Each failure's cluster from an assignments file in DIR
+    (`rtw-scan cluster --assignments`, recognised by its rtw.clusters metadata)."""
+    import pyarrow.parquet as pq
+
+    if not directory.is_dir():
+        return None
+    for f in sorted(directory.glob("*.parquet")):
+        try:
+            m = _meta(pq.read_metadata(f).metadata)
+        except Exception:  # not Parquet: not ours to read
+            continue
+        if "rtw.clusters" in m:
+            t = pq.read_table(f, columns=["sample_id", "cluster"]).to_pydict()
+            got = {int(s): int(c) - 1 for s, c in zip(t["sample_id"], t["cluster"])}
+            return got, f"from {f.name} (rtw-scan cluster --assignments)"
+    return None
+
+
+def _nearest_centre(rows: dict[str, list], failed: list[int], centres: list[dict]) -> dict[int, int]:
+    """Each failure's cluster as rtw-scan counts it: the nearest centre in
+    (α, f_n, φ) standardized by the failures' mean and population standard
+    deviation (crates/rtw-scan analysis/clusters.rs). With every failure
+    clustered, as in a scan of up to 20 000 failures, that is k-means' own
+    final assignment."""
+    import numpy as np
+
+    pts = np.array([[rows[c][i] for c in ("alpha", "fn", "phi")] for i in failed], dtype=float)
+    mean = pts.mean(axis=0)
+    sd = pts.std(axis=0)
+    sd[sd <= 0] = 1.0
+    z = (pts - mean) / sd
+    cz = (np.array([[c["alpha"], c["fn"], c["phi"]] for c in centres]) - mean) / sd
+    d = ((z[:, None, :] - cz[None, :, :]) ** 2).sum(axis=-1)
+    return {rows["sample_id"][i]: int(j) for i, j in zip(failed, np.argmin(d, axis=1))}
+
+
+def _representatives(rows: dict[str, list], clusters: dict[int, int] | None, centres: list[dict],
+                     per_outcome: int, asked: Iterable[int]) -> list[tuple[int, str]]:
+    """(row index, why) of the samples whose gait the page animates: the
+    failure nearest each cluster centre, then per outcome the `per_outcome`
+    samples nearest the outcome's mean in standardized (α, f_n, φ), then the
+    samples asked for by id. A run that moved (t_end > 0) comes before one
+    that ended at once (a star that cannot stand has nothing to animate)."""
+    import numpy as np
+
+    n = len(rows["sample_id"])
+    pts = np.array([rows[c] for c in ("alpha", "fn", "phi")], dtype=float).T
+    sd = pts.std(axis=0) if n > 1 else np.ones(3)
+    sd[sd <= 0] = 1.0
+    z = pts / sd
+    chosen: list[tuple[int, str]] = []
+    taken: set[int] = set()
+    index = {sid: i for i, sid in enumerate(rows["sample_id"])}
+    still = [not (t or 0) > 0 for t in rows["t_end"]]
+    if clusters:
+        for j, c in enumerate(centres):
+            members = [index[s] for s, k in clusters.items() if k == j and s in index]
+            if not members:
+                continue
+            cz = np.array([c["alpha"], c["fn"], c["phi"]]) / sd
+            best = min(members, key=lambda i: (still[i], float(((z[i] - cz) ** 2).sum()), i))
+            chosen.append((best, f"nearest cluster {j + 1}'s centre ({c.get('name', '')})"))
+            taken.add(best)
+    outcome = rows["outcome"]
+    for o in OUTCOMES:
+        members = [i for i in range(n) if outcome[i] == o]
+        if not members:
+            continue
+        m = z[members].mean(axis=0)
+        members.sort(key=lambda i: (still[i], float(((z[i] - m) ** 2).sum()), i))
+        picked = [i for i in members if i not in taken][:per_outcome]
+        for rank, i in enumerate(picked):
+            chosen.append((i, f"a typical {o} ({rank + 1} of {len(picked)})"))
+            taken.add(i)
+    for sid in asked:
+        if sid not in index:
+            raise ReportError(f"--sample: sample_id {sid} is not in the scan (ids {rows['sample_id'][0]} "
+                              f"… {rows['sample_id'][-1]})")
+        if index[sid] not in taken:
+            chosen.append((index[sid], "asked for"))
+            taken.add(index[sid])
+    return chosen
+
+
+def _gait(row: dict[str, Any], config_path: str, options: dict) -> dict[str, Any]:
+    """One sample's gait as the page draws it: per frame, world-frame segments
+    of the rods and strings, the feet on the ground with their contact mode,
+    the contact state and the view's centre, from rtw.trace and rtw.draw."""
+    import numpy as np
+
+    from . import trace as run_trace
+    from .draw import SPOKES, STATE_NAMES, Design, Trace, check_geometry, rod_points, slope_axes, stance_tips
+
+    inputs = [row[c] for c in ("length", "rho", "alpha", "fn", "zeta", "phi")]
+    table = run_trace(*inputs, config=config_path, dt=FRAME_DT)
+    ran = json.loads(table.schema.metadata[b"rtw.outcome"])
+    note = None
+    if ran["outcome"] != row["outcome"]:
+        note = (f"this trace's run ended as {ran['outcome']}, the scan's row says {row['outcome']}: "
+                "the scan was not made with this rtw version's model")
+    if table.num_rows == 0:
+        # A star that cannot stand in its initial shape ends before its first sample.
+        return {"sample_id": int(row["sample_id"]), "outcome": ran["outcome"], "t": [], "note": note,
+                "empty": f"the run ended at t = 0, before its first trace sample ({ran.get('message') or ran['outcome']})"}
+    design = Design.from_params(row["length"], row["alpha"], row["phi"], options, k=row["k"])
+    tr = Trace(table, design)
+    check_geometry(tr)
+    # Frames at even times (the trace also holds the event instants), each the
+    # sample nearest its time, as rtw.animate draws them.
+    start = max(float(tr.t[0]), float(tr.t[-1]) - TRACE_WINDOW)
+    keep = tr.nearest(start + FRAME_DT * np.arange(int((float(tr.t[-1]) - start) / FRAME_DT + 1e-9) + 1))
+    d, to_world = design, slope_axes(design.phi)
+    (tp, tm), (cp, cm) = rod_points(tr.x[:, keep], tr.y[:, keep], tr.theta[:, keep], d.length / 2, d.r)
+    tips = np.stack([tp, tm], axis=2) @ to_world  # [rod, sample, end, xy]
+    conns = np.stack([cp, cm], axis=2) @ to_world
+    rods = tips.reshape(3, len(keep), 4).transpose(1, 0, 2)  # [sample, rod, x0 y0 x1 y1]
+    strings = np.stack([np.concatenate([conns[a[0], :, a[1]], conns[b[0], :, b[1]]], axis=-1)
+                        for a, b in zip(SPOKES, SPOKES[1:] + SPOKES[:1])], axis=1)  # [sample, string, 4]
+    code = tr.contact[:, keep]
+    feet = stance_tips(tips[:, :, 0], tips[:, :, 1], code).transpose(1, 0, 2)  # [sample, rod, xy]
+    hub = np.stack([tr.x[:, keep].mean(axis=0), np.zeros(len(keep))], axis=-1) @ to_world
+    centre = hub + np.array([0.0, 0.45 * d.length])
+    r6 = lambda a: np.round(a, 5).tolist()  # noqa: E731 (0.01 mm: below a pixel)
+    return {
+        "sample_id": int(row["sample_id"]),
+        "outcome": ran["outcome"],
+        "note": note,
+        "t": r6(tr.t[keep]),
+        "rods": r6(rods),
+        "strings": r6(strings),
+        "feet": r6(feet),
+        "mode": np.abs(code).T.tolist(),  # [sample, rod]: 0 free, 1 stick, 2 slide
+        "state": [STATE_NAMES[s] for s in tr.state[keep]],
+        "centre": r6(centre),
+        "ground": r6(to_world[0]),  # the slope's downhill direction in the world
+        "normal": r6(to_world[1]),
+        "length": d.length,
+        "window": 2.2 * d.length,
+    }
+
+
+def _style() -> dict[str, Any]:
+    """The colours of rtw.draw and the figures, so the page looks like them."""
+    from . import draw
+
+    return {"outcome": draw.OUTCOME_COLOR, "rod": list(draw.ROD_COLOR), "string": draw.STRING_COLOR,
+            "ground": draw.GROUND_COLOR, "earth": draw.EARTH_COLOR, "state": draw.STATE_COLOR,
+            "cluster": ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf"]}
+
+
+def _bins(values: list[float], lo: float, hi: float, n: int = 4) -> tuple[list[str], list[str]]:
+    """Equal-width bins of [lo, hi]: each value's label 'a–b', and the labels in order."""
+    w = (hi - lo) / n if hi > lo else 1.0
+    edges = [lo + w * k for k in range(n + 1)]
+    labels = [f"{edges[k]:.3g}–{edges[k + 1]:.3g}" for k in range(n)]
+    return [labels[min(max(int((v - lo) / w), 0), n - 1)] for v in values], labels
+
+
+def _sensitivity(directory: Path) -> dict | None:
+    """Sensitivity indices (indices.parquet: output, parameter, S1, S1_conf,
+    ST, ST_conf) in DIR or DIR/sensitivity, when there."""
+    import pyarrow.parquet as pq
+
+    if not directory.is_dir():
+        return None
+    for f in (directory / "indices.parquet", directory / "sensitivity" / "indices.parquet"):
+        if f.is_file():
+            t = pq.read_table(f)
+            need = ["output", "parameter", "S1", "S1_conf", "ST", "ST_conf"]
+            missing = [c for c in need if c not in t.column_names]
+            if missing:
+                raise ReportError(f"{f}: lacks the columns {', '.join(missing)} of sensitivity indices")
+            return {"file": f.name, "rows": _clean(t.select(need).to_pylist())}
+    return None
+
+
+def _images(directory: Path) -> list[dict[str, str]]:
+    """The PNG maps in DIR (robustness maps, figures), inlined, up to 2 MB each."""
+    if not directory.is_dir():
+        return []
+    out = []
+    for f in sorted(directory.glob("*.png")):
+        if f.stat().st_size <= 2_000_000:
+            out.append({"name": f.name, "src": "data:image/png;base64," + base64.b64encode(f.read_bytes()).decode()})
+    return out
+
+
+def _clean(v):
+    """JSON-safe: non-finite floats as null."""
+    if isinstance(v, float):
+        return v if math.isfinite(v) else None
+    if isinstance(v, dict):
+        return {k: _clean(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_clean(x) for x in v]
+    return v
+
+
+def _header(meta: dict[str, str], summary: dict | None, n: int, counts: Counter, files: Sequence[Path],
+            version: str) -> str:
+    """The header's HTML: config, variant, seed, size, versions, and the summary table."""
+    e = html.escape
+    config = meta["rtw.config"]
+    name = tomllib.loads(config).get("name", "?")
+    items = [("scan", name), ("file", ", ".join(str(f) for f in files)), ("samples", f"{n:,}"),
+             ("seed", meta.get("rtw.seed", "?")), ("model variant", meta.get("rtw.variant", "?")),
+             ("computed by rtw", meta.get("rtw.version", "?")), ("report made by rtw", version),
+             ("config hash", meta.get("rtw.config_hash", "?"))]
+    dl = "".join(f"<tr><th>{e(k)}</th><td>{e(str(v))}</td></tr>" for k, v in items)
+    paper = bool(summary and summary.get("paper_scan"))
+    rows = []
+    if summary:
+        for o in [*summary["outcomes"], summary.get("stable"), summary.get("failed")]:
+            if not o:
+                continue
+            lo, hi = o.get("ci95") or (None, None)
+            ci = f"{lo:.1f}–{hi:.1f}" if lo is not None else ""
+            pp = o.get("paper_percent")
+            cells = [o["outcome"], f"{o['count']:,}", f"{o['percent']:.1f}", ci]
+            if paper:
+                cells.append("" if pp is None else f"{pp:.1f}")
+            rows.append(cells)
+        head = ["outcome", "count", "%", "95 % CI (%)"] + (["paper %"] if paper else [])
+        src = "summary.json (rtw-scan summary)" + ("; paper %: the percentages the paper reports" if paper else "")
+    else:
+        head = ["outcome", "count", "%"]
+        rows = [[o, f"{c:,}", f"{100 * c / max(n, 1):.1f}"] for o, c in counts.most_common()]
+        src = "counted from the rows (the directory has no summary.json)"
+    table = ("<table class='summary'><thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in head) + "</tr></thead><tbody>"
+             + "".join("<tr>" + "".join(f"<td>{e(c)}</td>" for c in r) + "</tr>" for r in rows)
+             + f"</tbody></table><p class='note'>Source: {e(src)}.</p>")
+    return (f"<h1>rtw scan report: {e(name)}</h1><div class='head'><table class='meta'>{dl}</table>{table}</div>"
+            f"<details><summary>config (as stored in the scan file, rtw.config)</summary><pre>{e(config)}</pre></details>")
+
+
+def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *,
+           outputs: Sequence[str] | None = None, per_outcome: int = PER_OUTCOME,
+           samples: Iterable[int] = (), force: bool = False) -> Path:
+    """Writes one self-contained HTML report of a scan; returns its path.
+
+    Args:
+        directory: a scan directory (``samples.parquet``, or the
+            ``part-*.parquet`` of a shard set), or a scan Parquet file.
+        out: the HTML file; default ``DIR/report.html``. A file that is not
+            an rtw report is never written over (``force=True`` does).
+        outputs: the output columns on the parallel coordinates beside the
+            inputs (default ``speed``, ``f_w``, ``mu_required``).
+        per_outcome: representative samples with a gait per outcome, in [0, 10].
+        samples: sample ids whose gait is computed too.
+        force: write over a file that is not an rtw report.
+
+    Raises:
+        FileNotFoundError: no such directory or file.
+        ValueError: not a scan, an unknown output column, a bad option,
+            an output that is not an rtw report (without ``force``).
+        ImportError: Plotly or numpy is missing (``pip install 'rtw[report]'``).
+    """
+    from . import __version__
+
+    directory = Path(directory)
+    files = _scan_files(directory)
+    base = directory if directory.is_dir() else directory.parent
+    out = Path(out) if out is not None else base / "report.html"
+    if isinstance(per_outcome, bool) or not isinstance(per_outcome, int) or not 0 <= per_outcome <= 10:
+        raise ReportError(f"per_outcome: {per_outcome!r} is invalid: must be an integer in [0, 10]")
+    samples = [int(s) for s in samples]
+    if out.is_symlink() or (out.exists() and not out.is_file()):
+        raise ReportError(f"out: {out} is a symlink or not a regular file: choose another file")
+    if out.exists() and not force:
+        with open(out, encoding="utf-8", errors="replace") as fh:
+            if GENERATOR not in fh.read(4096):
+                raise ReportError(f"out: {out} exists and is not an rtw report: choose another file "
+                                  "or pass --force (force=True)")
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"out: the folder {out.parent} does not exist")
+    plotly_js = _plotly_bundle()
+
+    table, meta = _read_scan(files)
+    n = table.num_rows
+    if n == 0:
+        raise ReportError(f"DIR: {files[0]} has no rows")
+    if n > MAX_ROWS:
+        raise ReportError(f"DIR: {n:,} rows; a report plots at most {MAX_ROWS:,} (docs/report.md): "
+                          "report a shard's part or a smaller scan")
+    config_text = meta["rtw.config"]
+    config = tomllib.loads(config_text)
+    inputs = [c for c in ("length", *INPUTS) if c != "length" or len(set(table["length"].to_pylist())) > 1]
+    outputs = list(DEFAULT_OUTPUTS if outputs is None else outputs)
+    for c in outputs:
+        if c not in table.column_names or c == "outcome":
+            raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
+    rows = table.to_pydict()
+    counts = Counter(rows["outcome"])
+    summary_path = base / "summary.json"
+    summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
+    centres = (summary or {}).get("clusters", {}).get("clusters", []) if summary else []
+
+    failed = [i for i, o in enumerate(rows["outcome"]) if o in ("collapse", "stall")]
+    found = _assignments(base)
+    if found:
+        assign, how = found
+    elif centres and failed:
+        assign = _nearest_centre(rows, failed, centres)
+        how = "each failure in the cluster of its nearest centre (standardized α, f_n, φ), as rtw-scan counts it"
+    else:
+        assign, how = {}, "no clusters in summary.json"
+
+    detail = n <= DETAIL_ROWS
+    plotted = ["sample_id", *inputs, *[c for c in outputs if c not in inputs]]
+    names = [o for o in OUTCOMES if counts.get(o)] + sorted(o for o in counts if o not in OUTCOMES)
+    code = {o: k for k, o in enumerate(names)}
+    data: dict[str, Any] = {
+        "n": n,
+        "inputs": inputs,
+        "outputs": outputs,
+        "outcomes": names,
+        "outcome": [code[o] for o in rows["outcome"]],
+        "columns": {c: _clean(rows[c]) for c in (table.column_names if detail else plotted) if c != "outcome"},
+        "all_columns": table.column_names,
+        "detail": detail,
+        "detail_rows": DETAIL_ROWS,
+        "style": _style(),
+        "ranges": {c: _clean([min(v for v in rows[c] if v is not None), max(v for v in rows[c] if v is not None)])
+                   for c in plotted if any(v is not None for v in rows[c])},
+    }
+    # Parallel categories: the outcome against the binned inputs that matter most (Fig. S4's three).
+    box = config.get("params", {})
+
+    def span(c):
+        u = box.get(c, {}).get("uniform") if isinstance(box.get(c), dict) else None
+        return u if u else data["ranges"][c]
+
+    binned = {c: _bins(rows[c], *span(c)) for c in ("alpha", "fn", "phi")}
+    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), rows["outcome"]))
+    if n > PLOT_ROWS:
+        import numpy as np
+
+        rng = np.random.default_rng(int(meta.get("rtw.seed", "0")))
+        data["shown"] = np.sort(rng.choice(n, PLOT_ROWS, replace=False)).tolist()
+    else:
+        data["shown"] = None
+    data["parcats"] = {"dims": ["alpha", "fn", "phi", "outcome"], "order": [binned[c][1] for c in binned] + [names],
+                       "values": [list(k) for k in combos], "counts": list(combos.values())}
+    data["clusters"] = {"centres": _clean(centres), "how": how,
+                        "index": [i for i in failed], "cluster": [assign.get(rows["sample_id"][i], -1) for i in failed]}
+    # The gaits.
+    picks = _representatives(rows, assign, centres, per_outcome, samples)
+    gaits = []
+    options = config.get("simulation", {})
+    with tempfile.TemporaryDirectory(prefix="rtw-report-") as tmp:
+        cfg = Path(tmp) / "config.toml"
+        cfg.write_text(config_text, encoding="utf-8")
+        for i, why in picks:
+            row = {c: rows[c][i] for c in table.column_names}
+            g = _gait(row, str(cfg), options)
+            g["why"] = why
+            if not detail:
+                g["row"] = _clean(row)
+            gaits.append(g)
+    data["gaits"] = gaits
+    data["sensitivity"] = _sensitivity(base)
+    data["images"] = _images(base)
+
+    page = (ASSETS / "report.html").read_text(encoding="utf-8")
+    script = (ASSETS / "report.js").read_text(encoding="utf-8")
+    text = (page.replace("{{GENERATOR}}", GENERATOR)
+            .replace("{{TITLE}}", html.escape(f"rtw report: {config.get('name', '?')}"))
+            .replace("{{HEADER}}", _header(meta, summary, n, counts, files, __version__))
+            .replace("{{PLOTLY}}", _b64gz(plotly_js))
+            .replace("{{DATA}}", _b64gz(json.dumps(_clean(data), separators=(",", ":"), allow_nan=False)))
+            .replace("{{SCRIPT}}", script))
+    # Atomic: a complete file or none (a temporary file beside it, renamed).
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp_name, 0o666 & ~umask)  # mkstemp's 0600 would hide the page from other users
+        os.replace(tmp_name, out)
+    except BaseException:
+        Path(tmp_name).unlink(missing_ok=True)
+        raise
+    return out

@@ -1,0 +1,364 @@
+"use strict";
+// The page of `python -m rtw report` (crates/rtw-py/python/rtw/report.py).
+// Plotly.js and the data are inlined gzipped (base64) and inflated here with
+// the browser's DecompressionStream. Everything about the robot (rods,
+// strings, feet, ground, view) arrives as world-frame coordinates computed in
+// Python by rtw.draw: this script only draws segments and points.
+window.rtwReport = { ready: false, selected: null, frame: null, timings: {} };
+const mark = (name) => { window.rtwReport.timings[name] = Math.round(performance.now()); };
+
+async function inflate(id) {
+  const bin = atob(document.getElementById(id).textContent.trim());
+  const bytes = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
+  return await new Response(stream).text();
+}
+
+const LABEL = {
+  length: "L [m]", rho: "ρ [kg/m]", alpha: "α", fn: "f_n [Hz]", zeta: "ζ", phi: "φ [rad]",
+  speed: "speed [m/s]", f_w: "f_w [Hz]", mu_required: "μ required", outcome: "outcome",
+};
+const label = (c) => LABEL[c] || c;
+const fmt = (v) => (v === null || v === undefined) ? "none"
+  : (typeof v === "number" ? (Number.isInteger(v) ? String(v) : v.toPrecision(6)) : String(v));
+
+// A colour per category on a numeric colour axis [-0.5, K - 0.5].
+function stepped(colors) {
+  const K = colors.length, s = [];
+  colors.forEach((c, k) => { s.push([k / K, c]); s.push([(k + 1) / K, c]); });
+  return s;
+}
+
+// Lets the browser paint what is drawn so far: the page shows its first view
+// (header, parallel coordinates) before the views further down are drawn.
+const paint = () => new Promise((resolve) => setTimeout(resolve, 0));
+
+async function main(D) {
+  const S = D.style;
+  const K = D.outcomes.length;
+  const ocolor = D.outcomes.map((o) => S.outcome[o] || "#999");
+  const cfg = { displaylogo: false, responsive: true };
+  // SVG draws a few thousand points faster than a new WebGL context starts; WebGL beyond.
+  const scatter = (m) => (m > 5000 ? "scattergl" : "scatter");
+  // The rows drawn: all of them, or above a limit a seeded random subset chosen
+  // in Python (the same in every view); counts are always of every row.
+  const shown = D.shown || Array.from({ length: D.n }, (_, i) => i);
+  const isShown = new Uint8Array(D.n);
+  shown.forEach((i) => { isShown[i] = 1; });
+  document.getElementById("drawn").textContent = D.shown
+    ? `The views draw a random ${shown.length.toLocaleString("en")} of the ${D.n.toLocaleString("en")} samples `
+      + "(the same ones in every view); the counts are of every sample."
+    : `The views draw every one of the ${D.n.toLocaleString("en")} samples.`;
+
+  const byOutcome = D.outcomes.map(() => []);
+  shown.forEach((i) => byOutcome[D.outcome[i]].push(i));
+
+  // ---- parallel coordinates with brushing and a count of the selection.
+  const pcCols = [...D.inputs, ...D.outputs.filter((c) => !D.inputs.includes(c))];
+  const pcValues = [];
+  const dims = pcCols.map((c) => {
+    const v = D.columns[c];
+    const [lo, hi] = D.ranges[c] || [0, 1];
+    const hasNone = v.some((x) => x === null);
+    const none = lo - 0.1 * ((hi - lo) || 1);
+    const values = hasNone ? v.map((x) => (x === null ? none : x)) : v;
+    pcValues.push(values);
+    const d = { label: label(c), values: D.shown ? shown.map((i) => values[i]) : values, range: [hasNone ? none : lo, hi] };
+    if (hasNone) {
+      const ticks = [0, 1, 2, 3, 4].map((k) => lo + (k * (hi - lo)) / 4);
+      d.tickvals = [none, ...ticks];
+      d.ticktext = ["none", ...ticks.map((t) => t.toPrecision(3))];
+    }
+    return d;
+  });
+  const pc = document.getElementById("parcoords");
+  Plotly.newPlot(pc, [{
+    type: "parcoords", dimensions: dims,
+    line: { color: D.shown ? shown.map((i) => D.outcome[i]) : D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
+  }], { margin: { l: 70, r: 70, t: 50, b: 30 } }, cfg);
+  const countEl = document.getElementById("count");
+  function brushed() {
+    const ranges = pc.data[0].dimensions.map((d) => {
+      const r = d.constraintrange;
+      if (!r || r.length === 0) return null;
+      return Array.isArray(r[0]) ? r : [r];
+    });
+    const per = new Array(K).fill(0);
+    const picked = new Uint8Array(D.n);
+    let total = 0;
+    for (let i = 0; i < D.n; i++) {
+      let ok = true;
+      for (let j = 0; j < ranges.length && ok; j++) {
+        const r = ranges[j];
+        if (!r) continue;
+        const v = pcValues[j][i];
+        ok = r.some(([a, b]) => v >= a && v <= b);
+      }
+      if (ok) { total++; per[D.outcome[i]]++; picked[i] = 1; }
+    }
+    // The gait map shows the brushed samples, the others faded.
+    const gmap = document.getElementById("gaitmap");
+    if (gmap.data) {
+      const all = ranges.every((r) => !r);
+      Plotly.restyle(gmap, { selectedpoints: byOutcome.map((m) => (all ? null : m.flatMap((i, p) => (picked[i] ? [p] : [])))) });
+    }
+    window.rtwReport.selected = total;
+    window.rtwReport.selectedPer = Object.fromEntries(D.outcomes.map((o, k) => [o, per[k]]));
+    countEl.dataset.selected = String(total);
+    countEl.textContent = `${total.toLocaleString("en")} of ${D.n.toLocaleString("en")} samples selected: `
+      + D.outcomes.map((o, k) => `${o} ${per[k].toLocaleString("en")}`).join(", ");
+  }
+  pc.on("plotly_restyle", brushed);
+  brushed();
+  window.rtwReport.firstViewMs = performance.now();
+  await paint();
+
+  mark("parallel categories");
+  // ---- parallel categories: outcome against binned α, f_n, φ (aggregated in Python).
+  const P = D.parcats;
+  const ocode = Object.fromEntries(D.outcomes.map((o, k) => [o, k]));
+  Plotly.newPlot("parcats", [{
+    type: "parcats", counts: P.counts, arrangement: "freeform",
+    dimensions: P.dims.map((c, k) => ({
+      label: label(c), values: P.values.map((v) => v[k]),
+      categoryorder: "array", categoryarray: P.order[k],
+    })),
+    line: { color: P.values.map((v) => ocode[v[3]]), colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5,
+            shape: "hspline" },
+  }], { margin: { l: 80, r: 80, t: 30, b: 20 } }, cfg);
+
+  await paint();
+  mark("the gait map");
+  // ---- the gait map: every sample, clickable (WebGL).
+  const A = D.columns.alpha, F = D.columns.fn, PHI = D.columns.phi;
+  const sid = D.columns.sample_id;
+  const hover = "sample %{text}<br>α %{x:.4f}<br>f_n %{y:.3f}<extra>%{fullData.name}</extra>";
+  const gm = document.getElementById("gaitmap");
+  Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
+    type: scatter(shown.length), mode: "markers", name: o, x: byOutcome[k].map((i) => A[i]), y: byOutcome[k].map((i) => F[i]),
+    customdata: byOutcome[k], text: byOutcome[k].map((i) => sid[i]), marker: { color: ocolor[k], size: shown.length > 5000 ? 3 : 6, opacity: 0.8 },
+    unselected: { marker: { opacity: 0.08 } },
+    hovertemplate: hover,
+  })), { xaxis: { title: { text: label("alpha") } }, yaxis: { title: { text: label("fn") } },
+         margin: { t: 20 }, legend: { title: { text: "outcome" } } }, cfg);
+
+  await paint();
+  mark("failure clusters");
+  // ---- failure clusters in 3-D and the three projections of Fig. S4.
+  const C = D.clusters;
+  document.getElementById("cluster-note").textContent =
+    `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
+  const ccol = (j) => (j >= 0 ? S.cluster[j % S.cluster.length] : "#999");
+  const groups = new Map();
+  C.index.forEach((i, k) => { if (!isShown[i]) return; const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
+  const cname = (j) => (j >= 0 && C.centres[j] ? `cluster ${j + 1}: ${C.centres[j].name}` : "unassigned");
+  const isCollapse = (i) => D.outcomes[D.outcome[i]] === "collapse";
+  const keys = [...groups.keys()].sort((a, b) => a - b);
+  Plotly.newPlot("clusters3d", [
+    ...keys.map((j) => { const m = groups.get(j); return {
+      type: "scatter3d", mode: "markers", name: cname(j), customdata: m,
+      x: m.map((i) => A[i]), y: m.map((i) => F[i]), z: m.map((i) => PHI[i]),
+      marker: { size: 3, color: ccol(j), symbol: m.map((i) => (isCollapse(i) ? "circle" : "circle-open")) },
+      text: m.map((i) => sid[i]),
+      hovertemplate: "sample %{text}<extra>%{fullData.name}</extra>" }; }),
+    { type: "scatter3d", mode: "markers", name: "k-means centres", x: C.centres.map((c) => c.alpha),
+      y: C.centres.map((c) => c.fn), z: C.centres.map((c) => c.phi), hoverinfo: "name",
+      marker: { size: 7, color: "black", symbol: "diamond" } },
+  ], { scene: { xaxis: { title: { text: "α" } }, yaxis: { title: { text: "f_n [Hz]" } }, zaxis: { title: { text: "φ [rad]" } } },
+       margin: { l: 0, r: 0, t: 10, b: 0 }, legend: { x: 0, y: 1 } }, cfg);
+  const cols = { alpha: A, fn: F, phi: PHI };
+  [["alpha", "fn"], ["alpha", "phi"], ["fn", "phi"]].forEach(([cx, cy], p) => {
+    Plotly.newPlot(`proj${p}`, [
+      ...keys.map((j) => { const m = groups.get(j); return {
+        type: scatter(C.index.length), mode: "markers", name: cname(j), customdata: m, showlegend: false,
+        x: m.map((i) => cols[cx][i]), y: m.map((i) => cols[cy][i]),
+        marker: { size: 5, color: m.map((i) => (isCollapse(i) ? ccol(j) : "rgba(0,0,0,0)")),
+                  line: { color: ccol(j), width: 1 } },
+        text: m.map((i) => sid[i]),
+      hovertemplate: "sample %{text}<extra>%{fullData.name}</extra>" }; }),
+      { type: scatter(C.index.length), mode: "markers", name: "k-means centres", showlegend: false, hoverinfo: "name",
+        x: C.centres.map((c) => c[cx]), y: C.centres.map((c) => c[cy]),
+        marker: { size: 14, color: "black", symbol: "x" } },
+    ], { xaxis: { title: { text: label(cx) } }, yaxis: { title: { text: label(cy) } },
+         margin: { t: 10, r: 10 } }, cfg);
+  });
+
+  await paint();
+  mark("sensitivity");
+  // ---- sensitivity indices and maps, when the directory has them.
+  if (D.sensitivity) {
+    document.getElementById("sensitivity-section").hidden = false;
+    document.getElementById("sensitivity-note").textContent =
+      `From ${D.sensitivity.file}: first-order (S1) and total (ST) Sobol indices with their 95 % confidence.`;
+    const rows = D.sensitivity.rows;
+    [...new Set(rows.map((r) => r.output))].forEach((out, k) => {
+      const r = rows.filter((x) => x.output === out);
+      const div = document.createElement("div");
+      div.id = `sensitivity-${k}`; div.style.width = "420px"; div.style.height = "300px";
+      document.getElementById("sensitivity").appendChild(div);
+      Plotly.newPlot(div, ["S1", "ST"].map((s) => ({
+        type: "bar", name: s, x: r.map((x) => label(x.parameter)), y: r.map((x) => x[s]),
+        error_y: { type: "data", array: r.map((x) => x[`${s}_conf`]) } })),
+        { title: { text: `output: ${out}` }, barmode: "group", margin: { t: 40, r: 10 } }, cfg);
+    });
+  }
+  if (D.images.length) {
+    document.getElementById("images-section").hidden = false;
+    const box = document.getElementById("images");
+    D.images.forEach((im) => {
+      const f = document.createElement("figure");
+      const img = document.createElement("img"); img.src = im.src; img.style.maxWidth = "700px";
+      const cap = document.createElement("figcaption"); cap.textContent = im.name;
+      f.append(img, cap); box.appendChild(f);
+    });
+  }
+
+  mark("a sample:");
+  // ---- a sample: its columns and its gait.
+  const gaitOf = new Map(D.gaits.map((g) => [g.sample_id, g]));
+  const gbox = document.getElementById("gaits");
+  const rowOf = new Map(sid.map((s, i) => [s, i]));
+  D.gaits.forEach((g) => {
+    const b = document.createElement("button");
+    b.textContent = `#${g.sample_id} ${g.outcome}: ${g.why}`;
+    b.onclick = () => showSample(rowOf.get(g.sample_id));
+    gbox.appendChild(b);
+  });
+  const canvas = document.getElementById("gait-canvas");
+  const ctx = canvas.getContext("2d");
+  const frameEl = document.getElementById("frame");
+  const noteEl = document.getElementById("gait-note");
+  let anim = null;
+  let playing = true;
+  document.getElementById("play").onclick = (e) => {
+    playing = !playing; e.target.textContent = playing ? "pause" : "play";
+    if (anim) anim.t0 = performance.now() - anim.k * anim.dt * 1000;
+  };
+
+  function drawFrame(g, k) {
+    const W = canvas.width, H = canvas.height, s = W / g.window;
+    const [cx, cy] = g.centre[k];
+    const X = (x) => W / 2 + (x - cx) * s, Y = (y) => H / 2 - (y - cy) * s;
+    ctx.clearRect(0, 0, W, H);
+    // The slope: a line along the ground direction through the origin, earth below, marks every 0.2 m.
+    const [gx, gy] = g.ground, [nx, ny] = g.normal;
+    const tc = cx * gx + cy * gy, R = g.window * 1.5, depth = 0.6 * g.length;
+    const p = (t) => [t * gx, t * gy];
+    const [a0, a1] = [p(tc - R), p(tc + R)];
+    ctx.fillStyle = S.earth; ctx.beginPath();
+    ctx.moveTo(X(a0[0]), Y(a0[1])); ctx.lineTo(X(a1[0]), Y(a1[1]));
+    ctx.lineTo(X(a1[0] - depth * nx), Y(a1[1] - depth * ny)); ctx.lineTo(X(a0[0] - depth * nx), Y(a0[1] - depth * ny));
+    ctx.closePath(); ctx.fill();
+    ctx.strokeStyle = S.ground; ctx.lineWidth = 2; ctx.beginPath();
+    ctx.moveTo(X(a0[0]), Y(a0[1])); ctx.lineTo(X(a1[0]), Y(a1[1])); ctx.stroke();
+    ctx.lineWidth = 1;
+    for (let t = Math.ceil((tc - R) / 0.2) * 0.2; t <= tc + R; t += 0.2) {
+      const q = p(t); ctx.beginPath(); ctx.moveTo(X(q[0]), Y(q[1]));
+      ctx.lineTo(X(q[0] - 0.04 * depth * nx), Y(q[1] - 0.04 * depth * ny)); ctx.stroke();
+    }
+    const seg = (v, color, width) => {
+      ctx.strokeStyle = color; ctx.lineWidth = width; ctx.lineCap = "round"; ctx.beginPath();
+      ctx.moveTo(X(v[0]), Y(v[1])); ctx.lineTo(X(v[2]), Y(v[3])); ctx.stroke();
+    };
+    g.strings[k].forEach((v) => seg(v, S.string, 1.2));
+    g.rods[k].forEach((v, r) => seg(v, S.rod[r], 5));
+    g.feet[k].forEach(([x, y], r) => {
+      const m = g.mode[k][r];
+      if (m === 0) return;
+      ctx.lineWidth = 1.5; ctx.strokeStyle = "black"; ctx.beginPath();
+      if (m === 1) { ctx.fillStyle = "black"; ctx.arc(X(x), Y(y), 5, 0, 2 * Math.PI); }
+      else { ctx.fillStyle = "white"; ctx.moveTo(X(x), Y(y) - 6); ctx.lineTo(X(x) + 6, Y(y));
+             ctx.lineTo(X(x), Y(y) + 6); ctx.lineTo(X(x) - 6, Y(y)); ctx.closePath(); }
+      ctx.fill(); ctx.stroke();
+    });
+    ctx.fillStyle = "#222"; ctx.font = "14px system-ui, sans-serif";
+    ctx.fillText(`t = ${g.t[k].toFixed(2)} s   ${g.state[k]}`, 10, 20);
+    ctx.fillStyle = S.state[g.state[k]] || "#222"; ctx.fillRect(W - 24, 8, 14, 14);
+    frameEl.textContent = `frame ${k + 1} / ${g.t.length} · t = ${g.t[k].toFixed(2)} s · ${g.state[k]}`
+      + " · feet: ● stick, ◇ slide";
+    frameEl.dataset.frame = String(k);
+    window.rtwReport.frame = k;
+  }
+
+  function tick(now) {
+    if (!anim) return;
+    const g = anim.g, n = g.t.length;
+    if (playing) {
+      // A frame's timestamp can precede the click that started the animation.
+      anim.k = Math.floor(Math.max(0, now - anim.t0) / 1000 / anim.dt) % n;
+      drawFrame(g, anim.k);
+    }
+    anim.req = requestAnimationFrame(tick);
+  }
+
+  function showSample(i) {
+    const id = sid[i];
+    const g = gaitOf.get(id);
+    const box = document.getElementById("sample-columns");
+    let row;
+    if (D.detail) {
+      row = Object.fromEntries(D.all_columns.map((c) => [c, c === "outcome" ? D.outcomes[D.outcome[i]] : D.columns[c][i]]));
+    } else if (g && g.row) {
+      row = g.row;
+    } else {
+      row = Object.fromEntries(Object.keys(D.columns).map((c) => [c, D.columns[c][i]]));
+      row.outcome = D.outcomes[D.outcome[i]];
+    }
+    box.innerHTML = "";
+    const h = document.createElement("h3"); h.textContent = `sample ${id}: ${row.outcome}`;
+    const t = document.createElement("table"); t.id = "sample-table"; t.dataset.sampleId = String(id);
+    Object.entries(row).forEach(([c, v]) => {
+      const tr = t.insertRow(); tr.insertCell().textContent = c; tr.insertCell().textContent = fmt(v);
+    });
+    box.append(h, t);
+    if (!D.detail && !(g && g.row)) {
+      const p = document.createElement("p"); p.className = "note";
+      p.textContent = `A scan of more than ${D.detail_rows.toLocaleString("en")} rows keeps only the plotted `
+        + "columns in the page; the others are in samples.parquet.";
+      box.appendChild(p);
+    }
+    if (anim) cancelAnimationFrame(anim.req);
+    anim = null;
+    window.rtwReport.frame = null;
+    frameEl.textContent = ""; delete frameEl.dataset.frame;
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
+    if (g && g.t.length === 0) {
+      noteEl.textContent = `Sample ${id} has no gait to show: ${g.empty}.` + (g.note ? ` Note: ${g.note}` : "");
+      return;
+    }
+    if (!g) {
+      noteEl.textContent = `No gait was computed for sample ${id}: the report computes the gaits of the samples `
+        + `listed above. Add this one with: python -m rtw report DIR --sample ${id}`;
+      return;
+    }
+    noteEl.textContent = `Sample ${id}'s last ${(g.t[g.t.length - 1] - g.t[0]).toFixed(1)} s, computed by rtw.trace with the `
+      + "scan's config and drawn from rtw.draw's geometry, in real time." + (g.note ? ` Note: ${g.note}` : "");
+    anim = { g, k: 0, dt: g.t.length > 1 ? (g.t[g.t.length - 1] - g.t[0]) / (g.t.length - 1) : 0.04, t0: performance.now() };
+    drawFrame(g, 0);
+    anim.req = requestAnimationFrame(tick);
+  }
+  window.rtwReport.showSample = showSample;
+  const onClick = (ev) => { const p = ev.points && ev.points[0]; if (p && p.customdata !== undefined) showSample(p.customdata); };
+  ["gaitmap", "clusters3d", "proj0", "proj1", "proj2"].forEach((id) => document.getElementById(id).on("plotly_click", onClick));
+  if (D.gaits.length) showSample(rowOf.get(D.gaits[0].sample_id));
+}
+
+(async () => {
+  const status = document.getElementById("status");
+  try {
+    const [lib, text] = await Promise.all([inflate("plotly-gz"), inflate("data-gz")]);
+    mark("inflated");
+    const el = document.createElement("script");
+    el.textContent = lib;
+    document.head.appendChild(el);
+    mark("plotly loaded");
+    await main(JSON.parse(text));
+    status.textContent = "";
+    window.rtwReport.readyMs = performance.now();
+    window.rtwReport.ready = true;
+  } catch (e) {
+    status.textContent = `The report could not be drawn: ${e}`;
+    console.error(e);
+  }
+})();

@@ -1,0 +1,102 @@
+//! Python's `options=` dict → the config layer's typed overrides
+//! ([`Overrides::Values`]), value by value: no `KEY=VALUE` text in between,
+//! so a float keeps every bit and a string stays a string.
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use rtw_scan::config::layers::Overrides;
+
+/// The options of one call: dotted keys (`{"contact.mu": 0.8}`) and nested
+/// dicts (`{"contact": {"mu": 0.8}}`) alike, flattened to their dotted leaf
+/// keys in the dict's order, so a nested dict sets its keys and keeps the
+/// table's others. Errors name the key.
+pub(crate) struct PyOverrides(Vec<(String, toml::Value)>);
+
+impl PyOverrides {
+    pub(crate) fn new(options: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut values = Vec::new();
+        if let Some(d) = options {
+            flatten("", d, &mut values)?;
+        }
+        Ok(Self(values))
+    }
+
+    pub(crate) fn layer(&self) -> Overrides<'_> {
+        Overrides::Values(&self.0)
+    }
+}
+
+fn flatten(
+    prefix: &str,
+    d: &Bound<'_, PyDict>,
+    out: &mut Vec<(String, toml::Value)>,
+) -> PyResult<()> {
+    for (k, v) in d.iter() {
+        let Ok(k) = k.cast::<PyString>() else {
+            return Err(PyValueError::new_err(format!(
+                "{prefix}{}: not an option key (a dotted name such as contact.mu)",
+                k.repr()?
+            )));
+        };
+        let key = format!("{prefix}{}", k.to_str()?);
+        match v.cast::<PyDict>() {
+            Ok(sub) => flatten(&format!("{key}."), sub, out)?,
+            Err(_) => {
+                let value = to_toml(&key, &v)?;
+                out.push((key, value));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One option's value as TOML: bool, int (64-bit), float, str, a list or
+/// tuple of these, a dict (an inline table).
+fn to_toml(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    // bool before int: Python's bool is an int.
+    if let Ok(b) = v.cast::<PyBool>() {
+        return Ok(toml::Value::Boolean(b.is_true()));
+    }
+    if v.is_instance_of::<PyInt>() {
+        return v.extract::<i64>().map(toml::Value::Integer).map_err(|_| {
+            PyValueError::new_err(format!(
+                "{key}: {} is invalid: beyond the range of a 64-bit integer",
+                v.repr().map(|r| r.to_string()).unwrap_or_default()
+            ))
+        });
+    }
+    if let Ok(f) = v.cast::<PyFloat>() {
+        return Ok(toml::Value::Float(f.value()));
+    }
+    if let Ok(s) = v.cast::<PyString>() {
+        return Ok(toml::Value::String(s.to_str()?.to_string()));
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let items = v
+            .try_iter()?
+            .map(|item| to_toml(key, &item?))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(toml::Value::Array(items));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (k, item) in d.iter() {
+            let k: String = k.extract()?;
+            let value = to_toml(&format!("{key}.{k}"), &item)?;
+            table.insert(k, value);
+        }
+        return Ok(toml::Value::Table(table));
+    }
+    // Other numbers (numpy's): an integer if it is one, else a float.
+    if v.hasattr("__index__")? {
+        return to_toml(key, &v.call_method0("__index__")?);
+    }
+    if v.hasattr("__float__")? {
+        return Ok(toml::Value::Float(v.extract::<f64>()?));
+    }
+    Err(PyValueError::new_err(format!(
+        "{key}: {} is invalid: must be a bool, int, float, str, list or dict (an option's value)",
+        v.repr()?
+    )))
+}

@@ -1,0 +1,308 @@
+//! The objects `rtw` returns: `Outcome`, `LimitCycle`, `Modes`. Frozen,
+//! compared by value, with a `repr` and `to_dict()`; their fields are read
+//! from rtw-scan's and rtw-model's definitions, and `_rtw.pyi` is checked
+//! against them by tests/test_types.py.
+
+use pyo3::exceptions::PyAttributeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyComplex, PyDict, PyString, PyTuple};
+use rtw_scan::io::{ColumnKind, Kind, Value, row_columns};
+use std::collections::HashMap;
+use std::sync::LazyLock;
+
+/// The columns of a scan row (rtw-scan's `COLUMNS` table), in order.
+static COLUMNS: LazyLock<Vec<ColumnKind>> = LazyLock::new(|| row_columns().collect());
+
+/// Each column's position in a row, by name.
+static POSITION: LazyLock<HashMap<&'static str, usize>> = LazyLock::new(|| {
+    COLUMNS
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (c.name, i))
+        .collect()
+});
+
+/// One run's row: the fields of ``rtw-scan simulate --json``, as attributes.
+///
+/// The same keys as a ``samples.parquet`` row (docs/data-dictionary.md), in
+/// column order: the inputs, the derived physical parameters, ``outcome``
+/// (the label), ``failure`` and ``message`` (``None`` when the run
+/// finished), the gait metrics, the limit-cycle summary, the work counts and
+/// ``wall_time_s`` (the run's own time in Rust). Metrics that do not apply,
+/// and non-finite values, are ``None``, as in the JSON. Immutable;
+/// :meth:`to_dict` gives a plain ``dict``. The fields are the columns of
+/// rtw-scan's row table, so they cannot drift from the files.
+///
+/// ``period`` is the gait's period as the ``period`` column has it: in
+/// touchdowns on the touchdown return map of this run, or, with
+/// ``limit_cycle=True`` and a cycle found, in steps on the step map
+/// (``LimitCycle.period``); the two can differ for one walk
+/// (docs/data-dictionary.md).
+#[pyclass(frozen, eq, module = "rtw", name = "Outcome")]
+#[derive(PartialEq)]
+pub(crate) struct Outcome {
+    values: Vec<Value>,
+}
+
+impl Outcome {
+    pub(crate) fn new(values: Vec<Value>) -> Self {
+        debug_assert_eq!(values.len(), COLUMNS.len());
+        Self { values }
+    }
+}
+
+fn value<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Float(x) => x.into_pyobject(py)?.into_any(),
+        Value::Int(x) => x.into_pyobject(py)?.into_any(),
+        Value::Bool(x) => x.into_pyobject(py)?.into_any(),
+        Value::Text(x) => x.as_deref().into_pyobject(py)?.into_any(),
+    })
+}
+
+#[pymethods]
+impl Outcome {
+    /// The field `name`.
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        match POSITION.get(name) {
+            Some(&i) => value(py, &self.values[i]),
+            None => Err(PyAttributeError::new_err(format!(
+                "Outcome has no field {name:?}"
+            ))),
+        }
+    }
+
+    fn __setattr__(&self, _name: &str, _value: Bound<'_, PyAny>) -> PyResult<()> {
+        Err(PyAttributeError::new_err("Outcome is immutable"))
+    }
+
+    fn __dir__(&self) -> Vec<&'static str> {
+        let mut names: Vec<&str> = COLUMNS.iter().map(|c| c.name).collect();
+        names.push("to_dict");
+        names
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let shown = ["outcome", "failure", "speed", "f_w", "period", "t_end"]
+            .iter()
+            .map(|k| {
+                Ok(format!(
+                    "{k}={}",
+                    value(py, &self.values[POSITION[k]])?.repr()?
+                ))
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok(format!("Outcome({}, ...)", shown.join(", ")))
+    }
+
+    /// The fields as a new `dict`, in column order (what `--json` prints).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (c, v) in COLUMNS.iter().zip(&self.values) {
+            d.set_item(c.name, value(py, v)?)?;
+        }
+        Ok(d)
+    }
+
+    /// The fields' names and types, in column order, as Python annotations
+    /// (`"float | None"`).
+    #[classattr]
+    fn __annotations__(py: Python<'_>) -> PyResult<Py<PyDict>> {
+        let d = PyDict::new(py);
+        for c in COLUMNS.iter() {
+            let ty = match c.kind {
+                Kind::Float => "float",
+                Kind::Int => "int",
+                Kind::Bool => "bool",
+                Kind::Text => "str",
+            };
+            let ty = if c.nullable {
+                format!("{ty} | None")
+            } else {
+                ty.to_string()
+            };
+            d.set_item(c.name, ty)?;
+        }
+        Ok(d.unbind())
+    }
+}
+
+/// A frozen class whose fields are listed once: the struct's fields, each
+/// read by its getter (`get_all`), and their names in order as the class's
+/// `__match_args__` (positional patterns in `match`), from which `repr` and
+/// `to_dict` are made.
+macro_rules! fields_class {
+    ($(#[$meta:meta])* $name:ident { $($field:ident: $ty:ty,)* }) => {
+        $(#[$meta])*
+        #[pyclass(frozen, eq, get_all, module = "rtw")]
+        #[derive(PartialEq)]
+        pub(crate) struct $name {
+            $($field: $ty,)*
+        }
+
+        #[pymethods]
+        impl $name {
+            /// The fields' names, in order.
+            #[classattr]
+            fn __match_args__(py: Python<'_>) -> PyResult<Py<PyTuple>> {
+                Ok(PyTuple::new(py, [$(stringify!($field)),*])?.unbind())
+            }
+
+            fn __repr__(slf: &Bound<'_, Self>) -> PyResult<String> {
+                repr_of(slf.as_any())
+            }
+
+            /// The fields as a new `dict`, in order.
+            fn to_dict<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyDict>> {
+                dict_of(slf.as_any())
+            }
+        }
+    };
+}
+
+/// The fields of a class made by `fields_class!` as (name, value) pairs, in order.
+fn getters<'py>(
+    slf: &Bound<'py, PyAny>,
+) -> PyResult<Vec<(Bound<'py, PyString>, Bound<'py, PyAny>)>> {
+    let names = slf.get_type().getattr("__match_args__")?;
+    let mut out = Vec::new();
+    for name in names.try_iter()? {
+        let name = name?.cast_into::<PyString>()?;
+        let v = slf.getattr(&name)?;
+        out.push((name, v));
+    }
+    Ok(out)
+}
+
+fn repr_of(slf: &Bound<'_, PyAny>) -> PyResult<String> {
+    let fields = getters(slf)?
+        .iter()
+        .map(|(n, v)| Ok(format!("{n}={}", v.repr()?)))
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok(format!("{}({})", slf.get_type().name()?, fields.join(", ")))
+}
+
+fn dict_of<'py>(slf: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(slf.py());
+    for (n, v) in getters(slf)? {
+        d.set_item(n, v)?;
+    }
+    Ok(d)
+}
+
+/// Floats that Python sees as a tuple.
+#[derive(PartialEq)]
+struct Floats(Vec<f64>);
+
+impl<'py> IntoPyObject<'py> for &Floats {
+    type Target = PyTuple;
+    type Output = Bound<'py, PyTuple>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(py, &self.0)
+    }
+}
+
+/// Complex numbers (re, im) that Python sees as a tuple of `complex`.
+#[derive(PartialEq)]
+struct Complexes(Vec<(f64, f64)>);
+
+impl<'py> IntoPyObject<'py> for &Complexes {
+    type Target = PyTuple;
+    type Output = Bound<'py, PyTuple>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(
+            py,
+            self.0
+                .iter()
+                .map(|&(re, im)| PyComplex::from_doubles(py, re, im)),
+        )
+    }
+}
+
+fields_class! {
+/// A periodic gait on the step map (the section at each new foot's touchdown).
+///
+/// Attributes:
+///     period: the step map's period in steps (1: every step the same), the
+///         fixed point of ``Pⁿ``. Not the ``Outcome.period`` of a run
+///         without ``limit_cycle=True``, which counts touchdowns on the
+///         touchdown return map of the simulated run.
+///     fixed_point: the fixed point ``z`` of ``Pⁿ`` (the map's coordinates in
+///         the orbit's contact modes).
+///     residual: ``max |Pⁿ(z) − z| / scale`` at the solution.
+///     iterations: Newton iterations taken.
+///     multipliers: the nontrivial Floquet multipliers of ``Pⁿ``, largest
+///         modulus first.
+///     floquet_max: the largest multiplier modulus.
+///     stable: every multiplier inside the unit circle.
+///     label: the gait label of the orbit's steps (walk, skip, crawl, ...).
+///     step_times: the duration of each step of the orbit (s).
+    LimitCycle {
+        period: usize,
+        fixed_point: Floats,
+        residual: f64,
+        iterations: u32,
+        multipliers: Complexes,
+        floquet_max: f64,
+        stable: bool,
+        label: String,
+        step_times: Floats,
+    }
+}
+
+impl LimitCycle {
+    pub(crate) fn new(lc: &rtw_model::cycles::LimitCycle, label: &str) -> Self {
+        Self {
+            period: lc.period,
+            fixed_point: Floats(lc.fixed_point.z.clone()),
+            residual: lc.fixed_point.residual,
+            iterations: lc.fixed_point.iterations,
+            multipliers: Complexes(lc.multipliers.iter().map(|m| (m.re, m.im)).collect()),
+            floquet_max: lc.floquet_max(),
+            stable: lc.is_stable(),
+            label: label.to_string(),
+            step_times: Floats(lc.steps.iter().map(|s| s.time).collect()),
+        }
+    }
+}
+
+fields_class! {
+/// Eigen-frequencies of one design (rtw-model's ``modal``), in Hz.
+///
+/// Attributes:
+///     s18_hz: the supplementary's S18 ``f_n`` of the derived constants.
+///     approx_hz: undamped frequencies of the approximate 3-rotor model's
+///         oscillating modes (``√3 f_n`` twice at zero rest length).
+///     approx_damped_hz: damped frequencies of its complex pairs.
+///     approx_damping_ratio: their damping ratios, same order.
+///     star_hz: the nine frequencies of the free 9-DOF star, sorted; the
+///         first ``star_rigid_modes`` are rigid (≈ 0).
+///     star_rigid_modes: how many of ``star_hz`` are rigid modes (3).
+    Modes {
+        s18_hz: f64,
+        approx_hz: Floats,
+        approx_damped_hz: Floats,
+        approx_damping_ratio: Floats,
+        star_hz: Floats,
+        star_rigid_modes: usize,
+    }
+}
+
+impl Modes {
+    pub(crate) fn new(
+        s18_hz: f64,
+        approx: &rtw_model::modal::ApproxModes,
+        star: &rtw_model::modal::StarModes,
+    ) -> Self {
+        Self {
+            s18_hz,
+            approx_hz: Floats(approx.freq_hz.clone()),
+            approx_damped_hz: Floats(approx.damped_freq_hz.clone()),
+            approx_damping_ratio: Floats(approx.damping_ratio.clone()),
+            star_hz: Floats(star.freq_hz.to_vec()),
+            star_rigid_modes: star.rigid_modes,
+        }
+    }
+}

@@ -1,0 +1,176 @@
+"""The scan report in a real browser: headless Chromium from Debian's packages
+(`chromium`, `chromium-driver`; scripts/test.sh installs them when missing),
+driven by Selenium through the system's chromedriver (never a driver or a
+browser that Selenium Manager would download: SE_OFFLINE and the driver's path).
+
+It opens the report of results/paper made by `python -m rtw report`, and fails
+on any console error; checks the samples plotted per outcome against the
+Parquet file; brushes the α axis and checks the count the page shows; clicks
+a sample and checks its columns and its animated gait; and saves a screenshot
+to $CARGO_TARGET_DIR/report-test/screenshot.png (target/report-test/ by
+default) for a person to look at.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+
+import pyarrow.parquet as pq
+import pytest
+
+ROOT = Path(__file__).resolve().parents[3]
+SCAN = ROOT / "results/paper"
+OUT = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "report-test"
+CHROMIUM = shutil.which("chromium")
+DRIVER = shutil.which("chromedriver")
+
+pytestmark = pytest.mark.skipif(
+    CHROMIUM is None or DRIVER is None,
+    reason="needs chromium and chromium-driver (Debian packages; scripts/test.sh installs them as root: "
+           "apt-get install -y chromium chromium-driver)",
+)
+
+
+@pytest.fixture(scope="module")
+def page():
+    os.environ["SE_OFFLINE"] = "true"  # Selenium Manager must not download a driver or a browser
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    OUT.mkdir(parents=True, exist_ok=True)
+    html = OUT / "paper.html"
+    made = subprocess.run([sys.executable, "-m", "rtw", "report", "results/paper", "--out", str(html), "--force"],
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
+    assert made.returncode == 0, made.stderr
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = CHROMIUM
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1400,2400",
+                "--enable-unsafe-swiftshader"):
+        opts.add_argument(arg)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(service=Service(DRIVER), options=opts)
+    try:
+        started = time.monotonic()
+        driver.get(html.as_uri())
+        while not driver.execute_script("return !!(window.rtwReport && window.rtwReport.ready)"):
+            status = driver.execute_script("return document.getElementById('status').textContent")
+            assert "could not" not in status, status
+            assert time.monotonic() - started < 300, "the report was not drawn within 300 s"
+            time.sleep(0.1)
+        timings = driver.execute_script(
+            "const r = window.rtwReport; return {firstView: r.firstViewMs, ready: r.readyMs, steps: r.timings}")
+        (OUT / "timing.json").write_text(json.dumps(timings, indent=1))
+        print(f"report opened: first view {timings['firstView']:.0f} ms, everything drawn {timings['ready']:.0f} ms "
+              f"(written to {OUT / 'timing.json'})")
+        yield driver
+    finally:
+        driver.quit()
+
+
+def rows():
+    return pq.read_table(SCAN / "samples.parquet").to_pydict()
+
+
+def no_console_errors(driver):
+    severe = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+    assert not severe, f"console errors: {severe}"
+
+
+def test_the_page_opens_without_console_errors(page):
+    no_console_errors(page)
+    title = page.execute_script("return document.querySelector('h1').textContent")
+    assert title == "rtw scan report: paper"
+
+
+def test_plotted_samples_per_outcome_match_the_parquet_file(page):
+    want = Counter(rows()["outcome"])
+    plotted = page.execute_script(
+        "return Object.fromEntries(document.getElementById('gaitmap').data.map(t => [t.name, t.x.length]))")
+    assert plotted == {o: c for o, c in want.items() if c}
+    # The parallel coordinates carry every sample, coloured by its outcome.
+    codes = page.execute_script(
+        "const d = document.getElementById('parcoords').data[0]; return d.line.color")
+    names = page.execute_script("return Array.from(document.getElementById('gaitmap').data.map(t => t.name))")
+    assert Counter(names[c] for c in codes) == want
+    # The cluster views carry every failure.
+    failures = page.execute_script(
+        "return document.getElementById('clusters3d').data.filter(t => t.customdata)"
+        ".reduce((n, t) => n + t.x.length, 0)")
+    assert failures == want["collapse"] + want["stall"]
+    no_console_errors(page)
+
+
+def test_brushing_alpha_shows_the_count_of_the_parquet_file(page):
+    r = rows()
+    lo, hi = 0.1, 0.2
+    want = Counter(o for a, o in zip(r["alpha"], r["outcome"]) if lo <= a <= hi)
+    labels = page.execute_script(
+        "return document.getElementById('parcoords').data[0].dimensions.map(d => d.label)")
+    i = labels.index("α")
+    page.execute_script(
+        f"Plotly.restyle('parcoords', {{'dimensions[{i}].constraintrange': [[{lo}, {hi}]]}})")
+    time.sleep(0.3)
+    shown = page.execute_script("return document.getElementById('count').dataset.selected")
+    text = page.execute_script("return document.getElementById('count').textContent")
+    assert int(shown) == sum(want.values()), text
+    assert text.startswith(f"{sum(want.values()):,} of {len(r['alpha']):,} samples selected")
+    for o, c in want.items():
+        assert f"{o} {c:,}" in text
+    # The gait map shows the same samples brushed, per outcome.
+    marked = page.execute_script(
+        "return Object.fromEntries(document.getElementById('gaitmap').data.map(t => [t.name, (t.selectedpoints || []).length]))")
+    assert {o: c for o, c in marked.items() if c} == dict(want)
+    page.execute_script(f"Plotly.restyle('parcoords', {{'dimensions[{i}].constraintrange': [null]}})")
+    time.sleep(0.3)
+    assert int(page.execute_script("return document.getElementById('count').dataset.selected")) == len(r["alpha"])
+    assert page.execute_script("return document.getElementById('gaitmap').data.every(t => t.selectedpoints == null)")
+    no_console_errors(page)
+
+
+def test_a_click_shows_the_sample_and_its_gait_animated(page):
+    r = rows()
+    gaits = page.execute_script(
+        "return Array.from(document.querySelectorAll('#gaits button')).map(b => b.textContent)")
+    assert gaits, "no sample with a gait"
+    # A stable sample's gait: its run lasts the whole t_max, so the animation has frames.
+    walk = next(g for g in gaits if " walk: " in g)
+    sid = int(walk.split()[0].lstrip("#"))
+    row = r["sample_id"].index(sid)
+    page.execute_script(
+        f"document.getElementById('gaitmap').emit('plotly_click', {{points: [{{customdata: {row}}}]}})")
+    time.sleep(0.2)
+    table = page.execute_script(
+        "const t = document.getElementById('sample-table');"
+        "return {id: t.dataset.sampleId, cells: Array.from(t.rows).map(x => [x.cells[0].textContent, x.cells[1].textContent])}")
+    assert int(table["id"]) == sid
+    cells = dict(table["cells"])
+    assert list(cells) == list(r)  # every column of the row, in the file's order
+    assert cells["outcome"] == "walk" and float(cells["alpha"]) == pytest.approx(r["alpha"][row], rel=1e-5)
+    first = int(page.execute_script("return document.getElementById('frame').dataset.frame"))
+    time.sleep(1.0)
+    later = int(page.execute_script("return document.getElementById('frame').dataset.frame"))
+    assert later != first, "the gait's animation does not advance"
+    frame = page.execute_script("return document.getElementById('frame').textContent")
+    assert frame.startswith("frame ") and " s · " in frame
+    # A sample without a precomputed gait says so.
+    without = next(i for i, s in enumerate(r["sample_id"]) if f"#{s} " not in " ".join(gaits))
+    page.execute_script(
+        f"document.getElementById('gaitmap').emit('plotly_click', {{points: [{{customdata: {without}}}]}})")
+    note = page.execute_script("return document.getElementById('gait-note').textContent")
+    assert note.startswith(f"No gait was computed for sample {r['sample_id'][without]}")
+    # Back to the walk for the screenshot.
+    page.execute_script(
+        f"document.getElementById('gaitmap').emit('plotly_click', {{points: [{{customdata: {row}}}]}})")
+    time.sleep(0.5)
+    no_console_errors(page)
+    shot = OUT / "screenshot.png"
+    page.save_screenshot(str(shot))
+    print(f"screenshot of the report: {shot}")
+    assert shot.stat().st_size > 10_000

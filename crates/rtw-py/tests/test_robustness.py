@@ -1,0 +1,50 @@
+"""The terrain and robustness options from Python: the same keys, values and
+errors as `rtw-scan simulate --set` (docs/robustness.md)."""
+
+from __future__ import annotations
+
+import pytest
+
+import rtw
+
+FIG7A = (0.8, 2.5, 0.125, 3.269, 0.0514, 0.15)
+
+
+def test_step_down_max_only_when_asked_for() -> None:
+    flat = rtw.simulate(*FIG7A)
+    assert "step_down_max" not in flat.to_dict()
+    out = rtw.simulate(*FIG7A, **{"robustness.step_down": True})
+    assert out.step_down_max is not None and out.step_down_max > 0.0
+    # Asking for it changes nothing else in the row.
+    for key, value in flat.to_dict().items():
+        if key != "wall_time_s":
+            assert out.to_dict()[key] == value, key
+
+
+def test_a_bad_step_raises_naming_the_key() -> None:
+    with pytest.raises(ValueError, match=r"terrain\.step_height: -1 is invalid"):
+        rtw.simulate(*FIG7A, **{"terrain.step_height": -1})
+    step = rtw.simulate(*FIG7A, options={"terrain.step_height": 0.05, "terrain.step_at": 3.0})
+    assert step.t_end != rtw.simulate(*FIG7A).t_end
+
+
+SMALL_SCAN = """seed = 3
+samples = 6
+[params]
+length = 0.8
+rho = { uniform = [1, 5] }
+alpha = { uniform = [0, 0.4] }
+fn = { uniform = [1.5, 5] }
+zeta = { uniform = [0.05, 0.1] }
+phi = { uniform = [0.05, 0.3] }
+"""
+
+
+def test_a_scan_has_the_step_down_column_only_when_asked_for() -> None:
+    plain = rtw.scan(SMALL_SCAN, progress=False)
+    assert "step_down_max" not in plain.column_names
+    step = rtw.scan(SMALL_SCAN, set={"robustness.step_down": True}, progress=False)
+    assert step.column_names == plain.column_names + ["step_down_max"]
+    stable = {"skip", "walk", "crawl"}
+    for label, h in zip(step.column("outcome").to_pylist(), step.column("step_down_max").to_pylist()):
+        assert (h is not None) == (label in stable), (label, h)

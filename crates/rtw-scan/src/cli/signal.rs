@@ -1,0 +1,37 @@
+//! Signals: SIGINT (Ctrl-C), SIGTERM and SIGHUP stop a `run` after the
+//! samples in flight (the library's stop flag, [`STOP`]), and end any other
+//! command at once, its temporary files removed.
+
+use crate::io::files;
+use anyhow::{Context, Result};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Exit code of a command stopped by SIGINT (Ctrl-C), SIGTERM (what Slurm
+/// and `kill` send) or SIGHUP (a closed terminal): 128 + SIGINT, for all three.
+pub(super) const EXIT_INTERRUPTED: u8 = 130;
+
+/// Set by the first signal of a `run`, which then stops after the samples
+/// in flight.
+pub(super) static STOP: AtomicBool = AtomicBool::new(false);
+/// Whether the command in progress stops gracefully on a first signal
+/// (`run`); every other command removes its temporary files and exits.
+pub(super) static GRACEFUL: AtomicBool = AtomicBool::new(false);
+
+/// SIGINT, SIGTERM and SIGHUP (ctrlc's `termination` feature) all end a
+/// command the same way, with [`EXIT_INTERRUPTED`].
+pub(super) fn install_signal_handler() -> Result<()> {
+    ctrlc::set_handler(|| {
+        if GRACEFUL.load(Ordering::SeqCst) {
+            if !STOP.swap(true, Ordering::SeqCst) {
+                eprintln!(
+                    "rtw-scan: interrupted: finishing the samples in flight (interrupt again to quit at once)"
+                );
+                return;
+            }
+            eprintln!("rtw-scan: second interrupt, exiting now");
+        }
+        files::remove_live_files();
+        std::process::exit(EXIT_INTERRUPTED.into());
+    })
+    .context("cannot install the signal handler")
+}

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The cost of the robustness measures: the paper scan with
+# robustness.step_down=true against the plain scan, one thread each, in one
+# run (docs/robustness.md, "Cost"). Writes into a temporary directory only.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release -q -p rtw-scan
+bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+t0=$(date +%s.%N)
+"$bin" run configs/paper.toml --out "$tmp/plain" --threads 1 --quiet >/dev/null
+t1=$(date +%s.%N)
+"$bin" run configs/paper.toml --out "$tmp/step" --threads 1 --quiet --set robustness.step_down=true >/dev/null
+t2=$(date +%s.%N)
+python3 - "$t0" "$t1" "$t2" <<'PY'
+import sys
+t0, t1, t2 = map(float, sys.argv[1:])
+plain, step = t1 - t0, t2 - t1
+print(f"plain scan {plain:.2f} s, with step_down {step:.2f} s, ratio {step / plain:.1f}")
+PY
