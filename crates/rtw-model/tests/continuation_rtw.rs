@@ -106,7 +106,7 @@ fn the_walks_period_doubling_is_located_where_the_attractor_sweep_brackets_it() 
 /// continuation: at each f_n of the check, runs of the robot from its
 /// standing start on a grid of φ (as `rtw-scan run` does them, 60 s each,
 /// with the limit cycle each settles into solved: configs/continuation-plane.toml
-/// is the same check on a larger grid). Where the runs' stable period-1 walk
+/// is the same check, on a larger grid, for the default model). Where the runs' stable period-1 walk
 /// turns into a period-2 walk, the curve must cross that column of the grid,
 /// to its resolution (one grid step).
 #[test]

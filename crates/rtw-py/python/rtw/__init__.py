@@ -7,7 +7,7 @@ the extension module ``rtw._rtw``)::
 
     import rtw
     out = rtw.simulate(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
-    print(out.outcome, out.speed)                        # walk 1.78...
+    print(out.outcome, out.speed)                        # walk 1.72...
     table = rtw.scan("configs/smoke.toml")               # a pyarrow.Table
     df = __import__("polars").from_arrow(table)          # or table.to_pandas()
 
