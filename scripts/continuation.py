@@ -20,7 +20,11 @@ number drawn is read from the files rtw-scan wrote.
   each grid point marked by the gait the robot settled in and its period;
   prints, per column of the grid, where the scan's period-1 walk turns into a
   period-2 walk and where the period-doubling curve crosses that column, and
-  with --check fails unless they agree to the grid's resolution.
+  with --check fails unless they agree to the grid's resolution. When the
+  doubling is subcritical (the period-2 branch folds back over the side where
+  the period-1 walk is stable, read from the one-parameter diagram), a column
+  whose first period-2 walk comes before the curve agrees if no stable
+  period-1 walk lies beyond the curve: both walks are attractors there.
 """
 
 from __future__ import annotations
@@ -153,8 +157,30 @@ def boundary_rows(grid: pl.DataFrame, curve: pl.DataFrame, param: str, param2: s
         crossing = float("nan")
         if not pd.is_empty() and pd["value2"].min() <= col <= pd["value2"].max():
             crossing = float(np.interp(col, pd["value2"].to_numpy(), pd["value"].to_numpy()))
-        out.append({"param2": col, "scan_lo": scan_lo, "scan_hi": scan_hi, "curve": crossing, "step": step})
+        last_one = float(v[ones[-1]]) if ones else float("nan")
+        out.append({"param2": col, "scan_lo": scan_lo, "scan_hi": scan_hi, "curve": crossing, "step": step,
+                    "last_one": last_one})
     return out
+
+
+def subcritical(points: Path) -> bool:
+    """Is the period doubling of the one-parameter diagram subcritical: does
+    the period-2 branch born there reach back over the side where the
+    period-1 walk is stable (a fold of that branch beyond the doubling)?
+    Then both walks are attractors over a band before the doubling, and a
+    run from the standing start may settle on either there."""
+    pts = pl.read_parquet(points)
+    special = pl.read_parquet(companion(points, "special"))
+    pd = special.filter((pl.col("kind").cast(str) == "period_doubling"))
+    if pd.is_empty():
+        return False
+    phi_pd, branch = float(pd["value"][0]), int(pd["branch"][0])
+    one = pts.filter((pl.col("branch") == branch) & pl.col("stable"))
+    if one.is_empty():
+        return False
+    stable_side = np.sign(float(one["value"].mean()) - phi_pd)
+    two = pts.filter(pl.col("period") == 2)
+    return bool(((two["value"].to_numpy() - phi_pd) * stable_side > 0).any())
 
 
 def plane(points: Path, samples: Path, out: Path, check: bool, title: str | None) -> Path:
@@ -162,6 +188,7 @@ def plane(points: Path, samples: Path, out: Path, check: bool, title: str | None
     param, param2 = curve["param"][0], curve["param2"][0]
     grid = scan_grid(samples, param, param2)
     rows = boundary_rows(grid, curve, param, param2)
+    bistable = subcritical(points)
     fig, ax = plt.subplots(figsize=(8, 6))
     styles = {"walk1": ("o", "#2ca02c", "walk, period 1 (stable cycle)"),
               "walk2": ("s", "#ff7f0e", "walk, period 2")}
@@ -192,6 +219,15 @@ def plane(points: Path, samples: Path, out: Path, check: bool, title: str | None
         if np.isnan(r["scan_lo"]) or np.isnan(r["curve"]):
             verdict = "no period-1 → period-2 walk change in the scan's column" if np.isnan(r["scan_lo"]) \
                 else "outside the curve's range"
+        elif bistable and r["scan_hi"] < r["curve"] - r["step"]:
+            # A subcritical doubling: before it, the period-1 and period-2
+            # walks are both attractors and the standing start may settle on
+            # either, so the first period-2 walk may come early. What must
+            # still hold is that no stable period-1 walk lies beyond the
+            # curve, where continuation says the period-1 cycle is unstable.
+            ok = r["last_one"] <= r["curve"] + r["step"]
+            bad += not ok
+            verdict = "yes (both walks before the subcritical doubling)" if ok else "NO"
         else:
             # The scan resolves the boundary to one grid step: the curve must
             # lie within a step of the bracket [last period-1, first period-2].

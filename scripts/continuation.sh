@@ -68,6 +68,7 @@ plane=$($py scripts/continuation.py plane "$out/phi-fig7a.parquet" "$out/plane/s
   cat "$out/phi-s0-touch-and-go.md"
 } >"$out/summary.md"
 rm -f "$out/phi-fig7a.log" "$out/phi-s0.log"
-# The walk continued through its mode-sequence changes (Fig. S3), in its own script.
-./scripts/continuation_segments.sh
+# The walk continued through its mode-sequence changes (Fig. S3), in its own
+# script (the longest part: SKIP_SEGMENTS=1 leaves it out).
+[ -n "${SKIP_SEGMENTS:-}" ] || ./scripts/continuation_segments.sh
 echo "continuation: wrote $out/summary.md and the diagrams"

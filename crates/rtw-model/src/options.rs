@@ -30,13 +30,14 @@
 //! (`initial.omega`, `strings.slack`, `contact.mu`, …); unknown keys are refused.
 
 use crate::params::{Normalization, ParamError, check};
-pub use crate::plant::terrain::TerrainOptions;
-pub use crate::run::robustness::RobustnessOptions;
 use hybrid_ode::EngineOptions;
 /// The integration method, as chosen in a config (`"dp54"`, `"dop853"`,
 /// `"rk4"`): the engine's own [`hybrid_ode::Method`].
 pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
+
+mod terrain;
+pub use terrain::{STEP_HEIGHT_MAX, TerrainOptions};
 
 /// The initial shape of the star (docs/model.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -442,6 +443,22 @@ impl Options {
             ));
         }
         Ok(())
+    }
+}
+
+/// Which robustness measures a stable run adds (the keys `robustness.*` of a
+/// config's `[simulation]` table). All off by default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RobustnessOptions {
+    /// Measure the largest survivable step down (`step_down_max`).
+    pub step_down: bool,
+}
+
+impl RobustnessOptions {
+    /// Is every measure off?
+    pub fn is_off(&self) -> bool {
+        !self.step_down
     }
 }
 

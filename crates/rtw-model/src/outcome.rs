@@ -2,7 +2,6 @@
 //! and the rule that labels a gait (Table S1).
 
 use crate::options::LabelOptions;
-pub use crate::run::robustness::Robustness;
 use serde::{Deserialize, Serialize};
 
 /// Longest gait period (in steps) the model looks for, on the touchdown
@@ -467,6 +466,18 @@ impl Label {
             Label::Walk
         }
     }
+}
+
+/// A gait's robustness measures (each `None` unless asked for).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Robustness {
+    /// The largest survivable step down (m), see the module doc.
+    pub step_down_max: Option<f64>,
+    /// The height the gait failed at just above it: the bisection's upper
+    /// end (`None` when even the cap survived).
+    pub step_down_fail: Option<f64>,
+    /// Integrator work of the measures' runs.
+    pub work: hybrid_ode::Work,
 }
 
 #[cfg(test)]

@@ -5,10 +5,8 @@ use hybrid_ode::continuation::Options as Cont;
 use rtw_model::GuardKind;
 use rtw_model::Tip;
 use rtw_model::cycles::LimitCycle;
-use rtw_model::cycles::nonsmooth::{
-    EndKind, EndOptions, Setting, continue_segments, guard_name, locate_end,
-};
-use rtw_model::cycles::{CycleOptions, StepMap};
+use rtw_model::cycles::nonsmooth::{EndKind, EndOptions, Setting, guard_name, locate_end};
+use rtw_model::cycles::{CycleOptions, StepMap, continue_segments};
 use rtw_model::{Options, Param, Params};
 
 /// The model, the step map's settings and the settled walk at `phi`

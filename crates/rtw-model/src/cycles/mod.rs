@@ -8,11 +8,13 @@
 //! | `limit_cycle.rs` | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run | [`LimitCycle`], [`CycleError`] |
 //! | `continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
 //! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost), and the branch continued through it segment by segment | the module [`nonsmooth`] |
+//! | `segments.rs` | a branch continued through those changes, segment by segment | [`Segment`], [`continue_segments`] |
 
 pub(crate) mod continuation;
 pub(crate) mod limit_cycle;
 pub mod nonsmooth;
 pub(crate) mod section;
+pub(crate) mod segments;
 pub(crate) mod stepmap;
 
 pub use continuation::{
@@ -20,4 +22,5 @@ pub use continuation::{
 };
 pub use limit_cycle::{CycleError, LimitCycle};
 pub use section::{Section, SectionPoint};
+pub use segments::{Segment, continue_segments};
 pub use stepmap::{CycleOptions, Jacobian, Step, StepError, StepMap};

@@ -24,20 +24,17 @@
 //! new sequence: a branch of [`Segment`]s, each with its mode sequence and
 //! gait label, whose corrector rejects any point of another sequence.
 
-use crate::cycles::continuation::StepMapFamily;
 use crate::cycles::limit_cycle::LimitCycle;
 use crate::cycles::section::SectionPoint;
 use crate::cycles::stepmap::{CycleOptions, StepMap};
 use crate::options::Options;
-use crate::outcome::Label;
 use crate::params::{Param, Params};
 use crate::plant::contact::RodMode;
 use crate::plant::rtw::{AtState, GuardKind, Rtw, Transition};
 use crate::plant::slots::N;
-use hybrid_ode::continuation::{self, Branch, End, MapEval, Options as ContOptions, ParamMap};
 use hybrid_ode::nonsmooth::{GuardMinima, locate_change};
-use hybrid_ode::{Dense, Flow, Observer, StepEnd, limit};
-use nalgebra::{Complex, DMatrix};
+use hybrid_ode::{Dense, Flow, Observer, StepEnd};
+use nalgebra::Complex;
 
 /// One event of a periodic orbit: guard `kind` fired in step `step` of the
 /// orbit (in that step's canonical labels: its stance rod is rod 0).
@@ -135,11 +132,11 @@ pub struct Orbit {
 
 /// Watches a step: its events and guard minima, named by [`GuardKind`].
 #[derive(Default)]
-struct Watch {
+pub(crate) struct Watch {
     minima: GuardMinima,
-    events: Vec<GuardKind>,
+    pub(crate) events: Vec<GuardKind>,
     approaches: Vec<GuardKind>,
-    after: Vec<[RodMode; 3]>,
+    pub(crate) after: Vec<[RodMode; 3]>,
 }
 
 /// The `index`-th guard of `rtw`'s current modes.
@@ -219,7 +216,7 @@ fn watch(map: &StepMap, cycle: LimitCycle, p: f64) -> Option<Orbit> {
 }
 
 /// The step map of `base` with `param` at `value`; `None` outside its range.
-fn map_at(
+pub(crate) fn map_at(
     base: &Params,
     options: &Options,
     cycle: &CycleOptions,
@@ -536,153 +533,4 @@ fn no_change(first: Orbit, kind: EndKind) -> BranchEnd {
         p_new: p,
         jacobian_jump: None,
     }
-}
-
-/// The step map family of one segment: [`StepMapFamily`] that is undefined
-/// wherever the orbit's mode sequence is not the segment's, so that the
-/// corrector cannot jump back across the change it came through.
-struct SegmentFamily<'a> {
-    inner: StepMapFamily,
-    setting: Setting<'a>,
-    template: SectionPoint,
-    n: usize,
-    sequence: ModeSequence,
-}
-
-impl ParamMap for SegmentFamily<'_> {
-    fn eval(&mut self, z: &[f64], p: f64) -> Option<MapEval> {
-        let e = self.inner.eval(z, p)?;
-        let map = map_at(
-            self.setting.base,
-            self.setting.options,
-            self.setting.cycle,
-            self.setting.param,
-            p,
-        )?;
-        // The orbit of the point itself (not yet a fixed point): its events.
-        let mut at = self.template.with_coords(z);
-        let mut events = Vec::new();
-        for k in 0..self.n {
-            let mut w = Watch::default();
-            let step = map.step_watched(&at, &mut w).ok()?;
-            events.extend(
-                w.events
-                    .iter()
-                    .zip(&w.after)
-                    .map(|(&kind, &after)| ModeEvent {
-                        step: k,
-                        kind,
-                        after,
-                    }),
-            );
-            at = step.to;
-        }
-        (events == self.sequence.events).then_some(e)
-    }
-}
-
-/// One segment of a continued branch: one mode sequence.
-#[derive(Clone, Debug)]
-pub struct Segment {
-    /// Its mode sequence.
-    pub sequence: ModeSequence,
-    /// The gait label of its first point's orbit.
-    pub label: Label,
-    /// Its section points' template: a branch point `z` is the section
-    /// point `template.with_coords(z)`.
-    pub template: SectionPoint,
-    /// Its points (the smooth continuation's branch).
-    pub branch: Branch,
-    /// How it ended, where its continuation failed at the smallest step
-    /// (`None`: it left the input's range or reached its point cap).
-    pub end: Option<BranchEnd>,
-}
-
-/// Continues the period-`n` fixed point `start` at `p0` towards
-/// `direction` within `range`, segment by segment: each segment is a smooth
-/// branch in one mode sequence ([`continuation::continue_branch`], its
-/// corrector rejecting points of another sequence); where it ends,
-/// [`locate_end`] names why, and if there is an orbit past the change the
-/// next segment starts from it. At most `max_segments`.
-#[allow(clippy::too_many_arguments)]
-pub fn continue_segments(
-    s: &Setting<'_>,
-    start: &SectionPoint,
-    n: usize,
-    p0: f64,
-    direction: f64,
-    cont: &ContOptions,
-    end_opts: &EndOptions,
-    max_segments: usize,
-) -> Vec<Segment> {
-    let mut out = Vec::new();
-    let Some(mut orbit) = s.orbit(start, n, p0) else {
-        return out;
-    };
-    let multipliers = |j: &DMatrix<f64>| limit::nontrivial_multipliers(j);
-    let range = (cont.p_min, cont.p_max);
-    let mut direction = direction;
-    while out.len() < max_segments {
-        let template = orbit.cycle.orbit[0];
-        let Some(map) = map_at(s.base, s.options, s.cycle, s.param, orbit.p) else {
-            break;
-        };
-        let opts = ContOptions {
-            z_scale: map.coord_scale(&template),
-            ..cont.clone()
-        };
-        let mut family = SegmentFamily {
-            inner: StepMapFamily::new(s.base, s.options, s.cycle, s.param, template, n),
-            setting: *s,
-            template,
-            n,
-            sequence: orbit.sequence.clone(),
-        };
-        let label = orbit.cycle.label(&s.options.labels);
-        let Ok(branch) = continuation::continue_branch(
-            &mut family,
-            &orbit.cycle.fixed_point.z,
-            orbit.p,
-            direction,
-            &opts,
-            &multipliers,
-        ) else {
-            break;
-        };
-        // The way the branch was going at its end: its last step in the
-        // input (the tangent there may have turned, computed with the
-        // Jacobian of the other side of a nonsmooth point).
-        if let [.., a, b] = &branch.points[..]
-            && b.p != a.p
-        {
-            direction = (b.p - a.p).signum();
-        }
-        let end = (branch.end == End::StepTooSmall)
-            .then(|| {
-                let last = branch.points.last().expect("the start");
-                locate_end(
-                    s,
-                    &template.with_coords(&last.z),
-                    n,
-                    last.p,
-                    direction,
-                    range,
-                    end_opts,
-                )
-            })
-            .flatten();
-        let next = end.as_ref().and_then(|e| e.new.clone());
-        out.push(Segment {
-            sequence: orbit.sequence.clone(),
-            label,
-            template,
-            branch,
-            end,
-        });
-        match next {
-            Some(o) => orbit = o,
-            None => break,
-        }
-    }
-    out
 }

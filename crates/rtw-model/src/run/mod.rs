@@ -7,5 +7,6 @@
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 
 pub(crate) mod gait;
+pub(crate) mod recorder;
 pub(crate) mod robustness;
 pub(crate) mod simulate;

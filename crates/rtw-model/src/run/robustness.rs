@@ -25,43 +25,14 @@
 //! steps of 1.25: every rung below the reported height survived, the first
 //! one above it failed.
 
-use crate::options::Options;
-use crate::outcome::Outcome;
+use crate::options::TerrainOptions;
+use crate::options::{Options, RobustnessOptions};
+use crate::outcome::{Outcome, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
-use crate::plant::terrain::TerrainOptions;
-use crate::run::simulate::run_from;
+use crate::run::recorder::run_from;
 use hybrid_ode::Work;
-use serde::{Deserialize, Serialize};
-
-/// Which robustness measures a stable run adds (the keys `robustness.*` of a
-/// config's `[simulation]` table). All off by default.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RobustnessOptions {
-    /// Measure the largest survivable step down (`step_down_max`).
-    pub step_down: bool,
-}
-
-impl RobustnessOptions {
-    /// Is every measure off?
-    pub fn is_off(&self) -> bool {
-        !self.step_down
-    }
-}
-
-/// A gait's robustness measures (each `None` unless asked for).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Robustness {
-    /// The largest survivable step down (m), see the module doc.
-    pub step_down_max: Option<f64>,
-    /// The height the gait failed at just above it: the bisection's upper
-    /// end (`None` when even the cap survived).
-    pub step_down_fail: Option<f64>,
-    /// Integrator work of the measures' runs.
-    pub work: Work,
-}
 
 /// The step's edge lies this many rod lengths ahead of the front-most
 /// grounded tip of the settled gait: the next foot lands beyond it, and far
@@ -217,7 +188,7 @@ pub(crate) fn measure(
 pub fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(Outcome, bool)> {
     let mut flat_options = *options;
     flat_options.robustness = RobustnessOptions::default();
-    crate::run::simulate::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
+    crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
         flat.label.is_stable().then(|| {
             settled(params, options, phys, rtw, y, flat).meet_step(h, &mut Work::default())
         })

@@ -11,10 +11,8 @@ use crate::io::files::write_atomic;
 use anyhow::{Result, bail};
 use rtw_model::Num;
 use rtw_model::cycles::LimitCycle;
-use rtw_model::cycles::nonsmooth::{
-    BranchEnd, EndKind, EndOptions, Segment, Setting, continue_segments, guard_name,
-};
-use rtw_model::cycles::{Step, StepMap};
+use rtw_model::cycles::nonsmooth::{BranchEnd, EndKind, EndOptions, Setting, guard_name};
+use rtw_model::cycles::{Segment, Step, StepMap, continue_segments};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

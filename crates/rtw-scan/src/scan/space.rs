@@ -10,7 +10,7 @@ use std::path::Path;
 /// is 214 769 bytes for its 1000 rows (zstd, row groups of up to
 /// `MAX_ROW_GROUP_ROWS`), rounded up. The columns are the same for every
 /// scan; their values compress about alike.
-pub(crate) const BYTES_PER_ROW: u64 = 215;
+pub(crate) const BYTES_PER_ROW: u64 = 213;
 
 /// Bytes free to an unprivileged writer on the filesystem holding `dir` (or
 /// its nearest existing ancestor, when `dir` is still to be made); `None`

@@ -2,13 +2,13 @@
 //! types its dynamics, guards and resets speak.
 
 use crate::options::Options;
+use crate::options::TerrainOptions;
 use crate::outcome::FailureDetail;
 use crate::params::Physical;
 use crate::plant::contact::{ImpactKind, RodBody, RodMode};
 use crate::plant::geometry::{RodFrame, RodState, Tip, V2};
 use crate::plant::slots::{self, N, THETA};
 use crate::plant::strings::StringSet;
-use crate::plant::terrain::TerrainOptions;
 use hybrid_ode::EndsRun;
 
 /// What a guard watches.

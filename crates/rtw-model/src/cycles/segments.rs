@@ -1,0 +1,161 @@
+//! A branch continued through its mode-sequence changes, segment by
+//! segment: each segment's corrector refuses any point whose mode sequence
+//! is not the segment's, and each segment ends where [`locate_end`] names
+//! the change (docs/limit-cycles.md).
+
+use crate::cycles::continuation::StepMapFamily;
+use crate::cycles::nonsmooth::*;
+use crate::cycles::section::SectionPoint;
+use crate::outcome::Label;
+use hybrid_ode::continuation::{self, Branch, End, MapEval, Options as ContOptions, ParamMap};
+use hybrid_ode::limit;
+use nalgebra::DMatrix;
+
+/// The step map family of one segment: [`StepMapFamily`] that is undefined
+/// wherever the orbit's mode sequence is not the segment's, so that the
+/// corrector cannot jump back across the change it came through.
+struct SegmentFamily<'a> {
+    inner: StepMapFamily,
+    setting: Setting<'a>,
+    template: SectionPoint,
+    n: usize,
+    sequence: ModeSequence,
+}
+
+impl ParamMap for SegmentFamily<'_> {
+    fn eval(&mut self, z: &[f64], p: f64) -> Option<MapEval> {
+        let e = self.inner.eval(z, p)?;
+        let map = map_at(
+            self.setting.base,
+            self.setting.options,
+            self.setting.cycle,
+            self.setting.param,
+            p,
+        )?;
+        // The orbit of the point itself (not yet a fixed point): its events.
+        let mut at = self.template.with_coords(z);
+        let mut events = Vec::new();
+        for k in 0..self.n {
+            let mut w = Watch::default();
+            let step = map.step_watched(&at, &mut w).ok()?;
+            events.extend(
+                w.events
+                    .iter()
+                    .zip(&w.after)
+                    .map(|(&kind, &after)| ModeEvent {
+                        step: k,
+                        kind,
+                        after,
+                    }),
+            );
+            at = step.to;
+        }
+        (events == self.sequence.events).then_some(e)
+    }
+}
+
+/// One segment of a continued branch: one mode sequence.
+#[derive(Clone, Debug)]
+pub struct Segment {
+    /// Its mode sequence.
+    pub sequence: ModeSequence,
+    /// The gait label of its first point's orbit.
+    pub label: Label,
+    /// Its section points' template: a branch point `z` is the section
+    /// point `template.with_coords(z)`.
+    pub template: SectionPoint,
+    /// Its points (the smooth continuation's branch).
+    pub branch: Branch,
+    /// How it ended, where its continuation failed at the smallest step
+    /// (`None`: it left the input's range or reached its point cap).
+    pub end: Option<BranchEnd>,
+}
+
+/// Continues the period-`n` fixed point `start` at `p0` towards
+/// `direction` within `range`, segment by segment: each segment is a smooth
+/// branch in one mode sequence ([`continuation::continue_branch`], its
+/// corrector rejecting points of another sequence); where it ends,
+/// [`locate_end`] names why, and if there is an orbit past the change the
+/// next segment starts from it. At most `max_segments`.
+#[allow(clippy::too_many_arguments)]
+pub fn continue_segments(
+    s: &Setting<'_>,
+    start: &SectionPoint,
+    n: usize,
+    p0: f64,
+    direction: f64,
+    cont: &ContOptions,
+    end_opts: &EndOptions,
+    max_segments: usize,
+) -> Vec<Segment> {
+    let mut out = Vec::new();
+    let Some(mut orbit) = s.orbit(start, n, p0) else {
+        return out;
+    };
+    let multipliers = |j: &DMatrix<f64>| limit::nontrivial_multipliers(j);
+    let range = (cont.p_min, cont.p_max);
+    let mut direction = direction;
+    while out.len() < max_segments {
+        let template = orbit.cycle.orbit[0];
+        let Some(map) = map_at(s.base, s.options, s.cycle, s.param, orbit.p) else {
+            break;
+        };
+        let opts = ContOptions {
+            z_scale: map.coord_scale(&template),
+            ..cont.clone()
+        };
+        let mut family = SegmentFamily {
+            inner: StepMapFamily::new(s.base, s.options, s.cycle, s.param, template, n),
+            setting: *s,
+            template,
+            n,
+            sequence: orbit.sequence.clone(),
+        };
+        let label = orbit.cycle.label(&s.options.labels);
+        let Ok(branch) = continuation::continue_branch(
+            &mut family,
+            &orbit.cycle.fixed_point.z,
+            orbit.p,
+            direction,
+            &opts,
+            &multipliers,
+        ) else {
+            break;
+        };
+        // The way the branch was going at its end: its last step in the
+        // input (the tangent there may have turned, computed with the
+        // Jacobian of the other side of a nonsmooth point).
+        if let [.., a, b] = &branch.points[..]
+            && b.p != a.p
+        {
+            direction = (b.p - a.p).signum();
+        }
+        let end = (branch.end == End::StepTooSmall)
+            .then(|| {
+                let last = branch.points.last().expect("the start");
+                locate_end(
+                    s,
+                    &template.with_coords(&last.z),
+                    n,
+                    last.p,
+                    direction,
+                    range,
+                    end_opts,
+                )
+            })
+            .flatten();
+        let next = end.as_ref().and_then(|e| e.new.clone());
+        out.push(Segment {
+            sequence: orbit.sequence.clone(),
+            label,
+            template,
+            branch,
+            end,
+        });
+        match next {
+            Some(o) => orbit = o,
+            None => break,
+        }
+    }
+    out
+}
