@@ -14,7 +14,7 @@ the longest module prefix that is a file. `mod child;` declarations are not
 imports. Cycles are strongly connected components of the file graph.
 
 Usage: python3 scripts/check_structure.py [crate dir ...]
-(default: crates/hybrid-ode crates/rtw-model). Exits 1 on a violation.
+(default: every crate under crates/). Exits 1 on a violation.
 """
 
 import os
@@ -209,8 +209,16 @@ def check(crate):
     return bad
 
 
+def default_crates() -> list[str]:
+    """Every crate of the workspace (a directory under crates/ with a src/),
+    relative to the current directory."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "crates")
+    return sorted(os.path.relpath(os.path.join(root, d)) for d in os.listdir(root)
+                  if os.path.isdir(os.path.join(root, d, "src")))
+
+
 def main():
-    crates = sys.argv[1:] or ["crates/hybrid-ode", "crates/rtw-model"]
+    crates = sys.argv[1:] or default_crates()
     bad = []
     for c in crates:
         bad += check(c)

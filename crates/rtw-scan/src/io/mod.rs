@@ -24,12 +24,12 @@ pub(crate) mod parquet;
 pub(crate) mod robustness_columns;
 pub(crate) mod scan_files;
 pub(crate) mod scan_rows;
+pub(crate) mod sizes;
 pub(crate) mod table;
 pub(crate) mod trace;
 
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
 pub use scan_rows::{ColumnKind, Kind, Value, row_columns, schema};
-pub use trace::{
-    TraceNames, check_trace_size, parse_size, trace_batch, trace_metadata, trace_schema,
-};
+pub use sizes::parse_size;
+pub use trace::{TraceNames, check_trace_size, trace_batch, trace_metadata, trace_schema};
