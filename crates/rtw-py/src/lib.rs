@@ -275,6 +275,15 @@ fn label(
     Ok(Label::of_gait(&fractions, &steps, &options.labels).as_str())
 }
 
+/// Every failure of the scan file `path` with its cluster (an index into
+/// its summary's `clusters`), as `rtw-scan cluster --assignments` writes
+/// them; `None` when there are fewer failures than the config's k.
+#[pyfunction]
+fn failure_clusters(py: Python<'_>, path: PathBuf) -> PyResult<Option<Vec<(u64, usize)>>> {
+    py.detach(|| rtw_scan::failure_clusters(&path))
+        .map_err(value_error)
+}
+
 /// The Wilson score interval (lo, hi) of `k` successes in `n` trials, as
 /// fractions, at normal quantile `z`: the intervals of rtw-scan's summaries.
 #[pyfunction]
@@ -370,6 +379,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sensitivity, m)?)?;
     m.add_function(wrap_pyfunction!(label, m)?)?;
     m.add_function(wrap_pyfunction!(wilson, m)?)?;
+    m.add_function(wrap_pyfunction!(failure_clusters, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;

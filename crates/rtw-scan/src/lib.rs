@@ -64,7 +64,7 @@ pub mod scan;
 /// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
 pub use analysis::sensitivity;
 
-pub use analysis::report::{Z95, wilson};
+pub use analysis::report::{Z95, failure_clusters, wilson};
 #[cfg(feature = "cli")]
 pub use cli::main;
 

@@ -37,10 +37,13 @@ from collections import Counter
 from pathlib import Path
 from typing import Any, Iterable, Sequence
 
+from ._rtw import FAILURE_LABELS, LABELS, failure_clusters
+
 # The paper's five design inputs (L is fixed by its scan); L joins them when a scan varies it.
 INPUTS = ("rho", "alpha", "fn", "zeta", "phi")
 DEFAULT_OUTPUTS = ("speed", "f_w", "mu_required")
-OUTCOMES = ("skip", "walk", "crawl", "collapse", "stall", "diverged")
+# Outcomes in rtw-model's order (Label::ALL).
+OUTCOMES = LABELS
 # Every column of every row goes into the page up to this many rows (a click
 # shows them all); above it, only the plotted columns do, and all columns only
 # for the samples with a gait (the page says so).
@@ -139,24 +142,6 @@ def _assignments(directory: Path) -> tuple[dict[int, int], str] | None:
             got = {int(s): int(c) - 1 for s, c in zip(t["sample_id"], t["cluster"])}
             return got, f"from {f.name} (rtw-scan cluster --assignments)"
     return None
-
-
-def _nearest_centre(rows: dict[str, list], failed: list[int], centres: list[dict]) -> dict[int, int]:
-    """Each failure's cluster as rtw-scan counts it: the nearest centre in
-    (α, f_n, φ) standardized by the failures' mean and population standard
-    deviation (crates/rtw-scan analysis/clusters.rs). With every failure
-    clustered, as in a scan of up to 20 000 failures, that is k-means' own
-    final assignment."""
-    import numpy as np
-
-    pts = np.array([[rows[c][i] for c in ("alpha", "fn", "phi")] for i in failed], dtype=float)
-    mean = pts.mean(axis=0)
-    sd = pts.std(axis=0)
-    sd[sd <= 0] = 1.0
-    z = (pts - mean) / sd
-    cz = (np.array([[c["alpha"], c["fn"], c["phi"]] for c in centres]) - mean) / sd
-    d = ((z[:, None, :] - cz[None, :, :]) ** 2).sum(axis=-1)
-    return {rows["sample_id"][i]: int(j) for i, j in zip(failed, np.argmin(d, axis=1))}
 
 
 def _representatives(rows: dict[str, list], clusters: dict[int, int] | None, centres: list[dict],
@@ -420,13 +405,15 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
     centres = (summary or {}).get("clusters", {}).get("clusters", []) if summary else []
 
-    failed = [i for i, o in enumerate(rows["outcome"]) if o in ("collapse", "stall")]
+    failed = [i for i, o in enumerate(rows["outcome"]) if o in FAILURE_LABELS]
     found = _assignments(base)
     if found:
         assign, how = found
-    elif centres and failed:
-        assign = _nearest_centre(rows, failed, centres)
-        how = "each failure in the cluster of its nearest centre (standardized α, f_n, φ), as rtw-scan counts it"
+    elif centres and failed and len(files) == 1:
+        # rtw-scan's own clustering of the file (the config's k, seed and
+        # restarts), the assignments `rtw-scan cluster --assignments` writes.
+        assign = dict(failure_clusters(files[0]) or [])
+        how = "rtw-scan's clustering of the failures (as `rtw-scan cluster --assignments` writes it)"
     else:
         assign, how = {}, "no clusters in summary.json"
 

@@ -233,6 +233,28 @@ impl ScanData {
     }
 }
 
+/// Every failure of the scan file at `path` with its cluster (an index into
+/// its summary's `clusters`), in `sample_id` order, as `rtw-scan cluster
+/// --assignments` writes them: the config's k, seed and restarts. `None`
+/// when there are fewer failures than k.
+pub fn failure_clusters(path: &Path) -> Result<Option<Vec<(u64, usize)>>> {
+    let data = read_scan(path)?;
+    let Some(fc) = data.clusters(None)? else {
+        return Ok(None);
+    };
+    let mut out = Vec::new();
+    data.for_each_assigned(&fc, |failures, clusters| {
+        out.extend(
+            failures
+                .iter()
+                .zip(clusters)
+                .map(|(f, c)| (f.sample_id, *c)),
+        );
+        Ok(())
+    })?;
+    Ok(Some(out))
+}
+
 /// The summary of one scan.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub(crate) struct Summary {
