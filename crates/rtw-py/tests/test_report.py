@@ -26,6 +26,8 @@ from rtw.report import GENERATOR
 
 ROOT = Path(__file__).resolve().parents[3]
 SCAN = ROOT / "results/paper"
+# The module (rtw.report, the attribute, is its function).
+report_module = sys.modules["rtw.report"]
 BINARY = Path(os.environ.get("RTW_SCAN", Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release/rtw-scan"))
 
 
@@ -47,8 +49,22 @@ def test_the_page_is_self_contained(made):
     assert GENERATOR in page
     # No file, server or CDN is fetched: no src= or href= to anything but inline data.
     assert not re.search(r'\b(src|href)="(?!#|data:)', page)
-    assert "Plotly" in blob(page, "plotly-gz")
+    # Plotly.js: the bundle shipped with rtw (scripts/plotly_bundle.sh), byte for byte.
+    assert blob(page, "plotly-gz") == (report_module.ASSETS / report_module.PLOTLY_JS).read_text()
     assert data["n"] == pq.read_metadata(SCAN / "samples.parquet").num_rows
+
+
+def test_a_changed_plotly_bundle_is_refused(tmp_path, monkeypatch):
+    assets = tmp_path / "report_assets"
+    assets.mkdir()
+    for f in report_module.ASSETS.iterdir():
+        (assets / f.name).write_bytes(f.read_bytes())
+    js = assets / report_module.PLOTLY_JS
+    js.write_bytes(js.read_bytes().replace(b"plotly.js v", b"plotly.js w", 1))
+    monkeypatch.setattr(report_module, "ASSETS", assets)
+    with pytest.raises(ImportError, match="sha256"):
+        rtw.report(SCAN, out=tmp_path / "report.html")
+    assert not (tmp_path / "report.html").exists()
 
 
 def test_the_page_carries_every_row_and_the_summary(made):

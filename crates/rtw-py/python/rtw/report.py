@@ -1,6 +1,7 @@
 """A scan as one HTML page you can open: ``rtw.report(DIR)`` / ``python -m rtw report DIR``.
 
-The page is one self-contained file (docs/report.md): Plotly.js and the data
+The page is one self-contained file (docs/report.md): Plotly.js (a bundle of
+only the trace types the page draws, report_assets/plotly-rtw.min.js) and the data
 are inlined (gzip, base64; the browser inflates them with its own
 DecompressionStream), so it opens offline from disk with no server and no CDN.
 It shows the scan's header and summary, parallel coordinates of the inputs
@@ -19,14 +20,15 @@ against its row (same outcome) and against the model's geometry
 script only draws those segments; it never re-derives the robot.
 
 Only the standard library is imported here at module level, so that
-``import rtw`` stays light; numpy and Plotly's bundle (the ``report`` extra:
-``pip install 'rtw[report]'``) are needed when a report is made.
+``import rtw`` stays light; numpy (the ``report`` extra:
+``pip install 'rtw[report]'``) is needed when a report is made.
 """
 
 from __future__ import annotations
 
 import base64
 import gzip
+import hashlib
 import html
 import json
 import math
@@ -64,6 +66,7 @@ PER_OUTCOME = 2
 # (it never writes over a file it did not make).
 GENERATOR = '<meta name="generator" content="rtw report">'
 ASSETS = Path(__file__).with_name("report_assets")
+PLOTLY_JS = "plotly-rtw.min.js"
 
 
 class ReportError(ValueError):
@@ -71,16 +74,19 @@ class ReportError(ValueError):
 
 
 def _plotly_bundle() -> str:
+    """Plotly.js with only the trace types the page draws, built by
+    scripts/plotly_bundle.sh from pinned npm packages and shipped with rtw;
+    its sha256 is checked, so a page never carries a changed bundle."""
+    path = ASSETS / PLOTLY_JS
     try:
-        import plotly
-    except ImportError:
-        raise ImportError("rtw.report needs Plotly's JavaScript bundle from the `plotly` package: "
-                          "pip install 'rtw[report]'") from None
-    path = Path(plotly.__file__).with_name("package_data") / "plotly.min.js"
-    if not path.is_file():
-        raise ImportError(f"the plotly package has no {path.name} at {path}: reinstall it "
-                          "(pip install --force-reinstall 'rtw[report]')")
-    return path.read_text(encoding="utf-8")
+        raw = path.read_bytes()
+        want = (ASSETS / f"{PLOTLY_JS}.sha256").read_text(encoding="ascii").split()[0]
+    except FileNotFoundError as e:
+        raise ImportError(f"rtw's Plotly.js bundle is missing ({e.filename}): reinstall rtw") from None
+    if hashlib.sha256(raw).hexdigest() != want:
+        raise ImportError(f"{path}: its sha256 is not the one in {PLOTLY_JS}.sha256: reinstall rtw "
+                          "(or rebuild it with scripts/plotly_bundle.sh --write)")
+    return raw.decode("utf-8")
 
 
 def _b64gz(text: str) -> str:
@@ -363,7 +369,8 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         FileNotFoundError: no such directory or file.
         ValueError: not a scan, an unknown output column, a bad option,
             an output that is not an rtw report (without ``force``).
-        ImportError: Plotly or numpy is missing (``pip install 'rtw[report]'``).
+        ImportError: numpy is missing (``pip install 'rtw[report]'``), or
+            rtw's Plotly.js bundle is missing or changed.
     """
     from . import __version__
 

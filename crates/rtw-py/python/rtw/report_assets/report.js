@@ -5,12 +5,19 @@
 // strings, feet, ground, view) arrives as world-frame coordinates computed in
 // Python by rtw.draw: this script only draws segments and points.
 window.rtwReport = { ready: false, selected: null, frame: null, timings: {} };
-const mark = (name) => { window.rtwReport.timings[name] = Math.round(performance.now()); };
+// Each step is a Performance API mark "rtw:NAME" (scripts/report_timing.py reads them).
+const mark = (name) => { window.rtwReport.timings[name] = Math.round(performance.mark(`rtw:${name}`).startTime); };
 
 async function inflate(id) {
-  const bin = atob(document.getElementById(id).textContent.trim());
-  const bytes = new Uint8Array(bin.length);
-  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  const b64 = document.getElementById(id).textContent.trim();
+  let bytes;
+  if (Uint8Array.fromBase64) {
+    bytes = Uint8Array.fromBase64(b64);  // Chromium >= 140, Firefox >= 133, Safari >= 18.2
+  } else {
+    const bin = atob(b64);
+    bytes = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  }
   const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
   return await new Response(stream).text();
 }
@@ -30,9 +37,10 @@ function stepped(colors) {
   return s;
 }
 
-// Lets the browser paint what is drawn so far: the page shows its first view
-// (header, parallel coordinates) before the views further down are drawn.
-const paint = () => new Promise((resolve) => setTimeout(resolve, 0));
+// Resolves once the browser has painted what is drawn so far (a frame's
+// callback runs before its paint, a task queued from it after): the page shows
+// its first view (header, summary, gait map) before the views further down.
+const paint = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
 
 async function main(D) {
   const S = D.style;
@@ -54,88 +62,14 @@ async function main(D) {
   const byOutcome = D.outcomes.map(() => []);
   shown.forEach((i) => byOutcome[D.outcome[i]].push(i));
 
-  // ---- parallel coordinates with brushing and a count of the selection.
-  const pcCols = [...D.inputs, ...D.outputs.filter((c) => !D.inputs.includes(c))];
-  const pcValues = [];
-  const dims = pcCols.map((c) => {
-    const v = D.columns[c];
-    const [lo, hi] = D.ranges[c] || [0, 1];
-    const hasNone = v.some((x) => x === null);
-    const none = lo - 0.1 * ((hi - lo) || 1);
-    const values = hasNone ? v.map((x) => (x === null ? none : x)) : v;
-    pcValues.push(values);
-    const d = { label: label(c), values: D.shown ? shown.map((i) => values[i]) : values, range: [hasNone ? none : lo, hi] };
-    if (hasNone) {
-      const ticks = [0, 1, 2, 3, 4].map((k) => lo + (k * (hi - lo)) / 4);
-      d.tickvals = [none, ...ticks];
-      d.ticktext = ["none", ...ticks.map((t) => t.toPrecision(3))];
-    }
-    return d;
-  });
-  const pc = document.getElementById("parcoords");
-  Plotly.newPlot(pc, [{
-    type: "parcoords", dimensions: dims,
-    line: { color: D.shown ? shown.map((i) => D.outcome[i]) : D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
-  }], { margin: { l: 70, r: 70, t: 50, b: 30 } }, cfg);
-  const countEl = document.getElementById("count");
-  function brushed() {
-    const ranges = pc.data[0].dimensions.map((d) => {
-      const r = d.constraintrange;
-      if (!r || r.length === 0) return null;
-      return Array.isArray(r[0]) ? r : [r];
-    });
-    const per = new Array(K).fill(0);
-    const picked = new Uint8Array(D.n);
-    let total = 0;
-    for (let i = 0; i < D.n; i++) {
-      let ok = true;
-      for (let j = 0; j < ranges.length && ok; j++) {
-        const r = ranges[j];
-        if (!r) continue;
-        const v = pcValues[j][i];
-        ok = r.some(([a, b]) => v >= a && v <= b);
-      }
-      if (ok) { total++; per[D.outcome[i]]++; picked[i] = 1; }
-    }
-    // The gait map shows the brushed samples, the others faded.
-    const gmap = document.getElementById("gaitmap");
-    if (gmap.data) {
-      const all = ranges.every((r) => !r);
-      Plotly.restyle(gmap, { selectedpoints: byOutcome.map((m) => (all ? null : m.flatMap((i, p) => (picked[i] ? [p] : [])))) });
-    }
-    window.rtwReport.selected = total;
-    window.rtwReport.selectedPer = Object.fromEntries(D.outcomes.map((o, k) => [o, per[k]]));
-    countEl.dataset.selected = String(total);
-    countEl.textContent = `${total.toLocaleString("en")} of ${D.n.toLocaleString("en")} samples selected: `
-      + D.outcomes.map((o, k) => `${o} ${per[k].toLocaleString("en")}`).join(", ");
-  }
-  pc.on("plotly_restyle", brushed);
-  brushed();
-  window.rtwReport.firstViewMs = performance.now();
-  await paint();
-
-  mark("parallel categories");
-  // ---- parallel categories: outcome against binned α, f_n, φ (aggregated in Python).
-  const P = D.parcats;
-  const ocode = Object.fromEntries(D.outcomes.map((o, k) => [o, k]));
-  Plotly.newPlot("parcats", [{
-    type: "parcats", counts: P.counts, arrangement: "freeform",
-    dimensions: P.dims.map((c, k) => ({
-      label: label(c), values: P.values.map((v) => v[k]),
-      categoryorder: "array", categoryarray: P.order[k],
-    })),
-    line: { color: P.values.map((v) => ocode[v[3]]), colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5,
-            shape: "hspline" },
-  }], { margin: { l: 80, r: 80, t: 30, b: 20 } }, cfg);
-
-  await paint();
-  mark("the gait map");
-  // ---- the gait map: every sample, clickable (WebGL).
+  // ---- the gait map first: with the header and the summary it is the first
+  // view. Up to 5 000 points it is SVG, which draws before a WebGL context
+  // (software-rendered without a GPU) would have started.
   const A = D.columns.alpha, F = D.columns.fn, PHI = D.columns.phi;
   const sid = D.columns.sample_id;
   const hover = "sample %{text}<br>α %{x:.4f}<br>f_n %{y:.3f}<extra>%{fullData.name}</extra>";
   const gm = document.getElementById("gaitmap");
-  Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
+  await Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
     type: scatter(shown.length), mode: "markers", name: o, x: byOutcome[k].map((i) => A[i]), y: byOutcome[k].map((i) => F[i]),
     customdata: byOutcome[k], text: byOutcome[k].map((i) => sid[i]), marker: { color: ocolor[k], size: shown.length > 5000 ? 3 : 6, opacity: 0.8 },
     unselected: { marker: { opacity: 0.08 } },
@@ -143,78 +77,7 @@ async function main(D) {
   })), { xaxis: { title: { text: label("alpha") } }, yaxis: { title: { text: label("fn") } },
          margin: { t: 20 }, legend: { title: { text: "outcome" } } }, cfg);
 
-  await paint();
-  mark("failure clusters");
-  // ---- failure clusters in 3-D and the three projections of Fig. S4.
-  const C = D.clusters;
-  document.getElementById("cluster-note").textContent =
-    `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
-  const ccol = (j) => (j >= 0 ? S.cluster[j % S.cluster.length] : "#999");
-  const groups = new Map();
-  C.index.forEach((i, k) => { if (!isShown[i]) return; const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
-  const cname = (j) => (j >= 0 && C.centres[j] ? `cluster ${j + 1}: ${C.centres[j].name}` : "unassigned");
-  const isCollapse = (i) => D.outcomes[D.outcome[i]] === "collapse";
-  const keys = [...groups.keys()].sort((a, b) => a - b);
-  Plotly.newPlot("clusters3d", [
-    ...keys.map((j) => { const m = groups.get(j); return {
-      type: "scatter3d", mode: "markers", name: cname(j), customdata: m,
-      x: m.map((i) => A[i]), y: m.map((i) => F[i]), z: m.map((i) => PHI[i]),
-      marker: { size: 3, color: ccol(j), symbol: m.map((i) => (isCollapse(i) ? "circle" : "circle-open")) },
-      text: m.map((i) => sid[i]),
-      hovertemplate: "sample %{text}<extra>%{fullData.name}</extra>" }; }),
-    { type: "scatter3d", mode: "markers", name: "k-means centres", x: C.centres.map((c) => c.alpha),
-      y: C.centres.map((c) => c.fn), z: C.centres.map((c) => c.phi), hoverinfo: "name",
-      marker: { size: 7, color: "black", symbol: "diamond" } },
-  ], { scene: { xaxis: { title: { text: "α" } }, yaxis: { title: { text: "f_n [Hz]" } }, zaxis: { title: { text: "φ [rad]" } } },
-       margin: { l: 0, r: 0, t: 10, b: 0 }, legend: { x: 0, y: 1 } }, cfg);
-  const cols = { alpha: A, fn: F, phi: PHI };
-  [["alpha", "fn"], ["alpha", "phi"], ["fn", "phi"]].forEach(([cx, cy], p) => {
-    Plotly.newPlot(`proj${p}`, [
-      ...keys.map((j) => { const m = groups.get(j); return {
-        type: scatter(C.index.length), mode: "markers", name: cname(j), customdata: m, showlegend: false,
-        x: m.map((i) => cols[cx][i]), y: m.map((i) => cols[cy][i]),
-        marker: { size: 5, color: m.map((i) => (isCollapse(i) ? ccol(j) : "rgba(0,0,0,0)")),
-                  line: { color: ccol(j), width: 1 } },
-        text: m.map((i) => sid[i]),
-      hovertemplate: "sample %{text}<extra>%{fullData.name}</extra>" }; }),
-      { type: scatter(C.index.length), mode: "markers", name: "k-means centres", showlegend: false, hoverinfo: "name",
-        x: C.centres.map((c) => c[cx]), y: C.centres.map((c) => c[cy]),
-        marker: { size: 14, color: "black", symbol: "x" } },
-    ], { xaxis: { title: { text: label(cx) } }, yaxis: { title: { text: label(cy) } },
-         margin: { t: 10, r: 10 } }, cfg);
-  });
 
-  await paint();
-  mark("sensitivity");
-  // ---- sensitivity indices and maps, when the directory has them.
-  if (D.sensitivity) {
-    document.getElementById("sensitivity-section").hidden = false;
-    document.getElementById("sensitivity-note").textContent =
-      `From ${D.sensitivity.file}: first-order (S1) and total (ST) Sobol indices with their 95 % confidence.`;
-    const rows = D.sensitivity.rows;
-    [...new Set(rows.map((r) => r.output))].forEach((out, k) => {
-      const r = rows.filter((x) => x.output === out);
-      const div = document.createElement("div");
-      div.id = `sensitivity-${k}`; div.style.width = "420px"; div.style.height = "300px";
-      document.getElementById("sensitivity").appendChild(div);
-      Plotly.newPlot(div, ["S1", "ST"].map((s) => ({
-        type: "bar", name: s, x: r.map((x) => label(x.parameter)), y: r.map((x) => x[s]),
-        error_y: { type: "data", array: r.map((x) => x[`${s}_conf`]) } })),
-        { title: { text: `output: ${out}` }, barmode: "group", margin: { t: 40, r: 10 } }, cfg);
-    });
-  }
-  if (D.images.length) {
-    document.getElementById("images-section").hidden = false;
-    const box = document.getElementById("images");
-    D.images.forEach((im) => {
-      const f = document.createElement("figure");
-      const img = document.createElement("img"); img.src = im.src; img.style.maxWidth = "700px";
-      const cap = document.createElement("figcaption"); cap.textContent = im.name;
-      f.append(img, cap); box.appendChild(f);
-    });
-  }
-
-  mark("a sample:");
   // ---- a sample: its columns and its gait.
   const gaitOf = new Map(D.gaits.map((g) => [g.sample_id, g]));
   const gbox = document.getElementById("gaits");
@@ -340,8 +203,161 @@ async function main(D) {
   }
   window.rtwReport.showSample = showSample;
   const onClick = (ev) => { const p = ev.points && ev.points[0]; if (p && p.customdata !== undefined) showSample(p.customdata); };
-  ["gaitmap", "clusters3d", "proj0", "proj1", "proj2"].forEach((id) => document.getElementById(id).on("plotly_click", onClick));
+  gm.on("plotly_click", onClick);
   if (D.gaits.length) showSample(rowOf.get(D.gaits[0].sample_id));
+
+  await paint();
+  mark("first-view");
+  window.rtwReport.firstViewMs = performance.now();
+
+  // ---- the views further down, each after the browser has painted the last.
+  mark("parallel coordinates");
+  // ---- parallel coordinates with brushing and a count of the selection.
+  const pcCols = [...D.inputs, ...D.outputs.filter((c) => !D.inputs.includes(c))];
+  const pcValues = [];
+  const dims = pcCols.map((c) => {
+    const v = D.columns[c];
+    const [lo, hi] = D.ranges[c] || [0, 1];
+    const hasNone = v.some((x) => x === null);
+    const none = lo - 0.1 * ((hi - lo) || 1);
+    const values = hasNone ? v.map((x) => (x === null ? none : x)) : v;
+    pcValues.push(values);
+    const d = { label: label(c), values: D.shown ? shown.map((i) => values[i]) : values, range: [hasNone ? none : lo, hi] };
+    if (hasNone) {
+      const ticks = [0, 1, 2, 3, 4].map((k) => lo + (k * (hi - lo)) / 4);
+      d.tickvals = [none, ...ticks];
+      d.ticktext = ["none", ...ticks.map((t) => t.toPrecision(3))];
+    }
+    return d;
+  });
+  const pc = document.getElementById("parcoords");
+  Plotly.newPlot(pc, [{
+    type: "parcoords", dimensions: dims,
+    line: { color: D.shown ? shown.map((i) => D.outcome[i]) : D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
+  }], { margin: { l: 70, r: 70, t: 50, b: 30 } }, cfg);
+  const countEl = document.getElementById("count");
+  function brushed() {
+    const ranges = pc.data[0].dimensions.map((d) => {
+      const r = d.constraintrange;
+      if (!r || r.length === 0) return null;
+      return Array.isArray(r[0]) ? r : [r];
+    });
+    const per = new Array(K).fill(0);
+    const picked = new Uint8Array(D.n);
+    let total = 0;
+    for (let i = 0; i < D.n; i++) {
+      let ok = true;
+      for (let j = 0; j < ranges.length && ok; j++) {
+        const r = ranges[j];
+        if (!r) continue;
+        const v = pcValues[j][i];
+        ok = r.some(([a, b]) => v >= a && v <= b);
+      }
+      if (ok) { total++; per[D.outcome[i]]++; picked[i] = 1; }
+    }
+    // The gait map shows the brushed samples, the others faded.
+    const gmap = document.getElementById("gaitmap");
+    if (gmap.data) {
+      const all = ranges.every((r) => !r);
+      Plotly.restyle(gmap, { selectedpoints: byOutcome.map((m) => (all ? null : m.flatMap((i, p) => (picked[i] ? [p] : [])))) });
+    }
+    window.rtwReport.selected = total;
+    window.rtwReport.selectedPer = Object.fromEntries(D.outcomes.map((o, k) => [o, per[k]]));
+    countEl.dataset.selected = String(total);
+    countEl.textContent = `${total.toLocaleString("en")} of ${D.n.toLocaleString("en")} samples selected: `
+      + D.outcomes.map((o, k) => `${o} ${per[k].toLocaleString("en")}`).join(", ");
+  }
+  pc.on("plotly_restyle", brushed);
+  brushed();
+
+  await paint();
+  mark("parallel categories");
+  // ---- parallel categories: outcome against binned α, f_n, φ (aggregated in Python).
+  const P = D.parcats;
+  const ocode = Object.fromEntries(D.outcomes.map((o, k) => [o, k]));
+  Plotly.newPlot("parcats", [{
+    type: "parcats", counts: P.counts, arrangement: "freeform",
+    dimensions: P.dims.map((c, k) => ({
+      label: label(c), values: P.values.map((v) => v[k]),
+      categoryorder: "array", categoryarray: P.order[k],
+    })),
+    line: { color: P.values.map((v) => ocode[v[3]]), colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5,
+            shape: "hspline" },
+  }], { margin: { l: 80, r: 80, t: 30, b: 20 } }, cfg);
+
+  await paint();
+  mark("failure clusters");
+  // ---- failure clusters in 3-D and the three projections of Fig. S4.
+  const C = D.clusters;
+  document.getElementById("cluster-note").textContent =
+    `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
+  const ccol = (j) => (j >= 0 ? S.cluster[j % S.cluster.length] : "#999");
+  const groups = new Map();
+  C.index.forEach((i, k) => { if (!isShown[i]) return; const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
+  const cname = (j) => (j >= 0 && C.centres[j] ? `cluster ${j + 1}: ${C.centres[j].name}` : "unassigned");
+  const isCollapse = (i) => D.outcomes[D.outcome[i]] === "collapse";
+  const keys = [...groups.keys()].sort((a, b) => a - b);
+  Plotly.newPlot("clusters3d", [
+    ...keys.map((j) => { const m = groups.get(j); return {
+      type: "scatter3d", mode: "markers", name: cname(j), customdata: m,
+      x: m.map((i) => A[i]), y: m.map((i) => F[i]), z: m.map((i) => PHI[i]),
+      marker: { size: 3, color: ccol(j), symbol: m.map((i) => (isCollapse(i) ? "circle" : "circle-open")) },
+      text: m.map((i) => sid[i]),
+      hovertemplate: "sample %{text}<extra>%{fullData.name}</extra>" }; }),
+    { type: "scatter3d", mode: "markers", name: "k-means centres", x: C.centres.map((c) => c.alpha),
+      y: C.centres.map((c) => c.fn), z: C.centres.map((c) => c.phi), hoverinfo: "name",
+      marker: { size: 7, color: "black", symbol: "diamond" } },
+  ], { scene: { xaxis: { title: { text: "α" } }, yaxis: { title: { text: "f_n [Hz]" } }, zaxis: { title: { text: "φ [rad]" } } },
+       margin: { l: 0, r: 0, t: 10, b: 0 }, legend: { x: 0, y: 1 } }, cfg);
+  document.getElementById("clusters3d").on("plotly_click", onClick);
+  const cols = { alpha: A, fn: F, phi: PHI };
+  [["alpha", "fn"], ["alpha", "phi"], ["fn", "phi"]].forEach(([cx, cy], p) => {
+    Plotly.newPlot(`proj${p}`, [
+      ...keys.map((j) => { const m = groups.get(j); return {
+        type: scatter(C.index.length), mode: "markers", name: cname(j), customdata: m, showlegend: false,
+        x: m.map((i) => cols[cx][i]), y: m.map((i) => cols[cy][i]),
+        marker: { size: 5, color: m.map((i) => (isCollapse(i) ? ccol(j) : "rgba(0,0,0,0)")),
+                  line: { color: ccol(j), width: 1 } },
+        text: m.map((i) => sid[i]),
+      hovertemplate: "sample %{text}<extra>%{fullData.name}</extra>" }; }),
+      { type: scatter(C.index.length), mode: "markers", name: "k-means centres", showlegend: false, hoverinfo: "name",
+        x: C.centres.map((c) => c[cx]), y: C.centres.map((c) => c[cy]),
+        marker: { size: 14, color: "black", symbol: "x" } },
+    ], { xaxis: { title: { text: label(cx) } }, yaxis: { title: { text: label(cy) } },
+         margin: { t: 10, r: 10 } }, cfg);
+    document.getElementById(`proj${p}`).on("plotly_click", onClick);
+  });
+
+  await paint();
+  mark("sensitivity");
+  // ---- sensitivity indices and maps, when the directory has them.
+  if (D.sensitivity) {
+    document.getElementById("sensitivity-section").hidden = false;
+    document.getElementById("sensitivity-note").textContent =
+      `From ${D.sensitivity.file}: first-order (S1) and total (ST) Sobol indices with their 95 % confidence.`;
+    const rows = D.sensitivity.rows;
+    [...new Set(rows.map((r) => r.output))].forEach((out, k) => {
+      const r = rows.filter((x) => x.output === out);
+      const div = document.createElement("div");
+      div.id = `sensitivity-${k}`; div.style.width = "420px"; div.style.height = "300px";
+      document.getElementById("sensitivity").appendChild(div);
+      Plotly.newPlot(div, ["S1", "ST"].map((s) => ({
+        type: "bar", name: s, x: r.map((x) => label(x.parameter)), y: r.map((x) => x[s]),
+        error_y: { type: "data", array: r.map((x) => x[`${s}_conf`]) } })),
+        { title: { text: `output: ${out}` }, barmode: "group", margin: { t: 40, r: 10 } }, cfg);
+    });
+  }
+  if (D.images.length) {
+    document.getElementById("images-section").hidden = false;
+    const box = document.getElementById("images");
+    D.images.forEach((im) => {
+      const f = document.createElement("figure");
+      const img = document.createElement("img"); img.src = im.src; img.style.maxWidth = "700px";
+      const cap = document.createElement("figcaption"); cap.textContent = im.name;
+      f.append(img, cap); box.appendChild(f);
+    });
+  }
+
 }
 
 (async () => {
@@ -352,9 +368,10 @@ async function main(D) {
     const el = document.createElement("script");
     el.textContent = lib;
     document.head.appendChild(el);
-    mark("plotly loaded");
+    mark("plotly");
     await main(JSON.parse(text));
     status.textContent = "";
+    mark("ready");
     window.rtwReport.readyMs = performance.now();
     window.rtwReport.ready = true;
   } catch (e) {
