@@ -55,7 +55,11 @@ def open_chromium(window: str = WINDOW):
                 "--enable-unsafe-swiftshader"):
         opts.add_argument(arg)
     opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service(driver), options=opts)
+    browser = webdriver.Chrome(service=Service(driver), options=opts)
+    # A 10^5-row page keeps the page's thread busy for longer than Selenium's
+    # default 30 s on a loaded machine; a query waits for it.
+    browser.set_script_timeout(300)
+    return browser
 
 
 def wait_ready(driver, timeout: float = 300.0) -> dict:
