@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Everything in docs/reproduction.md, from the committed
-# configs, in one command (about 10 minutes on 2 cores):
+# configs, in one command (about 12 minutes on 2 cores):
 #   1. the reproduction scans: configs/{paper,fig-s2,fig-s3}.toml -> results/<name>/
 #   2. the variant study (./scripts/variants.sh)  -> results/variants/
 #   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/, and the

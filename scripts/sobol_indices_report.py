@@ -12,13 +12,16 @@ bootstrap half-width. docs/reproduction.md quotes the tables
 from __future__ import annotations
 
 import json
+import math
 import sys
 from pathlib import Path
 
+import pyarrow.compute as pc
 import pyarrow.parquet as pq
 
 PARAMS = [("rho", "ρ"), ("alpha", "α"), ("fn", "f_n"), ("zeta", "ζ"), ("phi", "φ")]
 OUTPUTS = ["failure", "skip", "walk", "crawl", "collapse", "stall", "speed", "f_w"]
+CLASSES = OUTPUTS[:6]
 
 
 def table(d: dict[tuple[str, str], dict[str, float]], key: str) -> list[str]:
@@ -39,15 +42,31 @@ def main(root: Path) -> None:
     wide = sorted({o for (o, _), r in d.items() if o in OUTPUTS and max(r["S1_conf"], r["ST_conf"]) > 0.05})
     widest = max(max(r["S1_conf"], r["ST_conf"]) for (o, _), r in d.items() if o in OUTPUTS)
     within = "every half-width is at most 0.05" + (f" except those of {', '.join(wide)}" if wide else "")
+    base = about["rows"] // 7
+    for out in wide:
+        hw = max(max(r["S1_conf"], r["ST_conf"]) for (o, _), r in d.items() if o == out)
+        if out in CLASSES:
+            # An indicator's half-width shrinks as 1/sqrt(base rows): the base
+            # rows (a power of two, as Sobol points balance) that bring it to 0.05.
+            needed = 2 ** math.ceil(math.log2(base * (hw / 0.05) ** 2))
+            within += (f"; {out}'s widest ({hw:.3f}) would need about {needed} base rows "
+                       f"({needed * 7} runs) to reach 0.05")
+        else:
+            top = pq.read_table(root / "saltelli/samples.parquet", columns=[out]).column(out)
+            within += (f"; {out}'s widest ({hw:.3f}) comes from one run's {out} of "
+                       f"{pc.max(top).as_py():.6g} (median {pc.approximate_median(top).as_py():.3g}), "
+                       "which dominates its variance")
+    if not wide:
+        within += f" (the widest {widest:.3f})"
     lines = [
         "# Sobol indices of the paper's box",
         "",
         f"Made by `./scripts/sobol_indices.sh`: `rtw-scan sensitivity` of the Saltelli scan "
         f"`results/sensitivity/saltelli/` (configs/sensitivity-saltelli.toml: {about['rows']} runs, "
-        f"{about['rows'] // 7} base rows × (5 + 2), the default model), {about['resamples']} bootstrap "
+        f"{base} base rows × (5 + 2), the default model), {about['resamples']} bootstrap "
         f"resamples (seed {about['seed']}). Each outcome is a 0/1 indicator over all runs, failures "
         "included; failure = collapse or stall. ± is the 95 % half-width: "
-        f"{within} (the widest {widest:.3f}).",
+        f"{within}.",
         "",
         "## Total indices",
         "",

@@ -9,12 +9,14 @@
 //! pyarrow imports the Rust buffers, no value is copied or boxed as a
 //! Python object).
 
+mod design;
 mod options;
 mod types;
 
 use anyhow::anyhow;
 use arrow_array::RecordBatch;
 use arrow_pyarrow::{IntoPyArrow, Table};
+use design::DesignKeys;
 use options::PyOverrides;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -116,7 +118,8 @@ fn trace<'py>(
     to_table(py, batch)
 }
 
-/// A scan (config file `path` or TOML `text`, then variant and sets) as a
+/// A scan (config file `path` or TOML `text`, then variant and sets, then
+/// the design keys `sampling`, `samples`, `seed` over the config's) as a
 /// `pyarrow.Table` of the rows of `rtw-scan run`. It runs on a worker thread
 /// (rayon inside) with the GIL released; this thread polls Python's signal
 /// handlers every [`SIGNAL_POLL`], calls `progress(done, total)` (rows
@@ -124,7 +127,7 @@ fn trace<'py>(
 /// or one raised by `progress`) stops the scan, waits for the samples in
 /// flight, and raises it. `progress` is called a last time once every row is in.
 #[pyfunction]
-#[pyo3(signature = (path, text, variant, options, threads, progress=None))]
+#[pyo3(signature = (path, text, variant, options, threads, progress=None, sampling=None, samples=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 fn scan<'py>(
     py: Python<'py>,
@@ -134,13 +137,32 @@ fn scan<'py>(
     options: Option<Bound<'py, PyDict>>,
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
+    sampling: Option<Bound<'py, PyAny>>,
+    samples: Option<u64>,
+    seed: Option<u64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let overrides = PyOverrides::new(options.as_ref())?;
+    let sampling = match sampling {
+        None => None,
+        Some(s) => match s.extract::<String>() {
+            Ok(name) => Some(name),
+            Err(_) => {
+                let shown = s.repr()?.to_string();
+                return Err(value_error(design::invalid_sampling(&shown)));
+            }
+        },
+    };
+    let design = DesignKeys {
+        sampling,
+        samples,
+        seed,
+    };
     let cfg = match (path, text) {
         (Some(p), None) => load_layered_with(&p, variant.as_deref(), overrides.layer()),
         (None, Some(t)) => parse_layered_with(&t, variant.as_deref(), overrides.layer()),
         _ => Err(anyhow!("give a config path or TOML text")),
     }
+    .and_then(|cfg| design.apply(cfg))
     .map_err(value_error)?;
     let threads = match threads {
         None => None,

@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+from pathlib import Path
+
 import numpy as np
+import pyarrow.parquet as pq
 import pytest
 
 import rtw
 from rtw import _rtw
+from test_rtw import assert_same_columns
 
 qmc = pytest.importorskip("scipy.stats.qmc")
 
@@ -59,3 +65,43 @@ def test_designed_scans_beat_random_sampling_in_centred_discrepancy(sampling: st
     if sampling == "sobol":
         points = np.array(_rtw.sobol_points(5, n, 11))
         np.testing.assert_allclose(designed, points, atol=1e-12)
+
+
+ROOT = Path(__file__).resolve().parents[3]
+BINARY = Path(os.environ.get("RTW_SCAN", Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release/rtw-scan"))
+
+
+@pytest.mark.parametrize("sampling", ["sobol", "saltelli"])
+def test_design_options_give_the_rows_rtw_scan_runs(sampling: str, tmp_path: Path) -> None:
+    """rtw.scan(random config, sampling=..., samples=..., seed=...) is row for row the run of the config holding them."""
+    short = "\n[simulation]\nt_max = 0.2\n", "\n[simulation]\nt_max = 3.0\n"
+    given = _config("random", 10, seed=1).replace(*short)
+    table = rtw.scan(given, sampling=sampling, samples=16, seed=23, progress=False)
+    holding = _config(sampling, 16, seed=23).replace(*short)
+    assert BINARY.is_file(), f"{BINARY} is missing: cargo build --release -p rtw-scan (or set RTW_SCAN)"
+    (tmp_path / "c.toml").write_text(holding)
+    subprocess.run([str(BINARY), "run", str(tmp_path / "c.toml"), "--out", str(tmp_path / "scan")],
+                   check=True, capture_output=True)
+    ran = pq.read_table(tmp_path / "scan/samples.parquet")
+    assert table.num_rows == ran.num_rows == 16 * (7 if sampling == "saltelli" else 1)
+    assert len(set(table.column("outcome").to_pylist())) > 1
+    assert_same_columns(table, ran, skip={"wall_time_s"})
+    # The same config, hash included, as the text holding the keys.
+    meta = pq.read_metadata(tmp_path / "scan/samples.parquet").metadata
+    assert table.schema.metadata[b"rtw.config_hash"] == meta[b"rtw.config_hash"]
+
+
+def test_design_options_are_checked_with_the_field_and_valid_values() -> None:
+    config = _config("random", 8)
+    designs = "must be one of random, sobol, halton, lhs, grid, saltelli"
+    with pytest.raises(ValueError, match=f'sampling: "sobl" is invalid: {designs}'):
+        rtw.scan(config, sampling="sobl", progress=False)
+    with pytest.raises(ValueError, match=f"sampling: 3 is invalid: {designs}"):
+        rtw.scan(config, sampling=3, progress=False)
+    with pytest.raises(ValueError, match=r'samples: 100 is invalid for sampling = "grid" with 5 uniform axes: must be m\^5'):
+        rtw.scan(config, sampling="grid", samples=100, progress=False)
+    with pytest.raises(ValueError, match="samples: 0 is invalid: must be an integer >= 1"):
+        rtw.scan(config, samples=0, progress=False)
+    for key, bad in (("samples", -1), ("samples", True), ("seed", -1), ("seed", 2**64), ("seed", 1.5)):
+        with pytest.raises(ValueError, match=f"{key}: {bad!r} is invalid: must be an integer"):
+            rtw.scan(config, progress=False, **{key: bad})

@@ -328,6 +328,9 @@ def scan(
     threads: int | None = None,
     progress: bool | Callable[[int, int], object] = True,
     set: Mapping[str, Any] | None = None,
+    sampling: str | None = None,
+    samples: int | None = None,
+    seed: int | None = None,
 ) -> pyarrow.Table:
     """Runs a scan in memory: the rows ``rtw-scan run CONFIG`` writes to samples.parquet.
 
@@ -352,6 +355,15 @@ def scan(
             it raises stops the scan and is raised.
         set: the former name of ``options``: deprecated (a
             ``DeprecationWarning``), removed in the next release.
+        sampling: the design of the uniform axes, over the config's
+            ``sampling``: ``"random"``, ``"sobol"``, ``"halton"``, ``"lhs"``,
+            ``"grid"`` (``samples = m^D``) or ``"saltelli"`` (``samples`` base
+            rows of ``D + 2`` runs each).
+        samples: draws per grid point (base rows of a Saltelli design), over
+            the config's ``samples``.
+        seed: the seed of every draw, over the config's ``seed``. With any of
+            the three, the rows are those of ``rtw-scan run`` on the config
+            holding them.
 
     The rows are held in memory: a scan of more than 1 000 000 rows is
     refused (``ValueError``); run it with ``rtw-scan run CONFIG --out DIR``,
@@ -388,7 +400,11 @@ def scan(
         if options is not None:
             raise TypeError("scan() got both set= and options=: give options= only")
         options = set
-    return _rtw.scan(path, text, _path(variant), _options(options, {}), threads, report)
+    for key, value in (("samples", samples), ("seed", seed)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**63):
+            low = 1 if key == "samples" else 0
+            raise ValueError(f"{key}: {value!r} is invalid: must be an integer >= {low} and below 2^63")
+    return _rtw.scan(path, text, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
 
 
 def limit_cycle(

@@ -111,6 +111,9 @@ def scan(
     options: Mapping[str, Any] | None,
     threads: int | None,
     progress: Callable[[int, int], object] | None = None,
+    sampling: str | None = None,
+    samples: int | None = None,
+    seed: int | None = None,
 ) -> pyarrow.Table: ...
 def limit_cycle(
     values: list[float],
