@@ -4,7 +4,7 @@
 #
 #   results/refine/reference/   a dense uniform scan (configs/refine/reference.toml, 4000 samples)
 #   results/refine/seed-S/      for each seed S: a uniform start of 100 samples (the same slice,
-#                               seed S), then `rtw-scan refine --budget 400 --rounds 4 --seed S`
+#                               seed S), then `rtw-scan refine --budget 400 --rounds 16 --seed S`
 #   results/refine/summary.md   nearest-neighbour misclassification on the reference, uniform vs
 #                               refined, mean ± SE over the seeds, and the ratio of sample counts
 #                               at equal error (scripts/refine_bench.py)
@@ -27,7 +27,7 @@ if [ -z "${REPORT_ONLY:-}" ]; then
         -e "s/^name = .*/name = \"refine-start-$s\"/" configs/refine/reference.toml \
         > "runs/refine-bench/start-$s.toml"
     $B run "runs/refine-bench/start-$s.toml" --out "$OUT/seed-$s" --quiet >/dev/null
-    $B refine "$OUT/seed-$s" --budget 400 --rounds 4 --seed "$s" --quiet
+    $B refine "$OUT/seed-$s" --budget 400 --rounds 16 --seed "$s" --quiet
   done
 fi
 ./scripts/venv.sh

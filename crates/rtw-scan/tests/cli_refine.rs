@@ -180,4 +180,7 @@ fn bad_refine_input_is_named_with_its_range() {
         &["refine", s(&dir.path().join("none")), "--budget", "10"],
         &["samples.parquet"],
     );
+    // Without --rounds: 16 rounds, or one per sample of a smaller budget.
+    refine(&a, &["--budget", "3"]);
+    assert!(a.join("refine/round-003").is_dir() && !a.join("refine/round-004").exists());
 }
