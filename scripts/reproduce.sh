@@ -4,7 +4,8 @@
 #   1. the reproduction scans: configs/{paper,fig-s2,fig-s3}.toml -> results/<name>/
 #   2. the variant study (./scripts/variants.sh)  -> results/variants/
 #   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/, and the
-#      Sobol indices of the paper's box (./scripts/sobol_indices.sh) -> results/sensitivity/indices.*
+#      Sobol indices of the paper's box (./scripts/sobol_indices.sh) -> results/sensitivity/indices.*,
+#      and the refinement benchmark (./scripts/refine_bench.sh) -> results/refine/
 #   4. the errata checks (rtw-model example errata) -> results/errata.md
 #   5. the figures (./scripts/figures.sh) -> results/figures/, the bifurcation
 #      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/ and the continuation
@@ -37,6 +38,7 @@ else
 fi
 ./scripts/sensitivity.sh >/dev/null
 ./scripts/sobol_indices.sh >/dev/null
+./scripts/refine_bench.sh >/dev/null
 {
   echo "# The errata of docs/model.md §7, checked numerically"
   echo

@@ -8,6 +8,7 @@ mod analysis;
 mod bifurcation;
 mod continuation;
 mod progress;
+mod refine;
 mod run;
 mod sensitivity;
 mod signal;
@@ -18,6 +19,7 @@ use analysis::{ClusterArgs, SummaryArgs};
 use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
 use continuation::ContinuationArgs;
+use refine::RefineArgs;
 use run::{MergeArgs, RunArgs};
 use sensitivity::SensitivityArgs;
 use signal::install_signal_handler;
@@ -145,6 +147,19 @@ enum Command {
         after_help = EXIT_CODES
     )]
     Sensitivity(SensitivityArgs),
+    /// Add samples to a finished scan in rounds, where the labels of neighbouring samples disagree.
+    #[command(
+        long_about = "Add --budget samples to a finished scan in --rounds rounds, near the boundaries between \
+        outcome labels (docs/refine.md): each round takes, from a pool of uniform candidates, those whose nearest \
+        samples (unit box of the uniform inputs) disagree most on their label, farthest from any sample first, \
+        with a tenth of its points uniform. \
+        Round r is a deterministic function of the scan's rows, the earlier rounds' rows and --seed, and runs as \
+        an ordinary scan in DIR/refine/round-RRR/ (chunks kept on interruption, --shard and merge as for run); \
+        finished rounds are kept and a repeated command goes on from there. At the end DIR/refine/samples.parquet \
+        holds every row, the new ones with sample_ids after the scan's.",
+        after_help = EXIT_CODES
+    )]
+    Refine(RefineArgs),
 }
 
 /// Parses the command line, runs it, and turns errors into a message and
@@ -164,6 +179,7 @@ pub fn main() -> ExitCode {
         Command::Cluster(a) => analysis::cmd_cluster(a),
         Command::Summary(a) => analysis::cmd_summary(a),
         Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),
+        Command::Refine(a) => refine::cmd_refine(a),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e:#}");

@@ -12,6 +12,7 @@
 //! | `workers` | the worker pool, the thread cap, a worker's sample |
 //! | [`single`] | one run in memory: its `--json` row and its trace (the Python package) |
 //! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks |
+//! | `refine` | refinement rounds: samples added where labels change, each round a scan of stored points |
 //! | `shard` | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | [`progress`] | what watches a scan: the [`Progress`] observer |
 //! | `panic` | a sample's panic caught as its message |
@@ -28,6 +29,7 @@ pub(crate) mod lock;
 pub(crate) mod one;
 pub(crate) mod panic;
 pub mod progress;
+pub(crate) mod refine;
 pub(crate) mod run;
 pub mod sample;
 pub(crate) mod shard;

@@ -100,7 +100,20 @@ pub(crate) fn run_scan(
     stop: &AtomicBool,
     progress: &dyn Progress,
 ) -> Result<RunStatus> {
-    let total = cfg.total_rows()?;
+    run_scan_with(cfg, &Sampler::new(cfg), settings, sim, stop, progress)
+}
+
+/// [`run_scan`] with the rows' parameters from `sampler` (stored points of a
+/// refinement round; `cfg` still names the scan, its rows and options).
+pub(crate) fn run_scan_with(
+    cfg: &ScanConfig,
+    sampler: &Sampler,
+    settings: &RunSettings,
+    sim: Simulator,
+    stop: &AtomicBool,
+    progress: &dyn Progress,
+) -> Result<RunStatus> {
+    let total = sampler.total();
     let ids = match settings.shard {
         Some(s) => s.ids(total)?,
         None => 0..total,
@@ -212,11 +225,10 @@ pub(crate) fn run_scan(
         }
     }
 
-    let sampler = Sampler::new(cfg);
     let pool = worker_pool(settings.threads)?;
     let mut computed = 0;
     let jobs = Jobs {
-        sampler: &sampler,
+        sampler,
         options: &cfg.simulation,
         sim,
         stop,

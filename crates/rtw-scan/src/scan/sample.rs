@@ -43,6 +43,8 @@ pub struct Sampler {
     total: u64,
     sources: Vec<Source>,
     design: Option<Design>,
+    /// Stored points (a refinement round): row `id` is `points[id]`.
+    points: Option<std::sync::Arc<[Params]>>,
 }
 
 impl Sampler {
@@ -66,7 +68,17 @@ impl Sampler {
             total: cfg.total_rows().expect("validated config has a row count"),
             design: Design::new(cfg.sampling, cfg.seed, cfg.samples, cfg.uniform_axes()),
             sources,
+            points: None,
         }
+    }
+
+    /// The sampler of stored points: row `id` is `points[id]` (a refinement
+    /// round, whose points depend on earlier rows, not on (seed, id) alone).
+    pub(crate) fn from_points(cfg: &ScanConfig, points: Vec<Params>) -> Self {
+        let mut s = Self::new(cfg);
+        s.total = points.len() as u64;
+        s.points = Some(points.into());
+        s
     }
 
     /// Number of rows of the scan.
@@ -77,6 +89,9 @@ impl Sampler {
     /// The parameters of sample `id` (`id < total`).
     pub fn params(&self, id: u64) -> Params {
         assert!(id < self.total, "sample_id {id} >= {}", self.total);
+        if let Some(points) = &self.points {
+            return points[id as usize];
+        }
         let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
         rng.set_stream(id);
         let mut u: [f64; 6] = std::array::from_fn(|_| rng.random::<f64>());

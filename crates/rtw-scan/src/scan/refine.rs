@@ -1,0 +1,265 @@
+//! Refinement rounds of a finished scan: samples added where labels change.
+//!
+//! `rtw-scan refine DIR --budget N --rounds R --seed S` splits the budget
+//! into R rounds (sizes differing by at most one). Round r's points are
+//! proposed by [`crate::analysis::refine::propose`] from the rows of
+//! `DIR/samples.parquet` and of rounds 1 … r − 1, in that order, so a round
+//! is a deterministic function of those rows and the seed. Each round is an
+//! ordinary scan in `DIR/refine/round-RRR/` (its rows `0 … n − 1` in
+//! `samples.parquet`, its summary beside them), run by the scan machinery
+//! (chunks, `--resume`, `--shard K/N` and `merge`), with its points stored
+//! in the config it carries: the scan's config with `samples = n`, `sampling
+//! = "random"` and the name `NAME+refine-r-HASH`, HASH a hash of the points
+//! and the seed, so that another seed or other rows never resume or merge
+//! into it. When every round is complete, `DIR/refine/samples.parquet` holds
+//! every row, the scan's first and then each round's, with `sample_id`s
+//! numbered on from the scan's (round r's row i is `N₀ + n₁ + … + i`).
+
+use crate::analysis::refine::propose;
+use crate::analysis::report::open_scan;
+use crate::config::ScanConfig;
+use crate::config::axis::Axis;
+use crate::hash::fnv1a64;
+use crate::io::destination::check_destination;
+use crate::io::metadata::{self, FileKind, kv};
+use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS, ParquetFile, READ_BATCH_ROWS};
+use crate::io::scan_rows::label_index;
+use crate::io::table::{f64_column, label_column};
+use crate::scan::checkpoint::is_complete;
+use crate::scan::design::Sampling;
+use crate::scan::one::Simulator;
+use crate::scan::progress::Progress;
+use crate::scan::run::{RunSettings, RunStatus, run_scan_with};
+use crate::scan::sample::Sampler;
+use ::parquet::file::metadata::KeyValue;
+use anyhow::{Context, Result, bail};
+use arrow_array::{Int64Array, RecordBatch};
+use rtw_model::{Param, Params};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+/// Metadata key of the combined file: what the refinement was (JSON).
+pub(crate) const META_REFINE: &str = "rtw.refine";
+
+/// What to refine, and how.
+#[derive(Clone, Debug)]
+pub(crate) struct Refine {
+    /// The scan's directory (its `samples.parquet`).
+    pub(crate) dir: PathBuf,
+    pub(crate) budget: u64,
+    pub(crate) rounds: u64,
+    pub(crate) seed: u64,
+    /// How each round runs (its `out_dir` is set per round).
+    pub(crate) run: RunSettings,
+}
+
+/// How a refinement ended.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum RefineStatus {
+    /// Every round is in; `combined` holds every row.
+    Complete { combined: PathBuf, rows: u64 },
+    /// Round `round` (its directory `dir`) stopped before its end: it was
+    /// interrupted, or one shard of it ran.
+    Stopped {
+        round: u64,
+        dir: PathBuf,
+        status: RunStatus,
+    },
+}
+
+/// Checks the flags: `budget ≥ 1`, `1 ≤ rounds ≤ budget`.
+pub(crate) fn check_budget(budget: u64, rounds: u64) -> Result<()> {
+    if budget == 0 {
+        bail!("--budget: 0 is invalid: must be an integer >= 1 (new samples in all rounds)");
+    }
+    if rounds == 0 || rounds > budget {
+        bail!(
+            "--rounds: {rounds} is invalid: must be an integer from 1 to --budget ({budget}), so \
+             that every round adds a sample"
+        );
+    }
+    Ok(())
+}
+
+/// The sizes of the rounds: `budget` split into `rounds`, the first ones one
+/// larger when it does not divide.
+pub(crate) fn round_sizes(budget: u64, rounds: u64) -> Vec<u64> {
+    (0..rounds)
+        .map(|r| budget / rounds + u64::from(r < budget % rounds))
+        .collect()
+}
+
+/// The uniform axes of a scan `(param, lo, hi)`; refuses grid axes (a
+/// refinement moves every varied input continuously).
+fn uniform_axes(cfg: &ScanConfig) -> Result<Vec<(Param, f64, f64)>> {
+    let mut axes = Vec::new();
+    for (p, axis) in Param::ALL.into_iter().zip(&cfg.params) {
+        match axis {
+            Axis::Fixed(_) => {}
+            Axis::Uniform { lo, hi } => axes.push((p, *lo, *hi)),
+            _ => bail!(
+                "refine needs a scan whose inputs are fixed or {{ uniform = [lo, hi] }}: `{}` is a grid",
+                p.name()
+            ),
+        }
+    }
+    if axes.is_empty() {
+        bail!("refine needs a scan with at least one uniform input: every input is fixed");
+    }
+    Ok(axes)
+}
+
+/// The rows of a scan file as unit-cube points of `axes` and label indices,
+/// appended to `x` and `labels`.
+fn read_rows(
+    path: &Path,
+    axes: &[(Param, f64, f64)],
+    x: &mut Vec<Vec<f64>>,
+    labels: &mut Vec<usize>,
+) -> Result<()> {
+    let (input, _) = open_scan(path)?;
+    for batch in input.reader {
+        let batch = batch.with_context(|| format!("reading {}", path.display()))?;
+        let cols = axes
+            .iter()
+            .map(|(p, _, _)| f64_column(&batch, p.name()))
+            .collect::<Result<Vec<_>>>()
+            .with_context(|| path.display().to_string())?;
+        for r in 0..batch.num_rows() {
+            x.push(
+                cols.iter()
+                    .zip(axes)
+                    .map(|(c, (_, lo, hi))| ((c.value(r) - lo) / (hi - lo)).clamp(0.0, 1.0))
+                    .collect(),
+            );
+        }
+        labels.extend(
+            label_column(&batch)
+                .with_context(|| path.display().to_string())?
+                .into_iter()
+                .map(label_index),
+        );
+    }
+    Ok(())
+}
+
+/// The config of round `round` with `points`: see the module's text.
+fn round_config(cfg: &ScanConfig, round: u64, seed: u64, points: &[Params]) -> ScanConfig {
+    let mut bytes = seed.to_le_bytes().to_vec();
+    for p in points {
+        for q in Param::ALL {
+            bytes.extend(q.get(p).to_bits().to_le_bytes());
+        }
+    }
+    let mut c = cfg.clone();
+    c.name = Some(format!(
+        "{}+refine-{round}-{:016x}",
+        cfg.name.as_deref().unwrap_or("scan"),
+        fnv1a64(&bytes)
+    ));
+    c.samples = points.len() as u64;
+    c.sampling = Sampling::Random;
+    c
+}
+
+/// The directory of round `round`.
+pub(crate) fn round_dir(dir: &Path, round: u64) -> PathBuf {
+    dir.join("refine").join(format!("round-{round:03}"))
+}
+
+/// Runs the rounds that are not complete yet, then writes the combined file.
+pub(crate) fn refine(
+    r: &Refine,
+    sim: Simulator,
+    stop: &AtomicBool,
+    progress: &dyn Progress,
+) -> Result<RefineStatus> {
+    check_budget(r.budget, r.rounds)?;
+    let base = r.dir.join("samples.parquet");
+    let (_, cfg) = open_scan(&base)?;
+    let axes = uniform_axes(&cfg)?;
+    let combined = r.dir.join("refine").join("samples.parquet");
+    check_destination(&combined, FileKind::Scan, &[&base], "DIR", r.run.force)?;
+    let fixed = Sampler::new(&cfg).params(0);
+    let (mut x, mut labels) = (Vec::new(), Vec::new());
+    read_rows(&base, &axes, &mut x, &mut labels)?;
+    let mut files = vec![base];
+    for (round, n) in (1..).zip(round_sizes(r.budget, r.rounds)) {
+        let unit = propose(&x, &labels, axes.len(), n as usize, r.seed, round);
+        let points: Vec<Params> = unit
+            .iter()
+            .map(|u| {
+                let mut p = fixed;
+                for ((q, lo, hi), v) in axes.iter().zip(u) {
+                    q.set(&mut p, (lo + v * (hi - lo)).clamp(*lo, *hi));
+                }
+                p
+            })
+            .collect();
+        let rcfg = round_config(&cfg, round, r.seed, &points);
+        let dir = round_dir(&r.dir, round);
+        let samples = dir.join("samples.parquet");
+        if !is_complete(&samples, &rcfg.to_toml(), None) {
+            let settings = RunSettings {
+                out_dir: dir.clone(),
+                ..r.run.clone()
+            };
+            let sampler = Sampler::from_points(&rcfg, points);
+            let status = run_scan_with(&rcfg, &sampler, &settings, sim, stop, progress)?;
+            if r.run.shard.is_some() || matches!(status, RunStatus::Interrupted { .. }) {
+                return Ok(RefineStatus::Stopped { round, dir, status });
+            }
+        }
+        read_rows(&samples, &axes, &mut x, &mut labels)?;
+        files.push(samples);
+    }
+    let about = serde_json::json!({
+        "budget": r.budget, "rounds": r.rounds, "seed": r.seed,
+        "files": files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+    });
+    let mut all = cfg.clone();
+    all.name = Some(format!("{}+refined", cfg.name.as_deref().unwrap_or("scan")));
+    all.samples = x.len() as u64;
+    all.sampling = Sampling::Random;
+    let mut meta = metadata::scan_metadata(&all);
+    meta.push(kv(META_REFINE, about.to_string()));
+    renumber(&files, &combined, meta)?;
+    Ok(RefineStatus::Complete {
+        combined,
+        rows: x.len() as u64,
+    })
+}
+
+/// Concatenates scan files into `dest`, their `sample_id`s numbered `0 …`
+/// in file order (every other value as it is).
+fn renumber(files: &[PathBuf], dest: &Path, meta: Vec<KeyValue>) -> Result<()> {
+    crate::io::files::remove_stray_temps(dest)?;
+    let first = parquet::open(&files[0], READ_BATCH_ROWS)?;
+    let schema = first.reader.schema();
+    let props = parquet::writer_properties(&schema, MAX_ROW_GROUP_ROWS, meta);
+    let mut out = ParquetFile::create(dest, schema.clone(), props)?;
+    let (mut next, mut wall) = (0i64, 0.0);
+    for f in files {
+        let input = parquet::open(f, READ_BATCH_ROWS)?;
+        wall += input
+            .metadata
+            .get(metadata::META_WALL_TIME)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0);
+        for batch in input.reader {
+            let batch = batch.with_context(|| format!("reading {}", f.display()))?;
+            let n = batch.num_rows() as i64;
+            let mut cols = batch.columns().to_vec();
+            let at = schema.index_of("sample_id")?;
+            cols[at] = Arc::new(Int64Array::from_iter_values(next..next + n));
+            next += n;
+            out.write(
+                &RecordBatch::try_new(schema.clone(), cols)
+                    .with_context(|| format!("{}: not the scan's columns", f.display()))?,
+            )?;
+        }
+    }
+    out.append_metadata(metadata::META_WALL_TIME, wall.to_string());
+    out.finish()
+}

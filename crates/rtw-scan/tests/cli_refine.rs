@@ -1,0 +1,186 @@
+//! `rtw-scan refine` through the binary, with the fake simulator: rounds,
+//! determinism, resume, shards, and where the new samples fall.
+
+mod common;
+
+use arrow::array::{Array, Float64Array, Int64Array};
+use common::*;
+use std::path::Path;
+
+/// A slice in (alpha, phi) where the fake simulator's labels are: stall for
+/// phi < 0.1, else crawl for alpha > 0.3, else walk.
+fn slice(samples: u64, seed: u64) -> String {
+    format!(
+        "seed = {seed}\nsamples = {samples}\n[params]\nlength = 0.8\nrho = 2.0\n\
+         alpha = {{ uniform = [0, 0.4] }}\nfn = 3.0\nzeta = 0.05\nphi = {{ uniform = [0.05, 0.3] }}\n\
+         [simulation]\nt_max = 3.0\n"
+    )
+}
+
+fn refine(dir: &Path, extra: &[&str]) -> std::process::Output {
+    run_ok(&[&["refine", s(dir), "--fake-sim", "0", "--quiet"], extra].concat())
+}
+
+fn f64s(path: &Path, name: &str) -> Vec<f64> {
+    batches(path)
+        .iter()
+        .flat_map(|b| {
+            let c = b.column_by_name(name).unwrap();
+            let c = c.as_any().downcast_ref::<Float64Array>().unwrap();
+            c.values().to_vec()
+        })
+        .collect()
+}
+
+fn ids(path: &Path) -> Vec<i64> {
+    batches(path)
+        .iter()
+        .flat_map(|b| {
+            let c = b.column_by_name("sample_id").unwrap();
+            c.as_any()
+                .downcast_ref::<Int64Array>()
+                .unwrap()
+                .values()
+                .to_vec()
+        })
+        .collect()
+}
+
+/// A finished fake scan of `cfg` in `dir/name`.
+fn scan(dir: &Path, name: &str, cfg: &str) -> std::path::PathBuf {
+    let c = write(dir, &format!("{name}.toml"), cfg);
+    let out = dir.join(name);
+    fake_run_ok(&c, &out, &[]);
+    out
+}
+
+#[test]
+fn refine_adds_the_budget_in_rounds_with_new_ids_deterministically() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(150, 4));
+    let b = scan(dir.path(), "b", &slice(150, 4));
+    let c = scan(dir.path(), "c", &slice(150, 4));
+    refine(&a, &["--budget", "61", "--rounds", "3", "--seed", "9"]);
+    refine(&b, &["--budget", "61", "--rounds", "3", "--seed", "9"]);
+    refine(&c, &["--budget", "61", "--rounds", "3", "--seed", "10"]);
+    let all = a.join("refine/samples.parquet");
+    assert_eq!(ids(&all), (0..211).collect::<Vec<i64>>());
+    for (round, n) in [(1, 21), (2, 20), (3, 20)] {
+        let r = a.join(format!("refine/round-00{round}/samples.parquet"));
+        assert_eq!(ids(&r).len(), n, "round {round}");
+    }
+    // The scan's rows come first, as they were.
+    let base = rows(&a.join("samples.parquet"));
+    assert_eq!(rows(&all)[..150], base[..]);
+    // Same rows and seed: the same points; another seed: others.
+    assert_eq!(rows(&all), rows(&b.join("refine/samples.parquet")));
+    assert_ne!(
+        f64s(&all, "alpha")[150..],
+        f64s(&c.join("refine/samples.parquet"), "alpha")[150..]
+    );
+    // The combined file is a scan file the other commands read.
+    run_ok(&["summary", s(&all)]);
+}
+
+#[test]
+fn new_samples_fall_near_the_label_changes() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(200, 7));
+    refine(&a, &["--budget", "200", "--rounds", "2", "--seed", "1"]);
+    let all = a.join("refine/samples.parquet");
+    let (alpha, phi) = (f64s(&all, "alpha"), f64s(&all, "phi"));
+    // Distance, in the unit box, to the nearest label change of the fake
+    // simulator: phi = 0.1, and alpha = 0.3 where phi > 0.1.
+    let dist = |i: usize| {
+        let (u, v) = (alpha[i] / 0.4, (phi[i] - 0.05) / 0.25);
+        let to_phi = (v - 0.2).abs();
+        if v > 0.2 {
+            to_phi.min((u - 0.75).abs())
+        } else {
+            to_phi
+        }
+    };
+    let mean = |r: std::ops::Range<usize>| r.clone().map(dist).sum::<f64>() / r.len() as f64;
+    let (uniform, refined) = (mean(0..200), mean(200..400));
+    assert!(uniform > 0.1, "uniform mean distance {uniform}");
+    assert!(
+        refined < 0.4 * uniform,
+        "refined {refined}, uniform {uniform}"
+    );
+}
+
+#[test]
+fn an_interrupted_refinement_keeps_its_finished_rounds() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(100, 2));
+    refine(&a, &["--budget", "40", "--rounds", "2"]);
+    let all = a.join("refine/samples.parquet");
+    let first = rows(&all);
+    let round1 = a.join("refine/round-001/samples.parquet");
+    let kept = std::fs::metadata(&round1).unwrap().modified().unwrap();
+    // Round 2 and the combined file lost: the same command makes them again,
+    // keeping round 1.
+    std::fs::remove_dir_all(a.join("refine/round-002")).unwrap();
+    std::fs::remove_file(&all).unwrap();
+    refine(&a, &["--budget", "40", "--rounds", "2"]);
+    assert_eq!(rows(&all), first);
+    assert_eq!(
+        std::fs::metadata(&round1).unwrap().modified().unwrap(),
+        kept
+    );
+}
+
+#[test]
+fn a_round_runs_in_shards_like_any_scan() {
+    let dir = tempfile::tempdir().unwrap();
+    let one = scan(dir.path(), "one", &slice(100, 3));
+    let split = scan(dir.path(), "split", &slice(100, 3));
+    refine(&one, &["--budget", "30", "--rounds", "2"]);
+    for round in ["round-001", "round-002"] {
+        for k in ["0/2", "1/2"] {
+            let o = refine(&split, &["--budget", "30", "--rounds", "2", "--shard", k]);
+            assert!(stdout(&o).contains("rtw-scan merge"), "{}", stdout(&o));
+        }
+        run_ok(&["merge", s(&split.join("refine").join(round))]);
+    }
+    refine(&split, &["--budget", "30", "--rounds", "2"]);
+    assert_eq!(
+        rows(&one.join("refine/samples.parquet")),
+        rows(&split.join("refine/samples.parquet"))
+    );
+}
+
+#[test]
+fn bad_refine_input_is_named_with_its_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(20, 1));
+    let d = s(&a);
+    run_err(
+        &["refine", d, "--budget", "0"],
+        &["--budget", "0 is invalid", ">= 1"],
+    );
+    run_err(
+        &["refine", d, "--budget", "10", "--rounds", "11"],
+        &["--rounds", "11 is invalid", "from 1 to --budget (10)"],
+    );
+    run_err(
+        &["refine", d, "--budget", "10", "--rounds", "0"],
+        &["--rounds", "0 is invalid"],
+    );
+    let grid = scan(
+        dir.path(),
+        "grid",
+        &slice(5, 1).replace("phi = { uniform = [0.05, 0.3] }", "phi = [0.1, 0.2]"),
+    );
+    run_err(
+        &["refine", s(&grid), "--budget", "10", "--fake-sim", "0"],
+        &["`phi` is a grid"],
+    );
+    run_err(
+        &["refine", s(&dir.path().join("none")), "--budget", "10"],
+        &["samples.parquet"],
+    );
+    // Without --rounds: 16 rounds, or one per sample of a smaller budget.
+    refine(&a, &["--budget", "3"]);
+    assert!(a.join("refine/round-003").is_dir() && !a.join("refine/round-004").exists());
+}

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The refinement benchmark (docs/refine.md): is the label map better for
+# samples spent where labels change than for uniform ones, at equal counts?
+#
+#   results/refine/reference/   a dense uniform scan (configs/refine/reference.toml, 4000 samples)
+#   results/refine/seed-S/      for each seed S: a uniform start of 100 samples (the same slice,
+#                               seed S), then `rtw-scan refine --budget 400 --rounds 16 --seed S`
+#   results/refine/summary.md   nearest-neighbour misclassification on the reference, uniform vs
+#                               refined, mean ± SE over the seeds, and the ratio of sample counts
+#                               at equal error (scripts/refine_bench.py)
+#
+#   ./scripts/refine_bench.sh                # ~4 min on two idle cores
+#   REPORT_ONLY=1 ./scripts/refine_bench.sh  # re-tabulate
+set -euo pipefail
+cd "$(dirname "$0")/.."
+OUT=results/refine
+SEEDS="1 2 3 4 5 6 7 8"
+if [ -z "${REPORT_ONLY:-}" ]; then
+  cargo build --release -q -p rtw-scan
+  B=target/release/rtw-scan
+  rm -rf "$OUT/reference" "$OUT"/seed-*
+  $B run configs/refine/reference.toml --out "$OUT/reference" --quiet >/dev/null
+  mkdir -p runs/refine-bench
+  for s in $SEEDS; do
+    # The start: the reference's slice and model, 100 samples of seed S.
+    sed -e "s/^seed = .*/seed = $s/" -e "s/^samples = .*/samples = 100/" \
+        -e "s/^name = .*/name = \"refine-start-$s\"/" configs/refine/reference.toml \
+        > "runs/refine-bench/start-$s.toml"
+    $B run "runs/refine-bench/start-$s.toml" --out "$OUT/seed-$s" --quiet >/dev/null
+    $B refine "$OUT/seed-$s" --budget 400 --rounds 16 --seed "$s" --quiet
+  done
+fi
+./scripts/venv.sh
+.venv/bin/python scripts/refine_bench.py "$OUT" $SEEDS > "$OUT/summary.md"
+cat "$OUT/summary.md"
