@@ -55,3 +55,26 @@ fn a_chaotic_gait_runs_to_the_end_unchanged() {
     assert_eq!(early.fractions, full.fractions);
     assert_eq!(early.f_w, full.f_w);
 }
+
+#[test]
+fn a_tip_chattering_in_place_is_not_a_settled_gait() {
+    // Found in the Saltelli scan (results/sensitivity/saltelli, sample 43023):
+    // a tip bounced in place with repeating returns, the run stopped as a
+    // settled period-1 walk without a single new foot in its window, and
+    // reported f_w = 43 517 Hz. A settled window must hold a step.
+    let p = Params::new(
+        0.8,
+        4.810884497478921,
+        0.047129818635375735,
+        1.6387042173891897,
+        0.052269083362228255,
+        0.07463919233430306,
+    )
+    .unwrap();
+    let o = simulate(&p, &Options::default());
+    if o.period > 0 {
+        assert!(o.f_w_newfoot > 0.0, "{o:?}");
+    }
+    // Touchdowns per second of a rolling star: a handful per step, never kHz.
+    assert!(o.f_w < 100.0, "f_w = {} ({:?})", o.f_w, o.label);
+}

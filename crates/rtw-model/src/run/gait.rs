@@ -228,6 +228,11 @@ impl GaitStats {
         // A whole number of periods, ending now.
         let returns = SETTLE_RETURNS - SETTLE_RETURNS % n;
         let (a, b) = (mark(M - 1 - returns), mark(M - 1));
+        if b.newfoot == a.newfoot {
+            // Returns that repeat without a new foot are a tip bouncing in
+            // place (chatter), not a step of the wheel.
+            return None;
+        }
         let duration = b.t - a.t;
         let st: [f64; 4] = std::array::from_fn(|i| b.state_time[i] - a.state_time[i]);
         let total: f64 = st.iter().sum();
@@ -467,6 +472,22 @@ mod tests {
             t += 0.2 + 0.1 * x;
             s.on_touchdown(t, k % 3, Tip::Minus, -1.0 - x);
             assert_eq!(s.mark(t, -1.0 - x, t, 0.0), None);
+        }
+    }
+
+    #[test]
+    fn a_tip_bouncing_in_place_never_settles() {
+        // A tip chattering on the ground repeats its returns (the same tiny
+        // interval, the same ω) but the wheel takes no step: no gait, and a
+        // "settled" window over it would report tens of kHz as the step
+        // frequency. A gait's window must hold a new foot.
+        let mut s = GaitStats::new(0.0, LabelOptions::default());
+        s.on_touchdown(1.0, 0, Tip::Plus, -0.1);
+        let mut t = 1.0;
+        for _ in 0..200 {
+            t += 2.0e-5;
+            s.on_touchdown(t, 0, Tip::Plus, -0.1);
+            assert_eq!(s.mark(t, -0.1, 0.5, 0.1), None);
         }
     }
 
