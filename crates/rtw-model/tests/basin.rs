@@ -114,6 +114,10 @@ fn the_grid_is_row_major_and_the_same_in_any_order() {
         assert_eq!(a, z);
     }
     assert_eq!(g, b.grid());
+    // A range through 0 has the fixed point itself exactly (as a scan's
+    // linspace axis, the ends exact too).
+    let o = axis(Coord::Theta(1), -1.2, 0.8, 41).offsets();
+    assert_eq!((o[0], o[24], o[40]), (-1.2, 0.0, 0.8));
     let (x0, y0) = b.centre();
     assert_eq!(x0, b.cycle.orbit[0].omega());
     assert!(y0.is_finite());

@@ -108,14 +108,14 @@ pub const MAX_STEPS: usize = 100_000;
 impl Axis {
     /// The offsets.
     pub fn offsets(&self) -> Vec<f64> {
-        if self.points == 1 {
-            return vec![self.from];
-        }
-        let d = (self.to - self.from) / (self.points - 1) as f64;
-        (0..self.points)
-            .map(|k| match k + 1 == self.points {
-                true => self.to,
-                false => self.from + d * k as f64,
+        // As a scan's linspace axis: the ends exact, and a symmetric range
+        // with an odd count has an exact 0 (the fixed point itself).
+        let n = self.points;
+        (0..n)
+            .map(|k| match k {
+                0 => self.from,
+                _ if k + 1 == n => self.to,
+                _ => self.from + (self.to - self.from) * k as f64 / (n - 1) as f64,
             })
             .collect()
     }
