@@ -3,6 +3,7 @@
 
 use super::bifurcation::ModelArgs;
 use crate::basin::{self, OUTCOMES, files, outcome_index, parse_axis};
+use crate::config::params::checked_params;
 use crate::config::validate_options;
 use crate::scan::workers::check_threads;
 use anyhow::{Result, bail};
@@ -43,15 +44,8 @@ pub(super) struct BasinArgs {
 }
 
 pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
-    let (params, options) = a.model.resolve()?;
-    if let Err(e) = params.validate() {
-        bail!(
-            "--{}: {} is invalid: must be {}",
-            e.field,
-            rtw_model::Num(e.value),
-            e.range
-        );
-    }
+    let (p, options) = a.model.resolve()?;
+    let params = checked_params([p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi], "--")?;
     validate_options(&options, "simulation")?;
     let spec = BasinSpec {
         x: parse_axis(&a.x, "--x")?,
