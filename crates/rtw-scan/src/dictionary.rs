@@ -68,6 +68,11 @@ pub(crate) fn outputs() -> Vec<ParquetOutput> {
             row: "one point of a fold or period-doubling curve in two inputs",
             schema: continuation::files::curve_schema(),
         },
+        ParquetOutput {
+            files: "`FILE.parquet` (`basin --out FILE.parquet`)",
+            row: "one grid point of a basin slice",
+            schema: crate::basin::files::schema(),
+        },
     ]
 }
 

@@ -14,6 +14,7 @@
 //! | [`scan`] | sample ids → parameters → rows: parallel chunks, resume, shards, progress, locks |
 //! | `analysis` | k-means of the failures, shares with Wilson intervals, summary files |
 //! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
+//! | `basin` | a slice of a gait's basin of attraction: its grid points in parallel, its Parquet file |
 //! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
 //! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
 //! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands; the progress bar and the signal handler (the `cli` feature only) |
@@ -50,6 +51,7 @@
 #![cfg_attr(not(feature = "cli"), allow(dead_code))]
 
 pub(crate) mod analysis;
+pub(crate) mod basin;
 pub(crate) mod bifurcation;
 #[cfg(feature = "cli")]
 mod cli;

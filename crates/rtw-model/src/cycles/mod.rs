@@ -8,8 +8,10 @@
 //! | `limit_cycle.rs` | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run | [`LimitCycle`], [`CycleError`] |
 //! | `continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
 //! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost), and the branch continued through it segment by segment | the module [`nonsmooth`] |
+//! | `basin.rs` | a slice of a gait's basin of attraction: a grid of perturbed section points, each iterated and classified | [`Basin`], [`BasinSpec`], [`follow`] |
 //! | `segments.rs` | a branch continued through those changes, segment by segment | [`Segment`], [`continue_segments`] |
 
+pub(crate) mod basin;
 pub(crate) mod continuation;
 pub(crate) mod limit_cycle;
 pub mod nonsmooth;
@@ -17,6 +19,7 @@ pub(crate) mod section;
 pub(crate) mod segments;
 pub(crate) mod stepmap;
 
+pub use basin::{Axis, Basin, BasinError, BasinPoint, BasinSpec, Coord, Fate, Followed, follow};
 pub use continuation::{
     Diagram, DiagramBranch, DiagramError, DiagramOptions, StepMapFamily, StepMapFamily2, diagram,
 };

@@ -184,7 +184,7 @@ impl PointLabel {
 
 /// The label of a failed step: the scan's label of a run's failure, a
 /// numerical end as `diverged`, the map's own stops as `failure`.
-fn failure_label(e: &StepError) -> PointLabel {
+pub(crate) fn failure_label(e: &StepError) -> PointLabel {
     match e {
         StepError::Failure(detail) => PointLabel::Outcome(detail.label()),
         StepError::Numerical(_) => PointLabel::Outcome(Label::Diverged),

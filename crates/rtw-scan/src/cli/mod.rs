@@ -5,6 +5,7 @@
 //! `progress` the progress shown on stderr.
 
 mod analysis;
+mod basin;
 mod bifurcation;
 mod continuation;
 mod progress;
@@ -16,6 +17,7 @@ mod simulate;
 mod values;
 
 use analysis::{ClusterArgs, SummaryArgs};
+use basin::BasinArgs;
 use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
 use continuation::ContinuationArgs;
@@ -131,6 +133,19 @@ enum Command {
         after_help = EXIT_CODES
     )]
     Continuation(ContinuationArgs),
+    /// A slice of a gait's basin of attraction: a grid over two section coordinates, each point iterated and classified.
+    #[command(
+        long_about = "A slice of a gait's basin of attraction on the step map's section (docs/robustness.md).\n\n\
+        Solves the limit cycle the design (default Fig. 7(a)) settles into, then offsets two of its section \
+        coordinates (--x, --y: a rod's θ or ω) over a grid, every other coordinate held at the fixed point's value, \
+        and iterates each point on the step map for at most --steps steps: `returns` when it comes within --tol of \
+        the gait's orbit, `survives` when it takes every step without (the label and period of its last steps say \
+        what it walks in), `fails` when a step fails, `infeasible` when a tip starts below the ground. Writes \
+        FILE.parquet, one row per point (x, y, outcome, label, steps, distance, ...), and prints the counts. \
+        Options as `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Basin(BasinArgs),
     /// Cluster the failed samples of a finished scan (k-means on standardized α, f_n, φ).
     #[command(after_help = EXIT_CODES)]
     Cluster(ClusterArgs),
@@ -176,6 +191,7 @@ pub fn main() -> ExitCode {
         Command::Simulate(a) => simulate::cmd_simulate(a),
         Command::Bifurcation(a) => bifurcation::cmd_bifurcation(a),
         Command::Continuation(a) => continuation::cmd_continuation(a),
+        Command::Basin(a) => basin::cmd_basin(a),
         Command::Cluster(a) => analysis::cmd_cluster(a),
         Command::Summary(a) => analysis::cmd_summary(a),
         Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),

@@ -64,6 +64,9 @@ pub(crate) const META_CYCLE: &str = "rtw.cycle";
 pub(crate) const META_TRANSIENT: &str = "rtw.bifurcation.transient";
 /// Metadata key: a sweep's steps recorded at each value (`--record`).
 pub(crate) const META_RECORD: &str = "rtw.bifurcation.record";
+/// Metadata key of a basin slice (`basin`): its axes, steps, tolerance and
+/// the gait's fixed point, as JSON.
+pub(crate) const META_BASIN: &str = "rtw.basin";
 
 /// Every key rtw-scan wrote before [`META_METADATA_HASH`] existed (the
 /// committed results are such files), and the Arrow schema the parquet crate
@@ -170,6 +173,8 @@ pub(crate) enum FileKind {
     Continuation,
     /// `sensitivity` indices (`rtw.sensitivity`).
     Sensitivity,
+    /// A basin slice (`rtw.basin`).
+    Basin,
 }
 
 impl FileKind {
@@ -177,6 +182,8 @@ impl FileKind {
     pub(crate) fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
         if meta.contains_key(META_SENSITIVITY) {
             Some(Self::Sensitivity)
+        } else if meta.contains_key(META_BASIN) {
+            Some(Self::Basin)
         } else if meta.contains_key(META_CONT_PARAM) {
             Some(Self::Continuation)
         } else if meta.contains_key(META_PARAM) {
@@ -200,6 +207,7 @@ impl FileKind {
             Self::Bifurcation => "a bifurcation sweep (`bifurcation`)",
             Self::Continuation => "a continuation diagram (`continuation`)",
             Self::Sensitivity => "sensitivity indices (`sensitivity`)",
+            Self::Basin => "a basin slice (`basin`)",
         }
     }
 }

@@ -1,0 +1,116 @@
+//! Basin-of-attraction slices ([`rtw_model::cycles::Basin`]): the grid's
+//! points simulated in parallel, and the grid's Parquet file (`files`).
+//!
+//! Each point depends only on its offsets, so the rows are the same for
+//! any thread count, in grid order (row-major: `y` outer, `x` inner).
+
+pub(crate) mod files;
+
+use crate::bifurcation::sweep::{PointLabel, failure_label};
+use crate::scan::workers::worker_pool;
+use anyhow::{Result, bail};
+use rayon::prelude::*;
+use rtw_model::cycles::{Axis, Basin, BasinPoint, Coord, Fate};
+use std::num::NonZeroUsize;
+
+/// The `outcome` column's values, in key order.
+pub(crate) const OUTCOMES: [&str; 4] = ["returns", "survives", "fails", "infeasible"];
+
+/// Position of a point's fate in [`OUTCOMES`].
+pub(crate) fn outcome_index<E>(fate: &Fate<E>) -> usize {
+    match fate {
+        Fate::Returns => 0,
+        Fate::Survives => 1,
+        Fate::Fails(_) => 2,
+        Fate::Infeasible => 3,
+    }
+}
+
+/// A point's label: its gait's (a return, or the last steps of a point that
+/// took every step), its failure's (as a sweep labels a failed step), none
+/// when infeasible.
+pub(crate) fn point_label(p: &BasinPoint) -> Option<PointLabel> {
+    match (&p.fate, p.label) {
+        (Fate::Fails(e), _) => Some(failure_label(e)),
+        (_, Some(l)) => Some(PointLabel::Outcome(l)),
+        _ => None,
+    }
+}
+
+/// Every point of `basin`, in grid order, on `threads` workers.
+pub(crate) fn run(basin: &Basin, threads: Option<NonZeroUsize>) -> Result<Vec<BasinPoint>> {
+    let pool = worker_pool(threads)?;
+    Ok(pool.install(|| {
+        (0..basin.len())
+            .into_par_iter()
+            .map(|i| basin.point(i))
+            .collect()
+    }))
+}
+
+/// Parses an axis `COORD:FROM:TO:POINTS` given by `flag`, naming the flag
+/// and what it must be. The ranges themselves are checked by
+/// [`rtw_model::cycles::BasinSpec::validate`].
+pub(crate) fn parse_axis(text: &str, flag: &str) -> Result<Axis> {
+    let parts: Vec<&str> = text.split(':').collect();
+    let [coord, from, to, points] = parts[..] else {
+        bail!("{flag} {text}: must be COORD:FROM:TO:POINTS, e.g. omega_a:-40:40:41");
+    };
+    let Some(coord) = Coord::parse(coord) else {
+        bail!(
+            "{flag} {text}: unknown coordinate `{coord}`: must be one of {}",
+            Coord::ALL.map(Coord::name).join(", ")
+        );
+    };
+    let number = |s: &str, what: &str| {
+        s.trim().parse::<f64>().map_err(|_| {
+            anyhow::anyhow!("{flag} {text}: {what} `{s}` is invalid: must be a number")
+        })
+    };
+    let from = number(from, "FROM")?;
+    let to = number(to, "TO")?;
+    let Ok(points) = points.trim().parse::<usize>() else {
+        bail!("{flag} {text}: POINTS `{points}` is invalid: must be an integer in [1, 1000]");
+    };
+    Ok(Axis {
+        coord,
+        from,
+        to,
+        points,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axes_parse_and_bad_ones_name_the_flag() {
+        let a = parse_axis("theta_b:-1.2:0.8:21", "--y").unwrap();
+        assert_eq!(
+            (a.coord, a.from, a.to, a.points),
+            (Coord::Theta(1), -1.2, 0.8, 21)
+        );
+        for (text, want) in [
+            (
+                "omega_a:-1:1",
+                "--x omega_a:-1:1: must be COORD:FROM:TO:POINTS",
+            ),
+            (
+                "omega:-1:1:3",
+                "--x omega:-1:1:3: unknown coordinate `omega`: must be one of omega_a,",
+            ),
+            (
+                "omega_a:x:1:3",
+                "--x omega_a:x:1:3: FROM `x` is invalid: must be a number",
+            ),
+            (
+                "omega_a:-1:1:-3",
+                "--x omega_a:-1:1:-3: POINTS `-3` is invalid: must be an integer in [1, 1000]",
+            ),
+        ] {
+            let e = parse_axis(text, "--x").unwrap_err().to_string();
+            assert!(e.starts_with(want), "{e}");
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! `basin`: a slice of a gait's basin of attraction, a grid of perturbed
+//! section points each iterated on the step map and classified.
+
+use super::bifurcation::ModelArgs;
+use crate::basin::{self, OUTCOMES, files, outcome_index, parse_axis};
+use crate::config::params::checked_params;
+use crate::config::validate_options;
+use crate::scan::workers::check_threads;
+use anyhow::{Result, bail};
+use clap::Args;
+use rtw_model::cycles::{Basin, BasinError, BasinSpec, CycleOptions};
+use std::num::NonZeroUsize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub(super) struct BasinArgs {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// The grid's first axis, COORD:FROM:TO:POINTS: offsets FROM..TO (POINTS of them, ends included) of COORD
+    /// from the gait's fixed point; COORD is omega_a, omega_b, omega_c (a rod's ω, rad/s) or theta_a, theta_b,
+    /// theta_c (a rod's θ, rad), rod a being the landing rod.
+    #[arg(long, value_name = "COORD:FROM:TO:POINTS", allow_hyphen_values = true)]
+    x: String,
+    /// The grid's second axis, as --x, another coordinate.
+    #[arg(long, value_name = "COORD:FROM:TO:POINTS", allow_hyphen_values = true)]
+    y: String,
+    /// Most steps each point is iterated on the step map.
+    #[arg(long, default_value_t = 60)]
+    steps: usize,
+    /// A point returns when its scaled distance to the gait's orbit is at most this.
+    #[arg(long, default_value_t = 1e-3)]
+    tol: f64,
+    /// Worker threads [default: one per core]. The rows do not depend on it.
+    #[arg(long)]
+    threads: Option<NonZeroUsize>,
+    /// The grid, one row per point.
+    #[arg(long, value_name = "FILE.parquet")]
+    out: PathBuf,
+    /// Write even over a file that is not a basin slice.
+    #[arg(long)]
+    force: bool,
+}
+
+pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
+    let (p, options) = a.model.resolve()?;
+    let params = checked_params([p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi], "--")?;
+    validate_options(&options, "simulation")?;
+    let spec = BasinSpec {
+        x: parse_axis(&a.x, "--x")?,
+        y: parse_axis(&a.y, "--y")?,
+        steps: a.steps,
+        tol: a.tol,
+    };
+    // The settings by the flags that give them (--x, --y, --steps, --tol).
+    if let Err(BasinError::Invalid { field, what, range }) = spec.validate() {
+        let given = match field {
+            "x" => format!(" {}", a.x),
+            "y" => format!(" {}", a.y),
+            _ => String::new(),
+        };
+        bail!("--{field}{given}: {what} is invalid: must be {range}");
+    }
+    check_threads(a.threads, "--threads")?;
+    files::check_output(&a.out, a.force)?;
+    let cycle = CycleOptions::default();
+    let t0 = Instant::now();
+    let slice = Basin::new(&params, &options, &cycle, spec)?;
+    let t1 = Instant::now();
+    let points = basin::run(&slice, a.threads)?;
+    let wall = t0.elapsed().as_secs_f64();
+    let per_point = t1.elapsed().as_secs_f64() / points.len() as f64;
+    files::write(
+        &a.out,
+        &slice,
+        &params,
+        &options,
+        &cycle,
+        &files::rows(&slice, &points),
+        wall,
+    )?;
+    let (cx, cy) = slice.centre();
+    println!(
+        "gait: {}, period {} (max |mu| {:.4}), fixed point {} = {cx:.6}, {} = {cy:.6}",
+        slice.label.as_str(),
+        slice.cycle.period,
+        slice.cycle.floquet_max(),
+        spec.x.coord.name(),
+        spec.y.coord.name(),
+    );
+    let mut counts = [0usize; OUTCOMES.len()];
+    for p in &points {
+        counts[outcome_index(&p.fate)] += 1;
+    }
+    let shown: Vec<String> = OUTCOMES
+        .iter()
+        .zip(counts)
+        .map(|(o, n)| format!("{o} {n}"))
+        .collect();
+    println!("{} points: {}", points.len(), shown.join(", "));
+    println!(
+        "{wall:.1} s ({:.1} ms per point, wall-clock over the worker threads); written to {}",
+        1e3 * per_point,
+        a.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
