@@ -46,11 +46,13 @@ mod run;
 #[cfg(test)]
 mod tests;
 
-pub use options::{Method, Options};
+// hybrid-ode's own item, documented (and counted) there.
+#[doc(no_inline)]
+pub use options::Method;
+pub use options::Options;
 pub use outcome::{CycleSummary, Label, Outcome, TraceSample};
 pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
 pub use plant::contact::RodMode;
 pub use plant::geometry::Tip;
 pub use plant::rtw::GuardKind;
-pub use run::robustness::meet_step;
 pub use run::simulate::{simulate, simulate_traced};

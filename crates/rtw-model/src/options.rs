@@ -33,11 +33,12 @@ use crate::params::{Normalization, ParamError, check};
 use hybrid_ode::EngineOptions;
 /// The integration method, as chosen in a config (`"dp54"`, `"dop853"`,
 /// `"rk4"`): the engine's own [`hybrid_ode::Method`].
+#[doc(no_inline)]
 pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
 
 mod terrain;
-pub use terrain::{STEP_HEIGHT_MAX, TerrainOptions};
+pub use terrain::TerrainOptions;
 
 /// The initial shape of the star (docs/model.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -457,7 +458,7 @@ pub struct RobustnessOptions {
 
 impl RobustnessOptions {
     /// Is every measure off?
-    pub fn is_off(&self) -> bool {
+    pub(crate) fn is_off(&self) -> bool {
         !self.step_down
     }
 }

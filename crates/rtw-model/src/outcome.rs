@@ -37,7 +37,7 @@ impl Label {
         Label::Diverged,
     ];
 
-    /// The label's name (`skip`, `walk`, …).
+    /// The label's name (`skip`, `walk`, …); also its `Display`.
     pub fn as_str(self) -> &'static str {
         match self {
             Label::Skip => "skip",
@@ -151,7 +151,7 @@ impl FailureDetail {
         }
     }
 
-    /// The detail's name (`rod_down`, `com_low`, …).
+    /// The detail's name (`rod_down`, `com_low`, …); also its `Display`.
     pub fn as_str(self) -> &'static str {
         match self {
             FailureDetail::RodDown => "rod_down",
@@ -206,6 +206,12 @@ impl FailureDetail {
     }
 }
 
+impl std::fmt::Display for FailureDetail {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// Time fractions of the contact states over the analysis window.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactFractions {
@@ -236,13 +242,20 @@ pub enum Stance {
 }
 
 impl Stance {
-    /// The stance's name (`rest_shape`, `two_feet`, `three_feet`).
+    /// The stance's name (`rest_shape`, `two_feet`, `three_feet`); also its
+    /// `Display`.
     pub fn as_str(self) -> &'static str {
         match self {
             Stance::RestShape => "rest_shape",
             Stance::TwoFeet => "two_feet",
             Stance::ThreeFeet => "three_feet",
         }
+    }
+}
+
+impl std::fmt::Display for Stance {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 

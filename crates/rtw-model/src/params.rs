@@ -151,7 +151,8 @@ impl Param {
         Param::Phi,
     ];
 
-    /// The key: `length`, `rho`, `alpha`, `fn`, `zeta`, `phi`.
+    /// The key: `length`, `rho`, `alpha`, `fn`, `zeta`, `phi`; also its
+    /// `Display` (and what `str::parse` reads).
     pub fn name(self) -> &'static str {
         match self {
             Param::Length => "length",
@@ -161,11 +162,6 @@ impl Param {
             Param::Zeta => "zeta",
             Param::Phi => "phi",
         }
-    }
-
-    /// The input named `name` ([`name`](Param::name)), if any.
-    pub fn parse(name: &str) -> Option<Param> {
-        Param::ALL.into_iter().find(|p| p.name() == name)
     }
 
     /// Its value in `p`.
@@ -225,6 +221,26 @@ impl Param {
     /// `value` if it is valid, else the error naming this input and its range.
     pub fn check(self, value: f64) -> Result<(), ParamError> {
         check(self.name(), value, self.range(), |v| self.admits(v))
+    }
+}
+
+impl fmt::Display for Param {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Param {
+    type Err = String;
+    /// The input with this key, or a message listing the keys.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Param::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| {
+                let keys: Vec<&str> = Param::ALL.iter().map(|p| p.name()).collect();
+                format!("unknown input {s:?}: one of {}", keys.join(", "))
+            })
     }
 }
 
@@ -358,7 +374,8 @@ mod tests {
     #[test]
     fn every_param_round_trips_by_name_and_value() {
         for (i, param) in Param::ALL.into_iter().enumerate() {
-            assert_eq!(Param::parse(param.name()), Some(param));
+            assert_eq!(param.name().parse::<Param>(), Ok(param));
+            assert_eq!(param.to_string(), param.name());
             let mut p = Params::fig7a();
             param.set(&mut p, 0.01 * (i + 1) as f64);
             assert_eq!(param.get(&p), 0.01 * (i + 1) as f64);
@@ -369,7 +386,10 @@ mod tests {
             let e = param.check(f64::NAN).unwrap_err();
             assert_eq!((e.field, e.range), (param.name(), param.range()));
         }
-        assert_eq!(Param::parse("mu"), None);
+        assert_eq!(
+            "mu".parse::<Param>().unwrap_err(),
+            "unknown input \"mu\": one of length, rho, alpha, fn, zeta, phi"
+        );
     }
 
     #[test]

@@ -24,7 +24,7 @@ use pyo3::types::{PyDict, PyTuple};
 use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
-use rtw_scan::config::layers::{load_layered_with, parse_layered_with, simulation_options_with};
+use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
 use rtw_scan::scan::scan_batch;
@@ -69,7 +69,7 @@ fn inputs(
 ) -> PyResult<(Params, Options)> {
     let params = checked_params(values, "").map_err(value_error)?;
     let overrides = PyOverrides::new(options)?;
-    let options = simulation_options_with(config.as_deref(), variant.as_deref(), overrides.layer())
+    let options = simulation_options(config.as_deref(), variant.as_deref(), overrides.layer())
         .map_err(value_error)?;
     Ok((params, options))
 }
@@ -158,8 +158,8 @@ fn scan<'py>(
         seed,
     };
     let cfg = match (path, text) {
-        (Some(p), None) => load_layered_with(&p, variant.as_deref(), overrides.layer()),
-        (None, Some(t)) => parse_layered_with(&t, variant.as_deref(), overrides.layer()),
+        (Some(p), None) => load_layered(&p, variant.as_deref(), overrides.layer()),
+        (None, Some(t)) => parse_layered(&t, variant.as_deref(), overrides.layer()),
         _ => Err(anyhow!("give a config path or TOML text")),
     }
     .and_then(|cfg| design.apply(cfg))
@@ -283,7 +283,7 @@ fn label(
     options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<&'static str> {
     let overrides = PyOverrides::new(options.as_ref())?;
-    let options = simulation_options_with(None, None, overrides.layer()).map_err(value_error)?;
+    let options = simulation_options(None, None, overrides.layer()).map_err(value_error)?;
     let fractions = ContactFractions {
         nlsp,
         tlsp,

@@ -31,7 +31,7 @@ except ImportError:
 from PIL import Image  # noqa: E402
 from rtw import animation  # noqa: E402
 from rtw.animation import animate, frame_times  # noqa: E402
-from rtw.draw import Design, GeometryError, Trace, check_geometry  # noqa: E402
+from rtw.draw import Geometry, GeometryError, Trace, check_geometry  # noqa: E402
 
 # Tests that build an animation only to count its frames do not render it.
 pytestmark = pytest.mark.filterwarnings("ignore:Animation was deleted without rendering")
@@ -81,7 +81,7 @@ def test_a_wrong_geometry_is_refused(run):
     path, m = run
     trace = Trace.read(path)
     with pytest.raises(GeometryError, match="energy"):
-        check_geometry(Trace.read(path, Design(**{**trace.design.__dict__, "r": 0.99 * trace.design.r})))
+        check_geometry(Trace.read(path, Geometry(**{**trace.design.__dict__, "r": 0.99 * trace.design.r})))
     with pytest.raises(GeometryError, match="energy"):
         check_geometry(trace, 1.01 * m["k"])
     # A foot said to be in contact while it is in the air.

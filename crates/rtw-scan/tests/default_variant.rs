@@ -8,7 +8,7 @@
 //! without rerunning it, fails here.
 
 use rtw_model::Options;
-use rtw_scan::config::layers::simulation_options;
+use rtw_scan::config::layers::{Overrides, simulation_options};
 use std::path::PathBuf;
 
 fn root() -> PathBuf {
@@ -31,7 +31,7 @@ fn the_default_model_is_the_variant_the_rule_picks() {
     let file = root()
         .join("configs/variants")
         .join(format!("{chosen}.toml"));
-    let picked = simulation_options(None, Some(&file), &[]).unwrap();
+    let picked = simulation_options(None, Some(&file), Overrides::NONE).unwrap();
     assert_eq!(
         picked,
         Options::default(),
@@ -54,6 +54,6 @@ fn the_figures_default_is_the_variant_the_rule_picks() {
 #[test]
 fn the_paper_scan_runs_the_default_model() {
     let file = root().join("configs/paper.toml");
-    let paper = simulation_options(Some(&file), None, &[]).unwrap();
+    let paper = simulation_options(Some(&file), None, Overrides::NONE).unwrap();
     assert_eq!(paper, Options::default(), "{}", file.display());
 }

@@ -7,14 +7,14 @@
 //! | `stepmap.rs` | the step map, its Jacobian (variational or differences), its iterates and periods | [`StepMap`], [`CycleOptions`], [`Jacobian`], [`Step`], [`StepError`] |
 //! | `limit_cycle.rs` | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run | [`LimitCycle`], [`CycleError`] |
 //! | `continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
-//! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost), and the branch continued through it segment by segment | the module [`nonsmooth`] |
+//! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost): the orbit's mode sequence and closest approaches, the located end | [`ModeSequence`], [`ModeEvent`], [`Approach`], [`Orbit`], [`Setting`], [`EndOptions`], [`EndKind`], [`BranchEnd`] |
 //! | `basin.rs` | a slice of a gait's basin of attraction: a grid of perturbed section points, each iterated and classified | [`Basin`], [`BasinSpec`], [`follow`] |
 //! | `segments.rs` | a branch continued through those changes, segment by segment | [`Segment`], [`continue_segments`] |
 
 pub(crate) mod basin;
 pub(crate) mod continuation;
 pub(crate) mod limit_cycle;
-pub mod nonsmooth;
+pub(crate) mod nonsmooth;
 pub(crate) mod section;
 pub(crate) mod segments;
 pub(crate) mod stepmap;
@@ -24,6 +24,9 @@ pub use continuation::{
     Diagram, DiagramBranch, DiagramError, DiagramOptions, StepMapFamily, StepMapFamily2, diagram,
 };
 pub use limit_cycle::{CycleError, LimitCycle};
+pub use nonsmooth::{
+    Approach, BranchEnd, EndKind, EndOptions, ModeEvent, ModeSequence, Orbit, Setting,
+};
 pub use section::{Section, SectionPoint};
 pub use segments::{Segment, continue_segments};
 pub use stepmap::{CycleOptions, Jacobian, Step, StepError, StepMap};

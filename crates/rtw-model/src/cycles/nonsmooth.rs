@@ -34,7 +34,6 @@ use crate::plant::rtw::{AtState, GuardKind, Rtw, Transition};
 use crate::plant::slots::N;
 use hybrid_ode::nonsmooth::{GuardMinima, locate_change};
 use hybrid_ode::{Dense, Flow, Observer, StepEnd};
-use nalgebra::Complex;
 
 /// One event of a periodic orbit: guard `kind` fired in step `step` of the
 /// orbit (in that step's canonical labels: its stance rod is rod 0).
@@ -60,8 +59,8 @@ pub struct ModeSequence {
 
 impl ModeSequence {
     /// A short text: each step's events, steps apart by ` | ` (e.g.
-    /// `td b- · lo c | …`).
-    pub fn describe(&self) -> String {
+    /// `td b- · lo c | …`); also its `Display`.
+    pub(crate) fn describe(&self) -> String {
         let steps = self.section_modes.len();
         (0..steps)
             .map(|k| {
@@ -77,10 +76,22 @@ impl ModeSequence {
     }
 }
 
+impl std::fmt::Display for ModeSequence {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.describe())
+    }
+}
+
+impl std::fmt::Display for GuardKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&guard_name(*self))
+    }
+}
+
 /// A guard's short name: `td a+` (touchdown of rod a's + tip), `lo b`
 /// (lift-off), `down c` (a rod lies down), `slip a`, `stick a`, `com`,
 /// `edge a` (a sliding tip reaches a step's edge).
-pub fn guard_name(kind: GuardKind) -> String {
+pub(crate) fn guard_name(kind: GuardKind) -> String {
     let rod = |r: usize| ["a", "b", "c"].get(r).copied().unwrap_or("?");
     match kind {
         GuardKind::Touchdown { rod: r, tip } => {
@@ -246,7 +257,7 @@ impl Setting<'_> {
     /// The period-`n` orbit at `value` near `start` (Newton on `Pⁿ`; if the
     /// start's modes do not come back, from its image, whose modes may be the
     /// new side's), with its mode sequence. `None` where there is none.
-    pub fn orbit(&self, start: &SectionPoint, n: usize, value: f64) -> Option<Orbit> {
+    pub(crate) fn orbit(&self, start: &SectionPoint, n: usize, value: f64) -> Option<Orbit> {
         let map = map_at(self.base, self.options, self.cycle, self.param, value)?;
         let cycle = match map.solve(start, n, self.cycle) {
             Ok(c) => c,
@@ -259,7 +270,8 @@ impl Setting<'_> {
     }
 }
 
-/// Settings of [`locate_end`].
+/// How [`continue_segments`](super::continue_segments) locates and names a
+/// branch's end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EndOptions {
     /// The change is located to this bracket in the input.
@@ -345,18 +357,6 @@ pub struct BranchEnd {
     pub jacobian_jump: Option<f64>,
 }
 
-impl BranchEnd {
-    /// Floquet multipliers on the old side.
-    pub fn multipliers_old(&self) -> &[Complex<f64>] {
-        &self.old.cycle.multipliers
-    }
-
-    /// Floquet multipliers on the new side (empty: no orbit there).
-    pub fn multipliers_new(&self) -> &[Complex<f64>] {
-        self.new.as_ref().map_or(&[], |o| &o.cycle.multipliers)
-    }
-}
-
 /// Among `near`'s closest approaches and events, the one that shrank most
 /// from `far` (the same occurrence of the same guard in the same step),
 /// below `ratio`.
@@ -426,7 +426,7 @@ fn corner(o: &Orbit, dt: f64) -> Option<(GuardKind, GuardKind, f64)> {
 /// [`EndOptions::reach`]), bisects to [`EndOptions::p_tol`], and names the
 /// change from the orbits on both sides. `None` if there is no orbit at
 /// `p_last`.
-pub fn locate_end(
+pub(crate) fn locate_end(
     s: &Setting<'_>,
     last: &SectionPoint,
     n: usize,

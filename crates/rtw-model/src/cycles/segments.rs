@@ -75,8 +75,9 @@ pub struct Segment {
 /// `direction` within `range`, segment by segment: each segment is a smooth
 /// branch in one mode sequence ([`continuation::continue_branch`], its
 /// corrector rejecting points of another sequence); where it ends,
-/// [`locate_end`] names why, and if there is an orbit past the change the
-/// next segment starts from it. At most `max_segments`.
+/// a bisection between the last value with the old sequence and the first
+/// with another names why ([`EndKind`](super::EndKind)), and if there is an
+/// orbit past the change the next segment starts from it. At most `max_segments`.
 #[allow(clippy::too_many_arguments)]
 pub fn continue_segments(
     s: &Setting<'_>,

@@ -29,17 +29,17 @@ impl Default for TerrainOptions {
 
 /// Largest step height accepted (m): a thousand times the article's rod,
 /// the scale bound of `L` (docs/model.md §1).
-pub const STEP_HEIGHT_MAX: f64 = 1e3;
+pub(crate) const STEP_HEIGHT_MAX: f64 = 1e3;
 
 impl TerrainOptions {
     /// Is this the flat slope (no step)?
     #[inline]
-    pub fn is_flat(&self) -> bool {
+    pub(crate) fn is_flat(&self) -> bool {
         self.step_height == 0.0
     }
 
     /// The slope with a step down of `height` at `at` (m).
-    pub fn step(height: f64, at: f64) -> Self {
+    pub(crate) fn step(height: f64, at: f64) -> Self {
         Self {
             step_height: height,
             step_at: at,
@@ -48,7 +48,7 @@ impl TerrainOptions {
 
     /// Refuses a step height outside [0, 1000] m (a step up would put a riser
     /// in every foot's way) or a step position outside (0, 1e6] m.
-    pub fn validate(&self) -> Result<(), ParamError> {
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
         check(
             "terrain.step_height",
             self.step_height,
@@ -65,7 +65,7 @@ impl TerrainOptions {
 
     /// The ground's height (slope normal) under `x`.
     #[inline]
-    pub fn ground(&self, x: f64) -> f64 {
+    pub(crate) fn ground(&self, x: f64) -> f64 {
         if self.is_flat() || x < self.step_at {
             0.0
         } else {

@@ -209,6 +209,7 @@ pub(crate) fn start_and_run(
 /// Runs `params` under `options` (which must be valid) and hands `f` the
 /// physical parameters, the system and state the run ended in and its
 /// outcome; `None` if the star could not start.
+#[cfg(test)]
 pub(crate) fn with_end_state<T>(
     params: &Params,
     options: &Options,

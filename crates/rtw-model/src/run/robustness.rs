@@ -185,7 +185,8 @@ pub(crate) fn measure(
 /// A stable gait's settled state met by a step of `h` (m): the outcome of
 /// the run over it and whether it survived (see the module doc). `None`
 /// when the flat run is not a stable gait.
-pub fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(Outcome, bool)> {
+#[cfg(test)]
+pub(crate) fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(Outcome, bool)> {
     let mut flat_options = *options;
     flat_options.robustness = RobustnessOptions::default();
     crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {

@@ -5,5 +5,8 @@
 mod crossings_inside_a_step;
 mod limit_cycle;
 mod modal;
+mod nonsmooth_rtw;
 mod physics;
+mod rimless_step;
 mod standing;
+mod step_down;

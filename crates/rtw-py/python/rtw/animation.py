@@ -25,7 +25,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from .draw import ROD_COLOR, STATE_COLOR, STATE_NAMES, Design, Star, Trace, state_label
+from .draw import ROD_COLOR, STATE_COLOR, STATE_NAMES, Geometry, Star, Trace, state_label
 
 FPS_RANGE = (1.0, 100.0)
 SPEED_RANGE = (0.01, 100.0)
@@ -145,7 +145,7 @@ class GaitAnimation(FuncAnimation):
 
 
 def animate(trace, *, fps: float = 25, speed: float = 1.0, start: float | None = None,
-            duration: float | None = None, design: Design | None = None, width: int = 480,
+            duration: float | None = None, design: Geometry | None = None, width: int = 480,
             window: float | None = None, names: dict[str, str] | None = None) -> GaitAnimation:
     """Animate a trace: rods, strings, slope, each foot's contact mode
     (● stick, ◇ slide), time and contact state, following the star downhill.

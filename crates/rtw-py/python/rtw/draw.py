@@ -64,8 +64,9 @@ class GeometryError(ValueError):
 
 
 @dataclass(frozen=True)
-class Design:
-    """What drawing a trace needs beyond its columns: rod length L [m],
+class Geometry:
+    """The star's and slope's geometry for drawing a trace (not `rtw.Design`,
+    a design's six inputs): what the drawing needs beyond the trace's columns: rod length L [m],
     connection radius r [m], slope φ [rad], the strings' rest length ratio
     s = ℓ₀/r and whether they go slack when short, and (optional, only to
     check the strings' energy exactly) the string stiffness k [N/m]."""
@@ -79,7 +80,7 @@ class Design:
 
     @classmethod
     def from_params(cls, length: float, alpha: float, phi: float, options: Mapping | None = None,
-                    k: float | None = None) -> "Design":
+                    k: float | None = None) -> "Geometry":
         """From the design parameters and the run's options (the TOML of
         `[simulation]`, as a dict). r = L(1 − 2α)/2 is the model's definition
         (docs/model.md §1); k depends on the normalization, so it is not
@@ -90,7 +91,7 @@ class Design:
                    slack=bool(strings.get("slack", False)), k=None if k is None else float(k))
 
     @classmethod
-    def from_metadata(cls, meta: Mapping | None) -> "Design | None":
+    def from_metadata(cls, meta: Mapping | None) -> "Geometry | None":
         """From a trace file's Parquet metadata (`rtw.params`, `rtw.options`,
         as `simulate --trace` writes them), or None if they are not there."""
         import json
@@ -149,11 +150,11 @@ class Trace:
     columns. `design`: taken from the table's Parquet metadata when it has it
     (a pyarrow.Table read from a trace file, `Trace.read`), else required."""
 
-    def __init__(self, table, design: Design | None = None):
-        self.design = design or Design.from_metadata(_schema_metadata(table))
+    def __init__(self, table, design: Geometry | None = None):
+        self.design = design or Geometry.from_metadata(_schema_metadata(table))
         if self.design is None:
             raise ValueError("design: the trace carries no rtw.params metadata (a DataFrame loses it); "
-                             "pass design=rtw.draw.Design(length=…, r=…, phi=…, …) or read the Parquet "
+                             "pass design=rtw.draw.Geometry(length=…, r=…, phi=…, …) or read the Parquet "
                              "file with Trace.read(path)")
         missing = [c for c in TRACE_COLUMNS if c not in set(_column_names(table))]
         if missing:
@@ -174,7 +175,7 @@ class Trace:
         self.string_potential = cols["string_potential"].astype(float)
 
     @classmethod
-    def read(cls, path: str | Path, design: Design | None = None) -> "Trace":
+    def read(cls, path: str | Path, design: Geometry | None = None) -> "Trace":
         """A trace Parquet file (`rtw-scan simulate --trace`), its design from the file's metadata."""
         import pyarrow.parquet as pq
 
@@ -184,7 +185,7 @@ class Trace:
                                     "`rtw-scan simulate … --trace FILE`)")
         # The rtw.* keys are the file's key-value metadata, which pyarrow does
         # not carry into the table's schema when the file has an Arrow schema.
-        design = design or Design.from_metadata(pq.read_metadata(path).metadata)
+        design = design or Geometry.from_metadata(pq.read_metadata(path).metadata)
         return cls(pq.read_table(path, columns=list(TRACE_COLUMNS)), design)
 
     def __len__(self) -> int:
@@ -264,7 +265,7 @@ class Star:
     sample i and the view with the star. Drawn in the world, so the ground
     appears at its angle φ. The figures draw one, the animation redraws one."""
 
-    def __init__(self, ax, design: Design, window: float, marks: float | None = None, aspect: float = 1.2):
+    def __init__(self, ax, design: Geometry, window: float, marks: float | None = None, aspect: float = 1.2):
         from matplotlib.collections import LineCollection
         from matplotlib.patches import Polygon
 

@@ -205,7 +205,7 @@ def _gait(row: dict[str, Any], config_path: str, options: dict) -> dict[str, Any
     import numpy as np
 
     from . import trace as run_trace
-    from .draw import SPOKES, STATE_NAMES, Design, Trace, check_geometry, rod_points, slope_axes, stance_tips
+    from .draw import SPOKES, STATE_NAMES, Geometry, Trace, check_geometry, rod_points, slope_axes, stance_tips
 
     inputs = [row[c] for c in ("length", "rho", "alpha", "fn", "zeta", "phi")]
     table = run_trace(*inputs, config=config_path, dt=FRAME_DT)
@@ -218,7 +218,7 @@ def _gait(row: dict[str, Any], config_path: str, options: dict) -> dict[str, Any
         # A star that cannot stand in its initial shape ends before its first sample.
         return {"sample_id": int(row["sample_id"]), "outcome": ran["outcome"], "t": [], "note": note,
                 "empty": f"the run ended at t = 0, before its first trace sample ({ran.get('message') or ran['outcome']})"}
-    design = Design.from_params(row["length"], row["alpha"], row["phi"], options, k=row["k"])
+    design = Geometry.from_params(row["length"], row["alpha"], row["phi"], options, k=row["k"])
     tr = Trace(table, design)
     check_geometry(tr)
     # Frames at even times (the trace also holds the event instants), each the

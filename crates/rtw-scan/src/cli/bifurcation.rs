@@ -1,9 +1,9 @@
 //! `bifurcation`: one parameter swept with continuation on the step map.
 
+use super::validate::simulation_options;
 use crate::bifurcation::files::{check_outputs, write};
 use crate::bifurcation::summary::{period_str, summary_markdown};
 use crate::bifurcation::sweep::{Sweep, run_sweep};
-use crate::config::layers::simulation_options;
 use crate::config::params::SweepParam;
 use crate::io::destination::summary_path;
 use crate::io::files::write_atomic;

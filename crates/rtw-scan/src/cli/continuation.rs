@@ -67,7 +67,7 @@ pub(super) struct ContinuationArgs {
 
 /// Parses an input's name, naming the flag and the choices.
 fn input(name: &str, flag: &str) -> Result<Param> {
-    Param::parse(name).ok_or_else(|| {
+    name.parse::<Param>().map_err(|_| {
         anyhow::anyhow!(
             "{flag}: unknown input `{name}`: must be one of {}",
             Param::ALL.map(Param::name).join(", ")

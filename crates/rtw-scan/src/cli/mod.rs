@@ -1,7 +1,9 @@
-//! The command line, a thin layer: clap arguments → validated settings →
-//! calls into config, scan, io, analysis and bifurcation. One file per
-//! subcommand family; this one holds the command tree and the exit codes,
-//! `signal` the signal handling, `values` the parsers of flag values, and
+//! The command line, a thin layer in named stages: clap arguments (each
+//! subcommand family's `…Args`, raw text) → `validate` (flag text → typed,
+//! checked values: `--set KEY=VALUE` → typed overrides) and `values` (the
+//! parsers of single flag values) → calls into config, scan, io, analysis
+//! and bifurcation, which take only typed values. This file holds the
+//! command tree and the exit codes, `signal` the signal handling, and
 //! `progress` the progress shown on stderr.
 
 mod analysis;
@@ -14,6 +16,7 @@ mod run;
 mod sensitivity;
 mod signal;
 mod simulate;
+mod validate;
 mod values;
 
 use analysis::{ClusterArgs, SummaryArgs};

@@ -3,7 +3,7 @@
 use super::progress::{ProgressMode, StderrProgress};
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::analysis::report;
-use crate::config::{self, ScanConfig};
+use crate::config::ScanConfig;
 use crate::hash::fnv1a64;
 use crate::io::files;
 use crate::scan::checkpoint::Layout;
@@ -104,7 +104,7 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 }
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
-    let cfg = config::layers::load_layered(&a.config, a.variant.as_deref(), &a.set)?;
+    let cfg = super::validate::scan_config(&a.config, a.variant.as_deref(), &a.set)?;
     check_threads(a.threads, "--threads")?;
     let out = match a.out.clone() {
         Some(d) => d,

@@ -1,6 +1,6 @@
 //! `simulate`: one run, its row printed, its trace written.
 
-use crate::config::layers::simulation_options;
+use super::validate::simulation_options;
 use crate::config::params::checked_params;
 use crate::io::metadata::FileKind;
 use crate::io::scan_rows::{self, JsonRow};

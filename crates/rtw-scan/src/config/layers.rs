@@ -1,9 +1,11 @@
 //! The layers of a config, from low level to high: TOML text → tables; a
-//! variant file's `[simulation]` keys over the config's; the `--set
-//! KEY=VALUE` overrides over both; then [`super::parse`] validates the
-//! result. Every error names the file and the key path.
+//! variant file's `[simulation]` keys over the config's; the overrides over
+//! both (typed keys and values: the command line reads its `--set
+//! KEY=VALUE` text in `cli::validate`, Python passes a dict); then
+//! [`super::parse`] validates the result. Every error names the file and
+//! the key path.
 
-use super::raw::{from_value, option_range, parse_table, read_text, set_path};
+use super::raw::{from_value, parse_table, read_text, set_path};
 use super::{ScanConfig, options_from_table, parse_value};
 use anyhow::{Context, Result, anyhow, bail};
 use rtw_model::Options;
@@ -26,18 +28,22 @@ struct VariantFile {
 }
 
 /// The top layer of options, over a config's `[simulation]` table and a
-/// variant's: the command line's `--set` assignments, or typed values (the
-/// Python package's `options=` dict, converted from Python objects without
-/// passing through text).
+/// variant's: values by dotted key (`contact.mu`), in order, a later key
+/// winning. Where they came from names them in errors.
 #[derive(Clone, Copy, Debug)]
 pub enum Overrides<'a> {
-    /// `KEY=VALUE` assignments, in order, each read by [`apply_set`].
-    Sets(&'a [String]),
-    /// Values by dotted key (`contact.mu`), in order; a later key wins.
+    /// The command line's `--set KEY=VALUE` assignments, already read into
+    /// typed values (`cli::validate`); errors say `--set`.
+    Sets(&'a [(String, toml::Value)]),
+    /// The Python package's `options=` dict, converted from Python objects
+    /// without passing through text; errors say `options`.
     Values(&'a [(String, toml::Value)]),
 }
 
 impl Overrides<'_> {
+    /// No overrides.
+    pub const NONE: Overrides<'static> = Overrides::Values(&[]);
+
     fn is_empty(&self) -> bool {
         match self {
             Overrides::Sets(s) => s.is_empty(),
@@ -48,14 +54,8 @@ impl Overrides<'_> {
 
 /// Loads a scan config, layers a variant file's `[simulation]` keys over its
 /// own (the variant wins; the scan is then named `NAME+VARIANT`), then the
-/// `--set KEY=VALUE` overrides, and validates the result. Errors name the
-/// file and the key.
-pub fn load_layered(path: &Path, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
-    load_layered_with(path, variant, Overrides::Sets(sets))
-}
-
-/// [`load_layered`] with either kind of [`Overrides`].
-pub fn load_layered_with(
+/// overrides, and validates the result. Errors name the file and the key.
+pub fn load_layered(
     path: &Path,
     variant: Option<&Path>,
     sets: Overrides<'_>,
@@ -72,12 +72,7 @@ pub fn load_layered_with(
 /// [`load_layered`] of config text instead of a file (`rtw.scan` from
 /// Python given TOML): a variant's name is appended to the config's `name`
 /// (or to `scan` when it has none).
-pub fn parse_layered(text: &str, variant: Option<&Path>, sets: &[String]) -> Result<ScanConfig> {
-    parse_layered_with(text, variant, Overrides::Sets(sets))
-}
-
-/// [`parse_layered`] with either kind of [`Overrides`].
-pub fn parse_layered_with(
+pub fn parse_layered(
     text: &str,
     variant: Option<&Path>,
     sets: Overrides<'_>,
@@ -134,40 +129,24 @@ fn layer_variant_and_sets(
         merge_tables(simulation, v.simulation);
         name = Some(v.name);
     }
-    match sets {
-        Overrides::Sets(sets) => {
-            for s in sets {
-                apply_set(simulation, s)?;
-            }
+    let (values, who) = match sets {
+        Overrides::Sets(values) => (values, "--set"),
+        Overrides::Values(values) => (values, "options:"),
+    };
+    for (key, value) in values {
+        if key.is_empty() || key.split('.').any(str::is_empty) {
+            bail!("{who} {key:?} is not an option key (a dotted name such as contact.mu)");
         }
-        Overrides::Values(values) => {
-            for (key, value) in values {
-                if key.is_empty() || key.split('.').any(str::is_empty) {
-                    bail!(
-                        "options: {key:?} is not an option key (a dotted name such as contact.mu)"
-                    );
-                }
-                set_path(simulation, key, value.clone()).map_err(|e| anyhow!("options: {e}"))?;
-            }
-        }
+        set_path(simulation, key, value.clone()).map_err(|e| anyhow!("{who} {e}"))?;
     }
     Ok(name)
 }
 
 /// The simulation options of a single model (`simulate`, `bifurcation`):
 /// the `[simulation]` table of `config_file` (default: the adopted model, docs/model.md §9),
-/// then a variant file, then the `--set` overrides, validated. Errors name
-/// the file and the key, the value and the valid range.
+/// then a variant file, then the overrides, validated. Errors name the file
+/// and the key, the value and the valid range.
 pub fn simulation_options(
-    config_file: Option<&Path>,
-    variant: Option<&Path>,
-    sets: &[String],
-) -> Result<Options> {
-    simulation_options_with(config_file, variant, Overrides::Sets(sets))
-}
-
-/// [`simulation_options`] with either kind of [`Overrides`].
-pub fn simulation_options_with(
     config_file: Option<&Path>,
     variant: Option<&Path>,
     sets: Overrides<'_>,
@@ -212,60 +191,16 @@ fn merge_tables(base: &mut toml::Table, over: toml::Table) {
     }
 }
 
-/// Applies `KEY=VALUE` overrides to a table. `KEY` is a dotted path
-/// (`contact.mu`); `VALUE` is read as a TOML value (`true`, `inf`, `-3`,
-/// `"dop853"`), or taken as a bare string when it is not one (`dop853`).
-/// The key is checked when the table is deserialized
-/// ([`super::options_from_table`]), not here.
-pub fn apply_set(table: &mut toml::Table, assignment: &str) -> Result<()> {
-    let (key, value) = assignment
-        .split_once('=')
-        .ok_or_else(|| anyhow!("--set {assignment:?}: expected KEY=VALUE"))?;
-    let (key, value) = (key.trim(), value.trim());
-    if value.contains(['\n', '\r']) {
-        bail!(
-            "--set {key}: the value contains a newline: give one KEY=VALUE per --set (repeat --set for more)"
-        );
-    }
-    let parts: Vec<&str> = key.split('.').collect();
-    if parts.iter().any(|p| p.is_empty()) {
-        bail!("--set {assignment:?}: empty key segment in {key:?}");
-    }
-    if beyond_f64(value) {
-        bail!(
-            "--set {key}: {value} is invalid: beyond the range of a 64-bit float (magnitudes from \
-             2.2e-308 to 1.8e308){}",
-            option_range(key).map_or(String::new(), |r| format!("; {key} must be {r}"))
-        );
-    }
-    let parsed = format!("v = {value}")
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|mut t| t.remove("v"))
-        .unwrap_or_else(|| toml::Value::String(value.to_string()));
-    set_path(table, key, parsed).map_err(|e| anyhow!("--set {e}"))
-}
-
-/// Whether `literal` is a number written beyond what a 64-bit float holds
-/// (`1e400` reads as inf, `1e-400` as 0): TOML refuses it, and taken as a
-/// string it would be refused as "invalid type: string".
-fn beyond_f64(literal: &str) -> bool {
-    let Ok(v) = literal.parse::<f64>() else {
-        return false;
-    };
-    let mantissa = literal.split(['e', 'E']).next().unwrap_or("");
-    let spelled_inf = literal.to_ascii_lowercase().contains("inf");
-    (v.is_infinite() && !spelled_inf)
-        || (v == 0.0 && mantissa.contains(|c: char| ('1'..='9').contains(&c)))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::config::load;
     use crate::config::tests::BASE;
-    use rtw_model::Method;
-    use rtw_model::Normalization;
+
+    /// One typed `--set` override.
+    fn set(key: &str, value: f64) -> [(String, toml::Value); 1] {
+        [(key.to_string(), toml::Value::Float(value))]
+    }
 
     #[test]
     fn variant_and_sets_layer_over_the_config() {
@@ -281,7 +216,12 @@ mod tests {
             "name = \"pre\"\ndescription = \"prestress\"\n[simulation]\nstrings.rest_length_ratio = 0.85\ncontact.mu = 0.8\n",
         )
         .unwrap();
-        let c = load_layered(&cfg, Some(&var), &["initial.omega=-3".into()]).unwrap();
+        let c = load_layered(
+            &cfg,
+            Some(&var),
+            Overrides::Sets(&set("initial.omega", -3.0)),
+        )
+        .unwrap();
         assert_eq!(c.name.as_deref(), Some("box+pre"));
         // The variant's keys win, the config's other keys stay (deep merge).
         assert_eq!(c.simulation.strings.rest_length_ratio, 0.85);
@@ -290,20 +230,29 @@ mod tests {
         assert_eq!(c.simulation.t_max, 5.0);
         assert_eq!(c.simulation.initial.omega, -3.0);
         // Without a variant the file loads as it is.
-        assert_eq!(load_layered(&cfg, None, &[]).unwrap(), load(&cfg).unwrap());
+        assert_eq!(
+            load_layered(&cfg, None, Overrides::NONE).unwrap(),
+            load(&cfg).unwrap()
+        );
         // A bad variant key is named.
         std::fs::write(
             &var,
             "name = \"x\"\n[simulation]\nstrings.rest_length_ratio = 1.5\n",
         )
         .unwrap();
-        let e = format!("{:#}", load_layered(&cfg, Some(&var), &[]).unwrap_err());
+        let e = format!(
+            "{:#}",
+            load_layered(&cfg, Some(&var), Overrides::NONE).unwrap_err()
+        );
         assert!(
             e.contains("simulation.strings.rest_length_ratio: 1.5 is invalid"),
             "{e}"
         );
         std::fs::write(&var, "name = \"x\"\nseed = 3\n").unwrap();
-        let e = format!("{:#}", load_layered(&cfg, Some(&var), &[]).unwrap_err());
+        let e = format!(
+            "{:#}",
+            load_layered(&cfg, Some(&var), Overrides::NONE).unwrap_err()
+        );
         assert!(
             e.contains("unknown key `seed`") && e.contains("v.toml"),
             "{e}"
@@ -318,17 +267,17 @@ mod tests {
         std::fs::write(&cfg, &text).unwrap();
         let var = dir.path().join("v.toml");
         std::fs::write(&var, "name = \"pre\"\n[simulation]\ncontact.mu = 0.8\n").unwrap();
-        let sets = ["initial.omega=-3".to_string()];
+        let sets = set("initial.omega", -3.0);
         assert_eq!(
-            parse_layered(&text, Some(&var), &sets).unwrap(),
-            load_layered(&cfg, Some(&var), &sets).unwrap()
+            parse_layered(&text, Some(&var), Overrides::Sets(&sets)).unwrap(),
+            load_layered(&cfg, Some(&var), Overrides::Sets(&sets)).unwrap()
         );
         // Without a name, a variant is appended to `scan`.
-        let c = parse_layered(BASE, Some(&var), &[]).unwrap();
+        let c = parse_layered(BASE, Some(&var), Overrides::NONE).unwrap();
         assert_eq!(c.name.as_deref(), Some("scan+pre"));
         let e = format!(
             "{:#}",
-            parse_layered(BASE, None, &["contact.mu=-1".into()]).unwrap_err()
+            parse_layered(BASE, None, Overrides::Sets(&set("contact.mu", -1.0))).unwrap_err()
         );
         assert!(
             e.starts_with(
@@ -338,35 +287,43 @@ mod tests {
         );
         let e = format!(
             "{:#}",
-            parse_layered("simulation = 1\n", None, &[]).unwrap_err()
+            parse_layered("simulation = 1\n", None, Overrides::NONE).unwrap_err()
         );
         assert!(e.contains("`simulation` is not a table"), "{e}");
     }
 
     #[test]
     fn typed_values_layer_as_the_sets_do() {
-        let sets = [
-            "contact.mu=0.8".to_string(),
-            "t_max=5.5".into(),
-            "method=rk4".into(),
-        ];
         let values = [
             ("contact.mu".to_string(), toml::Value::Float(0.8)),
             ("t_max".to_string(), toml::Value::Float(5.5)),
             ("method".to_string(), toml::Value::String("rk4".into())),
         ];
-        let from_sets = simulation_options(None, None, &sets).unwrap();
-        let from_values = simulation_options_with(None, None, Overrides::Values(&values)).unwrap();
+        let from_sets = simulation_options(None, None, Overrides::Sets(&values)).unwrap();
+        let from_values = simulation_options(None, None, Overrides::Values(&values)).unwrap();
         assert_eq!(
             toml::to_string(&from_sets).unwrap(),
             toml::to_string(&from_values).unwrap()
         );
         assert_eq!(from_values.t_max, 5.5);
+        // Where the values came from names them.
+        let nested = [
+            ("t_max".to_string(), toml::Value::Float(5.5)),
+            ("t_max.x".to_string(), toml::Value::Float(1.0)),
+        ];
+        let e = format!(
+            "{:#}",
+            simulation_options(None, None, Overrides::Sets(&nested)).unwrap_err()
+        );
+        assert!(
+            e.starts_with("--set t_max.x: `t_max` is not a table"),
+            "{e}"
+        );
         let bad = |key: &str, value: toml::Value| {
             let values = [(key.to_string(), value)];
             format!(
                 "{:#}",
-                simulation_options_with(None, None, Overrides::Values(&values)).unwrap_err()
+                simulation_options(None, None, Overrides::Values(&values)).unwrap_err()
             )
         };
         let e = bad("contact..mu", toml::Value::Float(0.8));
@@ -376,41 +333,5 @@ mod tests {
         // A string is a string: no TOML read of it.
         let e = bad("t_max", toml::Value::String("5".into()));
         assert!(e.contains("simulation.t_max"), "{e}");
-    }
-
-    #[test]
-    fn set_overrides_parse_toml_values_or_bare_strings() {
-        let mut t = toml::Table::new();
-        for s in [
-            "initial.omega=-3",
-            "contact.mu=inf",
-            "strings.slack=true",
-            "method=dop853",
-            "normalization=\"eigen\"",
-        ] {
-            apply_set(&mut t, s).unwrap();
-        }
-        let o = options_from_table(t.clone(), "simulation").unwrap();
-        assert_eq!(o.initial.omega, -3.0);
-        assert!(o.contact.mu.is_infinite());
-        assert!(o.strings.slack);
-        assert_eq!(o.method, Method::Dop853);
-        assert_eq!(o.normalization, Normalization::Eigen);
-        apply_set(&mut t, "contact.mu=0.8").unwrap();
-        assert_eq!(
-            options_from_table(t.clone(), "simulation")
-                .unwrap()
-                .contact
-                .mu,
-            0.8
-        );
-        assert!(apply_set(&mut t, "method.x=1").is_err());
-        assert!(apply_set(&mut t, "novalue").is_err());
-        apply_set(&mut t, "contact.nope=1").unwrap();
-        let e = format!("{:#}", options_from_table(t, "simulation").unwrap_err());
-        assert!(
-            e.contains("simulation.contact.nope: unknown key `nope`"),
-            "{e}"
-        );
     }
 }

@@ -1,5 +1,5 @@
 //! `continuation --through N`: the gait's branch continued through the
-//! changes of its mode sequence ([`rtw_model::cycles::nonsmooth`]), up to
+//! changes of its mode sequence ([`rtw_model::cycles::BranchEnd`]), up to
 //! `N` segments each way from the start, each segment with its mode
 //! sequence and gait label and each end named (grazing, corner, the gait
 //! lost, the range's end). Written as `FILE.segments.json` (every point with
@@ -11,8 +11,9 @@ use crate::io::files::write_atomic;
 use anyhow::{Result, bail};
 use rtw_model::Num;
 use rtw_model::cycles::LimitCycle;
-use rtw_model::cycles::nonsmooth::{BranchEnd, EndKind, EndOptions, Setting, guard_name};
-use rtw_model::cycles::{Segment, Step, StepMap, continue_segments};
+use rtw_model::cycles::{
+    BranchEnd, EndKind, EndOptions, Segment, Setting, Step, StepMap, continue_segments,
+};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -102,18 +103,13 @@ fn end_detail(e: &BranchEnd) -> String {
     match &e.kind {
         EndKind::Grazing(a) => format!(
             "{} in step {} at t = {:.4} s (closest {:.2e})",
-            guard_name(a.kind),
+            a.kind,
             a.step + 1,
             a.t,
             a.value
         ),
         EndKind::Corner { first, second, dt } => {
-            format!(
-                "{} and {} {:.1e} s apart",
-                guard_name(*first),
-                guard_name(*second),
-                dt
-            )
+            format!("{} and {} {:.1e} s apart", first, second, dt)
         }
         EndKind::GaitLost => "no orbit of the period past it".into(),
         EndKind::Other => "the sequence changed otherwise".into(),
@@ -168,15 +164,15 @@ pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
                             "p_old": e.old.p,
                             "p_new": e.p_new,
                             "detail": end_detail(e),
-                            "floquet_max_old": radius(e.multipliers_old()),
-                            "floquet_max_new": e.new.as_ref().map(|_| radius(e.multipliers_new())),
+                            "floquet_max_old": radius(&e.old.cycle.multipliers),
+                            "floquet_max_new": e.new.as_ref().map(|o| radius(&o.cycle.multipliers)),
                             "jacobian_jump": e.jacobian_jump,
                         })
                     });
                     json!({
                         "period": n,
                         "label": seg.label.as_str(),
-                        "sequence": seg.sequence.describe(),
+                        "sequence": seg.sequence.to_string(),
                         "end": end_name(seg),
                         "end_at": end,
                         "points": points,
@@ -237,10 +233,10 @@ pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
                     end_detail(e),
                     format!(
                         "{:.4} → {}",
-                        radius(e.multipliers_old()),
-                        e.new.as_ref().map_or("none".to_string(), |_| format!(
+                        radius(&e.old.cycle.multipliers),
+                        e.new.as_ref().map_or("none".to_string(), |o| format!(
                             "{:.4}",
-                            radius(e.multipliers_new())
+                            radius(&o.cycle.multipliers)
                         ))
                     ),
                     e.jacobian_jump
@@ -259,7 +255,7 @@ pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
                 if d.direction > 0.0 { "up" } else { "down" },
                 i,
                 seg.label.as_str(),
-                seg.sequence.describe(),
+                seg.sequence,
                 end_name(seg).replace('_', " "),
             );
         }

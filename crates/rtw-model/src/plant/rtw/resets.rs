@@ -128,7 +128,7 @@ mod tests {
     use crate::outcome::FailureDetail;
     use crate::params::{Params, Physical};
     use crate::plant::contact::RodMode;
-    use crate::plant::geometry::{Tip, rest_star};
+    use crate::plant::geometry::{RodState, Tip, rest_star};
     use crate::plant::slots::{self, N, VX};
 
     /// The star turning at ω = −2 on the Plus tip of rod a in `mode`, the others
@@ -158,6 +158,20 @@ mod tests {
         assert_eq!(before[slots::at(1, 0)..], after[slots::at(1, 0)..]);
     }
 
+    /// The rod's place and velocity are the same up to rounding.
+    fn assert_unmoved(before: &RodState, after: &RodState) {
+        for (a, b) in [
+            (before.c[0], after.c[0]),
+            (before.c[1], after.c[1]),
+            (before.theta, after.theta),
+            (before.v[0], after.v[0]),
+            (before.v[1], after.v[1]),
+            (before.omega, after.omega),
+        ] {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+
     #[test]
     fn lift_off_leaves_the_stick_and_keeps_the_rod_where_it_was() {
         let (mut sys, mut y) = on_front_foot(RodMode::Stick { tip: Tip::Plus }, 0.0, f64::INFINITY);
@@ -172,17 +186,7 @@ mod tests {
         assert_eq!(sys.last_choice.map(|c| c.mode), Some(modes[0]));
         assert_others_untouched(&before, &y);
         // A change of mode re-expresses the rod; it does not move it.
-        let rod_after = sys.rods(&y)[0];
-        for (a, b) in [
-            (rod_before.c[0], rod_after.c[0]),
-            (rod_before.c[1], rod_after.c[1]),
-            (rod_before.theta, rod_after.theta),
-            (rod_before.v[0], rod_after.v[0]),
-            (rod_before.v[1], rod_after.v[1]),
-            (rod_before.omega, rod_after.omega),
-        ] {
-            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
-        }
+        assert_unmoved(&rod_before, &sys.rods(&y)[0]);
     }
 
     #[test]
@@ -220,6 +224,36 @@ mod tests {
             );
             assert_others_untouched(&before, &y);
         }
+    }
+
+    #[test]
+    fn slip_turns_the_stick_into_a_slide_from_rest_and_keeps_the_rod_where_it_was() {
+        // μ = 0.01, far inside the star's friction need: the stuck tip's
+        // friction cone is left and the slip guard has fired.
+        let (mut sys, mut y) = on_front_foot(RodMode::Stick { tip: Tip::Plus }, 0.0, 0.01);
+        let before = y;
+        let rod_before = sys.rods(&y)[0];
+        let t = sys.reset_kind(&mut y, GuardKind::Slip { rod: 0 });
+        assert_eq!(t, Transition::ModeChange { rod: 0 });
+        let modes = sys.modes();
+        assert!(
+            matches!(modes[0], RodMode::Slide { tip: Tip::Plus, .. }),
+            "{:?}",
+            modes[0]
+        );
+        assert_eq!(modes[1..], [RodMode::Free; 2]);
+        assert_eq!(sys.last_choice.map(|c| c.mode), Some(modes[0]));
+        assert_others_untouched(&before, &y);
+        // The slide starts from rest on the ground: the tip neither moves nor
+        // leaves the ground, and the rod is re-expressed, not moved.
+        let rod_after = sys.rods(&y)[0];
+        assert_unmoved(&rod_before, &rod_after);
+        let (p, v) = sys.body().tip_point(&rod_after, Tip::Plus);
+        assert!(p[1].abs() < 1e-12, "the tip stays on the ground: {}", p[1]);
+        assert!(
+            v[0].abs() < 1e-12 && v[1].abs() < 1e-12,
+            "tip at rest: {v:?}"
+        );
     }
 
     #[test]

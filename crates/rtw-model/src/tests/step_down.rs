@@ -2,9 +2,9 @@
 //! untouched by the terrain, and the largest survivable step down is a
 //! boundary of direct simulation.
 
-use rtw_model::meet_step;
-use rtw_model::options::{RobustnessOptions, TerrainOptions};
-use rtw_model::{Options, Params, simulate};
+use crate::options::{RobustnessOptions, TerrainOptions};
+use crate::run::robustness::meet_step;
+use crate::{Options, Params, simulate};
 
 #[test]
 fn a_step_of_height_zero_or_out_of_reach_is_the_flat_run_bit_for_bit() {

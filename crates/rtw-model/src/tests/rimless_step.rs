@@ -12,10 +12,10 @@
 //! watches the stance foot's normal force, `m (g cos θ − l θ̇²)`: at zero the
 //! wheel leaves the ground and no longer rolls on.
 
+use crate::options::TerrainOptions;
 use hybrid_ode::{
     Crossing, EndReason, EndsRun, EngineOptions, Flow, Guards, HybridSystem, Method, Observer, run,
 };
-use rtw_model::options::TerrainOptions;
 use std::f64::consts::PI;
 
 const G: f64 = 9.81;

@@ -1,13 +1,13 @@
 //! The ends of the Fig. 7(a) walk's branch in φ, located and named, and the
 //! branch continued through them.
 
+use crate::GuardKind;
+use crate::Tip;
+use crate::cycles::LimitCycle;
+use crate::cycles::nonsmooth::{EndKind, EndOptions, Setting, guard_name, locate_end};
+use crate::cycles::{CycleOptions, StepMap, continue_segments};
+use crate::{Options, Param, Params};
 use hybrid_ode::continuation::Options as Cont;
-use rtw_model::GuardKind;
-use rtw_model::Tip;
-use rtw_model::cycles::LimitCycle;
-use rtw_model::cycles::nonsmooth::{EndKind, EndOptions, Setting, guard_name, locate_end};
-use rtw_model::cycles::{CycleOptions, StepMap, continue_segments};
-use rtw_model::{Options, Param, Params};
 
 /// The model, the step map's settings and the settled walk at `phi`
 /// (Fig. 7(a) otherwise), with s = 0.85.
@@ -86,7 +86,7 @@ fn the_walks_lower_end_is_the_landing_foot_grazing_into_a_bounce() {
     );
     // The nontrivial multipliers go on (to 1e-5): the bounce's flight is
     // a vanishing part of the step.
-    let (mo, mn) = (e.multipliers_old(), e.multipliers_new());
+    let (mo, mn) = (&e.old.cycle.multipliers, &new.cycle.multipliers);
     for m in mo.iter().filter(|m| m.norm() > 1e-6) {
         let nearest = mn
             .iter()
