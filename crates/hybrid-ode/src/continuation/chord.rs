@@ -23,6 +23,18 @@ const CONTRACTION: f64 = 0.5;
 const BEYOND: f64 = 1e-3;
 
 impl<M: ParamMap> Scaled<'_, M> {
+    /// Newton on `G(x) = 0`, `t·(x − x0) = ds`, from `x0 + ds t`.
+    pub(super) fn correct(
+        &mut self,
+        x0: &DVector<f64>,
+        t: &DVector<f64>,
+        ds: f64,
+        tol: f64,
+        max_iter: u32,
+    ) -> Option<(DVector<f64>, At)> {
+        self.correct_from(x0, t, ds, x0 + t * ds, tol, max_iter)
+    }
+
     /// `G(x)` alone.
     fn residual(&mut self, x: &DVector<f64>) -> Option<DVector<f64>> {
         let n = self.n();

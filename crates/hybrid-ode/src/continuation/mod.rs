@@ -274,18 +274,6 @@ impl<M: ParamMap> Scaled<'_, M> {
         Some(At { g, gx, eval })
     }
 
-    /// Newton on `G(x) = 0`, `t·(x − x0) = ds`, from `x0 + ds t`.
-    fn correct(
-        &mut self,
-        x0: &DVector<f64>,
-        t: &DVector<f64>,
-        ds: f64,
-        tol: f64,
-        max_iter: u32,
-    ) -> Option<(DVector<f64>, At)> {
-        self.correct_from(x0, t, ds, x0 + t * ds, tol, max_iter)
-    }
-
     /// Newton on `G(x) = 0`, `t·(x − x0) = ds`, from `x`.
     fn correct_from(
         &mut self,
