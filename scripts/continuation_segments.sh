@@ -8,7 +8,9 @@
 #   results/bifurcation/phi-fig7a.parquet (./scripts/bifurcation.sh): same label,
 #   period and step frequency (relative 1e-3) wherever both are stable; fails the
 #   script if they disagree. Writes results/continuation/segments.md.
-# Called by ./scripts/continuation.sh; runs two continuations at once (2 cores).
+# Called by ./scripts/continuation.sh; runs the three lengths at once (each
+# continues its two directions in two threads), at the default model (its
+# strings' natural length s from configs/template.toml, as the attractor sweep).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan
@@ -21,14 +23,17 @@ run 0.7 &
 a=$!
 run 0.8 &
 b=$!
+run 0.9 &
+c=$!
 wait "$a"
-run 0.9
 wait "$b"
+wait "$c"
+s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 
 py=.venv/bin/python
 $py scripts/continuation_segments.py diagram "$out"/phi-segments-L0.{7,8,9}.segments.json \
   --sweep results/bifurcation/phi-fig7a.parquet --out "$out/phi-segments.png" \
-  --title "The Fig. 7(a) walk continued in φ through its mode-sequence changes (rtw-scan ${through[*]})"
+  --title "The Fig. 7(a) walk continued in φ through its mode-sequence changes (default model, s = $s; rtw-scan ${through[*]})"
 check=$($py scripts/continuation_segments.py check "$out/phi-segments-L0.8.segments.json" \
   results/bifurcation/phi-fig7a.parquet)
 {

@@ -22,6 +22,7 @@
 
 use nalgebra::{Complex, DMatrix, DVector};
 
+mod chord;
 mod curve;
 pub use curve::{Curve, CurvePoint, MapEval2, Options2, continue_curve};
 
@@ -41,6 +42,14 @@ pub struct MapEval {
 pub trait ParamMap {
     /// `P(z; p)` and its derivatives.
     fn eval(&mut self, z: &[f64], p: f64) -> Option<MapEval>;
+
+    /// `P(z; p)` alone: what the corrector's iterations with a kept
+    /// Jacobian need (a map whose derivatives cost far more than its value,
+    /// such as a step map with variational equations, gives it cheaply).
+    /// By default from [`ParamMap::eval`].
+    fn value(&mut self, z: &[f64], p: f64) -> Option<Vec<f64>> {
+        self.eval(z, p).map(|e| e.value)
+    }
 }
 
 impl<F: FnMut(&[f64], f64) -> Option<MapEval>> ParamMap for F {
@@ -77,6 +86,14 @@ impl<M: ParamMap> ParamMap for Iterated<M> {
             };
         }
         Some(acc)
+    }
+
+    fn value(&mut self, z: &[f64], p: f64) -> Option<Vec<f64>> {
+        let mut v = z.to_vec();
+        for _ in 0..self.n {
+            v = self.map.value(&v, p)?;
+        }
+        Some(v)
     }
 }
 
@@ -257,16 +274,16 @@ impl<M: ParamMap> Scaled<'_, M> {
         Some(At { g, gx, eval })
     }
 
-    /// Newton on `G(x) = 0`, `t·(x − x0) = ds`, from `x0 + ds t`.
-    fn correct(
+    /// Newton on `G(x) = 0`, `t·(x − x0) = ds`, from `x`.
+    fn correct_from(
         &mut self,
         x0: &DVector<f64>,
         t: &DVector<f64>,
         ds: f64,
+        mut x: DVector<f64>,
         tol: f64,
         max_iter: u32,
     ) -> Option<(DVector<f64>, At)> {
-        let mut x = x0 + t * ds;
         for _ in 0..=max_iter {
             let at = self.at(&x)?;
             let arc = t.dot(&(&x - x0)) - ds;
@@ -404,6 +421,8 @@ fn trace<M: ParamMap>(
 ) -> Branch {
     let mut points = vec![s.point(&x0, &at0, &t0)];
     let mut bifurcations = Vec::new();
+    // The Jacobian of G at the last point, kept through the next corrector.
+    let mut gx = at0.gx;
     let (mut x, mut t, mut ds) = (x0, t0, opts.ds);
     let end = loop {
         if points.len() >= opts.max_points {
@@ -412,7 +431,7 @@ fn trace<M: ParamMap>(
         // A corrector that lands farther from its predictor than the step
         // is long has likely jumped to another branch: a shorter step.
         let corrected = s
-            .correct(&x, &t, ds, opts.tol, opts.max_iter)
+            .correct_kept(&x, &t, ds, &gx, opts.tol, opts.max_iter)
             .filter(|(xn, _)| (xn - (&x + &t * ds)).norm() <= ds);
         let Some((xn, at)) = corrected else {
             ds *= 0.5;
@@ -438,7 +457,7 @@ fn trace<M: ParamMap>(
             (2, Kind::NeimarkSacker),
         ] {
             if ta[k] * tb[k] < 0.0
-                && let Some(b) = locate(s, &x, &t, ds, k, ta[k], tb[k], opts)
+                && let Some(b) = locate(s, &x, &t, &gx, ds, k, ta[k], tb[k], opts)
             {
                 let kind = match kind {
                     Kind::Fold if prev.tangent_p * new.tangent_p > 0.0 => Kind::BranchPoint,
@@ -476,6 +495,7 @@ fn trace<M: ParamMap>(
         ds = (ds * 1.5).min(opts.ds_max);
         x = xn;
         t = tn;
+        gx = at.gx;
     };
     Branch {
         points,
@@ -485,13 +505,15 @@ fn trace<M: ParamMap>(
 }
 
 /// Regula falsi (Illinois) on test function `k` along the step from `x0`
-/// (tangent `t`) of length `ds`, where it goes from `fa` to `fb`: the point
-/// where it vanishes, to a bracket of `opts.locate_tol` in arclength.
+/// (tangent `t`, `G`'s Jacobian `gx` there) of length `ds`, where it goes
+/// from `fa` to `fb`: the point where it vanishes, to a bracket of
+/// `opts.locate_tol` in arclength.
 #[allow(clippy::too_many_arguments)]
 fn locate<M: ParamMap>(
     s: &mut Scaled<'_, M>,
     x0: &DVector<f64>,
     t: &DVector<f64>,
+    gx: &DMatrix<f64>,
     ds: f64,
     k: usize,
     fa: f64,
@@ -504,7 +526,7 @@ fn locate<M: ParamMap>(
         let (lo, hi) = (a.min(b), a.max(b));
         let c = b - fb * (b - a) / (fb - fa);
         let c = if c > lo && c < hi { c } else { 0.5 * (lo + hi) };
-        let (xc, at) = s.correct(x0, t, c, opts.tol, opts.max_iter)?;
+        let (xc, at) = s.correct_kept(x0, t, c, gx, opts.tol, opts.max_iter)?;
         let tc = unit_tangent(&at.gx, t)?;
         let point = s.point(&xc, &at, &tc);
         let fc = tests(&point.jacobian)[k];

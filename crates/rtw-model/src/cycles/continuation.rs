@@ -92,6 +92,11 @@ impl ParamMap for StepMapFamily {
                 .collect(),
         })
     }
+
+    /// `Pⁿ` alone: one plain run of `n` steps.
+    fn value(&mut self, z: &[f64], value: f64) -> Option<Vec<f64>> {
+        self.power(value, &self.template.with_coords(z))
+    }
 }
 
 /// The step map with two inputs as parameters, for the curves of folds and

@@ -35,6 +35,8 @@ use crate::plant::slots::N;
 use hybrid_ode::nonsmooth::{GuardMinima, locate_change};
 use hybrid_ode::{Dense, Flow, Observer, StepEnd};
 
+mod chord;
+
 /// One event of a periodic orbit: guard `kind` fired in step `step` of the
 /// orbit (in that step's canonical labels: its stance rod is rod 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -449,7 +451,7 @@ pub(crate) fn locate_end(
         if !inside(p) {
             return Some(no_change(first, EndKind::RangeEnd));
         }
-        match s.orbit(&near.cycle.orbit[0], n, p) {
+        match s.orbit_near(&near.cycle.orbit[0], n, p, &near.cycle.fixed_point.jacobian) {
             Some(o) if o.sequence == near.sequence => {
                 moved += h;
                 h *= 2.0;
@@ -460,11 +462,12 @@ pub(crate) fn locate_end(
         }
     };
     let from = near.cycle.orbit[0];
+    let jacobian = near.cycle.fixed_point.jacobian.clone();
     // The orbits the bisection finds (each from the same start, so that the
     // two sides are the orbits it compared), by value of the input.
     let mut seen: Vec<(f64, Option<Orbit>)> = Vec::new();
     let change = locate_change(near.p, bracket_end, opts.p_tol, |p| {
-        let o = s.orbit(&from, n, p);
+        let o = s.orbit_near(&from, n, p, &jacobian);
         let sig = o.as_ref().map(|o| o.sequence.clone());
         seen.push((p, o));
         sig

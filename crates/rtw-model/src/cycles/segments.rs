@@ -22,9 +22,10 @@ struct SegmentFamily<'a> {
     sequence: ModeSequence,
 }
 
-impl ParamMap for SegmentFamily<'_> {
-    fn eval(&mut self, z: &[f64], p: f64) -> Option<MapEval> {
-        let e = self.inner.eval(z, p)?;
+impl SegmentFamily<'_> {
+    /// `Pⁿ(z)` at `p` by one plain run of `n` steps, if the run's events are
+    /// the segment's sequence.
+    fn in_sequence(&self, z: &[f64], p: f64) -> Option<Vec<f64>> {
         let map = map_at(
             self.setting.base,
             self.setting.options,
@@ -50,7 +51,20 @@ impl ParamMap for SegmentFamily<'_> {
             );
             at = step.to;
         }
-        (events == self.sequence.events).then_some(e)
+        (events == self.sequence.events && at.modes == self.template.modes).then(|| at.coords())
+    }
+}
+
+impl ParamMap for SegmentFamily<'_> {
+    /// The sequence checked first (a plain run): the variational run is
+    /// spent only on points of the segment.
+    fn eval(&mut self, z: &[f64], p: f64) -> Option<MapEval> {
+        self.in_sequence(z, p)?;
+        self.inner.eval(z, p)
+    }
+
+    fn value(&mut self, z: &[f64], p: f64) -> Option<Vec<f64>> {
+        self.in_sequence(z, p)
     }
 }
 

@@ -54,7 +54,8 @@ pub(crate) struct Direction {
     pub segments: Vec<Segment>,
 }
 
-/// Both directions from the diagram's start, `max` segments each.
+/// Both directions from the diagram's start, `max` segments each, each
+/// direction in its own thread (they share nothing).
 pub(crate) fn run(c: &Continuation, start: &LimitCycle, max: usize) -> Vec<Direction> {
     let s = Setting {
         base: &c.base,
@@ -63,22 +64,25 @@ pub(crate) fn run(c: &Continuation, start: &LimitCycle, max: usize) -> Vec<Direc
         param: c.param,
     };
     let p0 = c.param.get(&c.base);
-    [1.0, -1.0]
-        .into_iter()
-        .map(|direction| Direction {
+    let one = |direction: f64| Direction {
+        direction,
+        segments: continue_segments(
+            &s,
+            &start.orbit[0],
+            start.period,
+            p0,
             direction,
-            segments: continue_segments(
-                &s,
-                &start.orbit[0],
-                start.period,
-                p0,
-                direction,
-                &c.diagram.continuation,
-                &EndOptions::default(),
-                max,
-            ),
-        })
-        .collect()
+            &c.diagram.continuation,
+            &EndOptions::default(),
+            max,
+        ),
+    };
+    std::thread::scope(|scope| {
+        let up = scope.spawn(|| one(1.0));
+        let down = one(-1.0);
+        let up = up.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        vec![up, down]
+    })
 }
 
 /// The step map at `value` of the continued input.
