@@ -319,7 +319,9 @@ pub(crate) fn gsn(map: &StepMap, lc: &LimitCycle, edge_ahead: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::run::recorder::with_end_state;
-    use crate::run::robustness::EDGE_AHEAD;
+    /// The step's edge ahead of the front-most grounded foot, in rod
+    /// lengths: the largest step down's (run/robustness.rs).
+    const EDGE_AHEAD: f64 = 0.05;
     use hybrid_ode::EngineOptions;
 
     /// The new-foot landings (time, landing foot's `x`) of `rtw` run from `y`

@@ -1,54 +1,15 @@
 //! The optional robustness columns of a scan (docs/robustness.md): written
 //! only when the scan's options ask for the measure, after the columns of
-//! [`COLUMNS`](super::scan_rows::COLUMNS) and in [`MEASURES`]' order, so a
+//! [`COLUMNS`](super::scan_rows::COLUMNS) and in [`MEASURES`]' order (io/measures.rs), so a
 //! scan without them has exactly the scan schema.
 
+use super::measures::{MEASURES, Measure, asked};
 use super::scan_rows::{Row, schema};
 use super::table;
 use arrow_array::{ArrayRef, Float64Array, RecordBatch};
 use arrow_schema::{DataType, Schema, SchemaRef};
 use rtw_model::Options;
-use rtw_model::options::RobustnessOptions;
-use rtw_model::outcome::Robustness;
 use std::sync::Arc;
-
-/// One robustness measure's column.
-pub(crate) struct Measure {
-    /// Its name (the column, the JSON key, the Python attribute).
-    pub(crate) name: &'static str,
-    unit: &'static str,
-    doc: &'static str,
-    /// Whether the options ask for it.
-    pub(crate) asked: fn(&RobustnessOptions) -> bool,
-    /// Its value (`None` unless the gait is stable).
-    pub(crate) value: fn(&Robustness) -> Option<f64>,
-}
-
-/// The robustness measures, in column order.
-pub(crate) const MEASURES: [Measure; 2] = [
-    Measure {
-        name: "step_down_max",
-        unit: "m",
-        doc: "largest survivable step down of the gait (docs/robustness.md); null unless stable; \
-              only with robustness.step_down = true",
-        asked: |o| o.step_down,
-        value: |r| r.step_down_max,
-    },
-    Measure {
-        name: "gsn",
-        unit: "1",
-        doc: "gait sensitivity norm: H2 norm of the step time and length's response to a floor \
-              drop (docs/robustness.md); null unless stable or where it cannot be computed; \
-              only with robustness.gsn = true",
-        asked: |o| o.gsn,
-        value: |r| r.gsn,
-    },
-];
-
-/// The measures `asked` asks for, in column order.
-pub(crate) fn asked(asked: &RobustnessOptions) -> impl Iterator<Item = &'static Measure> + '_ {
-    MEASURES.iter().filter(move |m| (m.asked)(asked))
-}
 
 /// The scan schema, with the columns of `measures`.
 fn scan_schema<'a>(measures: impl Iterator<Item = &'a Measure>) -> SchemaRef {

@@ -529,7 +529,7 @@ pub(crate) fn to_text(r: &Row) -> String {
 /// forms: none unless asked for, so a row's form is unchanged by default.
 pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
     match r.outcome.and_then(|o| o.robustness) {
-        Some(m) => super::robustness_columns::asked(&m.asked)
+        Some(m) => super::measures::asked(&m.asked)
             .map(|c| (c.name, (c.value)(&m)))
             .collect(),
         None => Vec::new(),
