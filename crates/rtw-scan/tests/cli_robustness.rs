@@ -122,15 +122,14 @@ fn gsn_is_in_the_json_row_only_when_asked_for_and_changes_nothing_else() {
             assert_eq!(&v[key], value, "{key}");
         }
     }
-    // Both measures: step_down_max first, then gsn, the same values.
+    // Both measures: the same gsn.
     let both = json(&[
         "--set",
         "robustness.gsn=true",
         "--set",
         "robustness.step_down=true",
     ]);
-    let keys: Vec<_> = both.as_object().unwrap().keys().cloned().collect();
-    assert_eq!(keys[keys.len() - 2..], ["step_down_max", "gsn"]);
+    assert!(both["step_down_max"].as_f64().unwrap() > 0.0, "{both}");
     assert_eq!(both["gsn"], v["gsn"]);
 }
 

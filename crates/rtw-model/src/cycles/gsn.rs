@@ -139,9 +139,12 @@ pub(crate) fn settled_cycle(
     let map = StepMap::new(params, &flat, &cycle);
     let mut sys = rtw.clone();
     sys.terrain = flat.terrain;
-    let mut obs = crossings(&sys, y, usize::MAX, Some(&map));
+    // Not bounded by the run's `t_max`: a short run's gait may need more
+    // steps than it had to show its period.
+    let mut obs = crossings(&sys, y, SETTLE_LANDINGS, Some(&map));
     let mut y = *y;
-    let end = run(&mut sys, &mut obs, 0.0, &mut y, flat.t_max, &flat.engine());
+    let horizon = SETTLE_LANDINGS as f64 * map.horizon();
+    let end = run(&mut sys, &mut obs, 0.0, &mut y, horizon, &flat.engine());
     *work += end.work;
     if obs.failed {
         return None;
@@ -220,6 +223,9 @@ fn over_step(
     }
     Some((steps, DVector::from_vec(out)))
 }
+
+/// Most landings the flat run is continued for until a period shows.
+const SETTLE_LANDINGS: usize = 200;
 
 /// Most steps a floor drop is followed on the full simulation.
 const MAX_STEPS_OVER: usize = 2 * MAX_PERIOD;
