@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The cost of the robustness measures: the paper scan with
-# robustness.step_down=true against the plain scan, one thread each, in one
-# run (docs/robustness.md, "Cost"). Writes into a temporary directory only.
+# The cost of the robustness measures: the paper scan plain, with
+# robustness.step_down=true, and with step_down and gsn, one thread each, in
+# one run (docs/robustness.md, "Cost"). Writes into a temporary directory only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan
@@ -13,9 +13,13 @@ t0=$(date +%s.%N)
 t1=$(date +%s.%N)
 "$bin" run configs/paper.toml --out "$tmp/step" --threads 1 --quiet --set robustness.step_down=true >/dev/null
 t2=$(date +%s.%N)
-python3 - "$t0" "$t1" "$t2" <<'PY'
+"$bin" run configs/paper.toml --out "$tmp/gsn" --threads 1 --quiet --set robustness.step_down=true \
+    --set robustness.gsn=true >/dev/null
+t3=$(date +%s.%N)
+python3 - "$t0" "$t1" "$t2" "$t3" <<'PY'
 import sys
-t0, t1, t2 = map(float, sys.argv[1:])
-plain, step = t1 - t0, t2 - t1
-print(f"plain scan {plain:.2f} s, with step_down {step:.2f} s, ratio {step / plain:.1f}")
+t0, t1, t2, t3 = map(float, sys.argv[1:])
+plain, step, both = t1 - t0, t2 - t1, t3 - t2
+print(f"plain scan {plain:.2f} s, with step_down {step:.2f} s (ratio {step / plain:.1f}), "
+      f"with step_down and gsn {both:.2f} s (ratio {both / plain:.1f}; gsn alone {(both - step) / plain:.1f})")
 PY

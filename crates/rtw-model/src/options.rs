@@ -454,12 +454,14 @@ impl Options {
 pub struct RobustnessOptions {
     /// Measure the largest survivable step down (`step_down_max`).
     pub step_down: bool,
+    /// Compute the gait sensitivity norm (`gsn`, docs/robustness.md).
+    pub gsn: bool,
 }
 
 impl RobustnessOptions {
     /// Is every measure off?
     pub(crate) fn is_off(&self) -> bool {
-        !self.step_down
+        !self.step_down && !self.gsn
     }
 }
 

@@ -1,7 +1,7 @@
 //! What one run produces: the gait label and every metric of docs/model.md §5,
 //! and the rule that labels a gait (Table S1).
 
-use crate::options::LabelOptions;
+use crate::options::{LabelOptions, RobustnessOptions};
 use serde::{Deserialize, Serialize};
 
 /// Longest gait period (in steps) the model looks for, on the touchdown
@@ -489,6 +489,13 @@ pub struct Robustness {
     /// The height the gait failed at just above it: the bisection's upper
     /// end (`None` when even the cap survived).
     pub step_down_fail: Option<f64>,
+    /// The gait sensitivity norm (dimensionless; NaN where it cannot be
+    /// computed), docs/robustness.md.
+    pub gsn: Option<f64>,
+    /// Which measures were asked for (`Options::robustness`): a measure
+    /// asked for is `None` only when the gait is not stable.
+    #[serde(default)]
+    pub asked: RobustnessOptions,
     /// Integrator work of the measures' runs.
     pub work: hybrid_ode::Work,
 }

@@ -48,3 +48,27 @@ def test_a_scan_has_the_step_down_column_only_when_asked_for() -> None:
     stable = {"skip", "walk", "crawl"}
     for label, h in zip(step.column("outcome").to_pylist(), step.column("step_down_max").to_pylist()):
         assert (h is not None) == (label in stable), (label, h)
+
+
+def test_gsn_only_when_asked_for() -> None:
+    # The gait sensitivity norm (docs/robustness.md): the same key and value
+    # as `rtw-scan simulate --set robustness.gsn=true --json`.
+    flat = rtw.simulate(*FIG7A)
+    assert "gsn" not in flat.to_dict()
+    out = rtw.simulate(*FIG7A, options={"robustness.gsn": True})
+    assert out.gsn == pytest.approx(4.6349, abs=1e-3)
+    assert "step_down_max" not in out.to_dict()
+    for key, value in flat.to_dict().items():
+        if key != "wall_time_s":
+            assert out.to_dict()[key] == value, key
+    with pytest.raises(ValueError, match=r"robustness\.gsn"):
+        rtw.simulate(*FIG7A, options={"robustness.gsn": 2})
+
+
+def test_a_scan_has_the_gsn_column_only_when_asked_for() -> None:
+    plain = rtw.scan(SMALL_SCAN, progress=False)
+    both = rtw.scan(SMALL_SCAN, set={"robustness.step_down": True, "robustness.gsn": True}, progress=False)
+    assert both.column_names == plain.column_names + ["step_down_max", "gsn"]
+    stable = {"skip", "walk", "crawl"}
+    for label, g in zip(both.column("outcome").to_pylist(), both.column("gsn").to_pylist()):
+        assert label in stable or g is None, (label, g)

@@ -1,5 +1,6 @@
 //! `rtw-scan simulate` over a step down and with the robustness measures
-//! (docs/robustness.md), with the real simulator.
+//! (`robustness.step_down`, `robustness.gsn`; docs/robustness.md), with the
+//! real simulator.
 
 mod common;
 
@@ -104,4 +105,58 @@ fn a_scan_has_the_step_down_column_only_when_asked_for_and_the_same_rows_besides
         assert_eq!(value == "step_down_max=null", !is_stable, "{label} {value}");
     }
     assert!(stable > 0);
+}
+
+#[test]
+fn gsn_is_in_the_json_row_only_when_asked_for_and_changes_nothing_else() {
+    let flat = json(&[]);
+    assert!(flat.get("gsn").is_none(), "{flat}");
+    let v = json(&["--set", "robustness.gsn=true"]);
+    // The Fig. 7(a) walk's norm (crates/rtw-model/src/cycles/gsn.rs checks
+    // it against the full simulation's response to a small step).
+    let g = v["gsn"].as_f64().unwrap();
+    assert!((g - 4.6349).abs() < 1e-3, "{v}");
+    assert!(v.get("step_down_max").is_none(), "{v}");
+    for (key, value) in flat.as_object().unwrap() {
+        if key != "wall_time_s" {
+            assert_eq!(&v[key], value, "{key}");
+        }
+    }
+    // Both measures: the same gsn.
+    let both = json(&[
+        "--set",
+        "robustness.gsn=true",
+        "--set",
+        "robustness.step_down=true",
+    ]);
+    assert!(both["step_down_max"].as_f64().unwrap() > 0.0, "{both}");
+    assert_eq!(both["gsn"], v["gsn"]);
+}
+
+#[test]
+fn a_scan_has_the_gsn_column_only_when_asked_for_and_the_same_rows_besides() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "s.toml", &paper_like(12, 7));
+    let (plain, with) = (dir.path().join("plain"), dir.path().join("gsn"));
+    let args = |out| ["run", &cfg, "--out", s(out), "--quiet", "--chunk-size", "5"];
+    run_ok(&args(&plain));
+    run_ok(&[&args(&with)[..], &["--set", "robustness.gsn=true"]].concat());
+    let (plain, with) = (plain.join("samples.parquet"), with.join("samples.parquet"));
+    let names = column_names(&plain);
+    let mut expected = names.clone();
+    expected.push("gsn".into());
+    assert_eq!(column_names(&with), expected);
+    let (a, b) = (rows(&plain), rows(&with));
+    let mut computed = 0;
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!(a[..], b[..a.len()]);
+        let label = &a[names.iter().position(|n| n == "outcome").unwrap()];
+        let is_stable = ["outcome=skip", "outcome=walk", "outcome=crawl"].contains(&label.as_str());
+        let value = &b[a.len()];
+        if !is_stable {
+            assert_eq!(value, "gsn=null", "{label}");
+        }
+        computed += (value != "gsn=null") as usize;
+    }
+    assert!(computed > 0);
 }

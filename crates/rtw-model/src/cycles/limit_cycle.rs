@@ -21,21 +21,39 @@ pub const RUN_PERIOD_TOL: f64 = 1e-3;
 /// run's latest section crossings, then Newton on `Pⁿ(z) = z` from the last
 /// one. `None` when no period shows or Newton fails.
 pub fn cycle_of_run(params: &Params, options: &Options, log: &SectionLog) -> Option<CycleSummary> {
-    // Differences: 4× cheaper than the variational equations here, and as
-    // good for a scan column (the tests check the two against each other).
-    let cycle = CycleOptions {
-        jacobian: Jacobian::Differences { rel: 1e-6 },
-        ..CycleOptions::default()
-    };
+    let cycle = run_cycle_options();
     let map = StepMap::new(params, options, &cycle);
-    let hist = log.latest();
-    let n = map.period_of(&hist, cycle.max_period, RUN_PERIOD_TOL)?;
-    let lc = map.solve(hist.last()?, n, &cycle).ok()?;
+    let lc = map.cycle_of_crossings(&log.latest(), &cycle)?;
     Some(CycleSummary {
-        period: n as u32,
+        period: lc.period as u32,
         floquet_max: lc.floquet_max(),
         residual: lc.fixed_point.residual,
     })
+}
+
+/// The settings of the limit-cycle analysis of a finished run.
+pub(crate) fn run_cycle_options() -> CycleOptions {
+    // Differences: 4× cheaper than the variational equations here, and as
+    // good for a scan column (the tests check the two against each other).
+    CycleOptions {
+        jacobian: Jacobian::Differences { rel: 1e-6 },
+        ..CycleOptions::default()
+    }
+}
+
+impl StepMap {
+    /// The limit cycle of a run's section crossings `hist` (oldest first):
+    /// the period recognised on them ([`RUN_PERIOD_TOL`]), then Newton on
+    /// `Pⁿ(z) = z` from the last one. `None` when no period shows or Newton
+    /// fails.
+    pub(crate) fn cycle_of_crossings(
+        &self,
+        hist: &[SectionPoint],
+        cycle: &CycleOptions,
+    ) -> Option<LimitCycle> {
+        let n = self.period_of(hist, cycle.max_period, RUN_PERIOD_TOL)?;
+        self.solve(hist.last()?, n, cycle).ok()
+    }
 }
 
 /// A periodic gait found on the step map.

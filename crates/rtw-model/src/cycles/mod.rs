@@ -6,6 +6,7 @@
 //! | `section.rs` | which touchdowns cross the section, its points in canonical labels (the 60° symmetry), the log of a run's crossings | [`Section`], [`SectionPoint`] |
 //! | `stepmap.rs` | the step map, its Jacobian (variational or differences), its iterates and periods | [`StepMap`], [`CycleOptions`], [`Jacobian`], [`Step`], [`StepError`] |
 //! | `limit_cycle.rs` | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run | [`LimitCycle`], [`CycleError`] |
+//! | `gsn.rs` | the gait sensitivity norm: the map linearised with the floor height as input, its H2 norm | (crate-private; a run's `gsn`) |
 //! | `continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
 //! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost): the orbit's mode sequence and closest approaches, the located end | [`ModeSequence`], [`ModeEvent`], [`Approach`], [`Orbit`], [`Setting`], [`EndOptions`], [`EndKind`], [`BranchEnd`] |
 //! | `basin.rs` | a slice of a gait's basin of attraction: a grid of perturbed section points, each iterated and classified | [`Basin`], [`BasinSpec`], [`follow`] |
@@ -13,6 +14,7 @@
 
 pub(crate) mod basin;
 pub(crate) mod continuation;
+pub(crate) mod gsn;
 pub(crate) mod limit_cycle;
 pub(crate) mod nonsmooth;
 pub(crate) mod section;

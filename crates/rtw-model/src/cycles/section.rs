@@ -217,6 +217,20 @@ impl Default for SectionLog {
 }
 
 impl SectionLog {
+    /// An empty log of a run whose stance foot is spoke `stance` (in the
+    /// run's labels) now.
+    pub(crate) fn starting_at(stance: usize) -> Self {
+        Self {
+            stance,
+            ..Self::default()
+        }
+    }
+
+    /// How many crossings were recorded (more than it keeps).
+    pub(crate) fn count(&self) -> usize {
+        self.len
+    }
+
     /// Records the touchdown of `tip` of `rod` (state `y` just after it, in
     /// `modes`) if it crosses the section (`new_foot`).
     pub fn on_touchdown(&mut self, modes: &[RodMode; 3], y: &[f64; N], rod: usize, tip: Tip) {

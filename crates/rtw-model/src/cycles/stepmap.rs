@@ -295,6 +295,25 @@ impl StepMap {
         self.run_step(rtw, p.y, extra)
     }
 
+    /// The map's system at `p` (in its modes) and integrator settings: for a
+    /// run of the full simulation from a section point.
+    pub(crate) fn plant_at(&self, p: &SectionPoint) -> (Rtw, EngineOptions) {
+        let mut rtw = self.rtw.clone();
+        rtw.modes = p.modes;
+        (rtw, self.engine)
+    }
+
+    /// Longest step (s) before the map gives up.
+    pub(crate) fn horizon(&self) -> f64 {
+        self.horizon
+    }
+
+    /// The units of the map's lengths and times: `L` (m) and `sqrt(L/g)` (s).
+    pub(crate) fn units(&self) -> (f64, f64) {
+        let l = self.slot_scale[X];
+        (l, 1.0 / self.slot_scale[slots::OMEGA])
+    }
+
     fn run_step<O: Observer<N, Rtw>>(
         &self,
         mut rtw: Rtw,

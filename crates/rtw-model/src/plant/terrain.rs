@@ -32,6 +32,7 @@
 
 use crate::outcome::FailureDetail;
 use crate::plant::contact::RodMode;
+use crate::plant::geometry::SPOKES;
 use crate::plant::rtw::{Rtw, Transition};
 use crate::plant::slots::{self, N, X, Y};
 
@@ -41,6 +42,19 @@ impl Rtw {
     #[inline]
     pub(crate) fn ground(&self, x: f64) -> f64 {
         self.terrain.ground(x)
+    }
+
+    /// The front-most (furthest downhill) grounded tip of state `y`: its
+    /// spoke ([`SPOKES`]) and its `x`; `None` when every rod is free. A
+    /// step met by the gait has its edge ahead of it.
+    pub(crate) fn front_foot(&self, y: &[f64; N]) -> Option<(usize, f64)> {
+        let rods = self.rods(y);
+        SPOKES
+            .iter()
+            .enumerate()
+            .filter(|(_, (rod, tip))| self.modes[*rod].tip() == Some(*tip))
+            .map(|(j, &(rod, tip))| (j, self.body.tip_point(&rods[rod], tip).0[0]))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
     }
 
     /// Puts a grounded rod's height slot at the ground under its tip (the

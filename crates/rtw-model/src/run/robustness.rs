@@ -1,5 +1,6 @@
 //! How much disturbance a gait survives (docs/robustness.md): the largest
-//! step down it walks on from.
+//! step down it walks on from, and the gait sensitivity norm
+//! ([`crate::cycles::gsn`]).
 //!
 //! **Survives** (docs/model.md §5, "Robustness"): the gait is met by a step
 //! down of height `h` when it has settled (the state the flat run ended in,
@@ -98,19 +99,11 @@ pub(crate) fn settled<'a>(
     y: &'a [f64; N],
     flat: &'a Outcome,
 ) -> SettledGait<'a> {
-    let front = rtw
-        .rods(y)
-        .iter()
-        .zip(rtw.modes())
-        .filter_map(|(r, m)| m.tip().map(|tip| rtw.body.tip_point(r, tip).0[0]))
-        .fold(f64::NEG_INFINITY, f64::max);
     // Every stable gait has a foot down at a touchdown; a run that ended
     // mid-flight (no early stop) measures from its centre of mass instead.
-    let front = if front.is_finite() {
-        front
-    } else {
-        rtw.centre_of_mass(y)[0]
-    };
+    let front = rtw
+        .front_foot(y)
+        .map_or_else(|| rtw.centre_of_mass(y)[0], |(_, x)| x);
     let mut options = *options;
     options.limit_cycle = false;
     options.robustness = RobustnessOptions::default();
@@ -175,9 +168,17 @@ pub(crate) fn measure(
         }
         false => (None, None),
     };
+    let gsn = options.robustness.gsn.then(|| {
+        crate::cycles::gsn::settled_cycle(params, options, rtw, y, &mut work)
+            .map_or(f64::NAN, |(map, lc)| {
+                crate::cycles::gsn::gsn(&map, &lc, EDGE_AHEAD)
+            })
+    });
     Robustness {
         step_down_max,
         step_down_fail,
+        gsn,
+        asked: options.robustness,
         work,
     }
 }

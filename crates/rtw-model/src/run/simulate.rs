@@ -3,7 +3,7 @@
 //! for (robustness.rs) added to a stable gait's outcome.
 
 use crate::options::Options;
-use crate::outcome::{Outcome, TraceSample};
+use crate::outcome::{Outcome, Robustness, TraceSample};
 use crate::params::Params;
 use crate::run::recorder::start_and_run;
 use crate::run::robustness::measure;
@@ -37,7 +37,10 @@ fn simulate_inner(
             if !options.robustness.is_off() {
                 outcome.robustness = Some(match outcome.label.is_stable() {
                     true => measure(params, options, &phys, &rtw, &y, &outcome),
-                    false => Default::default(),
+                    false => Robustness {
+                        asked: options.robustness,
+                        ..Default::default()
+                    },
                 });
             }
             outcome

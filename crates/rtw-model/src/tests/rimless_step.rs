@@ -321,3 +321,44 @@ fn a_step_just_ahead_of_the_landing_foot_is_a_riser_hit() {
     let s = walk(w, cf.omega_star, 2);
     assert_eq!(s.end, Some(Event::Riser));
 }
+
+/// The wheel's gait sensitivity norm in closed form (docs/robustness.md,
+/// "The gait sensitivity norm"), indicator the post-impact rate (the wheel's
+/// speed), input the drop met by the next landing: `y_0 = b`,
+/// `y_k = c^{2(k−1)} r`, `GSN² = b² + r² / (1 − c⁴)`.
+fn gsn_closed_form(w: &Wheel) -> f64 {
+    let (l, a, gm) = (w.l, w.alpha, w.gamma);
+    let c2 = (2.0 * a).cos().powi(2);
+    let omega = closed_form(w, 0.0).omega_star;
+    let d_delta = 1.0 / (2.0 * l * a.sin());
+    let a_theta = -c2 * (G / l) * (gm - a).sin() / omega;
+    let b = c2 * (G / l) * (gm + a).sin() * d_delta / omega;
+    let r = a_theta * d_delta + c2 * b;
+    (b * b + r * r / (1.0 - c2 * c2)).sqrt()
+}
+
+#[test]
+fn the_engines_response_to_a_small_step_is_the_closed_form_gsn() {
+    // The engine's wheel met by a real step of ε at the fixed point, its
+    // post-impact rates against the flat walk's, divided by ε and summed in
+    // squares over 60 steps (c⁴ = 1/4: the response is below 1e-30 by
+    // then). What is left is the map's curvature, of order ε.
+    let closed = gsn_closed_form(&wheel(0.0));
+    let omega = closed_form(&wheel(0.0), 0.0).omega_star;
+    let flat = walk(wheel(0.0), omega, 60).seen;
+    let rel: Vec<f64> = [1e-4, 1e-5]
+        .iter()
+        .map(|&eps| {
+            let over = walk(wheel(eps), omega, 60).seen;
+            let simulated = over
+                .iter()
+                .zip(&flat)
+                .map(|(a, b)| ((a.1 - b.1) / eps).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            eprintln!("rimless wheel: GSN {closed:.9}, simulated over {eps} m {simulated:.9}");
+            (simulated - closed).abs() / closed
+        })
+        .collect();
+    assert!(rel[1] < 1e-4 && rel[1] < rel[0] / 3.0, "{rel:?}");
+}

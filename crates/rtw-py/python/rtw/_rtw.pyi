@@ -68,6 +68,9 @@ class Outcome:
     rhs_evals: int | None
     events: int | None
     wall_time_s: float
+    # Only when the options ask for them (docs/robustness.md), after the
+    # columns: step_down_max (robustness.step_down) and gsn (robustness.gsn),
+    # both float | None; read them with getattr or to_dict().
     def to_dict(self) -> dict[str, Any]: ...
 
 class LimitCycle:

@@ -5,6 +5,7 @@
 //! |---|---|
 //! | `table` | a file's columns listed once (name, unit, meaning, getter) → schema and batches |
 //! | `scan_rows` | the scan row and its table; its JSON and text forms |
+//! | `measures` | the robustness measures' names, units and values (`robustness.*`) |
 //! | `robustness_columns` | the optional robustness columns of a scan (`robustness.*`) |
 //! | `scan_files` | scan batches read back and checked; chunks and parts concatenated |
 //! | `parquet` | Parquet files written atomically with a content hash, read back verified |
@@ -19,6 +20,7 @@
 pub(crate) mod content_hash;
 pub(crate) mod destination;
 pub(crate) mod files;
+pub(crate) mod measures;
 pub(crate) mod metadata;
 pub(crate) mod parquet;
 pub(crate) mod robustness_columns;

@@ -528,10 +528,10 @@ pub(crate) fn to_text(r: &Row) -> String {
 /// docs/robustness.md), after the scan row's columns in its JSON and text
 /// forms: none unless asked for, so a row's form is unchanged by default.
 pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
-    // `robustness.step_down` is the one measure so far: a run carries
-    // robustness measures exactly when it was asked for.
     match r.outcome.and_then(|o| o.robustness) {
-        Some(m) => vec![("step_down_max", m.step_down_max)],
+        Some(m) => super::measures::asked(&m.asked)
+            .map(|c| (c.name, (c.value)(&m)))
+            .collect(),
         None => Vec::new(),
     }
 }
