@@ -25,7 +25,7 @@ fn scan_schema<'a>(measures: impl Iterator<Item = &'a Measure>) -> SchemaRef {
 /// `batch` (scan rows in the scan schema) with the robustness columns the
 /// scan's `options` ask for, read from `rows`.
 pub(crate) fn with_robustness(batch: RecordBatch, rows: &[Row], options: &Options) -> RecordBatch {
-    if options.robustness.is_off() {
+    if asked(&options.robustness).next().is_none() {
         return batch;
     }
     let mut columns: Vec<ArrayRef> = batch.columns().to_vec();
