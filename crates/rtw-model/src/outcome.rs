@@ -476,8 +476,31 @@ pub struct Robustness {
     /// The height the gait failed at just above it: the bisection's upper
     /// end (`None` when even the cap survived).
     pub step_down_fail: Option<f64>,
+    /// The mean steps to fall on a rough slope (Monte Carlo,
+    /// docs/robustness.md).
+    pub steps_to_fall: Option<StepsToFall>,
     /// Integrator work of the measures' runs.
     pub work: hybrid_ode::Work,
+}
+
+/// Steps to fall on seeded rough slopes (docs/robustness.md): over the
+/// trials, the mean of the steps of the flat gait each walked before it
+/// failed, a trial that had not failed after `max_steps` counting as
+/// `max_steps` (censored). With any trial censored the mean is a lower bound
+/// of the mean first-passage time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StepsToFall {
+    /// The (censored) mean steps to fall.
+    pub mean: f64,
+    /// The lower end of its 95 % confidence interval (normal, mean ± 1.96
+    /// standard errors, cut at 0).
+    pub lo: f64,
+    /// The upper end.
+    pub hi: f64,
+    /// How many trials were censored (never failed).
+    pub censored: u32,
+    /// How many trials were run.
+    pub trials: u32,
 }
 
 #[cfg(test)]

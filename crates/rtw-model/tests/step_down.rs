@@ -45,7 +45,10 @@ fn a_step_met_on_the_way_changes_the_run() {
 fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
     let p = Params::fig7a();
     let o = Options {
-        robustness: RobustnessOptions { step_down: true },
+        robustness: RobustnessOptions {
+            step_down: true,
+            ..RobustnessOptions::default()
+        },
         ..Options::default()
     };
     let out = simulate(&p, &o);

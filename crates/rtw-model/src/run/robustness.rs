@@ -32,6 +32,7 @@ use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
 use crate::run::recorder::run_from;
+use crate::run::steps_to_fall::steps_to_fall;
 use hybrid_ode::Work;
 
 /// The step's edge lies this many rod lengths ahead of the front-most
@@ -56,26 +57,33 @@ pub const STEP_DOWN_ATOL: f64 = 1e-3;
 /// The settled gait of a stable flat run, ready to meet a step.
 pub(crate) struct SettledGait<'a> {
     params: &'a Params,
-    options: Options,
+    pub(super) options: Options,
     phys: &'a Physical,
     rtw: &'a Rtw,
     y: &'a [f64; N],
-    flat: &'a Outcome,
-    edge: f64,
+    pub(super) flat: &'a Outcome,
+    /// Where the ground ahead of the gait starts (m): a step's edge, or the
+    /// first rough patch.
+    pub(super) edge: f64,
 }
 
 impl SettledGait<'_> {
-    /// The run over a step of `h`: its outcome and whether the gait survived.
-    pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
+    /// The run from the settled state on `terrain` under `options`.
+    pub(super) fn run_on(
+        &self,
+        terrain: TerrainOptions,
+        options: &Options,
+        work: &mut Work,
+    ) -> Outcome {
         let mut sys = self.rtw.clone();
-        sys.terrain = TerrainOptions::step(h, self.edge);
+        sys.terrain = terrain;
         // The energy dissipated so far is the flat run's, not this one's.
         let mut y = *self.y;
         y[DISSIPATED] = 0.0;
         y[FRICTION] = 0.0;
         let (o, _, _) = run_from(
             self.params,
-            &self.options,
+            options,
             self.phys,
             sys,
             y,
@@ -84,6 +92,12 @@ impl SettledGait<'_> {
             None,
         );
         *work += o.work;
+        o
+    }
+
+    /// The run over a step of `h`: its outcome and whether the gait survived.
+    pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
+        let o = self.run_on(TerrainOptions::step(h, self.edge), &self.options, work);
         (o, o.label == self.flat.label)
     }
 }
@@ -175,9 +189,14 @@ pub(crate) fn measure(
         }
         false => (None, None),
     };
+    let steps_to_fall = options
+        .robustness
+        .steps_to_fall
+        .then(|| steps_to_fall(&s, &options.robustness, options.terrain, &mut work));
     Robustness {
         step_down_max,
         step_down_fail,
+        steps_to_fall,
         work,
     }
 }
