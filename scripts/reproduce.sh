@@ -9,6 +9,7 @@
 #   5. the figures (./scripts/figures.sh) -> results/figures/, the bifurcation
 #      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/ and the continuation
 #      diagrams (./scripts/continuation.sh) -> results/continuation/
+#      and the robustness study (./scripts/robustness_study.sh) -> results/robustness/
 #   6. Fig. S2 by each definition of f_w (scripts/fig_s2_frequencies.py) -> results/fig-s2/frequencies.*
 #   7. the standing start and label rule against the previous default (scripts/fidelity_report.py)
 #      -> results/fidelity.md
@@ -46,6 +47,7 @@ fi
 } >results/errata.md
 ./scripts/figures.sh
 ./scripts/bifurcation.sh >/dev/null
+./scripts/robustness_study.sh >/dev/null
 .venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
 .venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null

@@ -468,9 +468,12 @@ impl Label {
     }
 }
 
-/// A gait's robustness measures (each `None` unless asked for).
+/// A gait's robustness measures (each `None` unless asked for, or when the
+/// run is not a stable gait).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Robustness {
+    /// The measures the run was asked for (its `robustness.*` options).
+    pub asked: crate::options::RobustnessOptions,
     /// The largest survivable step down (m), see the module doc.
     pub step_down_max: Option<f64>,
     /// The height the gait failed at just above it: the bisection's upper

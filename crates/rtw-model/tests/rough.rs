@@ -21,7 +21,11 @@ fn roughness_zero_or_out_of_reach_is_the_flat_run_bit_for_bit() {
         // guards run all along, and change nothing.
         TerrainOptions::rough(0.01, 5, 1e6, 0.2),
     ] {
-        assert_eq!(format!("{:?}", simulate(&p, &on(terrain))), flat, "{terrain:?}");
+        assert_eq!(
+            format!("{:?}", simulate(&p, &on(terrain))),
+            flat,
+            "{terrain:?}"
+        );
     }
 }
 

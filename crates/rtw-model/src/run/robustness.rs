@@ -194,6 +194,7 @@ pub(crate) fn measure(
         .steps_to_fall
         .then(|| steps_to_fall(&s, &options.robustness, options.terrain, &mut work));
     Robustness {
+        asked: options.robustness,
         step_down_max,
         step_down_fail,
         steps_to_fall,

@@ -3,6 +3,7 @@
 //! for (robustness.rs) added to a stable gait's outcome.
 
 use crate::options::Options;
+use crate::outcome::Robustness;
 use crate::outcome::{Outcome, TraceSample};
 use crate::params::Params;
 use crate::run::recorder::start_and_run;
@@ -37,7 +38,10 @@ fn simulate_inner(
             if !options.robustness.is_off() {
                 outcome.robustness = Some(match outcome.label.is_stable() {
                     true => measure(params, options, &phys, &rtw, &y, &outcome),
-                    false => Default::default(),
+                    false => Robustness {
+                        asked: options.robustness,
+                        ..Default::default()
+                    },
                 });
             }
             outcome

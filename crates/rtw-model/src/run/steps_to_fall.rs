@@ -85,6 +85,9 @@ mod tests {
         let half = Z95 * (17.0f64 / 4.0).sqrt();
         assert!((s.hi - 6.5 - half).abs() < 1e-12 && (6.5 - s.lo - half).abs() < 1e-12);
         let all = summarize(&[10.0; 3], 10.0);
-        assert_eq!((all.mean, all.lo, all.hi, all.censored), (10.0, 10.0, 10.0, 3));
+        assert_eq!(
+            (all.mean, all.lo, all.hi, all.censored),
+            (10.0, 10.0, 10.0, 3)
+        );
     }
 }

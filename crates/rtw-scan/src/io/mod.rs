@@ -6,6 +6,7 @@
 //! | `table` | a file's columns listed once (name, unit, meaning, getter) → schema and batches |
 //! | `scan_rows` | the scan row and its table; its JSON and text forms |
 //! | `robustness_columns` | the optional robustness columns of a scan (`robustness.*`) |
+//! | `robustness_measures` | the robustness measures a row can carry, by name, and the options that ask for them |
 //! | `scan_files` | scan batches read back and checked; chunks and parts concatenated |
 //! | `parquet` | Parquet files written atomically with a content hash, read back verified |
 //! | `content_hash` | the hash of a table's values, independent of batches and pages, and of its metadata |
@@ -22,6 +23,7 @@ pub(crate) mod files;
 pub(crate) mod metadata;
 pub(crate) mod parquet;
 pub(crate) mod robustness_columns;
+pub(crate) mod robustness_measures;
 pub(crate) mod scan_files;
 pub(crate) mod scan_rows;
 pub(crate) mod sizes;

@@ -8,6 +8,7 @@
 //! label list [`Label::ALL`] (pandas and polars read it as categorical);
 //! floats are `Float64`, counts `Int64`.
 
+use crate::io::robustness_measures::picked;
 use crate::io::table::{self, Column, Get};
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
@@ -528,10 +529,10 @@ pub(crate) fn to_text(r: &Row) -> String {
 /// docs/robustness.md), after the scan row's columns in its JSON and text
 /// forms: none unless asked for, so a row's form is unchanged by default.
 pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
-    // `robustness.step_down` is the one measure so far: a run carries
-    // robustness measures exactly when it was asked for.
     match r.outcome.and_then(|o| o.robustness) {
-        Some(m) => vec![("step_down_max", m.step_down_max)],
+        Some(m) => picked(|c| (c.on)(&m.asked))
+            .map(|c| (c.name, (c.get)(&m)))
+            .collect(),
         None => Vec::new(),
     }
 }
