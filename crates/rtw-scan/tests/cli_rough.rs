@@ -61,14 +61,31 @@ fn rough_terrain_options_run_and_are_validated() {
         f["wall_time_s"] = zero["wall_time_s"].clone();
         f
     });
-    let rough = json(&["--set", "terrain.roughness=0.01", "--set", "terrain.step_at=3"]);
+    let rough = json(&[
+        "--set",
+        "terrain.roughness=0.01",
+        "--set",
+        "terrain.step_at=3",
+    ]);
     assert_ne!(rough["t_end"], flat["t_end"]);
     for (set, message) in [
-        ("terrain.roughness=-0.1", "simulation.terrain.roughness: -0.1 is invalid"),
+        (
+            "terrain.roughness=-0.1",
+            "simulation.terrain.roughness: -0.1 is invalid",
+        ),
         ("terrain.patch=0", "simulation.terrain.patch: 0 is invalid"),
-        ("robustness.sigma=-1", "simulation.robustness.sigma: -1 is invalid"),
-        ("robustness.trials=1", "simulation.robustness.trials: 1 is invalid"),
+        (
+            "robustness.sigma=-1",
+            "simulation.robustness.sigma: -1 is invalid",
+        ),
+        (
+            "robustness.trials=1",
+            "simulation.robustness.trials: 1 is invalid",
+        ),
     ] {
-        run_err(&[&FIG7A[..], &["--set", set]].concat(), &[message, "must be in"]);
+        run_err(
+            &[&FIG7A[..], &["--set", set]].concat(),
+            &[message, "must be in"],
+        );
     }
 }

@@ -57,24 +57,19 @@ pub const STEP_DOWN_ATOL: f64 = 1e-3;
 /// The settled gait of a stable flat run, ready to meet a step.
 pub(crate) struct SettledGait<'a> {
     params: &'a Params,
-    pub(super) options: Options,
+    options: Options,
     phys: &'a Physical,
     rtw: &'a Rtw,
     y: &'a [f64; N],
-    pub(super) flat: &'a Outcome,
+    flat: &'a Outcome,
     /// Where the ground ahead of the gait starts (m): a step's edge, or the
     /// first rough patch.
-    pub(super) edge: f64,
+    edge: f64,
 }
 
 impl SettledGait<'_> {
     /// The run from the settled state on `terrain` under `options`.
-    pub(super) fn run_on(
-        &self,
-        terrain: TerrainOptions,
-        options: &Options,
-        work: &mut Work,
-    ) -> Outcome {
+    fn run_on(&self, terrain: TerrainOptions, options: &Options, work: &mut Work) -> Outcome {
         let mut sys = self.rtw.clone();
         sys.terrain = terrain;
         // The energy dissipated so far is the flat run's, not this one's.
@@ -189,10 +184,16 @@ pub(crate) fn measure(
         }
         false => (None, None),
     };
-    let steps_to_fall = options
-        .robustness
-        .steps_to_fall
-        .then(|| steps_to_fall(&s, &options.robustness, options.terrain, &mut work));
+    let steps_to_fall = options.robustness.steps_to_fall.then(|| {
+        steps_to_fall(
+            |ground, o| s.run_on(ground, o, &mut work),
+            flat.f_w,
+            s.edge,
+            &s.options,
+            &options.robustness,
+            options.terrain,
+        )
+    });
     Robustness {
         asked: options.robustness,
         step_down_max,

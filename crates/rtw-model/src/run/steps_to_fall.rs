@@ -3,8 +3,8 @@
 //!
 //! The settled gait (the state its stable flat run ended in, as for the
 //! step down) walks onto a rough slope ([`TerrainOptions::rough`]) whose
-//! first patch starts [`EDGE_AHEAD`](super::robustness::EDGE_AHEAD)` × L`
-//! ahead of its front-most grounded tip, patches `terrain.patch` long with
+//! first patch starts `EDGE_AHEAD × L` (robustness.rs) ahead of its
+//! front-most grounded tip, patches `terrain.patch` long with
 //! heights from N(0, σ²), σ = `robustness.sigma`. Trial `i` (of
 //! `robustness.trials`) has seed `terrain.seed + i`. It runs for
 //! `robustness.max_steps` steps of the flat gait (`max_steps / f_w` seconds,
@@ -14,38 +14,40 @@
 //! the flat gait would have taken by then. A trial that has not fallen is
 //! censored at `max_steps`.
 
-use super::robustness::SettledGait;
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
-use crate::outcome::StepsToFall;
-use hybrid_ode::Work;
+use crate::outcome::{Outcome, StepsToFall};
 
 /// Two-sided 95 % quantile of the standard normal.
 const Z95: f64 = 1.959_963_984_540_054;
 
-/// The steps to fall of the settled gait `s` over `r.trials` rough grounds
-/// of roughness `r.sigma` with `terrain`'s seed and patch length.
+/// The steps to fall of a settled gait with touchdown rate `f_w` whose
+/// ground ahead starts at `edge`, over `r.trials` rough grounds of
+/// roughness `r.sigma` with `terrain`'s seed and patch length; `run_on`
+/// runs it from its settled state on a ground under options (the step
+/// down's runner, robustness.rs).
 pub(crate) fn steps_to_fall(
-    s: &SettledGait<'_>,
+    mut run_on: impl FnMut(TerrainOptions, &Options) -> Outcome,
+    f_w: f64,
+    edge: f64,
+    settled_options: &Options,
     r: &RobustnessOptions,
     terrain: TerrainOptions,
-    work: &mut Work,
 ) -> StepsToFall {
-    let f_w = s.flat.f_w;
     let max_steps = f64::from(r.max_steps);
     let options = Options {
         t_max: max_steps / f_w,
         stop_when_settled: false,
-        ..s.options
+        ..*settled_options
     };
     let steps: Vec<f64> = (0..r.trials)
         .map(|i| {
             let ground = TerrainOptions::rough(
                 r.sigma,
                 terrain.seed.wrapping_add(u64::from(i)),
-                s.edge,
+                edge,
                 terrain.patch,
             );
-            let o = s.run_on(ground, &options, work);
+            let o = run_on(ground, &options);
             if o.label.is_stable() {
                 max_steps
             } else {
