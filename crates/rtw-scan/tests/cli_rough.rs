@@ -5,10 +5,7 @@ mod common;
 
 use common::*;
 
-const FIG7A: [&str; 13] = [
-    "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta",
-    "0.0514", "--phi", "0.15",
-];
+const FIG7A: [&str; 13] = SIMULATE_FIG7A;
 
 fn json(extra: &[&str]) -> serde_json::Value {
     let o = run_ok(&[&FIG7A[..], &["--json"], extra].concat());
