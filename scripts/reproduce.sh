@@ -11,6 +11,7 @@
 #      diagrams (./scripts/bifurcation.sh) -> results/bifurcation/ and the continuation
 #      diagrams (./scripts/continuation.sh) -> results/continuation/, the basin slice of
 #      Fig. 7(a) (./scripts/basin.sh) -> results/robustness/basin_fig7a.*
+#      and the robustness study (./scripts/robustness_study.sh) -> results/robustness/
 #   6. Fig. S2 by each definition of f_w (scripts/fig_s2_frequencies.py) -> results/fig-s2/frequencies.*
 #   7. the standing start and label rule against the previous default (scripts/fidelity_report.py)
 #      -> results/fidelity.md
@@ -50,6 +51,7 @@ fi
 ./scripts/figures.sh
 ./scripts/bifurcation.sh >/dev/null
 ./scripts/basin.sh >/dev/null
+./scripts/robustness_study.sh >/dev/null
 .venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
 .venv/bin/python scripts/fidelity_report.py >/dev/null
 .venv/bin/python scripts/reproduction_report.py >/dev/null

@@ -435,6 +435,7 @@ impl Options {
             |v| (0.0..1.0).contains(&v),
         )?;
         self.terrain.validate()?;
+        self.robustness.validate()?;
         let mu = self.contact.mu;
         if !(mu == f64::INFINITY || (mu.is_finite() && (0.0..=MU_MAX_FINITE).contains(&mu))) {
             return Err(ParamError::new(
@@ -448,20 +449,91 @@ impl Options {
 }
 
 /// Which robustness measures a stable run adds (the keys `robustness.*` of a
-/// config's `[simulation]` table). All off by default.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// config's `[simulation]` table). All off by default; the Monte Carlo
+/// settings are left out of a serialized config while at their defaults.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RobustnessOptions {
     /// Measure the largest survivable step down (`step_down_max`).
     pub step_down: bool,
     /// Compute the gait sensitivity norm (`gsn`, docs/robustness.md).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub gsn: bool,
+    /// Measure the mean steps to fall on a rough slope (`steps_to_fall`,
+    /// docs/robustness.md): Monte Carlo over seeded rough grounds.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub steps_to_fall: bool,
+    /// The rough ground's roughness for `steps_to_fall` (m, the standard
+    /// deviation of a patch's height; its patches are `terrain.patch` long
+    /// and trial `i` has seed `terrain.seed + i`).
+    #[serde(skip_serializing_if = "is_default_sigma")]
+    pub sigma: f64,
+    /// Monte Carlo trials (seeded grounds) per gait.
+    #[serde(skip_serializing_if = "is_default_trials")]
+    pub trials: u32,
+    /// A trial that has not fallen after this many steps of the flat gait
+    /// is censored there.
+    #[serde(skip_serializing_if = "is_default_max_steps")]
+    pub max_steps: u32,
+}
+
+/// The default roughness of `steps_to_fall` (m).
+pub const SIGMA_DEFAULT: f64 = 0.01;
+const TRIALS_DEFAULT: u32 = 20;
+const MAX_STEPS_DEFAULT: u32 = 100;
+
+fn is_default_sigma(v: &f64) -> bool {
+    *v == SIGMA_DEFAULT
+}
+
+fn is_default_trials(v: &u32) -> bool {
+    *v == TRIALS_DEFAULT
+}
+
+fn is_default_max_steps(v: &u32) -> bool {
+    *v == MAX_STEPS_DEFAULT
+}
+
+impl Default for RobustnessOptions {
+    fn default() -> Self {
+        Self {
+            step_down: false,
+            gsn: false,
+            steps_to_fall: false,
+            sigma: SIGMA_DEFAULT,
+            trials: TRIALS_DEFAULT,
+            max_steps: MAX_STEPS_DEFAULT,
+        }
+    }
 }
 
 impl RobustnessOptions {
     /// Is every measure off?
     pub(crate) fn is_off(&self) -> bool {
-        !self.step_down && !self.gsn
+        !self.step_down && !self.gsn && !self.steps_to_fall
+    }
+
+    /// Refuses a roughness outside [0, 1000] m, fewer than 2 or more than
+    /// 100000 trials, or a censoring step count outside [1, 1000000].
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check(
+            "robustness.sigma",
+            self.sigma,
+            "in [0, 1000] (m, standard deviation of a patch's height)",
+            |v| (0.0..=STEP_HEIGHT_MAX).contains(&v),
+        )?;
+        check(
+            "robustness.trials",
+            f64::from(self.trials),
+            "in [2, 100000]",
+            |v| (2.0..=1e5).contains(&v),
+        )?;
+        check(
+            "robustness.max_steps",
+            f64::from(self.max_steps),
+            "in [1, 1000000] (steps of the flat gait)",
+            |v| (1.0..=1e6).contains(&v),
+        )
     }
 }
 

@@ -481,9 +481,12 @@ impl Label {
     }
 }
 
-/// A gait's robustness measures (each `None` unless asked for).
+/// A gait's robustness measures (each `None` unless asked for, or when the
+/// run is not a stable gait).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Robustness {
+    /// The measures the run was asked for (its `robustness.*` options).
+    pub asked: crate::options::RobustnessOptions,
     /// The largest survivable step down (m), see the module doc.
     pub step_down_max: Option<f64>,
     /// The height the gait failed at just above it: the bisection's upper
@@ -492,12 +495,31 @@ pub struct Robustness {
     /// The gait sensitivity norm (dimensionless; NaN where it cannot be
     /// computed), docs/robustness.md.
     pub gsn: Option<f64>,
-    /// Which measures were asked for (`Options::robustness`): a measure
-    /// asked for is `None` only when the gait is not stable.
-    #[serde(default)]
-    pub asked: RobustnessOptions,
+    /// The mean steps to fall on a rough slope (Monte Carlo,
+    /// docs/robustness.md).
+    pub steps_to_fall: Option<StepsToFall>,
     /// Integrator work of the measures' runs.
     pub work: hybrid_ode::Work,
+}
+
+/// Steps to fall on seeded rough slopes (docs/robustness.md): over the
+/// trials, the mean of the steps of the flat gait each walked before it
+/// failed, a trial that had not failed after `max_steps` counting as
+/// `max_steps` (censored). With any trial censored the mean is a lower bound
+/// of the mean first-passage time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StepsToFall {
+    /// The (censored) mean steps to fall.
+    pub mean: f64,
+    /// The lower end of its 95 % confidence interval (normal, mean ± 1.96
+    /// standard errors, cut at 0).
+    pub lo: f64,
+    /// The upper end.
+    pub hi: f64,
+    /// How many trials were censored (never failed).
+    pub censored: u32,
+    /// How many trials were run.
+    pub trials: u32,
 }
 
 #[cfg(test)]

@@ -1,28 +1,69 @@
 //! The ground's shape as an option (`terrain.*`): what the plant's terrain
-//! (`plant/terrain.rs`, docs/model.md §2) is made from, validated like every
+//! (`plant/terrain.rs`, docs/model.md §4) is made from, validated like every
 //! other option.
+//!
+//! The ground is piecewise flat: level 0 before `step_at`, and from there on
+//! either one segment `step_height` lower (the step) or, with a roughness,
+//! patches of length `patch` each at its own height (the rough slope). Each
+//! patch's height is a pure function of `(seed, patch index)`, so the ground
+//! needs no storage and a run on it is reproducible.
 
 use crate::params::{ParamError, check};
 use serde::{Deserialize, Serialize};
 
 /// The ground's shape (the keys `terrain.*` of a config's `[simulation]`
-/// table). The default, `step_height = 0`, is the flat slope.
+/// table). The default, `step_height = 0` and `roughness = 0`, is the flat
+/// slope.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TerrainOptions {
     /// Height of a single step down (m, along the slope normal; > 0 is down,
     /// 0 is the flat slope).
     pub step_height: f64,
-    /// Where the step is: its edge's distance along the slope from the front
-    /// foot's start (m, > 0; the star stands at `x ≤ 0`).
+    /// Where the step (and the rough ground) starts: its edge's distance
+    /// along the slope from the front foot's start (m, > 0; the star stands
+    /// at `x ≤ 0`).
     pub step_at: f64,
+    /// Standard deviation of each rough patch's height (m; 0 is no
+    /// roughness). Left out of a serialized config while 0.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub roughness: f64,
+    /// Seed of the patches' heights. Left out of a serialized config while 0.
+    #[serde(skip_serializing_if = "is_zero_seed")]
+    pub seed: u64,
+    /// Length of a rough patch along the slope (m).
+    #[serde(skip_serializing_if = "is_default_patch")]
+    pub patch: f64,
 }
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn is_zero_seed(v: &u64) -> bool {
+    *v == 0
+}
+
+fn is_default_patch(v: &f64) -> bool {
+    *v == PATCH_DEFAULT
+}
+
+/// The default length of a rough patch (m): the article's rod. Every edge
+/// can trip a foot (a riser, docs/robustness.md), so shorter patches mostly
+/// measure how often a sliding foot meets an edge: at Fig. 7(a), 0.2 m
+/// patches trip the walk within 5–8 steps on average at any roughness from
+/// 1 mm to 5 cm, 0.8 m patches after about 32 at 1 mm and 1 cm
+/// (docs/robustness.md).
+pub const PATCH_DEFAULT: f64 = 0.8;
 
 impl Default for TerrainOptions {
     fn default() -> Self {
         Self {
             step_height: 0.0,
             step_at: 1.0,
+            roughness: 0.0,
+            seed: 0,
+            patch: PATCH_DEFAULT,
         }
     }
 }
@@ -31,11 +72,20 @@ impl Default for TerrainOptions {
 /// the scale bound of `L` (docs/model.md §1).
 pub(crate) const STEP_HEIGHT_MAX: f64 = 1e3;
 
+/// A patch of the ground: its index (−1 before `step_at`), its extent
+/// `[lo, hi)` and its level.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Patch {
+    index: i64,
+    lo: f64,
+    hi: f64,
+}
+
 impl TerrainOptions {
-    /// Is this the flat slope (no step)?
+    /// Is this the flat slope (no step, no roughness)?
     #[inline]
     pub(crate) fn is_flat(&self) -> bool {
-        self.step_height == 0.0
+        self.step_height == 0.0 && self.roughness == 0.0
     }
 
     /// The slope with a step down of `height` at `at` (m).
@@ -43,11 +93,25 @@ impl TerrainOptions {
         Self {
             step_height: height,
             step_at: at,
+            ..Self::default()
         }
     }
 
-    /// Refuses a step height outside [0, 1000] m (a step up would put a riser
-    /// in every foot's way) or a step position outside (0, 1e6] m.
+    /// The rough slope from `at` (m) on: patches of `patch` m whose heights
+    /// are drawn from N(0, `roughness`²) by `seed`.
+    pub fn rough(roughness: f64, seed: u64, at: f64, patch: f64) -> Self {
+        Self {
+            step_at: at,
+            roughness,
+            seed,
+            patch,
+            ..Self::default()
+        }
+    }
+
+    /// Refuses a step height or roughness outside [0, 1000] m (a step up
+    /// would put a riser in every foot's way), a step position outside
+    /// (0, 1e6] m or a patch outside [0.001, 1000] m.
     pub(crate) fn validate(&self) -> Result<(), ParamError> {
         check(
             "terrain.step_height",
@@ -60,35 +124,119 @@ impl TerrainOptions {
             self.step_at,
             "in (0, 1e6] (m along the slope from the start)",
             |v| v > 0.0 && v <= 1e6,
+        )?;
+        check(
+            "terrain.roughness",
+            self.roughness,
+            "in [0, 1000] (m, standard deviation of a patch's height)",
+            |v| (0.0..=STEP_HEIGHT_MAX).contains(&v),
+        )?;
+        check(
+            "terrain.patch",
+            self.patch,
+            "in [0.001, 1000] (m, length of a rough patch)",
+            |v| (1e-3..=1e3).contains(&v),
         )
+    }
+
+    /// The patch under `x`: before `step_at` the one flat patch, after it
+    /// one segment without roughness, or patches of `patch` m with it.
+    #[inline]
+    fn patch_at(&self, x: f64) -> Patch {
+        if x < self.step_at {
+            return Patch {
+                index: -1,
+                lo: f64::NEG_INFINITY,
+                hi: self.step_at,
+            };
+        }
+        if self.roughness == 0.0 {
+            return Patch {
+                index: 0,
+                lo: self.step_at,
+                hi: f64::INFINITY,
+            };
+        }
+        let edge = |k: i64| self.step_at + k as f64 * self.patch;
+        // The index from the division, corrected so that `x` lies in
+        // `[edge(k), edge(k + 1))` exactly as the edges are computed.
+        let mut k = ((x - self.step_at) / self.patch).floor().max(0.0) as i64;
+        while k > 0 && x < edge(k) {
+            k -= 1;
+        }
+        while x >= edge(k + 1) {
+            k += 1;
+        }
+        Patch {
+            index: k,
+            lo: edge(k),
+            hi: edge(k + 1),
+        }
+    }
+
+    /// The height of patch `k` (−1: the flat slope before `step_at`).
+    #[inline]
+    fn level(&self, k: i64) -> f64 {
+        if k < 0 {
+            0.0
+        } else if self.roughness == 0.0 {
+            -self.step_height
+        } else {
+            -self.step_height + self.roughness * standard_normal(self.seed, k as u64)
+        }
     }
 
     /// The ground's height (slope normal) under `x`.
     #[inline]
     pub(crate) fn ground(&self, x: f64) -> f64 {
-        if self.is_flat() || x < self.step_at {
+        if self.is_flat() {
             0.0
         } else {
-            -self.step_height
+            self.level(self.patch_at(x).index)
         }
     }
 
-    /// The edge guard of a tip sliding at `x` on the segment at height
-    /// `level`: its distance to the edge, positive on its own segment.
+    /// The edge guard of a tip sliding at `x` on the patch at height
+    /// `level`: the distance from `x` to the nearer edge of the patch under
+    /// it, positive while that patch is the tip's own and negative once it
+    /// has crossed into another (so it changes sign exactly at the edge).
     #[inline]
     pub(crate) fn edge_distance(&self, x: f64, level: f64) -> f64 {
-        if level == 0.0 {
-            self.step_at - x
+        let p = self.patch_at(x);
+        let (to_lo, to_hi) = (x - p.lo, p.hi - x);
+        if self.level(p.index) == level {
+            to_lo.min(to_hi)
+        } else if to_hi <= to_lo {
+            // Written as differences, not negated distances, so that the
+            // step's guard is what it was, signed zeros included.
+            x - p.hi
         } else {
-            x - self.step_at
+            p.lo - x
         }
     }
 
     /// The rate of [`edge_distance`](Self::edge_distance) for a tip moving
     /// at `vx`.
     #[inline]
-    pub(crate) fn edge_rate(&self, vx: f64, level: f64) -> f64 {
-        if level == 0.0 { -vx } else { vx }
+    pub(crate) fn edge_rate(&self, x: f64, vx: f64, level: f64) -> f64 {
+        let p = self.patch_at(x);
+        let rate = if p.hi - x <= x - p.lo { -vx } else { vx };
+        if self.level(p.index) == level {
+            rate
+        } else {
+            -rate
+        }
+    }
+
+    /// The height of the patch a tip sliding at `x` with velocity `vx` on
+    /// the patch at height `level` moves onto at its edge guard.
+    pub(crate) fn level_beyond(&self, x: f64, vx: f64, level: f64) -> f64 {
+        let k = self.patch_at(x).index;
+        if self.level(k) != level {
+            // Located just past the edge: already on the next patch.
+            return self.level(k);
+        }
+        self.level(if vx >= 0.0 { k + 1 } else { k - 1 })
     }
 
     /// A tip this far below the ground at the touchdown event met the riser,
@@ -97,5 +245,102 @@ impl TerrainOptions {
     #[inline]
     pub(crate) fn met_riser(&self, gap: f64, touchdown_height: f64) -> bool {
         !self.is_flat() && gap < 1e3 * touchdown_height
+    }
+}
+
+/// A standard normal deviate that is a pure function of `(seed, k)`:
+/// SplitMix64 of both, then Box–Muller on the two uniforms it gives.
+fn standard_normal(seed: u64, k: u64) -> f64 {
+    fn mix(mut x: u64) -> u64 {
+        x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        x ^ (x >> 31)
+    }
+    let a = mix(mix(seed) ^ k);
+    let b = mix(a);
+    const UNIT: f64 = 1.0 / (1u64 << 53) as f64;
+    // u1 in (0, 1], never 0, so its logarithm is finite.
+    let u1 = ((a >> 11) as f64 + 1.0) * UNIT;
+    let u2 = (b >> 11) as f64 * UNIT;
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_patch_heights_are_a_standard_normal_function_of_seed_and_index() {
+        let z: Vec<f64> = (0..20_000).map(|k| standard_normal(7, k)).collect();
+        let n = z.len() as f64;
+        let mean = z.iter().sum::<f64>() / n;
+        let var = z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n;
+        assert!(mean.abs() < 0.03, "mean {mean}");
+        assert!((var - 1.0).abs() < 0.05, "variance {var}");
+        assert_eq!(standard_normal(7, 3).to_bits(), z[3].to_bits());
+        assert_ne!(standard_normal(8, 3), z[3]);
+    }
+
+    #[test]
+    fn a_rough_ground_is_flat_before_its_start_and_piecewise_flat_after() {
+        let t = TerrainOptions::rough(0.01, 3, 1.0, 0.2);
+        t.validate().unwrap();
+        assert!(!t.is_flat());
+        assert_eq!(t.ground(0.999), 0.0);
+        // Constant within a patch, and each patch at its own height.
+        assert_eq!(t.ground(1.0), t.ground(1.199));
+        assert_ne!(t.ground(1.199), t.ground(1.2));
+        assert_eq!(t.ground(1.2), 0.01 * standard_normal(3, 1));
+        // Another seed, another ground.
+        assert_ne!(
+            t.ground(1.5),
+            TerrainOptions::rough(0.01, 4, 1.0, 0.2).ground(1.5)
+        );
+        // The edge guard: positive on its own patch, negative beyond, zero
+        // at the edge.
+        let own = t.ground(1.1);
+        assert!((t.edge_distance(1.15, own) - 0.05).abs() < 1e-12);
+        assert!((t.edge_distance(1.25, own) + 0.05).abs() < 1e-12);
+        assert_eq!(t.edge_rate(1.15, 2.0, own), -2.0);
+        assert_eq!(t.level_beyond(1.19, 1.0, own), t.ground(1.2));
+        assert_eq!(t.level_beyond(1.01, -1.0, own), 0.0);
+    }
+
+    #[test]
+    fn roughness_zero_is_the_step_bit_for_bit() {
+        let step = TerrainOptions::step(0.02, 1.5);
+        for x in [-1.0, 1.2, 1.4999, 1.5, 2.0, 9.0] {
+            for level in [0.0, -0.02] {
+                let old = if level == 0.0 { 1.5 - x } else { x - 1.5 };
+                assert_eq!(step.edge_distance(x, level).to_bits(), old.to_bits());
+                let vx = 0.3;
+                let old_rate = if level == 0.0 { -vx } else { vx };
+                assert_eq!(step.edge_rate(x, vx, level), old_rate, "{x} {level}");
+            }
+        }
+    }
+
+    #[test]
+    fn out_of_range_roughness_is_refused_naming_the_field() {
+        for (t, field) in [
+            (
+                TerrainOptions::rough(-0.01, 0, 1.0, 0.2),
+                "terrain.roughness",
+            ),
+            (
+                TerrainOptions::rough(f64::NAN, 0, 1.0, 0.2),
+                "terrain.roughness",
+            ),
+            (TerrainOptions::rough(0.01, 0, 1.0, 0.0), "terrain.patch"),
+            (
+                TerrainOptions::rough(0.01, 0, 1.0, f64::INFINITY),
+                "terrain.patch",
+            ),
+        ] {
+            let e = t.validate().unwrap_err().to_string();
+            assert!(e.starts_with(field), "{e}");
+            assert!(e.contains("must be in"), "{e}");
+        }
     }
 }

@@ -33,6 +33,7 @@ use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
 use crate::run::recorder::run_from;
+use crate::run::steps_to_fall::steps_to_fall;
 use hybrid_ode::Work;
 
 /// The step's edge lies this many rod lengths ahead of the front-most
@@ -62,21 +63,23 @@ pub(crate) struct SettledGait<'a> {
     rtw: &'a Rtw,
     y: &'a [f64; N],
     flat: &'a Outcome,
+    /// Where the ground ahead of the gait starts (m): a step's edge, or the
+    /// first rough patch.
     edge: f64,
 }
 
 impl SettledGait<'_> {
-    /// The run over a step of `h`: its outcome and whether the gait survived.
-    pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
+    /// The run from the settled state on `terrain` under `options`.
+    fn run_on(&self, terrain: TerrainOptions, options: &Options, work: &mut Work) -> Outcome {
         let mut sys = self.rtw.clone();
-        sys.terrain = TerrainOptions::step(h, self.edge);
+        sys.terrain = terrain;
         // The energy dissipated so far is the flat run's, not this one's.
         let mut y = *self.y;
         y[DISSIPATED] = 0.0;
         y[FRICTION] = 0.0;
         let (o, _, _) = run_from(
             self.params,
-            &self.options,
+            options,
             self.phys,
             sys,
             y,
@@ -85,6 +88,12 @@ impl SettledGait<'_> {
             None,
         );
         *work += o.work;
+        o
+    }
+
+    /// The run over a step of `h`: its outcome and whether the gait survived.
+    pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
+        let o = self.run_on(TerrainOptions::step(h, self.edge), &self.options, work);
         (o, o.label == self.flat.label)
     }
 }
@@ -174,11 +183,22 @@ pub(crate) fn measure(
                 crate::cycles::gsn::gsn(&map, &lc, EDGE_AHEAD)
             })
     });
+    let steps_to_fall = options.robustness.steps_to_fall.then(|| {
+        steps_to_fall(
+            |ground, o| s.run_on(ground, o, &mut work),
+            flat.f_w,
+            s.edge,
+            &s.options,
+            &options.robustness,
+            options.terrain,
+        )
+    });
     Robustness {
+        asked: options.robustness,
         step_down_max,
         step_down_fail,
         gsn,
-        asked: options.robustness,
+        steps_to_fall,
         work,
     }
 }

@@ -147,10 +147,7 @@ fn wheel(h: f64) -> Wheel {
         l: 1.0,
         alpha: PI / 8.0,
         gamma: 0.08,
-        terrain: TerrainOptions {
-            step_height: h,
-            step_at: 0.05,
-        },
+        terrain: TerrainOptions::step(h, 0.05),
         foot: [0.0, 0.0],
     }
 }

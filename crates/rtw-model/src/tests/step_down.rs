@@ -47,7 +47,7 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
     let o = Options {
         robustness: RobustnessOptions {
             step_down: true,
-            ..Default::default()
+            ..RobustnessOptions::default()
         },
         ..Options::default()
     };

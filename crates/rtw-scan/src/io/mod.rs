@@ -5,8 +5,8 @@
 //! |---|---|
 //! | `table` | a file's columns listed once (name, unit, meaning, getter) → schema and batches |
 //! | `scan_rows` | the scan row and its table; its JSON and text forms |
-//! | `measures` | the robustness measures' names, units and values (`robustness.*`) |
 //! | `robustness_columns` | the optional robustness columns of a scan (`robustness.*`) |
+//! | `robustness_measures` | the robustness measures a row can carry, by name, and the options that ask for them |
 //! | `scan_files` | scan batches read back and checked; chunks and parts concatenated |
 //! | `parquet` | Parquet files written atomically with a content hash, read back verified |
 //! | `content_hash` | the hash of a table's values, independent of batches and pages, and of its metadata |
@@ -20,10 +20,10 @@
 pub(crate) mod content_hash;
 pub(crate) mod destination;
 pub(crate) mod files;
-pub(crate) mod measures;
 pub(crate) mod metadata;
 pub(crate) mod parquet;
 pub(crate) mod robustness_columns;
+pub(crate) mod robustness_measures;
 pub(crate) mod scan_files;
 pub(crate) mod scan_rows;
 pub(crate) mod sizes;

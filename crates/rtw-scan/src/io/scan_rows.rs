@@ -8,6 +8,7 @@
 //! label list [`Label::ALL`] (pandas and polars read it as categorical);
 //! floats are `Float64`, counts `Int64`.
 
+use crate::io::robustness_measures::picked;
 use crate::io::table::{self, Column, Get};
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
@@ -529,8 +530,8 @@ pub(crate) fn to_text(r: &Row) -> String {
 /// forms: none unless asked for, so a row's form is unchanged by default.
 pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
     match r.outcome.and_then(|o| o.robustness) {
-        Some(m) => super::measures::asked(&m.asked)
-            .map(|c| (c.name, (c.value)(&m)))
+        Some(m) => picked(|c| (c.on)(&m.asked))
+            .map(|c| (c.name, (c.get)(&m)))
             .collect(),
         None => Vec::new(),
     }

@@ -23,7 +23,8 @@ pub const META_OUTCOME: &str = "rtw.outcome";
 pub struct RowValues {
     /// The scan row's values, in column order.
     pub columns: Vec<Value>,
-    /// The robustness measures asked for, by name (`step_down_max`, m).
+    /// The robustness measures asked for, by name (`step_down_max`, m;
+    /// `steps_to_fall` and its interval and censored count).
     pub robustness: Vec<(&'static str, Value)>,
 }
 

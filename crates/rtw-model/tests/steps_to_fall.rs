@@ -1,0 +1,63 @@
+//! Mean steps to fall on seeded rough slopes (docs/robustness.md): a pure
+//! function of the seed, censored on the flat slope, short on rough ground.
+
+use rtw_model::options::RobustnessOptions;
+use rtw_model::outcome::StepsToFall;
+use rtw_model::{Options, Params, simulate};
+
+fn steps_to_fall(sigma: f64, seed: u64) -> StepsToFall {
+    let mut o = Options::default();
+    o.terrain.seed = seed;
+    o.robustness = RobustnessOptions {
+        steps_to_fall: true,
+        sigma,
+        trials: 10,
+        max_steps: 60,
+        ..RobustnessOptions::default()
+    };
+    let out = simulate(&Params::fig7a(), &o);
+    assert!(out.label.is_stable(), "{out:?}");
+    out.robustness.unwrap().steps_to_fall.unwrap()
+}
+
+#[test]
+fn steps_to_fall_is_a_function_of_the_seed() {
+    let (a, b, c) = (
+        steps_to_fall(0.01, 3),
+        steps_to_fall(0.01, 3),
+        steps_to_fall(0.01, 4),
+    );
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+    assert_eq!(a.trials, 10);
+    assert!(a.lo <= a.mean && a.mean <= a.hi, "{a:?}");
+}
+
+#[test]
+fn the_flat_slope_never_trips_the_fig7a_walk_and_a_rough_one_does_quickly() {
+    // σ = 0 is the flat slope: every trial walks to the censoring count.
+    let flat = steps_to_fall(0.0, 0);
+    assert_eq!((flat.mean, flat.censored), (60.0, 10), "{flat:?}");
+    // σ = 5 cm (6 % of a rod): every trial falls within a few steps.
+    let rough = steps_to_fall(0.05, 0);
+    assert_eq!(rough.censored, 0, "{rough:?}");
+    assert!(rough.hi < 15.0, "{rough:?}");
+}
+
+#[test]
+fn bad_monte_carlo_settings_are_refused_naming_the_field() {
+    let bad = |f: fn(&mut RobustnessOptions)| {
+        let mut o = Options::default();
+        f(&mut o.robustness);
+        o.validate().unwrap_err().to_string()
+    };
+    for (e, field) in [
+        (bad(|r| r.sigma = -0.01), "robustness.sigma"),
+        (bad(|r| r.sigma = f64::NAN), "robustness.sigma"),
+        (bad(|r| r.trials = 1), "robustness.trials"),
+        (bad(|r| r.max_steps = 0), "robustness.max_steps"),
+    ] {
+        assert!(e.starts_with(field) && e.contains("must be in"), "{e}");
+    }
+    Options::default().validate().unwrap();
+}

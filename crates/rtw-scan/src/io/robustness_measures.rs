@@ -1,0 +1,76 @@
+//! The robustness measures a scan row can carry (docs/robustness.md), by
+//! name: which option switches each on and where its value is. The scan's
+//! optional columns (`robustness_columns`) and a row's JSON and text forms
+//! (`scan_rows`) both list them from here, in this order.
+
+use rtw_model::options::RobustnessOptions;
+use rtw_model::outcome::Robustness;
+
+/// One optional column: the measure that switches it on and its value.
+pub(crate) struct RobustnessColumn {
+    pub(crate) name: &'static str,
+    pub(crate) unit: &'static str,
+    pub(crate) description: &'static str,
+    pub(crate) on: fn(&RobustnessOptions) -> bool,
+    pub(crate) get: fn(&Robustness) -> Option<f64>,
+}
+
+/// Every optional column, in the order they follow the scan's columns.
+const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
+    RobustnessColumn {
+        name: "step_down_max",
+        unit: "m",
+        description: "largest survivable step down of the gait (docs/robustness.md); null unless \
+                      stable; only with robustness.step_down = true",
+        on: |r| r.step_down,
+        get: |m| m.step_down_max,
+    },
+    RobustnessColumn {
+        name: "gsn",
+        unit: "1",
+        description: "gait sensitivity norm: H2 norm of the step time and length's response to a \
+                      floor drop (docs/robustness.md); null unless stable or where it cannot be \
+                      computed; only with robustness.gsn = true",
+        on: |r| r.gsn,
+        get: |m| m.gsn,
+    },
+    RobustnessColumn {
+        name: "steps_to_fall",
+        unit: "steps",
+        description: "mean steps to fall on seeded rough slopes of roughness robustness.sigma, \
+                      censored at robustness.max_steps (a lower bound when \
+                      steps_to_fall_censored > 0; docs/robustness.md); null unless stable; only \
+                      with robustness.steps_to_fall = true",
+        on: |r| r.steps_to_fall,
+        get: |m| m.steps_to_fall.map(|s| s.mean),
+    },
+    RobustnessColumn {
+        name: "steps_to_fall_lo",
+        unit: "steps",
+        description: "lower end of the 95 % interval of steps_to_fall (normal, mean - 1.96 \
+                      standard errors, cut at 0)",
+        on: |r| r.steps_to_fall,
+        get: |m| m.steps_to_fall.map(|s| s.lo),
+    },
+    RobustnessColumn {
+        name: "steps_to_fall_hi",
+        unit: "steps",
+        description: "upper end of the 95 % interval of steps_to_fall",
+        on: |r| r.steps_to_fall,
+        get: |m| m.steps_to_fall.map(|s| s.hi),
+    },
+    RobustnessColumn {
+        name: "steps_to_fall_censored",
+        unit: "trials",
+        description: "how many of the robustness.trials Monte Carlo trials never fell",
+        on: |r| r.steps_to_fall,
+        get: |m| m.steps_to_fall.map(|s| f64::from(s.censored)),
+    },
+];
+
+/// The optional columns `on` picks.
+pub(crate) fn picked(
+    on: impl Fn(&RobustnessColumn) -> bool,
+) -> impl Iterator<Item = &'static RobustnessColumn> {
+    ROBUSTNESS_COLUMNS.iter().filter(move |c| on(c))
+}
