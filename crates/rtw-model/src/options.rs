@@ -38,6 +38,7 @@ pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
 
 mod terrain;
+use terrain::STEP_HEIGHT_MAX;
 pub use terrain::TerrainOptions;
 
 /// The initial shape of the star (docs/model.md §6).

@@ -1,7 +1,7 @@
 //! What one run produces: the gait label and every metric of docs/model.md §5,
 //! and the rule that labels a gait (Table S1).
 
-use crate::options::{LabelOptions, RobustnessOptions};
+use crate::options::LabelOptions;
 use serde::{Deserialize, Serialize};
 
 /// Longest gait period (in steps) the model looks for, on the touchdown
