@@ -51,9 +51,9 @@ fn ranges() -> Vec<(&'static str, f64, f64, f64, f64, Set, Expect)> {
         (
             "atol",
             tiny,
-            1.0,
+            0.1,
             0.0,
-            1.000001,
+            0.1000001,
             |o, v| o.atol = v,
             Expect::Walk,
         ),
