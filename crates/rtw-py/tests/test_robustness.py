@@ -43,7 +43,7 @@ phi = { uniform = [0.05, 0.3] }
 def test_a_scan_has_the_step_down_column_only_when_asked_for() -> None:
     plain = rtw.scan(SMALL_SCAN, progress=False)
     assert "step_down_max" not in plain.column_names
-    step = rtw.scan(SMALL_SCAN, set={"robustness.step_down": True}, progress=False)
+    step = rtw.scan(SMALL_SCAN, options={"robustness.step_down": True}, progress=False)
     assert step.column_names == plain.column_names + ["step_down_max"]
     stable = {"skip", "walk", "crawl"}
     for label, h in zip(step.column("outcome").to_pylist(), step.column("step_down_max").to_pylist()):
@@ -67,7 +67,7 @@ def test_gsn_only_when_asked_for() -> None:
 
 def test_a_scan_has_the_gsn_column_only_when_asked_for() -> None:
     plain = rtw.scan(SMALL_SCAN, progress=False)
-    both = rtw.scan(SMALL_SCAN, set={"robustness.step_down": True, "robustness.gsn": True}, progress=False)
+    both = rtw.scan(SMALL_SCAN, options={"robustness.step_down": True, "robustness.gsn": True}, progress=False)
     assert both.column_names == plain.column_names + ["step_down_max", "gsn"]
     stable = {"skip", "walk", "crawl"}
     for label, g in zip(both.column("outcome").to_pylist(), both.column("gsn").to_pylist()):
