@@ -21,9 +21,10 @@ use options::PyOverrides;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use rtw_model::cycles::{CycleOptions, StepMap};
+use rtw_model::cycles::{BasinSpec, CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
+use rtw_scan::basin::{parse_axis, slice_table};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
@@ -252,6 +253,44 @@ fn limit_cycle(
     Ok(LimitCycle::new(&lc, lc.label(&options.labels).as_str()))
 }
 
+/// A slice of the gait's basin of attraction (`rtw-scan basin`): a
+/// `pyarrow.Table` with one row per grid point, the columns of the CLI's
+/// Parquet file, made by the same library function.
+#[pyfunction]
+#[pyo3(signature = (values, config, variant, options, x, y, steps, tol, threads))]
+#[allow(clippy::too_many_arguments)] // the design's layers and the slice's settings, as `rtw-scan basin`
+fn basin<'py>(
+    py: Python<'py>,
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    options: Option<Bound<'_, PyDict>>,
+    x: &str,
+    y: &str,
+    steps: usize,
+    tol: f64,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
+    let spec = BasinSpec {
+        x: parse_axis(x, "x").map_err(value_error)?,
+        y: parse_axis(y, "y").map_err(value_error)?,
+        steps,
+        tol,
+    };
+    let threads =
+        match threads {
+            None => None,
+            Some(n) => Some(NonZeroUsize::new(n).ok_or_else(|| {
+                PyValueError::new_err("threads: 0 is invalid: must be at least 1")
+            })?),
+        };
+    let batch = py
+        .detach(|| slice_table(&params, &options, spec, threads))
+        .map_err(value_error)?;
+    to_table(py, batch)
+}
+
 /// The eigen-frequencies of rtw-model's `modal`: S18's f_n, the approximate
 /// 3-rotor model's modes and the free 9-DOF star's.
 #[pyfunction]
@@ -397,6 +436,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scan, m)?)?;
     m.add_function(wrap_pyfunction!(limit_cycle, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
+    m.add_function(wrap_pyfunction!(basin, m)?)?;
     m.add_function(wrap_pyfunction!(sobol_points, m)?)?;
     m.add_function(wrap_pyfunction!(sensitivity, m)?)?;
     m.add_function(wrap_pyfunction!(label, m)?)?;

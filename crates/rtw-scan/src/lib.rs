@@ -51,7 +51,7 @@
 #![cfg_attr(not(feature = "cli"), allow(dead_code))]
 
 pub(crate) mod analysis;
-pub(crate) mod basin;
+pub mod basin;
 pub(crate) mod bifurcation;
 #[cfg(feature = "cli")]
 mod cli;

@@ -56,6 +56,7 @@ __all__ = [
     "Modes",
     "Outcome",
     "animate",
+    "basin",
     "label",
     "limit_cycle",
     "modal",
@@ -438,6 +439,52 @@ def limit_cycle(
         raise ValueError(f"settle_steps: {settle_steps!r} is invalid: must be an integer >= 1")
     return _rtw.limit_cycle(
         values, _path(config), _path(variant), _options(options, more), settle_steps
+    )
+
+
+def basin(
+    *design: Design | float,
+    x: str,
+    y: str,
+    steps: int = 60,
+    tol: float = 1e-3,
+    threads: int | None = None,
+    config: Config | None = None,
+    variant: Config | None = None,
+    options: Mapping[str, Any] | None = None,
+    **more: Any,
+) -> pyarrow.Table:
+    """A slice of the gait's basin of attraction, as ``rtw-scan basin`` makes it.
+
+    The design's gait is solved on the step map; two section coordinates
+    are offset from its fixed point over a grid, every other one held, and
+    each point is iterated up to ``steps`` steps and classified
+    (``returns``, ``survives``, ``fails``, ``infeasible``; docs/robustness.md).
+
+    Args:
+        x, y: the grid's axes, ``"COORD:FROM:TO:POINTS"`` with COORD one of
+            ``omega_a``, ``omega_b``, ``omega_c``, ``theta_a``, ``theta_b``,
+            ``theta_c`` (e.g. ``"omega_a:-40:40:41"``).
+        steps: most steps a point is iterated.
+        tol: a point returns at this scaled distance to the orbit.
+        threads: worker threads (default: one per core); the rows do not
+            depend on it.
+        design, config, variant, options, more: as for :func:`simulate`.
+
+    Returns:
+        One row per grid point, ``y`` outer and ``x`` inner: the columns of
+        the CLI's Parquet file (docs/results-on-disk.md).
+
+    Raises:
+        ValueError: an input, option or setting is invalid (named), or the
+            gait has no stable limit cycle.
+    """
+    values = _design("basin", design, more)
+    for name, v in (("steps", steps), ("threads", threads)):
+        if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
+            raise ValueError(f"{name}: {v!r} is invalid: must be a non-negative integer")
+    return _rtw.basin(
+        values, _path(config), _path(variant), _options(options, more), x, y, steps, float(tol), threads
     )
 
 

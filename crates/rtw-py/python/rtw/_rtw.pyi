@@ -125,6 +125,17 @@ def limit_cycle(
     options: Mapping[str, Any] | None,
     settle_steps: int,
 ) -> LimitCycle: ...
+def basin(
+    values: list[float],
+    config: str | None,
+    variant: str | None,
+    options: Mapping[str, Any] | None,
+    x: str,
+    y: str,
+    steps: int,
+    tol: float,
+    threads: int | None,
+) -> pyarrow.Table: ...
 def modes(
     values: list[float],
     config: str | None,

@@ -9,9 +9,26 @@ pub(crate) mod files;
 use crate::bifurcation::sweep::{PointLabel, failure_label};
 use crate::scan::workers::worker_pool;
 use anyhow::{Result, bail};
+use arrow_array::RecordBatch;
 use rayon::prelude::*;
-use rtw_model::cycles::{Axis, Basin, BasinPoint, Coord, Fate};
+use rtw_model::cycles::{Axis, Basin, BasinPoint, Coord, CycleOptions, Fate};
+use rtw_model::{Options, Params};
 use std::num::NonZeroUsize;
+
+/// The basin slice of `spec` around the gait of `params` under `options`
+/// (both already checked), as the rows `rtw-scan basin` writes: one per
+/// grid point, row-major (`y` outer, `x` inner), the same on any number of
+/// `threads`. Python's `rtw.basin` is this function.
+pub fn slice_table(
+    params: &Params,
+    options: &Options,
+    spec: rtw_model::cycles::BasinSpec,
+    threads: Option<NonZeroUsize>,
+) -> Result<RecordBatch> {
+    let slice = Basin::new(params, options, &CycleOptions::default(), spec)?;
+    let points = run(&slice, threads)?;
+    Ok(files::batch(&files::rows(&slice, &points)))
+}
 
 /// The `outcome` column's values, in key order.
 pub(crate) const OUTCOMES: [&str; 4] = ["returns", "survives", "fails", "infeasible"];
@@ -51,7 +68,7 @@ pub(crate) fn run(basin: &Basin, threads: Option<NonZeroUsize>) -> Result<Vec<Ba
 /// Parses an axis `COORD:FROM:TO:POINTS` given by `flag`, naming the flag
 /// and what it must be. The ranges themselves are checked by
 /// [`rtw_model::cycles::BasinSpec::validate`].
-pub(crate) fn parse_axis(text: &str, flag: &str) -> Result<Axis> {
+pub fn parse_axis(text: &str, flag: &str) -> Result<Axis> {
     let parts: Vec<&str> = text.split(':').collect();
     let [coord, from, to, points] = parts[..] else {
         bail!("{flag} {text}: must be COORD:FROM:TO:POINTS, e.g. omega_a:-40:40:41");
