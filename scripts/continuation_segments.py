@@ -48,6 +48,17 @@ def segments(doc):
             yield d["direction"], i, s
 
 
+def way(doc):
+    """Each direction's name in the tables: up / down from the start, or the
+    period-2 branch it continues (`from` in the segments file)."""
+    for d in doc["directions"]:
+        w = "up" if d["direction"] > 0 else "down"
+        f = d.get("from", "start")
+        name = w if f == "start" else f"{w}, branch {f['branch_end']} (period {d['period']}) on from {d['p0']:.5f}"
+        for i, s in enumerate(d["segments"]):
+            yield name, i, s
+
+
 def diagram(args):
     import matplotlib
 
@@ -104,7 +115,7 @@ def check(args):
     bad = 0
     print("| way | segment | gait | sweep values compared | labels agree | periods agree | max rel. Δ step frequency | agrees |")
     print("|---|---:|---|---:|---|---|---:|---|")
-    for direction, i, s in segments(doc):
+    for name, i, s in way(doc):
         pts = s["points"]
         p = np.array([q["p"] for q in pts])
         f = np.array([q["step_frequency"] for q in pts])
@@ -133,8 +144,7 @@ def check(args):
                 lab_ok = False
         ok = lab_ok and per_ok and worst <= args.rel_tol
         bad += not ok
-        way = "up" if direction > 0 else "down"
-        print(f"| {way} | {i} | {s['label']} | {n} | {'yes' if lab_ok else 'no'} | {'yes' if per_ok else 'no'} "
+        print(f"| {name} | {i} | {s['label']} | {n} | {'yes' if lab_ok else 'no'} | {'yes' if per_ok else 'no'} "
               f"| {worst:.1e} | {'yes' if ok else 'NO'} |")
     sys.exit(1 if bad else 0)
 

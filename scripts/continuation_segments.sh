@@ -19,15 +19,18 @@ mkdir -p "$out"
 bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
 through=(continuation --param phi --from 0.05 --to 0.3 --through 8)
 run() { "$bin" "${through[@]}" --length "$1" --out "$out/phi-segments-L$1.parquet" --force >"$out/phi-segments-L$1.log"; }
-run 0.7 &
-a=$!
-run 0.8 &
-b=$!
-run 0.9 &
-c=$!
-wait "$a"
-wait "$b"
-wait "$c"
+# REPORT_ONLY=1 remakes the figure and segments.md from the committed files.
+if [ -z "${REPORT_ONLY:-}" ]; then
+  run 0.7 &
+  a=$!
+  run 0.8 &
+  b=$!
+  run 0.9 &
+  c=$!
+  wait "$a"
+  wait "$b"
+  wait "$c"
+fi
 s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 
 py=.venv/bin/python

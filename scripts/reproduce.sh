@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Everything in docs/reproduction.md, from the committed
-# configs, in one command (about 12 minutes on 2 cores):
+# configs, in one command (about 17 minutes on 2 idle cores: 12 were measured
+# before the Saltelli scan grew from 57 344 to 229 376 runs, about 4.5 minutes more):
 #   1. the reproduction scans: configs/{paper,fig-s2,fig-s3}.toml -> results/<name>/
 #   2. the variant study (./scripts/variants.sh)  -> results/variants/
 #   3. the sensitivity runs (./scripts/sensitivity.sh) -> results/sensitivity/, and the

@@ -6,7 +6,7 @@
 # its first-order and total indices with 95 % bootstrap half-widths
 #   -> results/sensitivity/indices.parquet
 # and their tables (scripts/sobol_indices_report.py) -> results/sensitivity/indices.md
-# (57344 runs: about 5 minutes on 2 idle cores). results/sensitivity/ also holds the
+# (229376 runs: about 6 minutes on 2 idle cores). results/sensitivity/ also holds the
 # per-modelling-choice runs of scripts/sensitivity.sh; neither script touches
 # the other's files.
 set -euo pipefail

@@ -105,3 +105,72 @@ fn continuation_through_refuses_a_bad_count_and_a_file_it_did_not_make() {
     );
     assert!(!out.exists());
 }
+
+/// At the default model the walk doubles its period at φ ≈ 0.1948; the
+/// period-2 branch born there stops its smooth continuation at φ ≈ 0.19829
+/// ("no continuation" in the diagram's table). `--through` continues it from
+/// there: the end is named (a corner: a re-stick of rod a and the touchdown
+/// of b+ coincide) and the branch goes on past it, a stable period-2 walk,
+/// to the range's end. The attractor sweep, an independent brute-force
+/// computation (results/bifurcation/phi-fig7a.parquet, made by
+/// ./scripts/bifurcation.sh), has a stable period-2 walk at φ = 0.19875 with
+/// max |μ| = 0.804033: the continued segment passes there with the same
+/// period and label and, interpolated, the same multiplier within 2e-3.
+#[test]
+fn continuation_through_continues_the_period_2_branch_past_its_corner() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("phi.parquet");
+    run_ok(&[
+        "continuation",
+        "--phi",
+        "0.194",
+        "--from",
+        "0.188",
+        "--to",
+        "0.2",
+        "--through",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let doc: Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("phi.segments.json")).unwrap(),
+    )
+    .unwrap();
+    let dirs = doc["directions"].as_array().unwrap();
+    let p2: Vec<&Value> = dirs.iter().filter(|d| d["period"] == 2).collect();
+    assert_eq!(p2.len(), 1, "{dirs:#?}");
+    assert_eq!(p2[0]["direction"], 1.0);
+    assert!(p2[0]["from"]["branch_end"].is_u64(), "{}", p2[0]["from"]);
+    let segs = p2[0]["segments"].as_array().unwrap();
+    assert!(segs.len() >= 2, "{segs:#?}");
+    assert_eq!(segs[0]["end"], "corner");
+    let at = segs[0]["end_at"]["p_old"].as_f64().unwrap();
+    assert!((0.1982..0.1984).contains(&at), "{at}");
+    let last = segs.last().unwrap();
+    assert_eq!(last["end"], "end_parameter_range");
+    let pts = last["points"].as_array().unwrap();
+    let p = |q: &Value| q["p"].as_f64().unwrap();
+    assert!(
+        p(&pts[0]) - at <= 1e-3,
+        "starts {} after the corner",
+        p(&pts[0]) - at
+    );
+    for q in pts {
+        assert_eq!(q["label"], "walk", "{q}");
+        assert_eq!(q["stable"], true, "{q}");
+    }
+    assert!(segs.iter().all(|s| s["period"] == 2));
+    let k = pts
+        .windows(2)
+        .position(|w| p(&w[0]) <= 0.19875 && 0.19875 <= p(&w[1]))
+        .expect("the segment passes the sweep's value 0.19875");
+    let (a, b) = (&pts[k], &pts[k + 1]);
+    let w = (0.19875 - p(a)) / (p(b) - p(a));
+    let mu = |q: &Value| q["floquet_max"].as_f64().unwrap();
+    let m = (1.0 - w) * mu(a) + w * mu(b);
+    assert!(
+        (m - 0.804033).abs() < 2e-3,
+        "max|μ| {m} against the sweep's 0.804033"
+    );
+}

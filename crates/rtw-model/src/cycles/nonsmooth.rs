@@ -36,6 +36,9 @@ use hybrid_ode::nonsmooth::{GuardMinima, locate_change};
 use hybrid_ode::{Dense, Flow, Observer, StepEnd};
 
 mod chord;
+mod classify;
+
+use classify::{appearing, corner, shrunk};
 
 /// One event of a periodic orbit: guard `kind` fired in step `step` of the
 /// orbit (in that step's canonical labels: its stance rod is rod 0).
@@ -258,18 +261,44 @@ pub struct Setting<'a> {
 impl Setting<'_> {
     /// The period-`n` orbit at `value` near `start` (Newton on `Pⁿ`; if the
     /// start's modes do not come back, from its image, whose modes may be the
-    /// new side's), with its mode sequence. `None` where there is none.
+    /// new side's; failing both, from where the map settles after
+    /// [`SETTLE_PERIODS`] periods from it), with its mode sequence. `None`
+    /// where there is none.
     pub(crate) fn orbit(&self, start: &SectionPoint, n: usize, value: f64) -> Option<Orbit> {
         let map = map_at(self.base, self.options, self.cycle, self.param, value)?;
         let cycle = match map.solve(start, n, self.cycle) {
             Ok(c) => c,
             Err(_) => {
                 let q = map.iterate(start, n).ok()?.last()?.to;
-                map.solve(&q, n, self.cycle).ok()?
+                match map.solve(&q, n, self.cycle) {
+                    Ok(c) => c,
+                    Err(_) => settled(&map, start, n, self.cycle)?,
+                }
             }
         };
         watch(&map, cycle, value)
     }
+}
+
+/// Periods of the map run from a start before Newton is tried from where
+/// they end ([`Setting::orbit`]'s last resort).
+pub(crate) const SETTLE_PERIODS: usize = 30;
+
+/// Past a corner or a grazing the orbit's section point can jump farther
+/// than Newton reaches from the old side's orbit (a border collision moves
+/// it at a rate that is not small), although a stable gait goes on: the
+/// period-`n` orbit the map settles into from `start`, if it has period `n`
+/// (not a divisor of it: the period-1 walk is a fixed point of `P²` too).
+fn settled(
+    map: &StepMap,
+    start: &SectionPoint,
+    n: usize,
+    cycle: &CycleOptions,
+) -> Option<LimitCycle> {
+    let q = map.iterate(start, SETTLE_PERIODS * n).ok()?.last()?.to;
+    let c = map.solve(&q, n, cycle).ok()?;
+    let twice: Vec<SectionPoint> = c.orbit.iter().chain(&c.orbit).copied().collect();
+    (map.period_of(&twice, n, cycle.period_tol) == Some(n)).then_some(c)
 }
 
 /// How [`continue_segments`](super::continue_segments) locates and names a
@@ -326,6 +355,13 @@ pub enum EndKind {
     /// No change within [`EndOptions::reach`]: the branch ended otherwise
     /// (a fold the corrector did not pass).
     NoChange,
+    /// The branch turned back in the input at a fold (a multiplier through
+    /// +1) that its corrector did not pass: probed on from its last point,
+    /// it led back along the stretch it came by.
+    Fold {
+        /// The real multiplier nearest +1 at the branch's last point.
+        multiplier: f64,
+    },
 }
 
 impl EndKind {
@@ -338,6 +374,7 @@ impl EndKind {
             EndKind::Other => "sequence_change",
             EndKind::RangeEnd => "end_parameter_range",
             EndKind::NoChange => "end_no_continuation",
+            EndKind::Fold { .. } => "fold",
         }
     }
 }
@@ -357,68 +394,6 @@ pub struct BranchEnd {
     /// (the variational Jacobians, saltation included), where both sides
     /// have the same section coordinates.
     pub jacobian_jump: Option<f64>,
-}
-
-/// Among `near`'s closest approaches and events, the one that shrank most
-/// from `far` (the same occurrence of the same guard in the same step),
-/// below `ratio`.
-fn shrunk(near: &Orbit, far: &Orbit, ratio: f64) -> Option<Approach> {
-    let same = |x: &Approach, y: &Approach| {
-        x.step == y.step && x.kind == y.kind && x.at_boundary == y.at_boundary
-    };
-    let shrink = |a: &[Approach], b: &[Approach]| {
-        a.iter()
-            .enumerate()
-            .filter_map(|(i, x)| {
-                let k = a[..i].iter().filter(|y| same(x, y)).count();
-                let y = b.iter().filter(|y| same(x, y)).nth(k)?;
-                let r = x.value.abs() / y.value.abs();
-                (r.is_finite() && r < ratio).then_some((r, *x))
-            })
-            .collect::<Vec<_>>()
-    };
-    shrink(&near.approaches, &far.approaches)
-        .into_iter()
-        .chain(shrink(&near.events, &far.events))
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, a)| a)
-}
-
-/// An event of `new` that `old` does not have (beyond the occurrences of
-/// its guard in its step there) and that fires with almost no slope: below
-/// `ratio` of the steepest event of the same guard on the old side (a tip
-/// that bounces off the ground by a vanishing height and lands again).
-fn appearing(old: &Orbit, new: &Orbit, ratio: f64) -> Option<Approach> {
-    new.events
-        .iter()
-        .enumerate()
-        .filter(|(i, x)| {
-            let same = |y: &&Approach| y.step == x.step && y.kind == x.kind;
-            let k = new.events[..*i].iter().filter(same).count();
-            old.events.iter().filter(same).nth(k).is_none()
-        })
-        .filter_map(|(_, x)| {
-            let steepest = old
-                .events
-                .iter()
-                .filter(|y| y.kind == x.kind)
-                .map(|y| y.value.abs())
-                .fold(0.0, f64::max);
-            let r = x.value.abs() / steepest;
-            (r.is_finite() && r < ratio).then_some((r, *x))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, a)| a)
-}
-
-/// Two events of `o` nearest in time, if within `dt`.
-fn corner(o: &Orbit, dt: f64) -> Option<(GuardKind, GuardKind, f64)> {
-    o.events
-        .windows(2)
-        .filter(|w| w[0].step == w[1].step)
-        .map(|w| (w[0].kind, w[1].kind, w[1].t - w[0].t))
-        .filter(|x| x.2.abs() <= dt)
-        .min_by(|a, b| a.2.abs().total_cmp(&b.2.abs()))
 }
 
 /// Locates and names the end of a branch whose last point is the period-`n`
@@ -479,8 +454,25 @@ pub(crate) fn locate_end(
     };
     let old = at(change.old)?;
     let new = at(change.new);
-    // The farther reference: a probe step back, or the branch's last point.
-    let reference = if far.p == old.p { &first } else { &far };
+    // The farther reference: a probe step back, or the branch's last point;
+    // if both lie within a probe step of the change (a branch that stopped
+    // right next to it), the orbit a probe step back into the branch. A
+    // reference as near as the change itself hides a closest approach that
+    // has shrunk to zero.
+    let back = |o: &Orbit| (o.p - old.p).abs() >= opts.probe;
+    let stepped_back;
+    let reference = if back(&far) {
+        &far
+    } else if back(&first) {
+        &first
+    } else {
+        stepped_back = s
+            .orbit_near(&from, n, old.p - direction * opts.probe, &jacobian)
+            .filter(|o| o.sequence == old.sequence);
+        stepped_back
+            .as_ref()
+            .unwrap_or(if far.p == old.p { &first } else { &far })
+    };
     let kind = match shrunk(&old, reference, opts.grazing_ratio) {
         // A guard's zero reached at an event: the two coincide.
         Some(a) if a.at_boundary => EndKind::Corner {

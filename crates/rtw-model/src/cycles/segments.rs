@@ -104,39 +104,36 @@ pub fn continue_segments(
     max_segments: usize,
 ) -> Vec<Segment> {
     let mut out = Vec::new();
-    let Some(mut orbit) = s.orbit(start, n, p0) else {
+    let Some(mut next_orbit) = s.orbit(start, n, p0) else {
         return out;
     };
     let multipliers = |j: &DMatrix<f64>| limit::nontrivial_multipliers(j);
     let range = (cont.p_min, cont.p_max);
     let mut direction = direction;
     while out.len() < max_segments {
-        let template = orbit.cycle.orbit[0];
-        let Some(map) = map_at(s.base, s.options, s.cycle, s.param, orbit.p) else {
+        let Some((orbit_used, template, branch)) =
+            start_segment(s, &next_orbit, n, direction, cont, &multipliers).or_else(|| {
+                // Right past a corner the new side's events are still as
+                // near in time as the bracket is narrow, and the segment's
+                // first Newton can see them in the old order: start the
+                // segment 1, 2 or 4 probe steps on.
+                if out.is_empty() {
+                    return None;
+                }
+                (0..3).find_map(|k| {
+                    let p = next_orbit.p + direction * end_opts.probe * f64::from(1 << k);
+                    if !(range.0..=range.1).contains(&p) {
+                        return None;
+                    }
+                    let o = s.orbit(&next_orbit.cycle.orbit[0], n, p)?;
+                    start_segment(s, &o, n, direction, cont, &multipliers)
+                })
+            })
+        else {
             break;
         };
-        let opts = ContOptions {
-            z_scale: map.coord_scale(&template),
-            ..cont.clone()
-        };
-        let mut family = SegmentFamily {
-            inner: StepMapFamily::new(s.base, s.options, s.cycle, s.param, template, n),
-            setting: *s,
-            template,
-            n,
-            sequence: orbit.sequence.clone(),
-        };
+        let orbit = orbit_used;
         let label = orbit.cycle.label(&s.options.labels);
-        let Ok(branch) = continuation::continue_branch(
-            &mut family,
-            &orbit.cycle.fixed_point.z,
-            orbit.p,
-            direction,
-            &opts,
-            &multipliers,
-        ) else {
-            break;
-        };
         // The way the branch was going at its end: its last step in the
         // input (the tangent there may have turned, computed with the
         // Jacobian of the other side of a nonsmooth point).
@@ -159,6 +156,10 @@ pub fn continue_segments(
                 )
             })
             .flatten();
+        let end = end.map(|e| match came_back(&branch, &e, end_opts) {
+            true => fold(s, &template, n, &branch).unwrap_or(e),
+            false => e,
+        });
         let next = end.as_ref().and_then(|e| e.new.clone());
         out.push(Segment {
             sequence: orbit.sequence.clone(),
@@ -168,9 +169,90 @@ pub fn continue_segments(
             end,
         });
         match next {
-            Some(o) => orbit = o,
+            Some(o) => next_orbit = o,
             None => break,
         }
     }
     out
+}
+
+/// A segment's smooth branch from `orbit` towards `direction`: the orbit
+/// it started from (`orbit`), its template and the branch; `None` if the
+/// continuation cannot start there.
+fn start_segment(
+    s: &Setting<'_>,
+    orbit: &Orbit,
+    n: usize,
+    direction: f64,
+    cont: &ContOptions,
+    multipliers: &dyn Fn(&DMatrix<f64>) -> Vec<nalgebra::Complex<f64>>,
+) -> Option<(Orbit, SectionPoint, Branch)> {
+    let template = orbit.cycle.orbit[0];
+    let map = map_at(s.base, s.options, s.cycle, s.param, orbit.p)?;
+    let opts = ContOptions {
+        z_scale: map.coord_scale(&template),
+        ..cont.clone()
+    };
+    let mut family = SegmentFamily {
+        inner: StepMapFamily::new(s.base, s.options, s.cycle, s.param, template, n),
+        setting: *s,
+        template,
+        n,
+        sequence: orbit.sequence.clone(),
+    };
+    let branch = continuation::continue_branch(
+        &mut family,
+        &orbit.cycle.fixed_point.z,
+        orbit.p,
+        direction,
+        &opts,
+        multipliers,
+    )
+    .ok()?;
+    Some((orbit.clone(), template, branch))
+}
+
+/// Whether `end` lies on the segment's own way back: the orbit where it was
+/// located is one the branch already passed at least a probe step before its
+/// end in the input (the same value within ten brackets, the same fixed
+/// point within 1e-4 of its scale; the points it accepted at its end, as
+/// its step shrank, all lie within a probe step of the last). Then the
+/// branch turned at a fold its corrector did not pass and the probes from
+/// its last point followed it back to where it came from.
+fn came_back(branch: &Branch, end: &BranchEnd, opts: &EndOptions) -> bool {
+    let z = &end.old.cycle.fixed_point.z;
+    let scale = z.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let Some(last) = branch.points.last() else {
+        return false;
+    };
+    branch.points.iter().any(|pt| {
+        (pt.p - last.p).abs() >= opts.probe
+            && (pt.p - end.old.p).abs() <= 10.0 * opts.p_tol
+            && pt.z.len() == z.len()
+            && pt
+                .z
+                .iter()
+                .zip(z)
+                .all(|(a, b)| (a - b).abs() <= 1e-4 * scale)
+    })
+}
+
+/// The end of a segment whose branch turned at a fold: the orbit at its
+/// last point, with the real multiplier nearest +1 there.
+fn fold(s: &Setting<'_>, template: &SectionPoint, n: usize, branch: &Branch) -> Option<BranchEnd> {
+    let last = branch.points.last()?;
+    let old = s.orbit(&template.with_coords(&last.z), n, last.p)?;
+    let multiplier = last
+        .multipliers
+        .iter()
+        .filter(|m| m.im.abs() < 1e-9)
+        .map(|m| m.re)
+        .min_by(|a, b| (a - 1.0).abs().total_cmp(&(b - 1.0).abs()))?;
+    Some(BranchEnd {
+        kind: EndKind::Fold { multiplier },
+        p_new: last.p,
+        old,
+        new: None,
+        jacobian_jump: None,
+    })
 }

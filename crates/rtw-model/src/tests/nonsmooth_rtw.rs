@@ -147,3 +147,55 @@ fn the_walks_branch_is_continued_through_the_landing_foots_grazing() {
     assert!(b.points.iter().all(|p| p.p <= end.p_new + 1e-9));
     assert!(segs[1].end.is_none());
 }
+
+/// At the default strings (s = 0.8875), the walk continued down in φ from
+/// 0.15 changes its mode sequence at φ ≈ 0.143893: rod c's sliding tip slows
+/// until its speed just reaches the re-stick threshold, so a re-stick
+/// (immediately followed by a slip) appears — a grazing of rod c's re-stick
+/// guard. The continuation's last point lies within 1e-6 of the change, so
+/// the change's own bracket gives no reference a probe step back; the end
+/// must still be named by the guard's closest approach, measured against an
+/// orbit a probe step back into the branch.
+#[test]
+fn a_branch_that_stops_next_to_its_change_still_names_the_grazing() {
+    let options = Options::default();
+    let p_last = 0.1438935;
+    let base = Params {
+        phi: p_last,
+        ..Params::fig7a()
+    };
+    let cycle = CycleOptions {
+        settle_steps: 300,
+        ..CycleOptions::default()
+    };
+    let lc = StepMap::new(&base, &options, &cycle)
+        .limit_cycle(&options, &cycle)
+        .expect("a walk");
+    assert_eq!(lc.period, 1);
+    let s = in_phi(&base, &options, &cycle);
+    let opts = EndOptions::default();
+    let e = locate_end(&s, &lc.orbit[0], 1, p_last, -1.0, (0.05, 0.3), &opts).expect("an end");
+    assert!(
+        (0.143893..p_last).contains(&e.p_new) && (e.old.p - e.p_new).abs() <= opts.p_tol,
+        "located at {} / {}",
+        e.old.p,
+        e.p_new
+    );
+    let EndKind::Grazing(a) = e.kind else {
+        panic!("named {:?}", e.kind)
+    };
+    assert_eq!(
+        a.kind,
+        GuardKind::Restick { rod: 2 },
+        "{}",
+        guard_name(a.kind)
+    );
+    assert!(a.value.abs() < 1e-5, "closest approach {}", a.value);
+    let new = e.new.as_ref().expect("an orbit past the change");
+    assert!(
+        new.sequence.events.len() == e.old.sequence.events.len() + 2,
+        "a re-stick and its slip appear: {} → {}",
+        e.old.sequence.describe(),
+        new.sequence.describe()
+    );
+}

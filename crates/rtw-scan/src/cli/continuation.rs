@@ -53,7 +53,8 @@ pub(super) struct ContinuationArgs {
     #[arg(long, allow_negative_numbers = true, requires = "curve")]
     curve_to: Option<f64>,
     /// Also continue the gait's branch through the changes of its mode sequence, up to this many segments
-    /// each way, each change located and named (FILE.segments.json and a table in FILE.md; 0: off).
+    /// each way, and each period-2 branch on from where its smooth continuation stopped; each change
+    /// located and named (FILE.segments.json and a table in FILE.md; 0: off).
     #[arg(long, default_value_t = 0, value_name = "N")]
     through: usize,
     /// Branch points (FILE.special.parquet, FILE.curve.parquet and FILE.md are written beside it)
@@ -131,7 +132,7 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
         wall,
     );
     if a.through > 0 {
-        let dirs = cont_segments::run(&c, &result.diagram.start, a.through);
+        let dirs = cont_segments::run(&c, &result.diagram, a.through);
         cont_segments::write(&out, &c, &dirs)?;
         md.push_str(&cont_segments::markdown(&c, &dirs));
     }

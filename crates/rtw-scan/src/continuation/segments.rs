@@ -2,17 +2,21 @@
 //! changes of its mode sequence ([`rtw_model::cycles::BranchEnd`]), up to
 //! `N` segments each way from the start, each segment with its mode
 //! sequence and gait label and each end named (grazing, corner, the gait
-//! lost, the range's end). Written as `FILE.segments.json` (every point with
+//! lost, the range's end). Each period-2 branch born at a period doubling
+//! whose smooth continuation stopped short is continued the same way from
+//! its last point, so that its end is named too and the branch goes on
+//! past it where an orbit does. Written as `FILE.segments.json` (every point with
 //! its stability, period, step frequency and label, for the figures and the
 //! check against the attractor sweep) and a table in `FILE.md`.
 
 use super::Continuation;
 use crate::io::files::write_atomic;
 use anyhow::{Result, bail};
+use hybrid_ode::continuation::End;
 use rtw_model::Num;
-use rtw_model::cycles::LimitCycle;
 use rtw_model::cycles::{
-    BranchEnd, EndKind, EndOptions, Segment, Setting, Step, StepMap, continue_segments,
+    BranchEnd, Diagram, EndKind, EndOptions, SectionPoint, Segment, Setting, Step, StepMap,
+    continue_segments,
 };
 use serde_json::{Value, json};
 use std::fmt::Write as _;
@@ -46,30 +50,52 @@ pub(crate) fn check_output(out: &Path, force: bool) -> Result<()> {
     Ok(())
 }
 
-/// The segments of one direction from the start.
+/// The segments of one direction from one start.
 pub(crate) struct Direction {
     /// +1 / −1: first towards larger or smaller values of the input.
     pub direction: f64,
+    /// The period of the branch continued.
+    pub period: usize,
+    /// Where it starts: the diagram's start, or the last point of a
+    /// period-2 branch whose smooth continuation stopped there.
+    pub from: From,
+    /// The value of the input it starts at.
+    pub p0: f64,
     /// The segments in order.
     pub segments: Vec<Segment>,
 }
 
+/// Where a continued direction starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum From {
+    /// The diagram's start.
+    Start,
+    /// The end of the smooth diagram's branch of this index.
+    BranchEnd(usize),
+}
+
 /// Both directions from the diagram's start, `max` segments each, each
-/// direction in its own thread (they share nothing).
-pub(crate) fn run(c: &Continuation, start: &LimitCycle, max: usize) -> Vec<Direction> {
+/// direction in its own thread (they share nothing); then each period-2
+/// branch of `diagram` that ended inside the range for want of a smooth
+/// continuation ("no continuation"), continued on from its last point.
+pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direction> {
     let s = Setting {
         base: &c.base,
         options: &c.options,
         cycle: &c.cycle,
         param: c.param,
     };
+    let start = &diagram.start;
     let p0 = c.param.get(&c.base);
-    let one = |direction: f64| Direction {
+    let go = |at: &SectionPoint, period: usize, p0: f64, direction: f64, from: From| Direction {
         direction,
+        period,
+        from,
+        p0,
         segments: continue_segments(
             &s,
-            &start.orbit[0],
-            start.period,
+            at,
+            period,
             p0,
             direction,
             &c.diagram.continuation,
@@ -77,12 +103,51 @@ pub(crate) fn run(c: &Continuation, start: &LimitCycle, max: usize) -> Vec<Direc
             max,
         ),
     };
-    std::thread::scope(|scope| {
-        let up = scope.spawn(|| one(1.0));
-        let down = one(-1.0);
+    let mut dirs = std::thread::scope(|scope| {
+        let up = scope.spawn(|| go(&start.orbit[0], start.period, p0, 1.0, From::Start));
+        let down = go(&start.orbit[0], start.period, p0, -1.0, From::Start);
         let up = up.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
         vec![up, down]
-    })
+    });
+    // The switched branches share the start's template
+    // (rtw_model::cycles::diagram): a point z is start.orbit[0].with_coords(z).
+    for (k, b) in diagram.branches.iter().enumerate() {
+        if b.parent.is_none() || b.branch.end != End::StepTooSmall {
+            continue;
+        }
+        // From a few points before its end, so that the segment's own
+        // continuation retraces the last stretch and stops where the smooth
+        // one did (started at the very end, it has no room for a tangent).
+        let pts = &b.branch.points;
+        let Some(from) = pts.len().checked_sub(4).map(|i| &pts[i]) else {
+            continue;
+        };
+        let [.., a, last] = &pts[..] else {
+            continue;
+        };
+        if a.p == last.p {
+            continue;
+        }
+        let at = start.orbit[0].with_coords(&from.z);
+        dirs.push(go(
+            &at,
+            b.period,
+            from.p,
+            (last.p - a.p).signum(),
+            From::BranchEnd(k),
+        ));
+    }
+    dirs
+}
+
+/// The way a direction is shown in the table: `up` / `down` from the start,
+/// or the branch and period it continues.
+fn way(d: &Direction) -> String {
+    let w = if d.direction > 0.0 { "up" } else { "down" };
+    match d.from {
+        From::Start => w.to_string(),
+        From::BranchEnd(k) => format!("{w}, branch {k} (period {}) on from {:.5}", d.period, d.p0),
+    }
 }
 
 /// The step map at `value` of the continued input.
@@ -119,6 +184,9 @@ fn end_detail(e: &BranchEnd) -> String {
         EndKind::Other => "the sequence changed otherwise".into(),
         EndKind::RangeEnd => "the range ends".into(),
         EndKind::NoChange => "no change of sequence near it".into(),
+        EndKind::Fold { multiplier } => format!(
+            "the branch turns back (a multiplier at {multiplier:.4}) and the corrector did not pass the fold"
+        ),
     }
 }
 
@@ -183,7 +251,16 @@ pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
                     })
                 })
                 .collect();
-            json!({ "direction": d.direction, "segments": segments })
+            json!({
+                "direction": d.direction,
+                "period": d.period,
+                "from": match d.from {
+                    From::Start => json!("start"),
+                    From::BranchEnd(k) => json!({ "branch_end": k }),
+                },
+                "p0": d.p0,
+                "segments": segments,
+            })
         })
         .collect();
     json!({
@@ -256,7 +333,7 @@ pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {} | {first:.5} | {last:.5} | {stable_on} | {} | {at} | {what} | {mu} | {jump} |",
-                if d.direction > 0.0 { "up" } else { "down" },
+                way(d),
                 i,
                 seg.label.as_str(),
                 seg.sequence,
