@@ -456,9 +456,10 @@ pub(crate) fn locate_end(
     let new = at(change.new);
     // The farther reference: a probe step back, or the branch's last point;
     // if both lie within a probe step of the change (a branch that stopped
-    // right next to it), the orbit a probe step back into the branch. A
-    // reference as near as the change itself hides a closest approach that
-    // has shrunk to zero.
+    // right next to it), the orbit a probe step back into the branch, or a
+    // quarter or a sixteenth of one where the old sequence is shorter than
+    // that. A reference as near as the change itself hides a closest
+    // approach that has shrunk to zero.
     let back = |o: &Orbit| (o.p - old.p).abs() >= opts.probe;
     let stepped_back;
     let reference = if back(&far) {
@@ -466,9 +467,10 @@ pub(crate) fn locate_end(
     } else if back(&first) {
         &first
     } else {
-        stepped_back = s
-            .orbit_near(&from, n, old.p - direction * opts.probe, &jacobian)
-            .filter(|o| o.sequence == old.sequence);
+        stepped_back = [1.0, 0.25, 0.0625].iter().find_map(|f| {
+            s.orbit_near(&from, n, old.p - direction * opts.probe * f, &jacobian)
+                .filter(|o| o.sequence == old.sequence)
+        });
         stepped_back
             .as_ref()
             .unwrap_or(if far.p == old.p { &first } else { &far })
