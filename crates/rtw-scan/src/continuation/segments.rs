@@ -58,7 +58,7 @@ pub(crate) struct Direction {
     pub period: usize,
     /// Where it starts: the diagram's start, or the last point of a
     /// period-2 branch whose smooth continuation stopped there.
-    pub from: From,
+    pub from: Origin,
     /// The value of the input it starts at.
     pub p0: f64,
     /// The segments in order.
@@ -67,7 +67,7 @@ pub(crate) struct Direction {
 
 /// Where a continued direction starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum From {
+pub(crate) enum Origin {
     /// The diagram's start.
     Start,
     /// The end of the smooth diagram's branch of this index.
@@ -87,7 +87,7 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
     };
     let start = &diagram.start;
     let p0 = c.param.get(&c.base);
-    let go = |at: &SectionPoint, period: usize, p0: f64, direction: f64, from: From| Direction {
+    let go = |at: &SectionPoint, period: usize, p0: f64, direction: f64, from: Origin| Direction {
         direction,
         period,
         from,
@@ -104,8 +104,8 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
         ),
     };
     let mut dirs = std::thread::scope(|scope| {
-        let up = scope.spawn(|| go(&start.orbit[0], start.period, p0, 1.0, From::Start));
-        let down = go(&start.orbit[0], start.period, p0, -1.0, From::Start);
+        let up = scope.spawn(|| go(&start.orbit[0], start.period, p0, 1.0, Origin::Start));
+        let down = go(&start.orbit[0], start.period, p0, -1.0, Origin::Start);
         let up = up.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
         vec![up, down]
     });
@@ -134,7 +134,7 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
             b.period,
             from.p,
             (last.p - a.p).signum(),
-            From::BranchEnd(k),
+            Origin::BranchEnd(k),
         ));
     }
     dirs
@@ -145,8 +145,10 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
 fn way(d: &Direction) -> String {
     let w = if d.direction > 0.0 { "up" } else { "down" };
     match d.from {
-        From::Start => w.to_string(),
-        From::BranchEnd(k) => format!("{w}, branch {k} (period {}) on from {:.5}", d.period, d.p0),
+        Origin::Start => w.to_string(),
+        Origin::BranchEnd(k) => {
+            format!("{w}, branch {k} (period {}) on from {:.5}", d.period, d.p0)
+        }
     }
 }
 
@@ -255,8 +257,8 @@ pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
                 "direction": d.direction,
                 "period": d.period,
                 "from": match d.from {
-                    From::Start => json!("start"),
-                    From::BranchEnd(k) => json!({ "branch_end": k }),
+                    Origin::Start => json!("start"),
+                    Origin::BranchEnd(k) => json!({ "branch_end": k }),
                 },
                 "p0": d.p0,
                 "segments": segments,
