@@ -49,14 +49,12 @@ def segments(doc):
 
 
 def way(doc):
-    """Each direction's name in the tables: up / down from the start, or the
-    period-2 branch it continues (`from` in the segments file)."""
+    """Each direction's segments with the direction's name in the tables
+    (`way` in the segments file: up / down from the start, or the period-2
+    branch it continues)."""
     for d in doc["directions"]:
-        w = "up" if d["direction"] > 0 else "down"
-        f = d.get("from", "start")
-        name = w if f == "start" else f"{w}, branch {f['branch_end']} (period {d['period']}) on from {d['p0']:.5f}"
         for i, s in enumerate(d["segments"]):
-            yield name, i, s
+            yield d["way"], i, s
 
 
 def diagram(args):

@@ -9,7 +9,7 @@
 #   period and step frequency (relative 1e-3) wherever both are stable; fails the
 #   script if they disagree. Writes results/continuation/segments.md.
 # Called by ./scripts/continuation.sh; runs the three lengths at once (each
-# continues its two directions in two threads), at the default model (its
+# continues its directions two at a time, the period-2 ones too), at the default model (its
 # strings' natural length s from configs/template.toml, as the attractor sweep).
 set -euo pipefail
 cd "$(dirname "$0")/.."

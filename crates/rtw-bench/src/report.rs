@@ -95,11 +95,11 @@ fn report_scan(md: &mut String, m: &Measured) {
     let n_scan = m.scan.len();
     let _ = writeln!(
         md,
-        "## Scan: {n_scan} samples of the paper's box, default model\n"
+        "## Scan: {n_scan} samples of the paper's box, s = 0.85 r, static start\n"
     );
     let _ = writeln!(
         md,
-        "`configs/bench/scan200.toml` (docs/model.md §8's box at L = 0.8: the first 200 samples of `configs/paper.toml`, default model). \
+        "`configs/bench/scan200.toml` (docs/model.md §8's box at L = 0.8: the first 200 samples of `configs/paper.toml`, with the model the benchmark was first measured with: strings' natural length s = 0.85 r and a static start, not today's default). \
          CPU s: the sum of the per-sample times; wall s: the whole scan on the worker threads. \
          Outcome % per label, largest |Δ| against the reference (pp), labels that differ \
          (flips), median relative f_w error over samples stable in both with the same label.\n"
@@ -273,7 +273,7 @@ pub(crate) fn write_out(dir: &Path, md: &str, m: &Measured) -> Result<()> {
     }
     panels.push(Panel {
         title: format!(
-            "scan of {} samples, default model",
+            "scan of {} samples, s = 0.85 r, static start",
             scans.first().map_or(0, |s| s.1.points.len())
         ),
         x_label: "largest outcome-fraction error (pp)".into(),

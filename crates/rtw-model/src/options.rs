@@ -480,7 +480,7 @@ pub struct RobustnessOptions {
 }
 
 /// The default roughness of `steps_to_fall` (m).
-pub const SIGMA_DEFAULT: f64 = 0.01;
+pub(crate) const SIGMA_DEFAULT: f64 = 0.01;
 const TRIALS_DEFAULT: u32 = 20;
 const MAX_STEPS_DEFAULT: u32 = 100;
 

@@ -117,7 +117,7 @@ impl Params {
     pub fn validate(&self) -> Result<(), ParamError> {
         Param::ALL
             .iter()
-            .try_for_each(|param| param.check(param.get(self)))
+            .try_for_each(|param| param.check(self[*param]))
     }
 }
 
@@ -164,30 +164,6 @@ impl Param {
         }
     }
 
-    /// Its value in `p`.
-    pub fn get(self, p: &Params) -> f64 {
-        match self {
-            Param::Length => p.length,
-            Param::Rho => p.rho,
-            Param::Alpha => p.alpha,
-            Param::Fn => p.f_n,
-            Param::Zeta => p.zeta,
-            Param::Phi => p.phi,
-        }
-    }
-
-    /// Sets its value in `p` (unchecked: see [`check`](Param::check)).
-    pub fn set(self, p: &mut Params, value: f64) {
-        *match self {
-            Param::Length => &mut p.length,
-            Param::Rho => &mut p.rho,
-            Param::Alpha => &mut p.alpha,
-            Param::Fn => &mut p.f_n,
-            Param::Zeta => &mut p.zeta,
-            Param::Phi => &mut p.phi,
-        } = value;
-    }
-
     /// The valid range, in words (with the unit).
     pub fn range(self) -> &'static str {
         match self {
@@ -221,6 +197,36 @@ impl Param {
     /// `value` if it is valid, else the error naming this input and its range.
     pub fn check(self, value: f64) -> Result<(), ParamError> {
         check(self.name(), value, self.range(), |v| self.admits(v))
+    }
+}
+
+/// `params[Param::Alpha]`: one input by name (the sweep, continuation and
+/// sampling set inputs they know only as a [`Param`]). Setting through
+/// `IndexMut` is unchecked: see [`Param::check`].
+impl std::ops::Index<Param> for Params {
+    type Output = f64;
+    fn index(&self, param: Param) -> &f64 {
+        match param {
+            Param::Length => &self.length,
+            Param::Rho => &self.rho,
+            Param::Alpha => &self.alpha,
+            Param::Fn => &self.f_n,
+            Param::Zeta => &self.zeta,
+            Param::Phi => &self.phi,
+        }
+    }
+}
+
+impl std::ops::IndexMut<Param> for Params {
+    fn index_mut(&mut self, param: Param) -> &mut f64 {
+        match param {
+            Param::Length => &mut self.length,
+            Param::Rho => &mut self.rho,
+            Param::Alpha => &mut self.alpha,
+            Param::Fn => &mut self.f_n,
+            Param::Zeta => &mut self.zeta,
+            Param::Phi => &mut self.phi,
+        }
     }
 }
 
@@ -377,11 +383,11 @@ mod tests {
             assert_eq!(param.name().parse::<Param>(), Ok(param));
             assert_eq!(param.to_string(), param.name());
             let mut p = Params::fig7a();
-            param.set(&mut p, 0.01 * (i + 1) as f64);
-            assert_eq!(param.get(&p), 0.01 * (i + 1) as f64);
+            p[param] = 0.01 * (i + 1) as f64;
+            assert_eq!(p[param], 0.01 * (i + 1) as f64);
             // Only that field moved.
             for other in Param::ALL.into_iter().filter(|&o| o != param) {
-                assert_eq!(other.get(&p), other.get(&Params::fig7a()));
+                assert_eq!(p[other], Params::fig7a()[other]);
             }
             let e = param.check(f64::NAN).unwrap_err();
             assert_eq!((e.field, e.range), (param.name(), param.range()));

@@ -291,7 +291,7 @@ fn both_ends_of_every_input_range_give_a_physical_outcome_at_fig7a() {
     for (param, lo, hi, below, above) in ends {
         for (end, v) in [("lower", lo), ("upper", hi)] {
             let mut p = Params::fig7a();
-            param.set(&mut p, v);
+            p[param] = v;
             if let Err(e) = p.validate() {
                 bad.push(format!(
                     "{} = {v:e} ({end} end) is refused: {e}",
@@ -310,7 +310,7 @@ fn both_ends_of_every_input_range_give_a_physical_outcome_at_fig7a() {
         }
         for v in [below, above] {
             let mut p = Params::fig7a();
-            param.set(&mut p, v);
+            p[param] = v;
             match p.validate() {
                 Err(e) => assert_eq!(e.field, param.name(), "{} = {v:e}", param.name()),
                 Ok(()) => bad.push(format!(

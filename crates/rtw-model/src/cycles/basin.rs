@@ -53,7 +53,8 @@ pub enum Coord {
 }
 
 impl Coord {
-    /// Every coordinate, in the order of [`Coord::name`]'s list.
+    /// Every coordinate: `omega_a`, `omega_b`, `omega_c`, `theta_a`, `theta_b`,
+    /// `theta_c` as `Display` writes them and `str::parse` reads them.
     pub const ALL: [Coord; 6] = [
         Coord::Omega(0),
         Coord::Omega(1),
@@ -64,16 +65,11 @@ impl Coord {
     ];
 
     /// `omega_a` … `theta_c`.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         const NAMES: [&str; 6] = [
             "omega_a", "omega_b", "omega_c", "theta_a", "theta_b", "theta_c",
         ];
         NAMES[Self::ALL.iter().position(|&c| c == self).expect("in ALL")]
-    }
-
-    /// The coordinate named `name` ([`Coord::name`]).
-    pub fn parse(name: &str) -> Option<Coord> {
-        Self::ALL.into_iter().find(|c| c.name() == name)
     }
 
     /// The state slot it is.
@@ -82,6 +78,29 @@ impl Coord {
             Coord::Theta(i) => slots::at(i, THETA),
             Coord::Omega(i) => slots::at(i, OMEGA),
         }
+    }
+}
+
+impl std::fmt::Display for Coord {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Coord {
+    type Err = String;
+    /// The coordinate with this name, or a message listing the names.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Self::ALL.iter().map(|c| c.name()).collect();
+                format!(
+                    "unknown coordinate `{s}`: must be one of {}",
+                    names.join(", ")
+                )
+            })
     }
 }
 
@@ -107,7 +126,7 @@ pub const MAX_STEPS: usize = 100_000;
 
 impl Axis {
     /// The offsets.
-    pub fn offsets(&self) -> Vec<f64> {
+    pub(crate) fn offsets(&self) -> Vec<f64> {
         // As a scan's linspace axis: the ends exact, and a symmetric range
         // with an odd count has an exact 0 (the fixed point itself).
         let n = self.points;
@@ -168,7 +187,7 @@ impl BasinSpec {
         if self.x.coord == self.y.coord {
             return Err(BasinError::Invalid {
                 field: "y",
-                what: format!("coordinate {}", self.y.coord.name()),
+                what: format!("coordinate {}", self.y.coord),
                 range: "a coordinate other than x's",
             });
         }
@@ -228,7 +247,7 @@ pub enum Fate<E> {
 
 /// A point followed on a map ([`follow`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Followed<P, E> {
+pub(crate) struct Followed<P, E> {
     /// What became of it.
     pub fate: Fate<E>,
     /// Steps taken without failing (the step it returned at, for a return).
@@ -244,7 +263,7 @@ pub struct Followed<P, E> {
 /// ([`Fate::Fails`]) or the steps run out ([`Fate::Survives`]). The
 /// classification rule of every basin slice, for any map (the tests check
 /// it on the rimless wheel against its closed-form basin).
-pub fn follow<P, E>(
+pub(crate) fn follow<P, E>(
     start: P,
     steps: usize,
     tol: f64,
@@ -427,11 +446,6 @@ impl Basin {
             Fate::Fails(_) | Fate::Infeasible => {}
         }
         point
-    }
-
-    /// Every grid point, in order ([`Basin::point`]), one after the other.
-    pub fn grid(&self) -> Vec<BasinPoint> {
-        (0..self.len()).map(|i| self.point(i)).collect()
     }
 
     /// Scaled distance from `p` to the nearest orbit point in its modes.

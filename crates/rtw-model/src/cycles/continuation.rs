@@ -59,7 +59,7 @@ impl StepMapFamily {
     /// The step map at `value` of the parameter; `None` outside its range.
     fn map_at(&self, value: f64) -> Option<StepMap> {
         let mut p = self.base;
-        self.param.set(&mut p, value);
+        p[self.param] = value;
         p.validate().ok()?;
         Some(StepMap::new(&p, &self.options, &self.cycle))
     }
@@ -118,12 +118,12 @@ impl StepMapFamily2 {
     /// derivatives (central differences).
     pub fn eval(&self, z: &[f64], p: [f64; 2]) -> Option<MapEval2> {
         let mut at = self.family.clone();
-        self.second.set(&mut at.base, p[1]);
+        at.base[self.second] = p[1];
         let first = at.eval(z, p[0])?;
         let h = PARAM_STEP * p[1].abs().max(1.0);
         let power = |v: f64| {
             let mut f = self.family.clone();
-            self.second.set(&mut f.base, v);
+            f.base[self.second] = v;
             f.power(p[0], &f.template.with_coords(z))
         };
         let (plus, minus) = (power(p[1] + h)?, power(p[1] - h)?);
@@ -278,7 +278,7 @@ pub fn diagram(
     let family = StepMapFamily::new(base, options, cycle, param, template, start.period);
     let multipliers = |j: &DMatrix<f64>| limit::nontrivial_multipliers(j);
     let z0 = start.fixed_point.z.clone();
-    let p0 = param.get(base);
+    let p0 = base[param];
     let mut branches = Vec::new();
     for direction in [1.0, -1.0] {
         let mut f = family.clone();

@@ -9,7 +9,7 @@
 //! | `gsn.rs` | the gait sensitivity norm: the map linearised with the floor height as input, its H2 norm | (crate-private; a run's `gsn`) |
 //! | `continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
 //! | `nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost): the orbit's mode sequence and closest approaches, the located end | [`ModeSequence`], [`ModeEvent`], [`Approach`], [`Orbit`], [`Setting`], [`EndOptions`], [`EndKind`], [`BranchEnd`] |
-//! | `basin.rs` | a slice of a gait's basin of attraction: a grid of perturbed section points, each iterated and classified | [`Basin`], [`BasinSpec`], [`follow`] |
+//! | `basin.rs` | a slice of a gait's basin of attraction: a grid of perturbed section points, each iterated and classified | [`Basin`], [`BasinSpec`] |
 //! | `segments.rs` | a branch continued through those changes, segment by segment | [`Segment`], [`continue_segments`] |
 
 pub(crate) mod basin;
@@ -21,7 +21,7 @@ pub(crate) mod section;
 pub(crate) mod segments;
 pub(crate) mod stepmap;
 
-pub use basin::{Axis, Basin, BasinError, BasinPoint, BasinSpec, Coord, Fate, Followed, follow};
+pub use basin::{Axis, Basin, BasinError, BasinPoint, BasinSpec, Coord, Fate};
 pub use continuation::{
     Diagram, DiagramBranch, DiagramError, DiagramOptions, StepMapFamily, StepMapFamily2, diagram,
 };

@@ -240,7 +240,7 @@ pub(crate) fn map_at(
     value: f64,
 ) -> Option<StepMap> {
     let mut p = *base;
-    param.set(&mut p, value);
+    p[param] = value;
     p.validate().ok()?;
     Some(StepMap::new(&p, options, cycle))
 }
@@ -365,8 +365,8 @@ pub enum EndKind {
 }
 
 impl EndKind {
-    /// The name written in a diagram's files.
-    pub fn name(&self) -> &'static str {
+    /// The name written in a diagram's files; also its `Display`.
+    fn name(&self) -> &'static str {
         match self {
             EndKind::Grazing(_) => "grazing",
             EndKind::Corner { .. } => "corner",
@@ -376,6 +376,12 @@ impl EndKind {
             EndKind::NoChange => "end_no_continuation",
             EndKind::Fold { .. } => "fold",
         }
+    }
+}
+
+impl std::fmt::Display for EndKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
     }
 }
 

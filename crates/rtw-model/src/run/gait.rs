@@ -1,6 +1,7 @@
 //! Run statistics over the analysis window and the gait label (docs/model.md §5).
 
 use crate::options::LabelOptions;
+use crate::outcome::Outcome;
 use crate::outcome::{ContactFractions, MAX_PERIOD, StepCounts, StepShares, step_kind};
 use crate::plant::geometry::Tip;
 
@@ -272,6 +273,20 @@ fn find_period(len: usize, at: impl Fn(usize) -> (f64, f64)) -> u32 {
                 })
         })
         .map_or(0, |n| n as u32)
+}
+
+/// The time the flat gait takes for `steps` steps. A step is a new foot's
+/// touchdown, as on the step map's section: counting every touchdown
+/// (`f_w`) would shorten a skip's horizon by its bounces, and a chattering
+/// tip's to almost nothing. A gait that took no new foot in its window (a
+/// star sliding on without stepping) has no step time: then `t_max`, the
+/// horizon the flat run was judged over.
+pub(crate) fn steps_to_time(steps: f64, flat: &Outcome, t_max: f64) -> f64 {
+    if flat.f_w_newfoot > 0.0 {
+        steps / flat.f_w_newfoot
+    } else {
+        t_max
+    }
 }
 
 #[cfg(test)]

@@ -7,8 +7,8 @@
 //! with `stop_when_settled` at a touchdown), the step's edge
 //! [`EDGE_AHEAD`]` × L` ahead of its front-most grounded tip; the run from
 //! there, on the stepped ground, under the same options for
-//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (`20 / f_w` seconds, at
-//! most `t_max`), must
+//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (a step is a new foot's
+//! touchdown: `20 / f_w_newfoot` seconds, at most `t_max`), must
 //! not fail and must have the flat gait's label over the second half of
 //! them (`analysis_window = 0.5`). Anything else (a collapse, a trip on the
 //! riser, a stall, another gait, or still hopping ten steps after the drop)
@@ -32,6 +32,7 @@ use crate::outcome::{Outcome, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
+use crate::run::gait::steps_to_time;
 use crate::run::recorder::run_from;
 use crate::run::steps_to_fall::steps_to_fall;
 use hybrid_ode::Work;
@@ -41,7 +42,7 @@ use hybrid_ode::Work;
 /// from the riser.
 pub const EDGE_AHEAD: f64 = 0.05;
 /// A step down is survived when, this many steps of the flat gait (at its
-/// touchdown rate `f_w`) after the settled state, the run has not failed
+/// new-foot rate `f_w_newfoot`) after the settled state, the run has not failed
 /// and the second half of them has the flat gait's label.
 pub const SURVIVAL_STEPS: f64 = 20.0;
 /// The first height tried, in rod lengths.
@@ -117,9 +118,8 @@ pub(crate) fn settled<'a>(
     options.limit_cycle = false;
     options.robustness = RobustnessOptions::default();
     // Judged over `SURVIVAL_STEPS` steps of the flat gait after the edge,
-    // the label over their second half.
-    // At most the run's own `t_max` (a gait's `f_w` is positive).
-    options.t_max = (SURVIVAL_STEPS / flat.f_w).min(options.t_max);
+    // the label over their second half; at most the run's own `t_max`.
+    options.t_max = steps_to_time(SURVIVAL_STEPS, flat, options.t_max).min(options.t_max);
     options.analysis_window = 0.5;
     SettledGait {
         params,
@@ -186,7 +186,8 @@ pub(crate) fn measure(
     let steps_to_fall = options.robustness.steps_to_fall.then(|| {
         steps_to_fall(
             |ground, o| s.run_on(ground, o, &mut work),
-            flat.f_w,
+            flat,
+            options.t_max,
             s.edge,
             &s.options,
             &options.robustness,
@@ -216,4 +217,56 @@ pub(crate) fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(O
         })
     })
     .flatten()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::outcome::Label;
+    use crate::run::recorder::with_end_state;
+
+    /// A paper-scan skip (sample 12 of configs/paper.toml) that touches down
+    /// twice per step: its new foot lands, lifts in flight and lands again.
+    fn skip_with_two_touchdowns_per_step() -> Params {
+        Params::new(
+            0.8,
+            4.654368528507514,
+            0.06339175109104485,
+            3.6230217333128656,
+            0.07319035141659881,
+            0.1656710566088282,
+        )
+        .unwrap()
+    }
+
+    /// A step is a new foot's touchdown (docs/model.md, the step map's
+    /// section), not any touchdown: the window a step down is judged over
+    /// must hold `SURVIVAL_STEPS` steps of the flat gait, counted in the run
+    /// itself, however often a skip bounces within a step. Timed by the
+    /// touchdown rate `f_w`, this skip's window held only half of them.
+    #[test]
+    fn the_survival_window_holds_its_steps_in_new_feet_for_a_skip() {
+        let p = skip_with_two_touchdowns_per_step();
+        let o = Options::default();
+        with_end_state(&p, &o, |phys, rtw, y, flat| {
+            assert_eq!(flat.label, Label::Skip);
+            assert!(flat.f_w > 1.9 * flat.f_w_newfoot, "{flat:?}");
+            let s = settled(&p, &o, phys, rtw, y, flat);
+            // The same window on the flat slope, every step of it counted.
+            let whole = Options {
+                analysis_window: 1.0,
+                stop_when_settled: false,
+                ..s.options
+            };
+            let run = s.run_on(TerrainOptions::default(), &whole, &mut Work::default());
+            assert_eq!(run.label, Label::Skip);
+            let steps = run.step_shares.steps as f64;
+            assert!(
+                (steps - SURVIVAL_STEPS).abs() <= 1.0,
+                "{steps} steps in a window of {} s",
+                whole.t_max
+            );
+        })
+        .unwrap();
+    }
 }

@@ -7,27 +7,31 @@
 //! front-most grounded tip, patches `terrain.patch` long with
 //! heights from N(0, σ²), σ = `robustness.sigma`. Trial `i` (of
 //! `robustness.trials`) has seed `terrain.seed + i`. It runs for
-//! `robustness.max_steps` steps of the flat gait (`max_steps / f_w` seconds,
-//! never stopped early as settled); a trial **falls** when its run ends in
+//! `robustness.max_steps` steps of the flat gait (a step is a new foot's
+//! touchdown: `max_steps / f_w_newfoot` seconds, never stopped early as
+//! settled); a trial **falls** when its run ends in
 //! anything but a stable gait (collapse, a trip on a riser, a stall or a
-//! numerical failure), and its steps to fall are `f_w × t_end`, the steps
-//! the flat gait would have taken by then. A trial that has not fallen is
-//! censored at `max_steps`.
+//! numerical failure), and its steps to fall are `f_w_newfoot × t_end`, the
+//! steps the flat gait would have taken by then. A trial that has not
+//! fallen is censored at `max_steps`.
 
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
 use crate::outcome::{Outcome, StepsToFall};
+use crate::run::gait::steps_to_time;
 
 /// Two-sided 95 % quantile of the standard normal.
 const Z95: f64 = 1.959_963_984_540_054;
 
-/// The steps to fall of a settled gait with touchdown rate `f_w` whose
+/// The steps to fall of the settled gait of the flat run `flat` (judged
+/// over `t_max`) whose
 /// ground ahead starts at `edge`, over `r.trials` rough grounds of
 /// roughness `r.sigma` with `terrain`'s seed and patch length; `run_on`
 /// runs it from its settled state on a ground under options (the step
 /// down's runner, robustness.rs).
 pub(crate) fn steps_to_fall(
     mut run_on: impl FnMut(TerrainOptions, &Options) -> Outcome,
-    f_w: f64,
+    flat: &Outcome,
+    t_max: f64,
     edge: f64,
     settled_options: &Options,
     r: &RobustnessOptions,
@@ -35,7 +39,7 @@ pub(crate) fn steps_to_fall(
 ) -> StepsToFall {
     let max_steps = f64::from(r.max_steps);
     let options = Options {
-        t_max: max_steps / f_w,
+        t_max: steps_to_time(max_steps, flat, t_max),
         stop_when_settled: false,
         ..*settled_options
     };
@@ -51,7 +55,7 @@ pub(crate) fn steps_to_fall(
             if o.label.is_stable() {
                 max_steps
             } else {
-                (f_w * o.t_end).min(max_steps)
+                (flat.f_w_newfoot * o.t_end).min(max_steps)
             }
         })
         .collect();

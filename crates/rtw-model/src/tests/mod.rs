@@ -2,6 +2,7 @@
 //! analysis's closed forms): they reach items that are not public, so they
 //! live inside the crate. Tests of the public API are in `tests/`.
 
+mod basin;
 mod crossings_inside_a_step;
 mod limit_cycle;
 mod modal;

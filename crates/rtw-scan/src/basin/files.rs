@@ -152,7 +152,7 @@ pub(crate) fn basin_json(basin: &Basin) -> serde_json::Value {
     let (cx, cy) = basin.centre();
     let axis = |a: &rtw_model::cycles::Axis, centre: f64| {
         serde_json::json!({
-            "coord": a.coord.name(), "from": a.from, "to": a.to, "points": a.points, "centre": centre,
+            "coord": a.coord.to_string(), "from": a.from, "to": a.to, "points": a.points, "centre": centre,
         })
     };
     serde_json::json!({

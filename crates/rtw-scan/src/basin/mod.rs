@@ -73,12 +73,9 @@ pub fn parse_axis(text: &str, flag: &str) -> Result<Axis> {
     let [coord, from, to, points] = parts[..] else {
         bail!("{flag} {text}: must be COORD:FROM:TO:POINTS, e.g. omega_a:-40:40:41");
     };
-    let Some(coord) = Coord::parse(coord) else {
-        bail!(
-            "{flag} {text}: unknown coordinate `{coord}`: must be one of {}",
-            Coord::ALL.map(Coord::name).join(", ")
-        );
-    };
+    let coord: Coord = coord
+        .parse()
+        .map_err(|e| anyhow::anyhow!("{flag} {text}: {e}"))?;
     let number = |s: &str, what: &str| {
         s.trim().parse::<f64>().map_err(|_| {
             anyhow::anyhow!("{flag} {text}: {what} `{s}` is invalid: must be a number")

@@ -86,8 +86,8 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
         slice.label.as_str(),
         slice.cycle.period,
         slice.cycle.floquet_max(),
-        spec.x.coord.name(),
-        spec.y.coord.name(),
+        spec.x.coord,
+        spec.y.coord,
     );
     let mut counts = [0usize; OUTCOMES.len()];
     for p in &points {

@@ -80,7 +80,7 @@ impl SweepParam {
     ) -> Result<(Params, Options), ParamError> {
         let (mut p, mut o) = (*base, *options);
         match self {
-            Self::Param(i) => i.set(&mut p, v),
+            Self::Param(i) => p[i] = v,
             Self::RestLengthRatio => o.strings.rest_length_ratio = v,
         }
         p.validate()?;
@@ -111,10 +111,10 @@ mod tests {
     fn inputs_read_back_what_they_set_and_name_the_params_fields() {
         let mut p = Params::fig7a();
         for (k, i) in Param::ALL.into_iter().enumerate() {
-            i.set(&mut p, 0.01 * (k + 1) as f64);
+            p[i] = 0.01 * (k + 1) as f64;
         }
         assert_eq!(
-            Param::ALL.map(|i| i.get(&p)),
+            Param::ALL.map(|i| p[i]),
             [0.01, 0.02, 0.03, 0.04, 0.05, 0.06]
         );
         assert_eq!(

@@ -72,7 +72,7 @@ impl Continuation {
         for (flag, v) in [("--from", range.0), ("--to", range.1)] {
             param.check(v).map_err(|e| anyhow!("{flag}: {e}"))?;
         }
-        let p0 = param.get(&base);
+        let p0 = base[param];
         if !(range.0 < p0 && p0 < range.1) {
             bail!(
                 "--from {} --to {}: the start's {} = {} must lie strictly between them",
@@ -99,7 +99,7 @@ impl Continuation {
             for (flag, v) in [("--curve-from", c.range.0), ("--curve-to", c.range.1)] {
                 c.param.check(v).map_err(|e| anyhow!("{flag}: {e}"))?;
             }
-            let v2 = c.param.get(&base);
+            let v2 = base[c.param];
             if !(c.range.0 < v2 && v2 < c.range.1) {
                 bail!(
                     "--curve-from {} --curve-to {}: the start's {} = {} must lie strictly between them",
@@ -183,7 +183,7 @@ pub(crate) fn run(c: &Continuation) -> Result<Result2> {
                 ..c.diagram.continuation.clone()
             },
             p2_range: cs.range,
-            p2_scale: 0.1 * cs.param.get(&c.base).abs().max(1.0),
+            p2_scale: 0.1 * c.base[cs.param].abs().max(1.0),
             fd_step: 1e-6,
         };
         for (i, b) in d.branches.iter().enumerate() {
@@ -196,7 +196,7 @@ pub(crate) fn run(c: &Continuation) -> Result<Result2> {
                     let curve = continuation::continue_curve(
                         |z: &[f64], p: [f64; 2]| f2.eval(z, p),
                         bif,
-                        cs.param.get(&c.base),
+                        c.base[cs.param],
                         direction,
                         &opts2,
                         &nontrivial,

@@ -15,12 +15,12 @@ use anyhow::{Result, bail};
 use hybrid_ode::continuation::End;
 use rtw_model::Num;
 use rtw_model::cycles::{
-    BranchEnd, Diagram, EndKind, EndOptions, SectionPoint, Segment, Setting, Step, StepMap,
-    continue_segments,
+    BranchEnd, Diagram, EndKind, EndOptions, Segment, Setting, Step, StepMap, continue_segments,
 };
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// What the file's `kind` says: a file without it is not this command's.
 const KIND: &str = "rtw-scan continuation segments";
@@ -74,10 +74,11 @@ pub(crate) enum Origin {
     BranchEnd(usize),
 }
 
-/// Both directions from the diagram's start, `max` segments each, each
-/// direction in its own thread (they share nothing); then each period-2
-/// branch of `diagram` that ended inside the range for want of a smooth
-/// continuation ("no continuation"), continued on from its last point.
+/// Both directions from the diagram's start, `max` segments each; then each
+/// period-2 branch of `diagram` that ended inside the range for want of a
+/// smooth continuation ("no continuation"), continued on from its last
+/// point. The directions share nothing, so two threads take them in turn;
+/// they are returned in that order.
 pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direction> {
     let s = Setting {
         base: &c.base,
@@ -86,29 +87,12 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
         param: c.param,
     };
     let start = &diagram.start;
-    let p0 = c.param.get(&c.base);
-    let go = |at: &SectionPoint, period: usize, p0: f64, direction: f64, from: Origin| Direction {
-        direction,
-        period,
-        from,
-        p0,
-        segments: continue_segments(
-            &s,
-            at,
-            period,
-            p0,
-            direction,
-            &c.diagram.continuation,
-            &EndOptions::default(),
-            max,
-        ),
-    };
-    let mut dirs = std::thread::scope(|scope| {
-        let up = scope.spawn(|| go(&start.orbit[0], start.period, p0, 1.0, Origin::Start));
-        let down = go(&start.orbit[0], start.period, p0, -1.0, Origin::Start);
-        let up = up.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-        vec![up, down]
-    });
+    let p0 = c.base[c.param];
+    // Each direction's start: section point, period, input, way, origin.
+    let mut jobs = vec![
+        (start.orbit[0], start.period, p0, 1.0, Origin::Start),
+        (start.orbit[0], start.period, p0, -1.0, Origin::Start),
+    ];
     // The switched branches share the start's template
     // (rtw_model::cycles::diagram): a point z is start.orbit[0].with_coords(z).
     for (k, b) in diagram.branches.iter().enumerate() {
@@ -129,15 +113,56 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
             continue;
         }
         let at = start.orbit[0].with_coords(&from.z);
-        dirs.push(go(
-            &at,
+        jobs.push((
+            at,
             b.period,
             from.p,
             (last.p - a.p).signum(),
             Origin::BranchEnd(k),
         ));
     }
-    dirs
+    let go = |i: usize| {
+        let (at, period, p0, direction, from) = jobs[i];
+        Direction {
+            direction,
+            period,
+            from,
+            p0,
+            segments: continue_segments(
+                &s,
+                &at,
+                period,
+                p0,
+                direction,
+                &c.diagram.continuation,
+                &EndOptions::default(),
+                max,
+            ),
+        }
+    };
+    let next = AtomicUsize::new(0);
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            if i >= jobs.len() {
+                return done;
+            }
+            done.push((i, go(i)));
+        }
+    };
+    let mut done = std::thread::scope(|scope| {
+        let other = scope.spawn(work);
+        let mut mine = work();
+        mine.extend(
+            other
+                .join()
+                .unwrap_or_else(|e| std::panic::resume_unwind(e)),
+        );
+        mine
+    });
+    done.sort_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, d)| d).collect()
 }
 
 /// The way a direction is shown in the table: `up` / `down` from the start,
@@ -155,17 +180,17 @@ fn way(d: &Direction) -> String {
 /// The step map at `value` of the continued input.
 fn map_at(c: &Continuation, value: f64) -> Option<StepMap> {
     let mut p = c.base;
-    c.param.set(&mut p, value);
+    p[c.param] = value;
     p.validate().ok()?;
     Some(StepMap::new(&p, &c.options, &c.cycle))
 }
 
 /// What a segment's end is called in the files: its kind, or the smooth
 /// continuation's own end where the segment left the range.
-fn end_name(seg: &Segment) -> &'static str {
+fn end_name(seg: &Segment) -> String {
     match &seg.end {
-        Some(e) => e.kind.name(),
-        None => super::end_name(seg.branch.end),
+        Some(e) => e.kind.to_string(),
+        None => super::end_name(seg.branch.end).to_string(),
     }
 }
 
@@ -254,6 +279,7 @@ pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
                 })
                 .collect();
             json!({
+                "way": way(d),
                 "direction": d.direction,
                 "period": d.period,
                 "from": match d.from {
@@ -269,7 +295,7 @@ pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
         "kind": KIND,
         "param": c.param.name(),
         "range": [c.diagram.continuation.p_min, c.diagram.continuation.p_max],
-        "start": c.param.get(&c.base),
+        "start": c.base[c.param],
         "length": c.base.length,
         "directions": directions,
     })
@@ -292,7 +318,7 @@ pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
         s,
         "\nThrough the changes of mode sequence (`--through`), from {} = {}:\n",
         c.param.name(),
-        Num(c.param.get(&c.base))
+        Num(c.base[c.param])
     );
     s.push_str(
         "| way | segment | gait | mode sequence | from | to | stable on | end | at | what | max\\|μ\\| before → after | Jacobian jump |\n",

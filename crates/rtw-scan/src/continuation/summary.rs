@@ -51,7 +51,7 @@ pub(crate) fn summary_markdown(
          (max|μ| {start_floquet:.4}); step map {:?} rtol {:e}; model: {}; {:.1} s",
         o.p_min,
         o.p_max,
-        c.param.get(&c.base),
+        c.base[c.param],
         c.cycle.method,
         c.cycle.rtol,
         ModelChoices::of(&c.options),

@@ -149,7 +149,7 @@ fn round_config(cfg: &ScanConfig, round: u64, seed: u64, points: &[Params]) -> S
     let mut bytes = seed.to_le_bytes().to_vec();
     for p in points {
         for q in Param::ALL {
-            bytes.extend(q.get(p).to_bits().to_le_bytes());
+            bytes.extend(p[q].to_bits().to_le_bytes());
         }
     }
     let mut c = cfg.clone();
@@ -192,7 +192,7 @@ pub(crate) fn refine(
             .map(|u| {
                 let mut p = fixed;
                 for ((q, lo, hi), v) in axes.iter().zip(u) {
-                    q.set(&mut p, (lo + v * (hi - lo)).clamp(*lo, *hi));
+                    p[*q] = (lo + v * (hi - lo)).clamp(*lo, *hi);
                 }
                 p
             })

@@ -125,7 +125,7 @@ impl Sampler {
                     v
                 }
             };
-            Param::ALL[i].set(&mut p, v);
+            p[Param::ALL[i]] = v;
         }
         p
     }
