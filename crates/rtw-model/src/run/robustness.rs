@@ -179,8 +179,8 @@ pub(crate) fn measure(
     };
     let gsn = options.robustness.gsn.then(|| {
         crate::cycles::gsn::settled_cycle(params, options, rtw, y, &mut work)
-            .map_or(f64::NAN, |(map, lc)| {
-                crate::cycles::gsn::gsn(&map, &lc, EDGE_AHEAD)
+            .map_or(f64::NAN, |(map, orbit)| {
+                crate::cycles::gsn::gsn(&map, &orbit, EDGE_AHEAD)
             })
     });
     let steps_to_fall = options.robustness.steps_to_fall.then(|| {
