@@ -156,7 +156,7 @@ pub fn continue_segments(
                 )
             })
             .flatten();
-        let end = end.map(|e| match came_back(&branch, &e, end_opts) {
+        let end = end.map(|e| match came_back(s, &branch, &e, end_opts) {
             true => fold(s, &template, n, &branch).unwrap_or(e),
             false => e,
         });
@@ -215,13 +215,17 @@ fn start_segment(
 /// Whether `end` lies on the segment's own way back: the orbit where it was
 /// located is one the branch already passed at least a probe step before its
 /// end in the input (the same value within ten brackets, the same fixed
-/// point within 1e-4 of its scale; the points it accepted at its end, as
-/// its step shrank, all lie within a probe step of the last). Then the
-/// branch turned at a fold its corrector did not pass and the probes from
-/// its last point followed it back to where it came from.
-fn came_back(branch: &Branch, end: &BranchEnd, opts: &EndOptions) -> bool {
+/// point within [`CAME_BACK_TOL`] in the map's scales; the points it
+/// accepted at its end, as its step shrank, all lie within a probe step of
+/// the last). Then the branch turned at a fold its corrector did not pass
+/// and the probes from its last point followed it back to where it came
+/// from.
+fn came_back(s: &Setting<'_>, branch: &Branch, end: &BranchEnd, opts: &EndOptions) -> bool {
     let z = &end.old.cycle.fixed_point.z;
-    let scale = z.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let Some(map) = map_at(s.base, s.options, s.cycle, s.param, end.old.p) else {
+        return false;
+    };
+    let scale = map.coord_scale(&end.old.cycle.orbit[0]);
     let Some(last) = branch.points.last() else {
         return false;
     };
@@ -229,13 +233,15 @@ fn came_back(branch: &Branch, end: &BranchEnd, opts: &EndOptions) -> bool {
         (pt.p - last.p).abs() >= opts.probe
             && (pt.p - end.old.p).abs() <= 10.0 * opts.p_tol
             && pt.z.len() == z.len()
-            && pt
-                .z
-                .iter()
-                .zip(z)
-                .all(|(a, b)| (a - b).abs() <= 1e-4 * scale)
+            && limit::scaled_max(&pt.z, z, &scale) <= CAME_BACK_TOL
     })
 }
+
+/// Two fixed points of one branch this close in the map's scales
+/// ([`limit::scaled_max`]) are the same orbit passed twice: far above the
+/// corrector's tolerance, far below how far a fixed point moves over a
+/// probe step near a fold (as the square root of the step).
+const CAME_BACK_TOL: f64 = 1e-4;
 
 /// The end of a segment whose branch turned at a fold: the orbit at its
 /// last point, with the real multiplier nearest +1 there.
