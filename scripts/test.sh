@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's test command (README, docs/testing.md), in three tiers:
-#   1. Rust (any user, only the toolchain): fmt, clippy, every Rust test;
+#   1. Rust (any user, only the toolchain): fmt, clippy, rustdoc, every Rust test;
 #   2. Python (python3 with venv; pip fetches scripts/requirements.txt into
 #      .venv the first time): the pandas/polars/pyarrow check of the Parquet
 #      output, the Python package (built and installed into .venv, its pytest
@@ -20,6 +20,9 @@ cargo fmt --all -- --check
 
 echo "== cargo clippy"
 cargo clippy --workspace --all-targets --release -- -D warnings
+
+echo "== cargo doc: every intra-doc link resolves and public docs link only public items"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --release --quiet
 
 echo "== cargo test"
 cargo test --workspace --release

@@ -65,7 +65,7 @@ pub struct GuardMinimum {
 /// Records a run's events (with their crossing slopes) and the local minima
 /// of every guard's distance to firing between them: what [`classify`] reads
 /// to tell a grazing from a corner. Local minima are looked for in
-/// [`SAMPLES`] points of each step's dense output, continued across steps of
+/// `SAMPLES` points of each step's dense output, continued across steps of
 /// one mode, and refined by golden section inside the step.
 #[derive(Clone, Debug, Default)]
 pub struct GuardMinima {

@@ -304,7 +304,7 @@ fn check_metadata(path: &Path, meta: &BTreeMap<String, String>) -> Result<()> {
 }
 
 /// Opens a Parquet file for reading, with errors naming the path; its
-/// metadata is checked at once ([`check_metadata`]), its batches against its
+/// metadata is checked at once (`check_metadata`), its batches against its
 /// content hash as they are read ([`VerifiedReader`]).
 ///
 /// Files rewritten by other tools read as rtw-scan's own: any codec but

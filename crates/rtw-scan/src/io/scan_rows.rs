@@ -464,7 +464,7 @@ pub struct ColumnKind {
     pub nullable: bool,
 }
 
-/// Every column of a scan row in file order, from [`COLUMNS`].
+/// Every column of a scan row in file order, from `COLUMNS`.
 pub fn row_columns() -> impl ExactSizeIterator<Item = ColumnKind> {
     COLUMNS.iter().map(|c| ColumnKind {
         name: c.name,

@@ -173,7 +173,7 @@ impl TraceNames {
 }
 
 /// Refuses a trace of a run with `options` whose size estimate
-/// ([`trace_rows_bound`] × [`trace_row_bytes`]) exceeds `limit` bytes;
+/// (`trace_rows_bound` × `trace_row_bytes`) exceeds `limit` bytes;
 /// `names` says how the caller spells the limit and the interval.
 pub fn check_trace_size(options: &Options, limit: u64, names: TraceNames) -> Result<()> {
     let rows = trace_rows_bound(options);

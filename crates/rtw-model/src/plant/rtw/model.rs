@@ -28,7 +28,7 @@ pub enum GuardKind {
     /// The centre of mass sinks below the collapse height.
     ComLow,
     /// A sliding tip reaches the edge of a step
-    /// ([`crate::plant::terrain`]); watched only on a terrain with a step.
+    /// (`plant::terrain`); watched only on a terrain with a step.
     Edge { rod: usize },
 }
 
