@@ -464,16 +464,7 @@ mod tests {
     /// touchdowns a step), within the Newton tolerance, in the map's scales.
     #[test]
     fn the_chord_orbit_is_newtons_fixed_point() {
-        let skip = Params::new(
-            0.8,
-            4.654368528507514,
-            0.06339175109104485,
-            3.6230217333128656,
-            0.07319035141659881,
-            0.1656710566088282,
-        )
-        .unwrap();
-        for params in [Params::fig7a(), skip] {
+        for params in [Params::fig7a(), crate::tests::two_touchdown_skip()] {
             let (map, orbit) = settled(&params);
             let cycle = run_cycle_options();
             let newton = map.solve(&orbit[0], orbit.len(), &cycle).unwrap();

@@ -225,20 +225,6 @@ mod tests {
     use crate::outcome::Label;
     use crate::run::recorder::with_end_state;
 
-    /// A paper-scan skip (sample 12 of configs/paper.toml) that touches down
-    /// twice per step: its new foot lands, lifts in flight and lands again.
-    fn skip_with_two_touchdowns_per_step() -> Params {
-        Params::new(
-            0.8,
-            4.654368528507514,
-            0.06339175109104485,
-            3.6230217333128656,
-            0.07319035141659881,
-            0.1656710566088282,
-        )
-        .unwrap()
-    }
-
     /// A step is a new foot's touchdown (docs/model.md, the step map's
     /// section), not any touchdown: the window a step down is judged over
     /// must hold `SURVIVAL_STEPS` steps of the flat gait, counted in the run
@@ -246,7 +232,7 @@ mod tests {
     /// touchdown rate `f_w`, this skip's window held only half of them.
     #[test]
     fn the_survival_window_holds_its_steps_in_new_feet_for_a_skip() {
-        let p = skip_with_two_touchdowns_per_step();
+        let p = crate::tests::two_touchdown_skip();
         let o = Options::default();
         with_end_state(&p, &o, |phys, rtw, y, flat| {
             assert_eq!(flat.label, Label::Skip);

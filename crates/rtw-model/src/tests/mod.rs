@@ -11,3 +11,18 @@ mod physics;
 mod rimless_step;
 mod standing;
 mod step_down;
+
+/// A paper-scan skip (sample 12 of configs/paper.toml) that touches down
+/// twice per step: its new foot lands, lifts in flight and lands again. For
+/// the tests where a step (a new foot's touchdown) and a touchdown differ.
+pub(crate) fn two_touchdown_skip() -> crate::Params {
+    crate::Params::new(
+        0.8,
+        4.654368528507514,
+        0.06339175109104485,
+        3.6230217333128656,
+        0.07319035141659881,
+        0.1656710566088282,
+    )
+    .unwrap()
+}
