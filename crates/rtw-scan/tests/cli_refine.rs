@@ -184,3 +184,25 @@ fn bad_refine_input_is_named_with_its_range() {
     refine(&a, &["--budget", "3"]);
     assert!(a.join("refine/round-003").is_dir() && !a.join("refine/round-004").exists());
 }
+
+/// Refined samples crowd where the labels change, so they are not draws from
+/// the inputs' distribution, and the given-data estimator weighs each row as
+/// one: Sobol indices from them would be biased. `sensitivity` refuses the
+/// combined file and points to the scan's own rows.
+#[test]
+fn sensitivity_refuses_the_refined_file_whose_samples_are_not_draws() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(150, 4));
+    refine(&a, &["--budget", "40", "--rounds", "2", "--seed", "3"]);
+    let all = a.join("refine/samples.parquet");
+    run_err(
+        &["sensitivity", s(&all), "--resamples", "20"],
+        &["refined", "not draws", "a/samples.parquet"],
+    );
+    run_ok(&[
+        "sensitivity",
+        s(&a.join("samples.parquet")),
+        "--resamples",
+        "20",
+    ]);
+}

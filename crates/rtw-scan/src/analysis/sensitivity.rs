@@ -27,6 +27,7 @@ use crate::config::axis::Axis;
 use crate::io::scan_files;
 use crate::io::table::{f64_column, label_column};
 use crate::scan::design::Sampling;
+use crate::scan::refine::META_REFINE;
 use anyhow::{Context, Result, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
@@ -134,6 +135,22 @@ pub fn columns(
 /// (values, ids in order from 0) as every reader of scan files checks them.
 pub fn read(path: &Path) -> Result<(ScanConfig, Columns)> {
     let (input, cfg) = open_scan(path)?;
+    // Refinement adds samples where the labels change: they are not draws
+    // from the inputs' distribution, and every estimator here weighs each
+    // row as one.
+    if input.metadata.contains_key(META_REFINE) {
+        let own = path
+            .parent()
+            .and_then(Path::parent)
+            .map(|d| d.join("samples.parquet"));
+        bail!(
+            "{} holds a refined scan: its added samples crowd where the labels change, so they \
+             are not draws from the inputs' distribution and Sobol indices from them would be \
+             biased; analyse the scan's own rows{}",
+            path.display(),
+            own.map_or(String::new(), |p| format!(" ({})", p.display()))
+        );
+    }
     let (mut rows, mut next) = (0u64, None);
     let batches = input.reader.map(|b| {
         let b = b.with_context(|| format!("reading {}", path.display()))?;
