@@ -78,8 +78,12 @@ fn refine_adds_the_budget_in_rounds_with_new_ids_deterministically() {
         f64s(&all, "alpha")[150..],
         f64s(&c.join("refine/samples.parquet"), "alpha")[150..]
     );
-    // The combined file is a scan file the other commands read.
-    run_ok(&["summary", s(&all)]);
+    // The combined file is a scan file the other commands read; its summary
+    // says its shares are the refined sample's (its samples crowd where the
+    // labels change), and a plain scan's says nothing of the kind.
+    let summary = |f: &Path| String::from_utf8(run_ok(&["summary", s(f)]).stdout).unwrap();
+    assert!(summary(&all).contains("not the box's"), "{}", summary(&all));
+    assert!(!summary(&a.join("samples.parquet")).contains("not the box's"));
 }
 
 #[test]

@@ -14,7 +14,7 @@ use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
 use crate::io::destination::SUMMARY_MAX_BYTES;
 use crate::io::files::{self, write_atomic};
-use crate::io::metadata::{META_CONFIG, META_VERSION, META_WALL_TIME};
+use crate::io::metadata::{META_CONFIG, META_REFINE, META_VERSION, META_WALL_TIME};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files;
 use crate::io::scan_rows::label_index;
@@ -95,6 +95,9 @@ pub(crate) struct ScanData {
     pub(crate) sample_time_s: f64,
     /// Elapsed time of the run (summed over resumed sessions), when recorded.
     pub(crate) wall_time_s: Option<f64>,
+    /// A refine's combined file: its added samples are not draws from the
+    /// inputs' distribution.
+    pub(crate) refined: bool,
 }
 
 /// The failures (collapse, stall) among a batch's rows; `labels` is its
@@ -151,6 +154,7 @@ pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
             .metadata
             .get(META_WALL_TIME)
             .and_then(|v| v.parse().ok()),
+        refined: input.metadata.contains_key(META_REFINE),
     };
     let mut next_id = None;
     for batch in input.reader {
@@ -278,6 +282,10 @@ pub(crate) struct Summary {
     pub(crate) wall_time_s: Option<f64>,
     pub(crate) samples_per_s: Option<f64>,
     pub(crate) sample_time_s: f64,
+    /// A refine's combined file (written only then): its shares are the
+    /// refined sample's, not the box's.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub(crate) refined: bool,
 }
 
 /// Summarizes a scan file (`k` overrides the config's cluster count).
@@ -336,6 +344,7 @@ pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
         wall_time_s: data.wall_time_s,
         samples_per_s: data.wall_time_s.filter(|w| *w > 0.0).map(|w| n as f64 / w),
         sample_time_s: data.sample_time_s,
+        refined: data.refined,
     })
 }
 
@@ -515,6 +524,12 @@ impl Summary {
         writeln!(md, "{}", share_row(&self.failed, self.paper_scan, true)).unwrap();
         md.push('\n');
         md.push_str("95 % CI: Wilson score interval. Stable = skip + walk + crawl; failed = collapse + stall.\n");
+        if self.refined {
+            md.push_str(
+                "Refined scan (rtw-scan refine): its added samples crowd where the labels change, \
+                 so these shares are the refined sample's, not the box's.\n",
+            );
+        }
         if self.paper_scan {
             writeln!(
                 md,

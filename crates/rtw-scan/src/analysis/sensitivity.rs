@@ -24,10 +24,10 @@
 use crate::analysis::report::{Z95, open_scan};
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
+use crate::io::metadata::META_REFINE;
 use crate::io::scan_files;
 use crate::io::table::{f64_column, label_column};
 use crate::scan::design::Sampling;
-use crate::scan::refine::META_REFINE;
 use anyhow::{Context, Result, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};

@@ -19,6 +19,10 @@ pub(crate) const META_VERSION: &str = "rtw.version";
 pub(crate) const META_SEED: &str = "rtw.seed";
 /// Metadata key: one-line model variant summary ([`crate::config::variant::ModelChoices`]).
 pub(crate) const META_VARIANT: &str = "rtw.variant";
+/// Metadata key of a refine's combined file: what the refinement was (JSON:
+/// budget, rounds, seed, the files joined). Its presence marks rows that are
+/// not draws from the inputs' distribution.
+pub(crate) const META_REFINE: &str = "rtw.refine";
 /// Metadata key: seconds spent computing the rows (summed over resumed
 /// sessions and, in a merged file, over the shards).
 pub(crate) const META_WALL_TIME: &str = "rtw.wall_time_s";

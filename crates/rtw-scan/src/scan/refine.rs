@@ -21,7 +21,7 @@ use crate::config::ScanConfig;
 use crate::config::axis::Axis;
 use crate::hash::fnv1a64;
 use crate::io::destination::check_destination;
-use crate::io::metadata::{self, FileKind, kv};
+use crate::io::metadata::{self, FileKind, META_REFINE, kv};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS, ParquetFile, READ_BATCH_ROWS};
 use crate::io::scan_rows::label_index;
 use crate::io::table::{f64_column, label_column};
@@ -38,9 +38,6 @@ use rtw_model::{Param, Params};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
-
-/// Metadata key of the combined file: what the refinement was (JSON).
-pub(crate) const META_REFINE: &str = "rtw.refine";
 
 /// What to refine, and how.
 #[derive(Clone, Debug)]
