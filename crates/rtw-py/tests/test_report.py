@@ -188,3 +188,21 @@ def test_an_unmerged_shard_set_is_reported_whole(tmp_path):
     want = sorted(s for k in (0, 1) for s in pq.read_table(tmp_path / f"part-{k}.parquet")["sample_id"].to_pylist())
     assert data["columns"]["sample_id"] == want and data["n"] == len(want)
     assert data["gaits"], "no gait for the smoke scan's outcomes"
+
+
+def test_a_refined_scan_says_its_shares_are_not_the_boxs(tmp_path):
+    """A refine's combined file crowds its added samples where the labels
+    change: the page says its shares are not the box's; a plain scan's
+    does not."""
+    cfg = tmp_path / "s.toml"
+    cfg.write_text("seed = 3\nsamples = 30\n[params]\nlength = 0.8\nrho = 2.5\n"
+                   "alpha = { uniform = [0.0, 0.4] }\nfn = 3.269\nzeta = 0.0514\n"
+                   "phi = { uniform = [0.05, 0.3] }\n[simulation]\nt_max = 2.0\n")
+    scan = tmp_path / "s"
+    subprocess.run([str(BINARY), "run", str(cfg), "--out", str(scan), "--quiet"], check=True)
+    subprocess.run([str(BINARY), "refine", str(scan), "--budget", "10", "--rounds", "1", "--seed", "1",
+                    "--quiet"], check=True)
+    refined = rtw.report(scan / "refine", out=tmp_path / "refined.html").read_text()
+    assert "not the box's" in refined
+    plain = rtw.report(scan, out=tmp_path / "plain.html").read_text()
+    assert "not the box's" not in plain

@@ -345,6 +345,10 @@ def _header(meta: dict[str, str], summary: dict | None, n: int, counts: Counter,
     table = ("<table class='summary'><thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in head) + "</tr></thead><tbody>"
              + "".join("<tr>" + "".join(f"<td>{e(c)}</td>" for c in r) + "</tr>" for r in rows)
              + f"</tbody></table><p class='note'>Source: {e(src)}.</p>")
+    if "rtw.refine" in meta:
+        # rtw-scan refine's combined file: its rows are not draws from the box.
+        table += ("<p class='note'>Refined scan (rtw-scan refine): its added samples crowd where the labels "
+                  "change, so these shares are the refined sample's, not the box's.</p>")
     return (f"<h1>rtw scan report: {e(name)}</h1><div class='head'><table class='meta'>{dl}</table>{table}</div>"
             f"<details><summary>config (as stored in the scan file, rtw.config)</summary><pre>{e(config)}</pre></details>")
 
