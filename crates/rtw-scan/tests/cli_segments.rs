@@ -5,6 +5,23 @@ mod common;
 
 use common::*;
 use serde_json::Value;
+use std::path::Path;
+
+/// `continuation ARGS --through 3 --out DIR/phi.parquet`: its output and the
+/// segments file it writes.
+fn through(dir: &Path, args: &[&str]) -> (std::process::Output, Value) {
+    let out = dir.join("phi.parquet");
+    let o = run_ok(
+        &[
+            &["continuation"],
+            args,
+            &["--through", "3", "--out", out.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    let text = std::fs::read_to_string(dir.join("phi.segments.json")).unwrap();
+    (o, serde_json::from_str(&text).unwrap())
+}
 
 /// From φ = 0.094 down to 0.0925 the walk's branch meets the grazing of its
 /// landing foot at φ ≈ 0.09313 (the foot starts to bounce; the end that
@@ -14,27 +31,20 @@ use serde_json::Value;
 #[test]
 fn continuation_through_names_the_grazing_that_ended_the_walks_branch() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("phi.parquet");
-    let o = run_ok(&[
-        "continuation",
-        "--phi",
-        "0.094",
-        // The model of this end: s = 0.85 (at the default 0.8875 it moves).
-        "--set",
-        "strings.rest_length_ratio=0.85",
-        "--from",
-        "0.0925",
-        "--to",
-        "0.0955",
-        "--through",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let doc: Value = serde_json::from_str(
-        &std::fs::read_to_string(dir.path().join("phi.segments.json")).unwrap(),
-    )
-    .unwrap();
+    let (o, doc) = through(
+        dir.path(),
+        &[
+            "--phi",
+            "0.094",
+            // The model of this end: s = 0.85 (at the default 0.8875 it moves).
+            "--set",
+            "strings.rest_length_ratio=0.85",
+            "--from",
+            "0.0925",
+            "--to",
+            "0.0955",
+        ],
+    );
     assert_eq!(doc["kind"], "rtw-scan continuation segments");
     let dirs = doc["directions"].as_array().unwrap();
     let up = dirs[0]["segments"].as_array().unwrap();
@@ -119,24 +129,10 @@ fn continuation_through_refuses_a_bad_count_and_a_file_it_did_not_make() {
 #[test]
 fn continuation_through_continues_the_period_2_branch_past_its_corner() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("phi.parquet");
-    run_ok(&[
-        "continuation",
-        "--phi",
-        "0.194",
-        "--from",
-        "0.188",
-        "--to",
-        "0.2",
-        "--through",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let doc: Value = serde_json::from_str(
-        &std::fs::read_to_string(dir.path().join("phi.segments.json")).unwrap(),
-    )
-    .unwrap();
+    let (_, doc) = through(
+        dir.path(),
+        &["--phi", "0.194", "--from", "0.188", "--to", "0.2"],
+    );
     let dirs = doc["directions"].as_array().unwrap();
     let p2: Vec<&Value> = dirs.iter().filter(|d| d["period"] == 2).collect();
     assert_eq!(p2.len(), 1, "{dirs:#?}");

@@ -157,43 +157,39 @@ pub(crate) fn settled_cycle(
 }
 
 /// The period-`n` orbit through the fixed point of `Pⁿ` near `start`, to
-/// `cycle`'s Newton tolerance, by chord iterations: `Pⁿ`'s Jacobian once, at
-/// `start`, then plain runs of the map. The norm needs the orbit, not its
-/// multipliers, and Newton's Jacobian at each iterate costs 2d + 2 steps
-/// (central differences) where a chord iteration costs one; from a start
-/// the run settled near, the chord gains about three digits an iteration.
-/// Newton ([`StepMap::solve`]) where the chord does not converge.
+/// `cycle`'s Newton tolerance, by chord iterations: [`limit::newton`] with
+/// `Pⁿ`'s Jacobian computed once, at `start`, and kept, so that each later
+/// iterate costs a plain run of the map. The norm needs the orbit, not its
+/// multipliers, and a Jacobian at each iterate costs 2d + 2 steps (central
+/// differences) where a chord iteration costs one; from a start the run
+/// settled near, the chord gains about three digits an iteration. Newton
+/// ([`StepMap::solve`]) where the chord does not converge.
 fn orbit_near(
     map: &StepMap,
     start: &SectionPoint,
     n: usize,
     cycle: &CycleOptions,
 ) -> Option<Vec<SectionPoint>> {
-    let power = |p: &SectionPoint| {
-        let q = map.iterate(p, n).ok()?.last()?.to;
-        (q.modes == p.modes).then_some(q)
-    };
-    let scale = map.coord_scale(start);
-    let chord = || {
-        let (mut image, j) = map.power_with_jacobian(start, n, cycle.jacobian)?;
-        let d = j.nrows();
-        let lu = (j - DMatrix::<f64>::identity(d, d)).lu();
-        let mut z = start.coords();
-        for _ in 0..=cycle.newton_max_iter {
-            let pz = image.coords();
-            if limit::scaled_max(&pz, &z, &scale) <= cycle.newton_tol {
-                return Some(start.with_coords(&z));
+    let mut kept: Option<DMatrix<f64>> = None;
+    let chord = limit::newton(
+        &start.coords(),
+        &map.coord_scale(start),
+        cycle.newton_tol,
+        cycle.newton_max_iter,
+        |z| {
+            let p = start.with_coords(z);
+            if let Some(j) = &kept {
+                let q = map.iterate(&p, n).ok()?.last()?.to;
+                return (q.modes == p.modes).then(|| (q.coords(), j.clone()));
             }
-            let r = DVector::from_iterator(d, z.iter().zip(&pz).map(|(a, b)| a - b));
-            let delta = lu.solve(&r)?;
-            z.iter_mut().zip(delta.iter()).for_each(|(v, dv)| *v += dv);
-            image = power(&start.with_coords(&z))?;
-        }
-        None
-    };
-    let p = match chord() {
-        Some(p) => p,
-        None => map.solve(start, n, cycle).ok()?.orbit[0],
+            let (q, j) = map.power_with_jacobian(&p, n, cycle.jacobian)?;
+            kept = Some(j.clone());
+            Some((q.coords(), j))
+        },
+    );
+    let p = match chord {
+        Ok(fixed) => start.with_coords(&fixed.z),
+        Err(_) => map.solve(start, n, cycle).ok()?.orbit[0],
     };
     let mut orbit = vec![p];
     orbit.extend(map.iterate(&p, n - 1).ok()?.iter().map(|s| s.to));

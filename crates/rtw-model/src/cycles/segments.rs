@@ -111,7 +111,7 @@ pub fn continue_segments(
     let range = (cont.p_min, cont.p_max);
     let mut direction = direction;
     while out.len() < max_segments {
-        let Some((orbit_used, template, branch)) =
+        let Some((orbit_used, template, z_scale, branch)) =
             start_segment(s, &next_orbit, n, direction, cont, &multipliers).or_else(|| {
                 // Right past a corner the new side's events are still as
                 // near in time as the bracket is narrow, and the segment's
@@ -156,7 +156,7 @@ pub fn continue_segments(
                 )
             })
             .flatten();
-        let end = end.map(|e| match came_back(s, &branch, &e, end_opts) {
+        let end = end.map(|e| match came_back(&branch, &e, &z_scale, end_opts) {
             true => fold(s, &template, n, &branch).unwrap_or(e),
             false => e,
         });
@@ -177,7 +177,8 @@ pub fn continue_segments(
 }
 
 /// A segment's smooth branch from `orbit` towards `direction`: the orbit
-/// it started from (`orbit`), its template and the branch; `None` if the
+/// it started from (`orbit`), its template, the scales of its coordinates
+/// (the map's, [`crate::cycles::StepMap::coord_scale`]) and the branch; `None` if the
 /// continuation cannot start there.
 fn start_segment(
     s: &Setting<'_>,
@@ -186,7 +187,7 @@ fn start_segment(
     direction: f64,
     cont: &ContOptions,
     multipliers: &dyn Fn(&DMatrix<f64>) -> Vec<nalgebra::Complex<f64>>,
-) -> Option<(Orbit, SectionPoint, Branch)> {
+) -> Option<(Orbit, SectionPoint, Vec<f64>, Branch)> {
     let template = orbit.cycle.orbit[0];
     let map = map_at(s.base, s.options, s.cycle, s.param, orbit.p)?;
     let opts = ContOptions {
@@ -209,23 +210,19 @@ fn start_segment(
         multipliers,
     )
     .ok()?;
-    Some((orbit.clone(), template, branch))
+    Some((orbit.clone(), template, opts.z_scale, branch))
 }
 
 /// Whether `end` lies on the segment's own way back: the orbit where it was
 /// located is one the branch already passed at least a probe step before its
 /// end in the input (the same value within ten brackets, the same fixed
-/// point within [`CAME_BACK_TOL`] in the map's scales; the points it
+/// point within [`CAME_BACK_TOL`] in the segment's `scale`; the points it
 /// accepted at its end, as its step shrank, all lie within a probe step of
 /// the last). Then the branch turned at a fold its corrector did not pass
 /// and the probes from its last point followed it back to where it came
 /// from.
-fn came_back(s: &Setting<'_>, branch: &Branch, end: &BranchEnd, opts: &EndOptions) -> bool {
+fn came_back(branch: &Branch, end: &BranchEnd, scale: &[f64], opts: &EndOptions) -> bool {
     let z = &end.old.cycle.fixed_point.z;
-    let Some(map) = map_at(s.base, s.options, s.cycle, s.param, end.old.p) else {
-        return false;
-    };
-    let scale = map.coord_scale(&end.old.cycle.orbit[0]);
     let Some(last) = branch.points.last() else {
         return false;
     };
@@ -233,7 +230,7 @@ fn came_back(s: &Setting<'_>, branch: &Branch, end: &BranchEnd, opts: &EndOption
         (pt.p - last.p).abs() >= opts.probe
             && (pt.p - end.old.p).abs() <= 10.0 * opts.p_tol
             && pt.z.len() == z.len()
-            && limit::scaled_max(&pt.z, z, &scale) <= CAME_BACK_TOL
+            && limit::scaled_max(&pt.z, z, scale) <= CAME_BACK_TOL
     })
 }
 
