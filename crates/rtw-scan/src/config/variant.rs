@@ -26,6 +26,12 @@ pub(crate) struct ModelChoices {
     pub(crate) rtol: f64,
     pub(crate) atol: f64,
     pub(crate) t_max: f64,
+    /// The terrain and robustness settings that differ from the default, as
+    /// `KEY=VALUE` with the config's dotted keys: empty for the flat run
+    /// without measures, so that its line (and every file made by one) is
+    /// the same as before terrain existed.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub(crate) ground_and_measures: Vec<String>,
 }
 
 impl ModelChoices {
@@ -44,8 +50,29 @@ impl ModelChoices {
             rtol: o.rtol,
             atol: o.atol,
             t_max: o.t_max,
+            ground_and_measures: [
+                non_default("terrain", &o.terrain, &Options::default().terrain),
+                non_default("robustness", &o.robustness, &Options::default().robustness),
+            ]
+            .concat(),
         }
     }
+}
+
+/// `PREFIX.KEY=VALUE` for each setting of `value` that differs from
+/// `default`, as the config's TOML writes them (so the line names the keys a
+/// user sets, and a setting added later is named without a change here).
+fn non_default<T: Serialize>(prefix: &str, value: &T, default: &T) -> Vec<String> {
+    let table = |v: &T| match toml::Value::try_from(v) {
+        Ok(toml::Value::Table(t)) => t,
+        _ => toml::Table::new(),
+    };
+    let (value, default) = (table(value), table(default));
+    value
+        .iter()
+        .filter(|(k, v)| default.get(*k) != Some(*v))
+        .map(|(k, v)| format!("{prefix}.{k}={v}"))
+        .collect()
 }
 
 /// Lower-case name of a unit-variant enum, as serde writes it in configs.
@@ -82,7 +109,11 @@ impl fmt::Display for ModelChoices {
             self.rtol,
             self.atol,
             self.t_max
-        )
+        )?;
+        for s in &self.ground_and_measures {
+            write!(f, " {s}")?;
+        }
+        Ok(())
     }
 }
 
@@ -104,5 +135,28 @@ mod tests {
         ] {
             assert!(v.contains(s), "{v} lacks {s}");
         }
+    }
+
+    /// A run on a step or with robustness measures is not the flat run of
+    /// the same model: its variant line (the summary's "model variant", each
+    /// file's `rtw.variant`) must say so, or two such scans read alike.
+    #[test]
+    fn variant_names_the_terrain_and_robustness_settings_that_differ_from_the_default() {
+        let mut o = Options::default();
+        o.terrain.step_height = 0.05;
+        o.robustness.step_down = true;
+        o.robustness.sigma = 0.02;
+        let v = ModelChoices::of(&o).to_string();
+        for s in [
+            "terrain.step_height=0.05",
+            "robustness.step_down=true",
+            "robustness.sigma=0.02",
+        ] {
+            assert!(v.contains(s), "{v} lacks {s}");
+        }
+        // The flat run without measures names neither, so its line (and
+        // every committed file's metadata) is what it was.
+        let flat = ModelChoices::of(&Options::default()).to_string();
+        assert!(!flat.contains("terrain") && !flat.contains("robustness"), "{flat}");
     }
 }
