@@ -12,34 +12,36 @@
 #   4. the figures (scripts/continuation.py) and results/continuation/summary.md
 # Uses results/bifurcation/phi-fig7a.parquet (./scripts/bifurcation.sh) for the
 # attractor drawn under the diagram. Both continuations run at once (2 cores).
+# Every figure's title names the model of the data it draws, read from the
+# data's rtw.variant (scripts/continuation.py), never from today's template.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q -p rtw-scan
 out=results/continuation
 mkdir -p "$out"
-# The default strings' natural length, for the title (crates/rtw-scan/tests/template.rs
-# checks that the template sets every key to its default).
-s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 bin=target/release/rtw-scan
 walk=(continuation --param phi --from 0.02 --to 0.35 --curve fn --curve-from 2.9 --curve-to 3.9)
 skip=(continuation --param phi --phi 0.34 --from 0.30 --to 0.38 --set strings.rest_length_ratio=0
       --section touch-and-go)
-"$bin" "${walk[@]}" --out "$out/phi-fig7a.parquet" --force >"$out/phi-fig7a.log" &
-a=$!
-"$bin" "${skip[@]}" --out "$out/phi-s0-touch-and-go.parquet" --force >"$out/phi-s0.log" &
-b=$!
-wait "$a"
-wait "$b"
-# The walk continued through its mode-sequence changes (Fig. S3), in its own
-# script (the longest part: SKIP_SEGMENTS=1 leaves it out); before the plane's
-# check, which fails at the default model (docs/limit-cycles.md).
-[ -n "${SKIP_SEGMENTS:-}" ] || ./scripts/continuation_segments.sh
-rm -rf "$out/plane"
-"$bin" run configs/continuation-plane.toml --out "$out/plane" --quiet >/dev/null
+# REPORT_ONLY=1 remakes the figures, the check and summary.md from the committed
+# files (as in continuation_segments.sh).
+if [ -z "${REPORT_ONLY:-}" ]; then
+  cargo build --release -q -p rtw-scan
+  "$bin" "${walk[@]}" --out "$out/phi-fig7a.parquet" --force >"$out/phi-fig7a.log" &
+  a=$!
+  "$bin" "${skip[@]}" --out "$out/phi-s0-touch-and-go.parquet" --force >"$out/phi-s0.log" &
+  b=$!
+  wait "$a"
+  wait "$b"
+  # The walk continued through its mode-sequence changes (Fig. S3), in its own
+  # script (the longest part: SKIP_SEGMENTS=1 leaves it out).
+  [ -n "${SKIP_SEGMENTS:-}" ] || ./scripts/continuation_segments.sh
+  rm -rf "$out/plane"
+  "$bin" run configs/continuation-plane.toml --out "$out/plane" --quiet >/dev/null
+fi
 
 py=.venv/bin/python
 $py scripts/continuation.py diagram "$out/phi-fig7a.parquet" --sweep results/bifurcation/phi-fig7a.parquet \
-  --title "The Fig. 7(a) walk continued in φ (default model, s = $s)"
+  --title "The Fig. 7(a) walk continued in φ"
 $py scripts/continuation.py diagram "$out/phi-s0-touch-and-go.parquet" \
   --title "The s = 0 skip continued in φ on the touch-and-go section (from φ = 0.34)"
 plane=$($py scripts/continuation.py plane "$out/phi-fig7a.parquet" "$out/plane/samples.parquet" --check \
