@@ -18,13 +18,16 @@ number drawn is read from the files rtw-scan wrote.
   the curves of FILE.curve.parquet in the (param, param2) plane over the
   brute-force scan's grid (`rtw-scan run configs/continuation-plane.toml`),
   each grid point marked by the gait the robot settled in and its period;
-  prints, per column of the grid, where the scan's period-1 walk turns into a
-  period-2 walk and where the period-doubling curve crosses that column, and
-  with --check fails unless they agree to the grid's resolution. When the
-  doubling is subcritical (the period-2 branch folds back over the side where
-  the period-1 walk is stable, read from the one-parameter diagram), a column
-  whose first period-2 walk comes before the curve agrees if no stable
-  period-1 walk lies beyond the curve: both walks are attractors there.
+  prints, per column of the grid, every φ where the curves cross it (a curve
+  that folds in param2 crosses a column more than once; the period-1 walk's
+  stability flips at each crossing) and where the scan's runs settle on a
+  stable period-1 or period-2 walk, and with --check fails unless they agree
+  to the grid's resolution: no stable period-1 walk where continuation has it
+  unstable, and a period-2 walk where continuation has the period-1 walk
+  stable only before a subcritical doubling, where both walks are stable
+  (bounded by the one-parameter diagram in its own column; check_column).
+  Each figure's title names the model of its data (rtw.variant); the
+  files drawn together must be at one model.
 """
 
 from __future__ import annotations
@@ -166,33 +169,43 @@ def scan_grid(samples: Path, param: str, param2: str) -> pl.DataFrame:
         .alias("cls"))
 
 
-def crossings(curve: pl.DataFrame, col: float) -> list[tuple[float, str]]:
+def crossings(curve: pl.DataFrame, col: float) -> list[tuple[float, bool]]:
     """Every φ where a curve of the period-1 walk's bifurcations (period
     doubling or fold, continued from the one-parameter branch) crosses the
-    column param2 = col, in order: a curve that folds in param2 crosses a
-    column more than once. Each curve is a polyline in (value, value2); the
-    two directions of one curve share their first point, counted once."""
-    out: list[tuple[float, str]] = []
-    for (_, kind), g in curve.sort("curve", "index").group_by(["curve", "kind"], maintain_order=True):
+    column param2 = col, in order, each with whether it is *open*: on a curve
+    whose continuation stopped unresolved ("no continuation": the orbit
+    changed its mode sequence, or the corrector failed) with that end within
+    a column of col, so that past it the boundary is not known. A curve that
+    folds in param2 crosses a column more than once; the two directions of
+    one curve share their first point, counted once."""
+    out: list[tuple[float, bool]] = []
+    for _, g in curve.sort("curve", "index").group_by("curve", maintain_order=True):
         v, w = g["value"].to_numpy(), g["value2"].to_numpy()
+        unresolved = str(g["end"][-1]).endswith("no_continuation")
         for i in range(len(v) - 1):
             a, b = w[i] - col, w[i + 1] - col
             # Half-open segments, so that a vertex on the column counts once.
             if (a < 0 <= b) or (b < 0 <= a):
                 x = float(v[i] + a / (a - b) * (v[i + 1] - v[i]))
                 if all(abs(x - y) > 1e-9 for y, _ in out):
-                    out.append((x, str(kind)))
+                    out.append((x, unresolved and abs(w[-1] - col) <= OPEN_REACH[0]))
     return sorted(out)
 
 
-def period2_fold(points: Path, param2: str) -> tuple[float, float, float] | None:
+# How far in param2 an unresolved curve end leaves the boundary open: one
+# column of the brute-force grid (set by plane_rows before the crossings).
+OPEN_REACH = [0.0]
+
+
+def coexistence(points: Path, param2: str) -> tuple[float, float, float] | None:
     """The one-parameter diagram's subcritical doubling: (its value of
-    param2, the period doubling's φ, the period-2 branch's fold nearest it on
-    the period-1 walk's stable side), or None when the doubling is
-    supercritical (the period-2 branch born there does not reach back over
-    the side where the period-1 walk is stable). Between that fold and the
-    doubling both walks are attractors, and a run from the standing start may
-    settle on either."""
+    param2, the period doubling's φ, the far edge of the band before it where
+    the period-2 walk born there is stable too), or None when there is no
+    such band (a supercritical doubling: the period-2 branch does not reach
+    back, stable, over the side where the period-1 walk is stable). The band
+    ends where the period-2 branch loses stability on its way back, at the
+    latest at its fold. Inside it both walks are attractors, and a run from
+    the standing start may settle on either."""
     pts = pl.read_parquet(points)
     special = pl.read_parquet(companion(points, "special"))
     pd = special.filter(pl.col("kind").cast(str) == "period_doubling")
@@ -203,15 +216,11 @@ def period2_fold(points: Path, param2: str) -> tuple[float, float, float] | None
     if one.is_empty():
         return None
     side = np.sign(float(one["value"].mean()) - phi_pd)
-    born = pts.filter(pl.col("period") == 2)["value"].to_numpy()
-    reach = born[(born - phi_pd) * side > 0]
+    stable_two = pts.filter((pl.col("period") == 2) & pl.col("stable"))["value"].to_numpy()
+    reach = stable_two[(stable_two - phi_pd) * side > 0]
     if reach.size == 0:
         return None
-    folds = special.filter((pl.col("kind").cast(str) == "fold")
-                           & ((pl.col("value") - phi_pd) * side > 0))["value"].to_numpy()
-    # The band's far edge: the fold on the stable side, else the period-2
-    # branch's furthest point there (a branch that ends before it turns).
-    edge = float(folds[np.argmin(np.abs(folds - phi_pd))]) if folds.size else float(reach[np.argmax(np.abs(reach - phi_pd))])
+    edge = float(reach[np.argmax(np.abs(reach - phi_pd))])
     # The diagram's own value of the second input (rtw.params names f_n what
     # the command line calls fn).
     params = json.loads((pq.read_metadata(points).metadata or {}).get(b"rtw.params", b"{}"))
@@ -230,74 +239,81 @@ def ranges(v: np.ndarray, mask: list[bool], step: float) -> str:
     return ", ".join(out) or "none"
 
 
-def check_column(v: np.ndarray, cls: list[str], xs: list[float], step: float,
-                 band: tuple[float, float] | None) -> list[str]:
-    """What in one column of the scan disagrees with the continuation.
+def check_column(v: np.ndarray, cls: list[str], xs: list[tuple[float, bool]], step: float,
+                 band: tuple[float, float] | None) -> tuple[list[str], list[str]]:
+    """What in one column of the scan disagrees with the continuation, and
+    what the continuation leaves open there.
 
     The period-1 walk is stable below the column's first crossing (the
     branch's low end is a change of mode sequence, not of stability) and each
-    crossing flips its stability (a multiplier through −1 or +1). So:
-    * a stable period-1 walk of the scan must lie where continuation has the
-      period-1 walk stable, or within a grid step of a crossing;
-    * a period-2 walk of the scan lies where the period-1 walk is unstable, or
-      within a grid step of a crossing, or, the doubling being subcritical, in
-      the band before a crossing where the two walks coexist. That band is
-      known where the one-parameter diagram gives the period-2 branch's fold
-      (`band`: the column of that diagram's f_n, the band from the fold to
-      the doubling); elsewhere the fold is not continued in two parameters
-      and the band is not bounded;
-    * in the column of the diagram's f_n, the scan sees one of the two walks
-      between the period-2 fold and the crossing where the period-1 walk
-      loses stability (elsewhere the standing start may settle on a third,
-      non-periodic attractor before the crossing, which neither curve
-      bounds)."""
-    bad = []
+    crossing flips its stability (a multiplier through −1 or +1). So a stable
+    period-1 walk of the scan must lie where continuation has the period-1
+    walk stable, or within a grid step of a crossing; past an open crossing
+    (its curve ended unresolved nearby) up to the next one it is not checked.
+    A period-2 walk where continuation has the period-1 walk stable is a
+    coexisting attractor (the standing start may settle on either): inside
+    the band before a subcritical doubling where its own period-2 walk is
+    stable too, or another period-2 walk, which the continuation does not
+    follow; reported, not a disagreement. In the column of the one-parameter
+    diagram's f_n, where that band is known (`band`: from where its period-2
+    branch turns unstable or folds, to the doubling), the scan must see one
+    of the two walks between the band's far edge and the crossing."""
+    bad, notes = [], []
     tol = step * (1 + 1e-6)
+    at = [x for x, _ in xs]
 
     def stable_one(phi: float) -> bool:
-        return sum(x < phi for x in xs) % 2 == 0
+        return sum(x < phi for x in at) % 2 == 0
 
     def near(phi: float) -> bool:
-        return any(abs(phi - x) <= tol for x in xs)
+        return any(abs(phi - x) <= tol for x in at)
 
+    def unknown(phi: float) -> bool:
+        below = [(x, o) for x, o in xs if x < phi]
+        return bool(below) and below[-1][1] and not stable_one(phi)
+
+    skipped = [phi for phi, c in zip(v, cls) if c in ("walk1", "walk2") and unknown(phi)]
+    if skipped:
+        notes.append(f"{len(skipped)} walk(s) past the open crossing not checked")
     for phi, c in zip(v, cls):
-        if c == "walk1" and not stable_one(phi) and not near(phi):
+        if c == "walk1" and not stable_one(phi) and not near(phi) and not unknown(phi):
             bad.append(f"a stable period-1 walk at {phi:.3f}, where continuation has it unstable")
-        if c == "walk2" and stable_one(phi) and not near(phi):
-            above = [x for x in xs if x > phi]
-            if band is None or not above:
-                bad.append(f"a period-2 walk at {phi:.3f}, below the doubling, which is supercritical")
-            elif band[0] == band[0] and phi < band[0] - tol:
-                bad.append(f"a period-2 walk at {phi:.3f}, below the period-2 branch's fold at {band[0]:.4f}")
+    coexisting = [phi for phi, c in zip(v, cls) if c == "walk2" and stable_one(phi) and not near(phi)]
+    if coexisting:
+        inside = [phi for phi in coexisting if band is not None and band[0] == band[0]
+                  and band[0] - tol <= phi <= band[1] + tol]
+        notes.append(f"{len(coexisting)} period-2 walk(s) where the period-1 walk is stable too"
+                     + (f" ({len(inside)} in the doubling's band)" if inside else ""))
     if band is not None and band[0] == band[0]:
-        for i, x in enumerate(xs):
+        for i, x in enumerate(at):
             if i % 2 or not (v[0] + tol < x <= v[-1]):
                 continue  # stability regained going up, or the crossing outside the grid
             if not any(band[0] - tol <= phi <= x + tol and c in ("walk1", "walk2") for phi, c in zip(v, cls)):
-                bad.append(f"neither walk between the period-2 fold at {band[0]:.4f} and the crossing at {x:.4f}")
-    return bad
+                bad.append(f"neither walk between {band[0]:.4f} and the crossing at {x:.4f}, where both are stable")
+    return bad, notes
 
 
 def plane_rows(grid: pl.DataFrame, curve: pl.DataFrame, param: str, param2: str,
-               fold: tuple[float, float, float] | None) -> list[dict]:
+               both: tuple[float, float, float] | None) -> list[dict]:
     """Per column (value of param2) of the grid: the curves' crossings, the
     scan's period-1 and period-2 walks, and what disagrees."""
     cols = sorted(grid[param2].unique().to_list())
     spacing = float(np.min(np.diff(cols))) if len(cols) > 1 else np.inf
+    OPEN_REACH[0] = spacing
     out = []
     for col, g in grid.sort(param2, param).group_by(param2, maintain_order=True):
         col = float(col[0])
         v, cls = g[param].to_numpy(), g["cls"].to_list()
         step = float(np.min(np.diff(v))) if len(v) > 1 else float("nan")
-        xs = [x for x, _ in crossings(curve, col)]
+        xs = crossings(curve, col)
         band = None
-        if fold is not None:
-            at, phi_pd, edge = fold
-            # The diagram's fold bounds the band only in the column at its f_n.
+        if both is not None:
+            at, phi_pd, edge = both
+            # The diagram bounds the band only in the column at its f_n.
             band = (edge, phi_pd) if abs(col - at) <= spacing / 2 else (float("nan"), float("nan"))
         out.append({"param2": col, "crossings": xs, "one": ranges(v, [c == "walk1" for c in cls], step),
                     "two": ranges(v, [c == "walk2" for c in cls], step), "band": band,
-                    "bad": check_column(v, cls, xs, step, band)})
+                    "check": check_column(v, cls, xs, step, band)})
     return out
 
 
@@ -307,8 +323,8 @@ def plane(points: Path, samples: Path, out: Path, check: bool, title: str | None
     curve = pl.read_parquet(companion(points, "curve"))
     param, param2 = curve["param"][0], curve["param2"][0]
     grid = scan_grid(samples, param, param2)
-    fold = period2_fold(points, param2)
-    rows = plane_rows(grid, curve, param, param2, fold)
+    both = coexistence(points, param2)
+    rows = plane_rows(grid, curve, param, param2, both)
     fig, ax = plt.subplots(figsize=(8, 6.4))
     styles = {"walk1": ("o", "#2ca02c", "walk, period 1 (stable cycle)"),
               "walk2": ("s", "#ff7f0e", "walk, period 2 (stable cycle)")}
@@ -325,10 +341,10 @@ def plane(points: Path, samples: Path, out: Path, check: bool, title: str | None
         ax.plot(g["value"], g["value2"], color=color, lw=2,
                 label=None if kind in labelled else f"{name} curve (rtw-scan continuation --curve)")
         labelled.add(kind)
-    if fold is not None:
-        at, phi_pd, edge = fold
+    if both is not None:
+        at, phi_pd, edge = both
         ax.plot([edge, phi_pd], [at, at], color="#1f77b4", lw=4, alpha=0.5, solid_capstyle="butt",
-                label="both walks stable (one-parameter diagram: period-2 fold to doubling)")
+                label="both walks stable (one-parameter diagram)")
     ax.set_xlabel(SYMBOL.get(param, param))
     ax.set_ylabel(SYMBOL.get(param2, param2))
     ax.legend(fontsize=7, loc="best")
@@ -339,11 +355,12 @@ def plane(points: Path, samples: Path, out: Path, check: bool, title: str | None
     print(f"| {param2} | curve crosses at {param} | scan: stable period-1 walk | scan: stable period-2 walk | agrees |")
     print("|---:|---|---|---|---|")
     for r in rows:
-        bad += len(r["bad"])
-        verdict = "NO: " + "; ".join(r["bad"]) if r["bad"] else "yes"
-        if not r["bad"] and r["band"] is not None and r["band"][0] == r["band"][0]:
-            verdict += f" (both walks stable on {r['band'][0]:.4f}–{r['band'][1]:.4f} in the one-parameter diagram)"
-        xs = ", ".join(f"{x:.4f}" for x in r["crossings"]) or "none"
+        fails, notes = r["check"]
+        bad += len(fails)
+        verdict = "NO: " + "; ".join(fails) if fails else "yes"
+        if notes:
+            verdict += " (" + "; ".join(notes) + ")"
+        xs = ", ".join(f"{x:.4f}" + (" (open)" if o else "") for x, o in r["crossings"]) or "none"
         print(f"| {r['param2']:.4g} | {xs} | {r['one']} | {r['two']} | {verdict} |")
     if check and bad:
         sys.exit(f"continuation: the continuation disagrees with the brute-force scan at {bad} point(s)")

@@ -53,17 +53,20 @@ plane=$($py scripts/continuation.py plane "$out/phi-fig7a.parquet" "$out/plane/s
   echo "Made by \`./scripts/continuation.sh\`. Files per diagram: NAME.parquet (branch points),"
   echo "NAME.special.parquet (bifurcations, branch ends), NAME.curve.parquet (two-parameter curves), NAME.png."
   echo
-  echo "## The Fig. 7(a) walk in φ: phi-fig7a.png"
+  echo "## The Fig. 7(a) walk in φ at the default model: phi-fig7a.png"
   echo
   echo "\`rtw-scan ${walk[*]}\`"
   echo
   cat "$out/phi-fig7a.md"
   echo
-  echo "## Its period-doubling curve in (φ, f_n) against the brute-force scan: phi-fig7a.plane.png"
+  echo "## Its period-doubling curve in (φ, f_n) against the brute-force scan, default model: phi-fig7a.plane.png"
   echo
-  echo "\`rtw-scan run configs/continuation-plane.toml\` (period and Floquet multipliers of every grid point's"
-  echo "limit cycle); per column of f_n, where the scan's stable period-1 walk turns into a period-2 walk, and the"
-  echo "continued curve's φ there (\`scripts/continuation.py plane --check\`):"
+  echo "\`rtw-scan run configs/continuation-plane.toml\` (in results/continuation/plane/: period and Floquet multipliers of every grid point's"
+  echo "limit cycle, each run from its standing start); per column of f_n, every φ where the continued curves"
+  echo "cross it (the period-1 walk's stability flips at each), where the scan's runs settle on a stable period-1"
+  echo "or period-2 walk, and whether they agree (\`scripts/continuation.py plane --check\`: no stable period-1"
+  echo "walk where continuation has it unstable; a period-2 walk where it has the period-1 walk stable only in the"
+  echo "band of a subcritical doubling, which the one-parameter diagram's period-2 fold bounds in its own column):"
   echo
   echo "$plane"
   echo

@@ -24,6 +24,7 @@ def parabola(n: int = 401) -> pl.DataFrame:
     for curve, phis in ((0, np.linspace(0.2, 0.25, n)), (1, np.linspace(0.2, 0.15, n))):
         for i, phi in enumerate(phis):
             rows.append({"curve": curve, "index": i, "kind": "period_doubling", "value": phi,
+                         "end": "end_parameter_range",
                          "value2": 3.0 + 100.0 * (phi - 0.2) ** 2})
     return pl.DataFrame(rows)
 
@@ -50,39 +51,47 @@ def column(cls_of) -> tuple[np.ndarray, list[str]]:
     return GRID, [cls_of(phi) for phi in GRID]
 
 
+def check(cls, xs, band=None, open_=()):
+    v, c = column(cls)
+    return continuation.check_column(v, c, [(x, x in open_) for x in xs], 0.005, band)
+
+
 def test_a_stable_period_one_walk_past_the_doubling_disagrees():
-    v, cls = column(lambda phi: "walk1" if phi <= 0.18 else "walk2")
-    assert continuation.check_column(v, cls, [0.1812], 0.005, None) == []
-    bad = continuation.check_column(v, cls, [0.1612], 0.005, None)
+    cls = lambda phi: "walk1" if phi <= 0.18 else "walk2"  # noqa: E731
+    assert check(cls, [0.1812])[0] == []
+    bad, _ = check(cls, [0.1612])
     assert any("stable period-1 walk at 0.170" in b for b in bad), bad
 
 
 def test_between_two_crossings_the_period_one_walk_is_unstable_and_stable_again_past_the_second():
     # Stable below 0.15, unstable on 0.15–0.20, stable again above 0.20.
-    v, cls = column(lambda phi: "walk2" if 0.15 < phi < 0.20 else "walk1")
-    assert continuation.check_column(v, cls, [0.1501, 0.2001], 0.005, None) == []
-    # One interpolated crossing per column (the old check) would put the
-    # walks above 0.20 on the unstable side:
-    bad = continuation.check_column(v, cls, [0.1501], 0.005, None)
+    cls = lambda phi: "walk2" if 0.15 < phi < 0.20 else "walk1"  # noqa: E731
+    assert check(cls, [0.1501, 0.2001])[0] == []
+    # One crossing per column (the interpolated φ of the former check) would
+    # put the walks above 0.20 on the unstable side:
+    bad, _ = check(cls, [0.1501])
     assert any("stable period-1 walk at 0.210" in b for b in bad), bad
 
 
-def test_a_period_two_walk_before_the_doubling_needs_a_subcritical_band():
-    # Period 2 from 0.17, the doubling at 0.1851: both walks between.
-    v, cls = column(lambda phi: "walk1" if phi < 0.17 else "walk2")
-    supercritical = continuation.check_column(v, cls, [0.1851], 0.005, None)
-    assert any("supercritical" in b for b in supercritical), supercritical
-    # Subcritical, the fold of the period-2 branch at 0.168: the band holds them.
-    assert continuation.check_column(v, cls, [0.1851], 0.005, (0.168, 0.1851)) == []
-    # A fold at 0.178 ends the band before 0.17, 0.175.
-    bad = continuation.check_column(v, cls, [0.1851], 0.005, (0.178, 0.1851))
-    assert any("below the period-2 branch's fold" in b for b in bad), bad
-    # Where the fold is not known (another column), the band is not bounded.
-    nan = float("nan")
-    assert continuation.check_column(v, cls, [0.1851], 0.005, (nan, nan)) == []
+def test_past_an_open_crossing_the_scan_is_not_checked_and_says_so():
+    cls = lambda phi: "walk1"  # noqa: E731
+    bad, notes = check(cls, [0.1501], open_=(0.1501,))
+    assert bad == []
+    assert any("not checked" in n for n in notes), notes
 
 
-def test_the_column_of_the_diagram_must_see_a_walk_between_fold_and_doubling():
-    v, cls = column(lambda phi: "walk1" if phi < 0.15 else "skip0")
-    bad = continuation.check_column(v, cls, [0.1851], 0.005, (0.168, 0.1851))
+def test_a_period_two_walk_where_the_period_one_walk_is_stable_is_a_coexisting_attractor():
+    cls = lambda phi: "walk1" if phi < 0.17 else "walk2"  # noqa: E731
+    bad, notes = check(cls, [0.1851], band=(0.178, 0.1851))
+    assert bad == []
+    # 0.170–0.185 are before the crossing; 0.180, 0.185 lie in the band.
+    assert any("period-2 walk(s) where the period-1 walk is stable too (2 in the doubling's band)" in n
+               for n in notes), notes
+
+
+def test_the_column_of_the_diagram_must_see_a_walk_between_the_band_and_the_doubling():
+    cls = lambda phi: "walk1" if phi < 0.15 else "skip0"  # noqa: E731
+    bad, _ = check(cls, [0.1851], band=(0.168, 0.1851))
     assert any("neither walk" in b for b in bad), bad
+    # Elsewhere (no band) the standing start may settle on a third attractor.
+    assert check(cls, [0.1851])[0] == []
