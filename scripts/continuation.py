@@ -48,6 +48,7 @@ import pyarrow.parquet as pq  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from check_default_model import model  # noqa: E402
 from figures import DPI  # noqa: E402
 
 SYMBOL = {"phi": "φ [rad]", "length": "L [m]", "rho": "ρ [kg/m]", "alpha": "α", "fn": "f_n [Hz]",
@@ -65,14 +66,14 @@ def companion(points: Path, what: str) -> Path:
 
 def model_of(data: Path) -> str:
     """The model a file was made at: the part of its `rtw.variant` before the
-    run's integrator settings (as scripts/check_default_model.py reads it),
-    so that a figure's title names the model of the data it draws and cannot
+    run's integrator settings (scripts/check_default_model.py's `model`), so
+    that a figure's title names the model of the data it draws and cannot
     drift from it."""
     meta = pq.read_metadata(data).metadata or {}
     variant = meta.get(b"rtw.variant")
     if variant is None:
         sys.exit(f"continuation: {data} has no rtw.variant: its model cannot be named")
-    return variant.decode().split(" method=", 1)[0].strip()
+    return model(variant.decode())
 
 
 def titled(fig, title: str, data: Path, width: int) -> str:
