@@ -25,8 +25,8 @@ default* by
   * a Markdown file inside a scan's directory (results/NAME/*.md beside
     samples.parquet), anywhere in it;
   * a PNG of the same directory and stem (`phi-fig7a.png`, `phi-fig7a.plane.png`)
-    whose Title text chunk (scripts/continuation.py writes the figure's title
-    there) says "default".
+    whose Title text chunk (scripts/continuation.py and bifurcation.py write
+    the figure's title there) says "default model".
 Each such file's model must be the default's; the script lists every one that
 is not, with where it is called default, and exits 1.
 """
@@ -129,7 +129,7 @@ def claims(results: list[Result], docs: list[Path]) -> dict[Path, list[str]]:
                     found.setdefault(r.path, []).append(f"{doc}: {' '.join(p.split())[:100]}…")
     for png in committed("results/*.png"):
         title = Image.open(ROOT / png).text.get("Title", "")
-        if not re.search("default", title, re.I):
+        if not CLAIM.search(title):
             continue
         for r in results:
             if r.directory == png.parent and base(r.path) == base(png):
