@@ -65,8 +65,10 @@ plane=$($py scripts/continuation.py plane "$out/phi-fig7a.parquet" "$out/plane/s
   echo "limit cycle, each run from its standing start); per column of f_n, every φ where the continued curves"
   echo "cross it (the period-1 walk's stability flips at each), where the scan's runs settle on a stable period-1"
   echo "or period-2 walk, and whether they agree (\`scripts/continuation.py plane --check\`: no stable period-1"
-  echo "walk where continuation has it unstable; a period-2 walk where it has the period-1 walk stable only in the"
-  echo "band of a subcritical doubling, which the one-parameter diagram's period-2 fold bounds in its own column):"
+  echo "walk where continuation has it unstable, except past an open crossing, on a curve whose continuation stopped"
+  echo "unresolved within a column; a period-2 walk where it has the period-1 walk stable is a coexisting attractor,"
+  echo "reported; in the one-parameter diagram's own column, one of the two walks between the band where both are"
+  echo "stable and the doubling):"
   echo
   echo "$plane"
   echo
