@@ -23,9 +23,11 @@ number drawn is read from the files rtw-scan wrote.
   stability flips at each crossing) and where the scan's runs settle on a
   stable period-1 or period-2 walk, and with --check fails unless they agree
   to the grid's resolution: no stable period-1 walk where continuation has it
-  unstable, and a period-2 walk where continuation has the period-1 walk
-  stable only before a subcritical doubling, where both walks are stable
-  (bounded by the one-parameter diagram in its own column; check_column).
+  unstable (past a crossing on a curve that stopped unresolved nearby, not
+  checked, and said so); a period-2 walk where the period-1 walk is stable is
+  a coexisting attractor, reported; in the one-parameter diagram's own column
+  one of the two walks is seen between the band where both are stable and the
+  doubling (check_column).
   Each figure's title names the model of its data (rtw.variant); the
   files drawn together must be at one model.
 """
