@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -30,6 +31,7 @@ import pyarrow.parquet as pq  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from check_default_model import model  # noqa: E402
 from figures import DPI  # noqa: E402
 from figures import OUTCOME_COLOR as SCAN_COLOR  # noqa: E402  (the project's label colours)
 
@@ -75,7 +77,11 @@ def plot(points_file: Path, out: Path, quantity: str, title: str | None) -> Path
                        lw=0, rasterized=True)
     ax.set_ylabel(QUANTITY[quantity])
     ax.grid(alpha=0.3)
-    ax.set_title(title or f"bifurcation diagram in {param}", fontsize=10)
+    # The title's second line names the model of the data drawn, read from
+    # its rtw.variant, so that it cannot drift from the data.
+    title = "\n".join([title or f"bifurcation diagram in {param}",
+                       *textwrap.wrap(f"model: {model(meta['rtw.variant'])}", 115)])
+    ax.set_title(title, fontsize=8.5)
 
     label_bands(axb, values, labels)
     present = [lab for lab in OUTCOME_COLOR if lab in labels]
@@ -103,9 +109,9 @@ def plot(points_file: Path, out: Path, quantity: str, title: str | None) -> Path
     foot = (f"rtw-scan bifurcation: {len(values)} values, transient {meta['rtw.bifurcation.transient']}, "
             f"record {meta['rtw.bifurcation.record']} steps; model: {meta['rtw.variant']}")
     fig.text(0.5, 0.005, foot, ha="center", fontsize=6.5, color="#444444", wrap=True)
-    fig.subplots_adjust(left=0.11, right=0.98, top=0.95, bottom=0.09)
+    fig.subplots_adjust(left=0.11, right=0.98, top=0.91, bottom=0.09)
     out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=DPI)
+    fig.savefig(out, dpi=DPI, metadata={"Title": title.replace("\n", " ")})
     plt.close(fig)
     return out
 

@@ -10,26 +10,30 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 ./scripts/venv.sh
-cargo build --release -q -p rtw-scan
 bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
 out=results/bifurcation
 mkdir -p "$out"
-# The default strings' natural length, for the titles (crates/rtw-scan/tests/template.rs
-# checks that the template sets every key to its default).
+# The default strings' natural length, for the summary's heading (crates/rtw-scan/tests/template.rs
+# checks that the template sets every key to its default; scripts/check_default_model.py
+# that the data called default is at it). The figures' titles name the model read from the data.
 s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 
 sweep=(bifurcation --param phi --from 0.02 --to 0.35 --points 121 --transient 200 --record 48)
-# The two sweeps are independent (continuation is sequential within each).
-"$bin" "${sweep[@]}" --out "$out/phi-fig7a.parquet" >/dev/null 2>"$out/phi-fig7a.log" &
-a=$!
-"$bin" "${sweep[@]}" --set strings.rest_length_ratio=0 --out "$out/phi-fig7a-s0.parquet" >/dev/null 2>"$out/phi-fig7a-s0.log" &
-b=$!
-wait "$a"
-wait "$b"
+# REPORT_ONLY=1 remakes the figures and summary.md from the committed files.
+if [ -z "${REPORT_ONLY:-}" ]; then
+  cargo build --release -q -p rtw-scan
+  # The two sweeps are independent (continuation is sequential within each).
+  "$bin" "${sweep[@]}" --out "$out/phi-fig7a.parquet" >/dev/null 2>"$out/phi-fig7a.log" &
+  a=$!
+  "$bin" "${sweep[@]}" --set strings.rest_length_ratio=0 --out "$out/phi-fig7a-s0.parquet" >/dev/null 2>"$out/phi-fig7a-s0.log" &
+  b=$!
+  wait "$a"
+  wait "$b"
+fi
 
 py=.venv/bin/python
 $py scripts/bifurcation.py "$out/phi-fig7a.parquet" \
-  --title "φ sweep at Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514), default model (s = $s)"
+  --title "φ sweep at Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514), default model"
 $py scripts/bifurcation.py "$out/phi-fig7a-s0.parquet" \
   --title "φ sweep at Fig. 7(a), s = 0 (zero-rest-length strings, every other option the default's)"
 

@@ -57,7 +57,28 @@ def way(doc):
             yield d["way"], i, s
 
 
+def model_of(path):
+    """The model a file was made at (scripts/check_default_model.py's `model`
+    of its `rtw.variant`): for FILE.segments.json that of FILE.parquet, which
+    the same run wrote."""
+    from pathlib import Path
+
+    import pyarrow.parquet as pq
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from check_default_model import model
+
+    path = str(path)
+    data = path[: -len(".segments.json")] + ".parquet" if path.endswith(".segments.json") else path
+    variant = (pq.read_metadata(data).metadata or {}).get(b"rtw.variant")
+    if variant is None:
+        sys.exit(f"continuation_segments: {data} has no rtw.variant: its model cannot be named")
+    return model(variant.decode())
+
+
 def diagram(args):
+    import textwrap
+
     import matplotlib
 
     matplotlib.use("Agg")
@@ -100,10 +121,16 @@ def diagram(args):
         ax.set_title(f"L = {doc['length']:g}", fontsize=9)
         ax.legend(fontsize=7, loc="best")
     axes[-1, 0].set_xlabel(docs[0]["param"])
-    if args.title:
-        fig.suptitle(args.title, fontsize=10)
+    # The title names the model of the data drawn, read from the files, so it
+    # cannot drift from them; every panel and the sweep must share it.
+    models = {model_of(p) for p in args.files} | ({model_of(args.sweep)} if args.sweep else set())
+    if len(models) != 1:
+        sys.exit(f"continuation_segments: the files drawn together are at different models: {sorted(models)}")
+    title = "\n".join([*([args.title] if args.title else []),
+                       *textwrap.wrap(f"model: {models.pop()}", 130)])
+    fig.suptitle(title, fontsize=9)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=130)
+    fig.savefig(args.out, dpi=130, metadata={"Title": title.replace("\n", " ")})
     print(f"wrote {args.out}")
 
 

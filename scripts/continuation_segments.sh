@@ -9,11 +9,10 @@
 #   period and step frequency (relative 1e-3) wherever both are stable; fails the
 #   script if they disagree. Writes results/continuation/segments.md.
 # Called by ./scripts/continuation.sh; runs the three lengths at once (each
-# continues its directions two at a time, the period-2 ones too), at the default model (its
-# strings' natural length s from configs/template.toml, as the attractor sweep).
+# continues its directions two at a time, the period-2 ones too), at the default model (as
+# the attractor sweep); the figure's title names the model read from the files' rtw.variant.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q -p rtw-scan
 out=results/continuation
 mkdir -p "$out"
 bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
@@ -21,6 +20,7 @@ through=(continuation --param phi --from 0.05 --to 0.3 --through 8)
 run() { "$bin" "${through[@]}" --length "$1" --out "$out/phi-segments-L$1.parquet" --force >"$out/phi-segments-L$1.log"; }
 # REPORT_ONLY=1 remakes the figure and segments.md from the committed files.
 if [ -z "${REPORT_ONLY:-}" ]; then
+  cargo build --release -q -p rtw-scan
   run 0.7 &
   a=$!
   run 0.8 &
@@ -31,12 +31,11 @@ if [ -z "${REPORT_ONLY:-}" ]; then
   wait "$b"
   wait "$c"
 fi
-s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 
 py=.venv/bin/python
 $py scripts/continuation_segments.py diagram "$out"/phi-segments-L0.{7,8,9}.segments.json \
   --sweep results/bifurcation/phi-fig7a.parquet --out "$out/phi-segments.png" \
-  --title "The Fig. 7(a) walk continued in φ through its mode-sequence changes (default model, s = $s; rtw-scan ${through[*]})"
+  --title "The Fig. 7(a) walk continued in φ through its mode-sequence changes (rtw-scan ${through[*]})"
 check=$($py scripts/continuation_segments.py check "$out/phi-segments-L0.8.segments.json" \
   results/bifurcation/phi-fig7a.parquet)
 {

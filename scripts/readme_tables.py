@@ -45,7 +45,16 @@ def tables(src: str) -> str:
         rows = [r for i, r in enumerate(rows) if i < 2 or first(r) in names]
     if not rows:
         sys.exit(f"readme_tables: no table in {src}")
-    return "\n".join(rows) + "\n"
+    # A section with several tables keeps them apart: a blank line before each
+    # later table's header (the row above its |---| separator), or Markdown
+    # would read them as one.
+    sep = re.compile(r"^\|[\s:|-]+\|$")
+    out = []
+    for i, r in enumerate(rows):
+        if i > 0 and i + 1 < len(rows) and sep.match(rows[i + 1]) and not sep.match(r):
+            out.append("")
+        out.append(r)
+    return "\n".join(out) + "\n"
 
 
 def refresh(doc: Path) -> None:

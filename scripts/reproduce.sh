@@ -51,6 +51,9 @@ fi
 } >results/errata.md
 ./scripts/figures.sh
 ./scripts/bifurcation.sh >/dev/null
+# After the attractor sweep it draws under its diagram, before readme_tables.py
+# copies its tables into docs/limit-cycles.md.
+./scripts/continuation.sh >/dev/null
 ./scripts/basin.sh >/dev/null
 ./scripts/robustness_study.sh >/dev/null
 .venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
@@ -60,7 +63,4 @@ fi
 PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
   --no-build-isolation ./crates/rtw-py
 .venv/bin/python -m rtw report results/paper --out results/paper/report.html
-# Last, because its brute-force check stops the script for the default model
-# (docs/limit-cycles.md, "Continuation"): everything above is remade first.
-./scripts/continuation.sh >/dev/null
 echo "reproduce: done (see git status for what changed)"

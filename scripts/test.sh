@@ -3,7 +3,8 @@
 #   1. Rust (any user, only the toolchain): fmt, clippy, rustdoc, every Rust test;
 #   2. Python (python3 with venv; pip fetches scripts/requirements.txt into
 #      .venv the first time): the pandas/polars/pyarrow check of the Parquet
-#      output, the Python package (built and installed into .venv, its pytest
+#      output, that every committed result called the default model's is at
+#      the default model, the Python package (built and installed into .venv, its pytest
 #      tests), that Cargo.toml's rust-version covers every dependency's, and
 #      that the generated tables in README.md and docs/*.md match the
 #      committed results;
@@ -33,6 +34,9 @@ if [ -f scripts/check_parquet.py ]; then
   out=$(mktemp -d)
   cargo run --release -q -p rtw-scan -- run configs/smoke.toml --out "$out" >/dev/null
   .venv/bin/python scripts/check_parquet.py "$out/samples.parquet"
+  echo "== every committed result called the default model's is at the default model (scripts/check_default_model.py)"
+  # The smoke config sets no model key: its scan's rtw.variant is the library's default.
+  .venv/bin/python scripts/check_default_model.py "$out/samples.parquet"
   rm -rf "$out"
 fi
 echo "== the Python package rtw (crates/rtw-py): installed into .venv, then pytest"
