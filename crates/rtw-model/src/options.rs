@@ -546,8 +546,8 @@ impl RobustnessOptions {
         check(
             "robustness.trials × robustness.max_steps",
             f64::from(self.trials) * f64::from(self.max_steps),
-            "at most 10000000 (steps simulated a sample, about 10 minutes of one core at 60 µs \
-             a step; split a larger study over several scans of other terrain.seed)",
+            "at most 10000000 (steps simulated a sample: 15 to 50 minutes of one core at 90 to \
+             290 µs a step; split a larger study over several scans of other terrain.seed)",
             |v| v <= MAX_TRIAL_STEPS,
         )
     }
