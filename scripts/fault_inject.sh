@@ -14,6 +14,10 @@
 #      is being removed (the test build's RTW_SCAN_PAUSE stops the run there),
 #      with a stray file of the user's in .partial; --resume must finish each
 #      without computing a finished row again, and leave the stray file alone;
+#   5. refine killed at random points: finished rounds never change, and the
+#      same command finishes with the uninterrupted refine's rows;
+#   6. continuation --through killed at random points: its four files appear
+#      all together or not at all;
 # and every result is compared row by row (scripts/compare_scans.py) with an
 # uninterrupted run. The random points come from a seed, printed (set
 # FAULT_SEED to replay one). Exits non-zero if any finished row was lost or
@@ -225,6 +229,77 @@ for point in manifest merge merged cleanup; do
   [ "$(cat "$out/.partial/notes.txt")" = note ] || fail "killed at $point: the stray notes.txt was touched"
   compare "$out" "killed at $point, resumed"
   echo "fault_inject: SIGKILL at $point: $kept rows finished; resumed to the reference rows, the stray file kept"
+done
+
+# 5. refine killed at random instants (SIGKILL and SIGTERM alternately), each
+# followed by the same command: a finished round is never changed, the
+# combined file appears only whole, and the end has the uninterrupted rows.
+refine_args=(--budget 48 --rounds 3 --seed 5 --threads 2 --quiet)
+cp -r "$work/ref" "$work/refine-ref"
+"$bin" refine "$work/refine-ref" "${refine_args[@]}" >/dev/null || fail "the uninterrupted refine failed"
+cp -r "$work/ref" "$work/refine-killed"
+for i in 1 2 3 4; do
+  sig=KILL
+  [ $((i % 2)) -eq 0 ] && sig=TERM
+  delay_ms=$((20 + RANDOM % 300))
+  declare -A before=()
+  for f in "$work"/refine-killed/refine/round-*/samples.parquet; do
+    [ -e "$f" ] && before[$f]=$(cksum <"$f")
+  done
+  "$bin" refine "$work/refine-killed" "${refine_args[@]}" >/dev/null 2>&1 &
+  pid=$!
+  sleep "$(printf '0.%03d' "$delay_ms")"
+  kill -s "$sig" "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  faults=$((faults + 1))
+  for f in "${!before[@]}"; do
+    [ "$(cksum <"$f")" = "${before[$f]}" ] || fail "refine kill $i: the finished round $f changed"
+  done
+  unset before
+  if [ -e "$work/refine-killed/refine/samples.parquet" ]; then
+    "$py" scripts/compare_scans.py "$work/refine-ref/refine/samples.parquet" \
+      "$work/refine-killed/refine/samples.parquet" >/dev/null ||
+      fail "refine kill $i: the combined file differs from the uninterrupted refine's"
+  fi
+  echo "fault_inject: refine kill $i (SIG$sig after ${delay_ms} ms): finished rounds kept"
+done
+"$bin" refine "$work/refine-killed" "${refine_args[@]}" >/dev/null || fail "the final refine failed"
+"$py" scripts/compare_scans.py "$work/refine-ref/refine/samples.parquet" \
+  "$work/refine-killed/refine/samples.parquet" >/dev/null ||
+  fail "refine killed and resumed: the rows differ from the uninterrupted refine's"
+
+# 6. continuation --through killed at random instants: its files (branch
+# points, special points, segments, summary) appear all together or none.
+cont_args=(continuation --phi 0.094 --set strings.rest_length_ratio=0.85 --from 0.0925 --to 0.0955 --through 1)
+set_of() {
+  local n=0 f
+  for f in d.parquet d.special.parquet d.segments.json d.md; do
+    [ -e "$1/$f" ] && n=$((n + 1))
+  done
+  echo "$n"
+}
+for i in 1 2 3; do
+  cdir=$work/cont-$i
+  mkdir -p "$cdir"
+  sig=TERM
+  [ $((i % 2)) -eq 0 ] && sig=KILL
+  delay_ms=$((50 + RANDOM % 1500))
+  "$bin" "${cont_args[@]}" --out "$cdir/d.parquet" >/dev/null 2>&1 &
+  pid=$!
+  sleep "$(printf '%d.%03d' $((delay_ms / 1000)) $((delay_ms % 1000)))"
+  kill -s "$sig" "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  faults=$((faults + 1))
+  n=$(set_of "$cdir")
+  [ "$n" = 0 ] || [ "$n" = 4 ] || fail "continuation kill $i (SIG$sig): $n of its 4 files left"
+  if [ "$sig" = TERM ] && ls -A "$cdir" | grep -q '\.tmp$'; then
+    fail "continuation kill $i (SIGTERM): temporary files left: $(ls -A "$cdir")"
+  fi
+  # The next run removes what a SIGKILL left and writes the whole set.
+  "$bin" "${cont_args[@]}" --out "$cdir/d.parquet" >/dev/null || fail "continuation after kill $i failed"
+  [ "$(set_of "$cdir")" = 4 ] || fail "continuation after kill $i: not every file written"
+  ! ls -A "$cdir" | grep -q '\.tmp$' || fail "continuation after kill $i: temporary files left"
+  echo "fault_inject: continuation --through kill $i (SIG$sig after ${delay_ms} ms): $n of 4 files, never a part of the set"
 done
 
 echo "fault_inject: passed: $faults faults injected (seed $seed); no finished row was lost or changed"

@@ -55,4 +55,5 @@ pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
 pub use plant::contact::RodMode;
 pub use plant::geometry::Tip;
 pub use plant::rtw::GuardKind;
+pub use run::cancel::cancellable;
 pub use run::simulate::{simulate, simulate_traced};

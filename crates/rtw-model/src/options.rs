@@ -37,6 +37,7 @@ use hybrid_ode::EngineOptions;
 pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
 
+mod seed;
 mod terrain;
 use terrain::STEP_HEIGHT_MAX;
 pub use terrain::TerrainOptions;
@@ -483,6 +484,9 @@ pub struct RobustnessOptions {
 pub(crate) const SIGMA_DEFAULT: f64 = 0.01;
 const TRIALS_DEFAULT: u32 = 20;
 const MAX_STEPS_DEFAULT: u32 = 100;
+/// Most steps of the flat gait the rough-slope trials of one sample may
+/// take together (`trials × max_steps`).
+const MAX_TRIAL_STEPS: f64 = 1e7;
 
 fn is_default_sigma(v: &f64) -> bool {
     *v == SIGMA_DEFAULT
@@ -516,7 +520,8 @@ impl RobustnessOptions {
     }
 
     /// Refuses a roughness outside [0, 1000] m, fewer than 2 or more than
-    /// 100000 trials, or a censoring step count outside [1, 1000000].
+    /// 100000 trials, a censoring step count outside [1, 1000000], or more
+    /// than 10⁷ steps in all (`trials × max_steps`).
     pub fn validate(&self) -> Result<(), ParamError> {
         check(
             "robustness.sigma",
@@ -535,6 +540,15 @@ impl RobustnessOptions {
             f64::from(self.max_steps),
             "in [1, 1000000] (steps of the flat gait)",
             |v| (1.0..=1e6).contains(&v),
+        )?;
+        // Each in range, the two together can still ask for 10¹¹ steps a
+        // sample: the Monte Carlo's cost, bounded before anything runs.
+        check(
+            "robustness.trials × robustness.max_steps",
+            f64::from(self.trials) * f64::from(self.max_steps),
+            "at most 10000000 (steps simulated a sample: 15 to 50 minutes of one core at 90 to \
+             290 µs a step; split a larger study over several scans of other terrain.seed)",
+            |v| v <= MAX_TRIAL_STEPS,
         )
     }
 }
@@ -583,6 +597,19 @@ mod tests {
             ..o
         };
         assert_eq!(d, adopted);
+    }
+
+    #[test]
+    fn the_rough_slope_trials_cost_is_bounded_up_front() {
+        let mut o = Options::default();
+        o.robustness.trials = 100_000;
+        o.robustness.max_steps = 1_000_000;
+        let e = o.validate().unwrap_err();
+        assert_eq!(e.field, "robustness.trials × robustness.max_steps");
+        assert!(e.to_string().contains("at most 10000000"), "{e}");
+        // At the bound, accepted.
+        o.robustness.max_steps = 100;
+        o.validate().unwrap();
     }
 
     #[test]

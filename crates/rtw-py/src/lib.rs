@@ -204,7 +204,8 @@ fn scan<'py>(
         };
         if let Err(interrupt) = shown.and_then(|()| py.check_signals()) {
             stop.store(true, Ordering::SeqCst);
-            // The samples in flight finish (each is bounded by t_max and max_steps).
+            // The samples in flight end at their runs' next step (the stop
+            // reaches every run of a sample: rtw_model::cancellable).
             let _ = py.detach(|| worker.join());
             return Err(interrupt);
         }

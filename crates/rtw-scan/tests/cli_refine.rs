@@ -161,7 +161,7 @@ fn bad_refine_input_is_named_with_its_range() {
     let d = s(&a);
     run_err(
         &["refine", d, "--budget", "0"],
-        &["--budget", "0 is invalid", ">= 1"],
+        &["--budget", "0 is invalid", "[1, 100000]"],
     );
     run_err(
         &["refine", d, "--budget", "10", "--rounds", "11"],
@@ -209,4 +209,164 @@ fn sensitivity_refuses_the_refined_file_whose_samples_are_not_draws() {
         "--resamples",
         "20",
     ]);
+}
+
+/// A budget beyond what a round can hold in memory (`propose` draws 20
+/// candidates a point: 10¹² points aborted with "memory allocation failed",
+/// 10⁷ took 4 GB in 30 s) is refused up front, naming the flag and its
+/// range, before anything is read or written.
+#[test]
+fn a_refine_budget_beyond_its_range_is_refused_up_front() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(20, 1));
+    for budget in ["1000000000000", "10000000", "100001"] {
+        run_err(
+            &[
+                "refine",
+                s(&a),
+                "--budget",
+                budget,
+                "--rounds",
+                "1",
+                "--fake-sim",
+                "0",
+            ],
+            &[&format!("--budget: {budget} is invalid"), "[1, 100000]"],
+        );
+    }
+    assert!(!a.join("refine").exists());
+}
+
+/// Refine's progress counts each round on its own, says which round it is,
+/// and never passes its total (it ran on across rounds: "893/62
+/// (1440.3 %) … ETA 169200271151644288 s").
+#[test]
+fn refine_progress_counts_each_round_and_names_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(100, 2));
+    let o = run_ok(&[
+        "refine",
+        s(&a),
+        "--budget",
+        "30",
+        "--rounds",
+        "3",
+        "--fake-sim",
+        "0",
+    ]);
+    let err = stderr(&o);
+    let mut seen = std::collections::BTreeSet::new();
+    for line in err.lines().filter(|l| l.contains(" samples/s")) {
+        let round = line
+            .split("round ")
+            .nth(1)
+            .and_then(|r| r.split(" of 3").next())
+            .unwrap_or_else(|| panic!("no round in {line:?}"));
+        seen.insert(round.to_string());
+        let counts = line.split("] ").nth(1).unwrap().split(' ').next().unwrap();
+        let (done, total) = counts.split_once('/').unwrap();
+        let (done, total): (u64, u64) = (done.parse().unwrap(), total.parse().unwrap());
+        assert_eq!(total, 10, "{line}");
+        assert!(done <= total, "{line}");
+    }
+    assert_eq!(seen.len(), 3, "{err}");
+}
+
+/// A refinement replaces only its own files. Over another refinement's
+/// (other --budget, --rounds or --seed), refine says what differs and what
+/// to do, not "Choose another --out" (refine has no --out); over a
+/// combined file of another scan's refinement, or a scan file that is no
+/// refinement's, it refuses rather than replace it; each file is kept.
+#[test]
+fn refine_refuses_another_refinements_files_saying_what_differs() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(100, 4));
+    let b = scan(dir.path(), "b", &slice(100, 5));
+    refine(&a, &["--budget", "30", "--rounds", "3", "--seed", "9"]);
+    let all = a.join("refine/samples.parquet");
+    let before = std::fs::read(&all).unwrap();
+    let o = run_err(
+        &[
+            "refine",
+            s(&a),
+            "--budget",
+            "20",
+            "--rounds",
+            "2",
+            "--seed",
+            "9",
+            "--fake-sim",
+            "0",
+        ],
+        &["--budget 30 there, 20 here", "--rounds 3 there, 2 here"],
+    );
+    assert!(!stderr(&o).contains("--out"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&all).unwrap(), before);
+    // Without the combined file, the first round that differs says so.
+    std::fs::remove_file(&all).unwrap();
+    let o = run_err(
+        &[
+            "refine",
+            s(&a),
+            "--budget",
+            "30",
+            "--rounds",
+            "3",
+            "--seed",
+            "8",
+            "--fake-sim",
+            "0",
+        ],
+        &["round 1 of another refinement", "--seed 8"],
+    );
+    assert!(!stderr(&o).contains("--out"), "{}", stderr(&o));
+    refine(&a, &["--budget", "30", "--rounds", "3", "--seed", "9"]);
+    assert_eq!(std::fs::read(&all).unwrap(), before);
+    // Another scan's refined file, with the same flags: its base rows differ.
+    refine(&b, &["--budget", "30", "--rounds", "3", "--seed", "9"]);
+    let c = scan(dir.path(), "c", &slice(100, 4));
+    std::fs::create_dir_all(c.join("refine")).unwrap();
+    let theirs = std::fs::read(b.join("refine/samples.parquet")).unwrap();
+    std::fs::write(c.join("refine/samples.parquet"), &theirs).unwrap();
+    run_err(
+        &[
+            "refine",
+            s(&c),
+            "--budget",
+            "30",
+            "--rounds",
+            "3",
+            "--seed",
+            "9",
+            "--fake-sim",
+            "0",
+        ],
+        &["another refinement's rows", "the scan's rows (content hash"],
+    );
+    assert_eq!(
+        std::fs::read(c.join("refine/samples.parquet")).unwrap(),
+        theirs
+    );
+    // A plain scan file there is no refinement's.
+    let plain = std::fs::read(b.join("samples.parquet")).unwrap();
+    std::fs::write(c.join("refine/samples.parquet"), &plain).unwrap();
+    run_err(
+        &[
+            "refine",
+            s(&c),
+            "--budget",
+            "30",
+            "--rounds",
+            "3",
+            "--seed",
+            "9",
+            "--fake-sim",
+            "0",
+        ],
+        &["not a refinement's file"],
+    );
+    assert_eq!(
+        std::fs::read(c.join("refine/samples.parquet")).unwrap(),
+        plain
+    );
 }

@@ -11,6 +11,12 @@ const FIG7A: [&str; 13] = [
     "0.0514", "--phi", "0.15",
 ];
 
+/// A star too soft to stand: it collapses as it is set down.
+const SOFT: [&str; 13] = [
+    "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "0.5", "--zeta",
+    "0.0514", "--phi", "0.02",
+];
+
 fn json(extra: &[&str]) -> serde_json::Value {
     let o = run_ok(&[&FIG7A[..], &["--json"], extra].concat());
     serde_json::from_str(&stdout(&o)).unwrap()
@@ -159,4 +165,123 @@ fn a_scan_has_the_gsn_column_only_when_asked_for_and_the_same_rows_besides() {
         computed += (value != "gsn=null") as usize;
     }
     assert!(computed > 0);
+}
+
+/// The robustness measures' cost is bounded up front: `trials × max_steps`
+/// steps a sample (10¹¹ for 100000 × 1000000, about 100 days a sample) is
+/// refused, naming both keys and the limit, before anything runs.
+#[test]
+fn a_steps_to_fall_too_costly_to_finish_is_refused_up_front() {
+    let o = run_err(
+        &[
+            &FIG7A[..],
+            &[
+                "--set",
+                "robustness.steps_to_fall=true",
+                "--set",
+                "robustness.trials=100000",
+                "--set",
+                "robustness.max_steps=1000000",
+            ],
+        ]
+        .concat(),
+        &[
+            "robustness.trials × robustness.max_steps",
+            "at most 10000000",
+        ],
+    );
+    assert!(stdout(&o).is_empty());
+}
+
+/// `run`'s first Ctrl-C stops the samples in flight, not only the ones not
+/// started: a sample whose steps to fall take minutes (2 trials of 200000
+/// steps on a flat slope, σ = 0, where the walk never falls) is cut within seconds, the run exits 130 and keeps no row of it;
+/// `--resume` would compute it again.
+#[test]
+fn the_first_interrupt_stops_a_long_robustness_sample_within_seconds() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(
+        dir.path(),
+        "c.toml",
+        "seed = 1\nsamples = 2\n[params]\nlength = 0.8\nrho = 2.5\nalpha = 0.125\nfn = 3.269\n\
+         zeta = 0.0514\nphi = 0.15\n[simulation]\nrobustness.steps_to_fall = true\n\
+         robustness.trials = 2\nrobustness.max_steps = 200000\nrobustness.sigma = 0.0\n",
+    );
+    let out = dir.path().join("out");
+    let mut child = bin()
+        .args(["run", &cfg, "--out", s(&out), "--threads", "1", "--quiet"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The flat run takes well under a second; the trials then run.
+    std::thread::sleep(Duration::from_secs(3));
+    assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+    let ok = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok);
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        if t0.elapsed() > Duration::from_secs(10) {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("still running 10 s after the first interrupt");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let err = std::io::read_to_string(child.stderr.take().unwrap()).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert!(err.contains("stopping the samples in flight"), "{err}");
+    assert!(!out.join("samples.parquet").exists());
+}
+
+/// `simulate --json` has one schema for given options: the scan row's
+/// columns, then the robustness measures asked for, null where a run has
+/// none, however it ended. A star too soft to stand (f_n = 0.5 Hz, φ = 0.02:
+/// it collapses as it is set down, before the run starts) has the keys of
+/// the walk at Fig. 7(a), the measures null.
+#[test]
+fn simulate_json_has_the_same_keys_however_the_run_failed() {
+    let asked = [
+        "--set",
+        "robustness.step_down=true",
+        "--set",
+        "robustness.gsn=true",
+        "--set",
+        "robustness.steps_to_fall=true",
+        "--set",
+        "robustness.trials=2",
+        "--set",
+        "robustness.max_steps=2",
+    ];
+    let keys =
+        |v: &serde_json::Value| -> Vec<String> { v.as_object().unwrap().keys().cloned().collect() };
+    let walk = json(&asked);
+    assert_eq!(walk["outcome"], "walk");
+    let soft_args = [&SOFT[..], &["--json"], &asked].concat();
+    let soft: serde_json::Value = serde_json::from_str(&stdout(&run_ok(&soft_args))).unwrap();
+    assert_eq!(soft["failure"], "standing_com_low", "{soft}");
+    assert_eq!(keys(&soft), keys(&walk));
+    for k in [
+        "step_down_max",
+        "gsn",
+        "steps_to_fall",
+        "steps_to_fall_censored",
+    ] {
+        assert!(walk[k].is_number(), "{k}: {walk}");
+        assert!(soft[k].is_null(), "{k}: {soft}");
+    }
+    // The text form too: the robustness section, with "-" for each.
+    let o = run_ok(&[&SOFT[..], &asked].concat());
+    let text = stdout(&o);
+    assert!(text.contains("[robustness]"), "{text}");
+    assert!(text.contains("steps_to_fall_censored"), "{text}");
 }

@@ -170,3 +170,121 @@ fn continuation_through_continues_the_period_2_branch_past_its_corner() {
         "max|μ| {m} against the sweep's 0.804033"
     );
 }
+
+/// The files of a diagram with `--through` (branch points, special points,
+/// summary, segments) in `dir`, by name, with their bytes.
+fn diagram_files(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    ["d.parquet", "d.special.parquet", "d.md", "d.segments.json"]
+        .iter()
+        .filter_map(|n| Some((n.to_string(), std::fs::read(dir.join(n)).ok()?)))
+        .collect()
+}
+
+/// Files in `dir` a killed writer could leave: temporary files.
+fn leftovers(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(Result::ok)
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect()
+}
+
+/// `continuation --through 1 ... --out DIR/d.parquet` stopped by SIGTERM
+/// where the test build pauses, while the segments are being followed (the
+/// test build's `RTW_SCAN_PAUSE=continuation-segments`).
+fn interrupted_through(dir: &Path, to: &str) {
+    use std::io::BufRead;
+    let out = dir.join("d.parquet");
+    let mut child = bin()
+        .args(["continuation", "--phi", "0.094", "--set"])
+        .args([
+            "strings.rest_length_ratio=0.85",
+            "--from",
+            "0.0925",
+            "--to",
+            to,
+        ])
+        .args(["--through", "1", "--out", s(&out)])
+        .env("RTW_SCAN_PAUSE", "continuation-segments")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut line = String::new();
+    loop {
+        line.clear();
+        let n = err.read_line(&mut line).unwrap();
+        assert!(n > 0, "continuation ended without pausing");
+        if line.contains("paused at continuation-segments") {
+            break;
+        }
+    }
+    let ok = std::process::Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok);
+    let st = child.wait().unwrap();
+    assert_eq!(st.code(), Some(130), "{st}");
+}
+
+/// docs/cli.md: no command leaves a partial result. A diagram's files with
+/// `--through` appear together at the end or not at all: a `continuation
+/// --through` interrupted while it follows the segments leaves no file of
+/// its own in a fresh folder, and leaves an earlier diagram's files in
+/// place, byte for byte.
+#[test]
+fn an_interrupted_continuation_through_leaves_no_partial_set_of_files() {
+    let dir = tempfile::tempdir().unwrap();
+    interrupted_through(dir.path(), "0.0955");
+    assert_eq!(
+        diagram_files(dir.path())
+            .iter()
+            .map(|f| &f.0)
+            .collect::<Vec<_>>(),
+        Vec::<&String>::new(),
+        "files left by an interrupted diagram"
+    );
+    assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+    let out = dir.path().join("d.parquet");
+    run_ok(&[
+        "continuation",
+        "--phi",
+        "0.094",
+        "--set",
+        "strings.rest_length_ratio=0.85",
+        "--from",
+        "0.0925",
+        "--to",
+        "0.0955",
+        "--through",
+        "1",
+        "--out",
+        s(&out),
+    ]);
+    let before = diagram_files(dir.path());
+    assert_eq!(before.len(), 4);
+    // Another range: every file would change.
+    interrupted_through(dir.path(), "0.095");
+    assert!(
+        diagram_files(dir.path()) == before,
+        "the earlier diagram's files were changed"
+    );
+    assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+}
+
+/// `--through` that is not an integer in range (a count beyond any integer,
+/// a float) is refused with the valid range, not clap's "number too large"
+/// or "invalid digit".
+#[test]
+fn continuation_through_beyond_an_integer_is_refused_with_the_range() {
+    for bad in ["1000000000000000000000", "1e3"] {
+        run_err(
+            &["continuation", "--through", bad],
+            &[&format!("{bad} is invalid"), "[0, 100]"],
+        );
+    }
+}

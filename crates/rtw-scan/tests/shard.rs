@@ -498,3 +498,29 @@ fn bad_shard_values_are_refused_naming_the_flag() {
     let h = stdout(&run_ok(&["--help"]));
     assert!(h.contains("merge"), "{h}");
 }
+
+/// A foreign part with a name `run` never writes (`part-01.parquet`, another
+/// scan's shard 1) beside the good `part-1.parquet`: merge names the
+/// foreign file, never the good one, so that removing the file it names
+/// loses nothing. Every message names the file as it is on disk.
+#[test]
+fn merge_names_the_foreign_part_not_the_good_one_it_shadows() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = write_config(dir.path(), "a.toml", &paper_like(40, 5));
+    let b = write_config(dir.path(), "b.toml", &paper_like(40, 6));
+    let (good, other) = (dir.path().join("good"), dir.path().join("other"));
+    run_shard(&a, &good, "0/2", &[]);
+    run_shard(&a, &good, "1/2", &[]);
+    run_shard(&b, &other, "1/2", &[]);
+    std::fs::copy(other.join("part-1.parquet"), good.join("part-01.parquet")).unwrap();
+    let o = run_err(&["merge", s(&good)], &["part-01.parquet"]);
+    let err = stderr(&o);
+    assert!(
+        !err.contains("part-1.parquet"),
+        "merge blamed the good part:\n{err}"
+    );
+    assert!(!good.join("samples.parquet").exists());
+    // Once the named file is gone, the good parts merge.
+    std::fs::remove_file(good.join("part-01.parquet")).unwrap();
+    merge(&good);
+}

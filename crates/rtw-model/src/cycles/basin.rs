@@ -224,12 +224,19 @@ pub enum BasinError {
         /// What it must be.
         range: &'static str,
     },
-    /// The design's gait has no limit cycle on the step map.
+    /// The design's gait has no limit cycle on the step map (the message
+    /// holds the cause; no `source`, so that it is said once).
     #[error("the gait's limit cycle: {0}")]
-    Cycle(#[from] CycleError),
+    Cycle(CycleError),
     /// The design's gait is not stable: it has no basin.
     #[error("the gait's limit cycle is unstable (max |mu| = {0:.4}): it has no basin")]
     Unstable(f64),
+}
+
+impl From<CycleError> for BasinError {
+    fn from(e: CycleError) -> Self {
+        Self::Cycle(e)
+    }
 }
 
 /// What became of one point of a slice.

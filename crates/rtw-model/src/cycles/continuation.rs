@@ -192,15 +192,28 @@ impl Diagram {
     }
 }
 
-/// Why a diagram could not be started.
+/// Why a diagram could not be started. Its message holds its cause; it
+/// hands on no `source` (a chain printer would say the cause twice).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum DiagramError {
     /// No limit cycle at the start.
     #[error("no limit cycle at the start: {0}")]
-    Cycle(#[from] CycleError),
+    Cycle(CycleError),
     /// The continuation could not start from it.
     #[error("the continuation could not start: {0}")]
-    Continuation(#[from] ContError),
+    Continuation(ContError),
+}
+
+impl From<CycleError> for DiagramError {
+    fn from(e: CycleError) -> Self {
+        Self::Cycle(e)
+    }
+}
+
+impl From<ContError> for DiagramError {
+    fn from(e: ContError) -> Self {
+        Self::Continuation(e)
+    }
 }
 
 impl DiagramBranch {

@@ -89,18 +89,31 @@ impl LimitCycle {
     }
 }
 
-/// Why no limit cycle was found.
+/// Why no limit cycle was found. Its message holds its cause; it hands on
+/// no `source` (a chain printer would say the cause twice).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CycleError {
     /// A step of the map failed.
     #[error("a step failed: {0}")]
-    Step(#[from] StepError),
+    Step(StepError),
     /// No period up to this one showed after the settling steps.
     #[error("no period ≤ {0} on the step map after the settling steps")]
     NoPeriod(usize),
     /// Newton did not converge.
     #[error("Newton: {0}")]
-    Newton(#[from] NewtonError),
+    Newton(NewtonError),
+}
+
+impl From<StepError> for CycleError {
+    fn from(e: StepError) -> Self {
+        Self::Step(e)
+    }
+}
+
+impl From<NewtonError> for CycleError {
+    fn from(e: NewtonError) -> Self {
+        Self::Newton(e)
+    }
 }
 
 impl StepMap {

@@ -29,7 +29,7 @@ pub struct TerrainOptions {
     #[serde(skip_serializing_if = "is_zero")]
     pub roughness: f64,
     /// Seed of the patches' heights. Left out of a serialized config while 0.
-    #[serde(skip_serializing_if = "is_zero_seed")]
+    #[serde(skip_serializing_if = "is_zero_seed", with = "super::seed")]
     pub seed: u64,
     /// Length of a rough patch along the slope (m).
     #[serde(skip_serializing_if = "is_default_patch")]

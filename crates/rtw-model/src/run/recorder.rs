@@ -114,6 +114,9 @@ impl Observer<N, Rtw> for Recorder<'_> {
     }
 
     fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, end: StepEnd<'_, AtState>) -> Flow {
+        if crate::run::cancel::requested() {
+            return Flow::Stop;
+        }
         match end {
             StepEnd::Step { aux } => {
                 self.observe_step(rtw, dense, || rtw.friction_ratio_of(&aux.lambda))

@@ -239,3 +239,43 @@ fn follow_draws_the_rimless_wheels_closed_form_basin() {
         }
     }
 }
+
+/// An error and its causes as `anyhow`'s `{:#}` prints them (and so the CLI
+/// and Python's exceptions): each `source` after its error's own message.
+fn chain(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut at = e.source();
+    while let Some(cause) = at {
+        s.push_str(": ");
+        s.push_str(&cause.to_string());
+        at = cause.source();
+    }
+    s
+}
+
+/// A wrapped error says its cause once: an error whose message already
+/// holds its cause does not also hand it on as its `source` (the chain
+/// printed "the gait's limit cycle: a step failed: the run failed:
+/// standing_rolls_away: a step failed: the run failed: standing_rolls_away:
+/// the run failed: standing_rolls_away").
+#[test]
+fn a_wrapped_error_names_each_cause_once() {
+    use crate::cycles::{CycleError, DiagramError};
+    let step = StepError::Failure(FailureDetail::StandingRollsAway);
+    let basin = BasinError::from(CycleError::from(step));
+    assert_eq!(
+        chain(&basin),
+        "the gait's limit cycle: a step failed: the run failed: standing_rolls_away"
+    );
+    let newton = CycleError::from(hybrid_ode::limit::NewtonError::Singular);
+    assert_eq!(
+        chain(&DiagramError::from(newton)),
+        "no limit cycle at the start: Newton: P − I is singular at an iterate (a multiplier at 1)"
+    );
+    let start = DiagramError::from(hybrid_ode::continuation::Error::NoStart);
+    assert_eq!(
+        chain(&start),
+        "the continuation could not start: no fixed point near the starting point (Newton at \
+         fixed p failed)"
+    );
+}

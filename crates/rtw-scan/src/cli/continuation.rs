@@ -2,19 +2,13 @@
 //! and period doublings in two) by pseudo-arclength on the step map.
 
 use super::bifurcation::ModelArgs;
-use crate::continuation::{
-    self, Continuation, CurveSettings, files as cont_files, segments as cont_segments,
-    summary as cont_summary,
-};
-use crate::io::destination::summary_path;
-use crate::io::files::write_atomic;
+use crate::continuation::{Continuation, CurveSettings, study};
 use anyhow::Result;
 use clap::Args;
 use rtw_model::Param;
 use rtw_model::cycles::Section;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 #[derive(Args, Debug)]
 pub(super) struct ContinuationArgs {
@@ -55,7 +49,7 @@ pub(super) struct ContinuationArgs {
     /// Also continue the gait's branch through the changes of its mode sequence, up to this many segments
     /// each way, and each period-2 branch on from where its smooth continuation stopped; each change
     /// located and named (FILE.segments.json and a table in FILE.md; 0: off).
-    #[arg(long, default_value_t = 0, value_name = "N")]
+    #[arg(long, default_value_t = 0, value_name = "N", value_parser = super::values::through)]
     through: usize,
     /// Branch points (FILE.special.parquet, FILE.curve.parquet and FILE.md are written beside it)
     /// [default: runs/continuation/PARAM.parquet].
@@ -111,32 +105,7 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
     let out = a.out.unwrap_or_else(|| {
         Path::new("runs/continuation").join(format!("{}.parquet", param.name()))
     });
-    if a.through > 100 {
-        anyhow::bail!("--through {}: must lie in [0, 100]", a.through);
-    }
-    cont_files::check_outputs(&out, a.force)?;
-    if a.through > 0 {
-        cont_segments::check_output(&out, a.force)?;
-    }
-    let t0 = Instant::now();
-    let result = continuation::run(&c)?;
-    let wall = t0.elapsed().as_secs_f64();
-    let rows = cont_files::rows(&c, &result);
-    cont_files::write(&out, &c, &rows, wall)?;
-    let mut md = cont_summary::summary_markdown(
-        &c,
-        result.diagram.start.period,
-        result.diagram.start.floquet_max(),
-        &rows,
-        result.diagram.branches.len(),
-        wall,
-    );
-    if a.through > 0 {
-        let dirs = cont_segments::run(&c, &result.diagram, a.through);
-        cont_segments::write(&out, &c, &dirs)?;
-        md.push_str(&cont_segments::markdown(&c, &dirs));
-    }
-    write_atomic(&summary_path(&out), md.as_bytes())?;
+    let md = study::run_to_files(&c, a.through, &out, a.force)?;
     print!("{md}");
     Ok(ExitCode::SUCCESS)
 }

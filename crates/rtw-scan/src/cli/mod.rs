@@ -81,8 +81,8 @@ enum Command {
         configs/template.toml has every key with its unit, range and default.\n\n\
         A run refuses to write into a directory holding another scan's results (another config hash, or \
         another --shard split) unless --force, and one process at a time writes a result (a lock file names \
-        it). SIGINT, SIGTERM and SIGHUP stop it like Ctrl-C: the samples in flight finish, the finished chunks \
-        are kept, exit status 130; a second signal quits at once. Progress goes to stderr, the summary to stdout.",
+        it). SIGINT, SIGTERM and SIGHUP stop it like Ctrl-C: the samples in flight stop within moments (their \
+        rows are dropped), the finished chunks are kept, exit status 130; a second signal quits at once. Progress goes to stderr, the summary to stdout.",
         after_help = EXIT_CODES)]
     Run(RunArgs),
     /// Merge the shards of a scan (DIR/part-K.parquet from `run --shard K/N`) into DIR/samples.parquet and its summary.

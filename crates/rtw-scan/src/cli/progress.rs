@@ -6,8 +6,8 @@ use crate::scan::progress::Progress;
 use indicatif::{ProgressBar, ProgressStyle};
 use rtw_model::Label;
 use std::io::IsTerminal;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// How progress is shown on stderr.
@@ -23,15 +23,18 @@ pub(crate) enum ProgressMode {
 
 /// Progress on stderr: a bar on a terminal, plain lines otherwise. The bar
 /// is drawn from [`Progress::start`] on, once the run has passed its checks.
+/// Each [`Progress::start`] (each round of a refinement) counts from 0, its
+/// stage ([`Progress::stage`], "round 2 of 16") before its line.
 pub(crate) struct StderrProgress {
     mode: ProgressMode,
-    bar: OnceLock<ProgressBar>,
+    bar: Mutex<Option<ProgressBar>>,
     lines: Option<Mutex<LineState>>,
     counts: [AtomicU64; 6],
     done: AtomicU64,
     previous: AtomicU64,
     total: AtomicU64,
-    started: OnceLock<Instant>,
+    started: Mutex<Option<Instant>>,
+    stage: Mutex<String>,
 }
 
 struct LineState {
@@ -56,14 +59,20 @@ impl StderrProgress {
             });
         Self {
             mode,
-            bar: OnceLock::new(),
+            bar: Mutex::new(None),
             lines,
             counts: Default::default(),
             done: AtomicU64::new(0),
             previous: AtomicU64::new(0),
             total: AtomicU64::new(0),
-            started: OnceLock::new(),
+            started: Mutex::new(None),
+            stage: Mutex::new(String::new()),
         }
+    }
+
+    /// The bar, once [`Progress::start`] drew it.
+    fn bar(&self) -> Option<ProgressBar> {
+        self.bar.lock().ok()?.clone()
     }
 
     fn count(&self, label: Label) {
@@ -86,7 +95,9 @@ impl StderrProgress {
         let new = done - self.previous.load(Ordering::Relaxed);
         let secs = self
             .started
-            .get()
+            .lock()
+            .ok()
+            .and_then(|t| *t)
             .map_or(0.0, |t| t.elapsed().as_secs_f64());
         let total = self.total.load(Ordering::Relaxed);
         let rate = new as f64 / secs.max(1e-9);
@@ -95,8 +106,14 @@ impl StderrProgress {
         } else {
             "?".into()
         };
+        let stage = self.stage.lock().map(|s| s.clone()).unwrap_or_default();
+        let stage = if stage.is_empty() {
+            stage
+        } else {
+            format!("{stage}: ")
+        };
         format!(
-            "[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2} samples/s, ETA {eta} | {}",
+            "{stage}[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2} samples/s, ETA {eta} | {}",
             total,
             100.0 * done as f64 / total.max(1) as f64,
             self.counts_text()
@@ -106,26 +123,51 @@ impl StderrProgress {
 
 impl Progress for StderrProgress {
     fn start(&self, total: u64) {
+        // A new count: a refinement starts one per round.
+        for c in self.counts.iter().chain([&self.done, &self.previous]) {
+            c.store(0, Ordering::Relaxed);
+        }
         self.total.store(total, Ordering::Relaxed);
-        let _ = self.started.set(Instant::now());
+        if let Ok(mut t) = self.started.lock() {
+            *t = Some(Instant::now());
+        }
+        if let Some(lines) = &self.lines
+            && let Ok(mut st) = lines.lock()
+        {
+            (st.decile, st.printed) = (0, 0);
+        }
         if self.mode == ProgressMode::Auto && self.lines.is_none() {
-            let bar = ProgressBar::new(total);
+            let stage = self.stage.lock().map(|s| s.clone()).unwrap_or_default();
+            let template = if stage.is_empty() {
+                "{elapsed_precise} [{wide_bar}] {pos}/{len} {per_sec} ETA {eta}\n{msg}"
+            } else {
+                "{prefix}: {elapsed_precise} [{wide_bar}] {pos}/{len} {per_sec} ETA {eta}\n{msg}"
+            };
+            let bar = ProgressBar::new(total).with_prefix(stage);
             bar.set_style(
-                ProgressStyle::with_template(
-                    "{elapsed_precise} [{wide_bar}] {pos}/{len} {per_sec} ETA {eta}\n{msg}",
-                )
-                .expect("valid template")
-                .progress_chars("=> "),
+                ProgressStyle::with_template(template)
+                    .expect("valid template")
+                    .progress_chars("=> "),
             );
             bar.enable_steady_tick(Duration::from_millis(200));
-            let _ = self.bar.set(bar);
+            if let Ok(mut b) = self.bar.lock()
+                && let Some(old) = b.replace(bar)
+            {
+                old.finish();
+            }
+        }
+    }
+
+    fn stage(&self, text: &str) {
+        if let Ok(mut s) = self.stage.lock() {
+            *s = text.to_string();
         }
     }
 
     fn kept(&self, label: Label) {
         self.count(label);
         self.previous.fetch_add(1, Ordering::Relaxed);
-        if let Some(bar) = self.bar.get() {
+        if let Some(bar) = self.bar() {
             bar.inc(1);
             bar.reset_eta();
         }
@@ -133,7 +175,7 @@ impl Progress for StderrProgress {
 
     fn computed(&self, label: Label) {
         self.count(label);
-        if let Some(bar) = self.bar.get() {
+        if let Some(bar) = self.bar() {
             bar.inc(1);
             bar.set_message(self.counts_text());
         }
@@ -151,7 +193,7 @@ impl Progress for StderrProgress {
     }
 
     fn note(&self, text: &str) {
-        match self.bar.get() {
+        match self.bar() {
             Some(bar) => bar.println(text),
             None if self.lines.is_some() => eprintln!("{text}"),
             None => {}
@@ -159,14 +201,14 @@ impl Progress for StderrProgress {
     }
 
     fn warn(&self, text: &str) {
-        match self.bar.get() {
+        match self.bar() {
             Some(bar) => bar.println(text),
             None => eprintln!("{text}"),
         }
     }
 
     fn finish(&self, complete: bool) {
-        if let Some(bar) = self.bar.get() {
+        if let Some(bar) = self.bar() {
             bar.set_message(self.counts_text());
             if complete {
                 bar.finish()

@@ -1,5 +1,6 @@
-//! Signals: SIGINT (Ctrl-C), SIGTERM and SIGHUP stop a `run` after the
-//! samples in flight (the library's stop flag, [`STOP`]), and end any other
+//! Signals: SIGINT (Ctrl-C), SIGTERM and SIGHUP stop a `run` (the
+//! library's stop flag, [`STOP`], which also ends the samples in flight at
+//! their runs' next step), keeping its finished chunks, and end any other
 //! command at once, its temporary files removed.
 
 use crate::io::files;
@@ -10,8 +11,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// and `kill` send) or SIGHUP (a closed terminal): 128 + SIGINT, for all three.
 pub(super) const EXIT_INTERRUPTED: u8 = 130;
 
-/// Set by the first signal of a `run`, which then stops after the samples
-/// in flight.
+/// Set by the first signal of a `run`, which then stops its samples in
+/// flight and keeps its finished chunks.
 pub(super) static STOP: AtomicBool = AtomicBool::new(false);
 /// Whether the command in progress stops gracefully on a first signal
 /// (`run`); every other command removes its temporary files and exits.
@@ -24,7 +25,7 @@ pub(super) fn install_signal_handler() -> Result<()> {
         if GRACEFUL.load(Ordering::SeqCst) {
             if !STOP.swap(true, Ordering::SeqCst) {
                 eprintln!(
-                    "rtw-scan: interrupted: finishing the samples in flight (interrupt again to quit at once)"
+                    "rtw-scan: interrupted: stopping the samples in flight, keeping the finished chunks (interrupt again to quit at once)"
                 );
                 return;
             }

@@ -105,9 +105,12 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
         );
     }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&JsonRow(&row))?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&JsonRow(&row, &options.robustness))?
+        );
     } else {
-        print!("{}", scan_rows::to_text(&row));
+        print!("{}", scan_rows::to_text(&row, &options.robustness));
     }
     if let Some(e) = row.outcome.map(|o| o.energy)
         && e.balance_exceeds_bound()

@@ -137,6 +137,42 @@ mod tests {
         );
     }
 
+    /// `terrain.seed` takes every u64 (TOML's integers end at 2⁶³ − 1: a
+    /// larger seed is stored as a string of digits, and read back), and
+    /// refuses anything else naming the range.
+    #[test]
+    fn terrain_seed_takes_every_u64_and_refuses_the_rest_with_the_range() {
+        for seed in [
+            "0",
+            "7",
+            "9223372036854775807",
+            "9223372036854775808",
+            "18446744073709551615",
+        ] {
+            // A rough slope: a flat one's terrain is left out of the text.
+            let sets = [
+                format!("terrain.seed={seed}"),
+                "terrain.roughness=0.01".into(),
+            ];
+            let o = simulation_options(None, None, &sets).unwrap();
+            assert_eq!(o.terrain.seed.to_string(), seed);
+            let text = toml::to_string(&o).unwrap();
+            let back = options_from_table(toml::from_str(&text).unwrap(), "simulation").unwrap();
+            assert_eq!(back.terrain.seed, o.terrain.seed, "{text}");
+        }
+        for bad in ["-1", "1.5", "\"a\"", "a", "18446744073709551616", "true"] {
+            let e = format!(
+                "{:#}",
+                simulation_options(None, None, &[format!("terrain.seed={bad}")]).unwrap_err()
+            );
+            assert!(
+                e.contains("terrain.seed")
+                    && e.contains("expected an integer in [0, 18446744073709551615]"),
+                "{bad}: {e}"
+            );
+        }
+    }
+
     #[test]
     fn typed_sets_layer_as_the_python_values_do() {
         let sets = [

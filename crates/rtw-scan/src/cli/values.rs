@@ -10,3 +10,15 @@ pub(super) fn positive(s: &str) -> Result<std::num::NonZeroUsize, String> {
         .and_then(std::num::NonZeroUsize::new)
         .ok_or_else(|| format!("{s} is invalid: must be an integer >= 1"))
 }
+
+/// Parses `continuation --through`: an integer in [0, THROUGH_MAX], the
+/// range said whatever was given (a float, a count beyond any integer).
+pub(super) fn through(s: &str) -> Result<usize, String> {
+    use crate::continuation::study::{THROUGH_MAX, check_through};
+    let n = s
+        .trim()
+        .parse::<usize>()
+        .map_err(|_| format!("{s} is invalid: must be an integer in [0, {THROUGH_MAX}]"))?;
+    check_through(n).map_err(|e| e.to_string())?;
+    Ok(n)
+}

@@ -6,6 +6,7 @@
 use super::{Continuation, Result2, critical, end_name, kind_name};
 use crate::config::variant::ModelChoices;
 use crate::io::destination::{self, Output, companion};
+use crate::io::files::FileSet;
 use crate::io::metadata::{
     FileKind, META_CONT_CURVE, META_CONT_PARAM, META_CYCLE, META_OPTIONS, META_PARAMS,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,
@@ -500,19 +501,26 @@ fn file_metadata(c: &Continuation, wall_time_s: f64) -> Result<Vec<KeyValue>> {
     Ok(m)
 }
 
-/// Writes the files (the curve file only with `--curve`).
-pub(crate) fn write(out: &Path, c: &Continuation, rows: &Rows, wall_time_s: f64) -> Result<()> {
+/// Writes the files (the curve file only with `--curve`) into `set`, to
+/// appear together with the diagram's other files.
+pub(crate) fn write(
+    set: &mut FileSet,
+    out: &Path,
+    c: &Continuation,
+    rows: &Rows,
+    wall_time_s: f64,
+) -> Result<()> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
     let meta = file_metadata(c, wall_time_s)?;
     let batch = table::batch(&point_columns(), branch_schema(), &rows.points);
-    parquet::write_file(out, &batch, meta.clone())?;
+    parquet::add_file(set, out, &batch, meta.clone())?;
     let batch = table::batch(&special_columns(), special_schema(), &rows.special);
-    parquet::write_file(&companion(out, "special"), &batch, meta.clone())?;
+    parquet::add_file(set, &companion(out, "special"), &batch, meta.clone())?;
     if c.curve.is_some() {
         let batch = table::batch(&curve_columns(), curve_schema(), &rows.curves);
-        parquet::write_file(&companion(out, "curve"), &batch, meta)?;
+        parquet::add_file(set, &companion(out, "curve"), &batch, meta)?;
     }
     Ok(())
 }

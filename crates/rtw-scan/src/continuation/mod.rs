@@ -17,6 +17,7 @@
 
 pub(crate) mod files;
 pub(crate) mod segments;
+pub(crate) mod study;
 pub(crate) mod summary;
 
 use anyhow::{Result, anyhow, bail};

@@ -10,7 +10,7 @@
 //! check against the attractor sweep) and a table in `FILE.md`.
 
 use super::Continuation;
-use crate::io::files::write_atomic;
+use crate::io::files::FileSet;
 use anyhow::{Result, bail};
 use hybrid_ode::continuation::End;
 use rtw_model::Num;
@@ -301,14 +301,18 @@ pub(crate) fn to_json(c: &Continuation, dirs: &[Direction]) -> Value {
     })
 }
 
-/// Writes the segments file beside `out`.
-pub(crate) fn write(out: &Path, c: &Continuation, dirs: &[Direction]) -> Result<()> {
+/// Writes the segments file beside `out` into `set`.
+pub(crate) fn write(
+    set: &mut FileSet,
+    out: &Path,
+    c: &Continuation,
+    dirs: &[Direction],
+) -> Result<()> {
     let v = to_json(c, dirs);
-    write_atomic(
+    set.add_bytes(
         &segments_path(out),
         serde_json::to_string_pretty(&v)?.as_bytes(),
-    )?;
-    Ok(())
+    )
 }
 
 /// The segments as a Markdown table for the summary.

@@ -38,6 +38,50 @@ impl Temp {
     }
 }
 
+/// A set of files that appear together or not at all (a diagram's branch,
+/// special-point and curve files, its segments and its summary): each is
+/// written whole to its temporary file first ([`FileSet::add`],
+/// [`FileSet::add_bytes`]), and only once all are, [`FileSet::commit`]
+/// renames them into place, one after the other. A signal that comes
+/// meanwhile waits for the renames to end ([`remove_live_files`] takes the
+/// same lock), so an interrupted command leaves either every file of the set
+/// or none of it (an earlier set, if any, stays as it was).
+#[derive(Default)]
+pub(crate) struct FileSet {
+    files: Vec<(Temp, PathBuf)>,
+}
+
+/// Held while a [`FileSet`] is moved into place.
+static COMMIT: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+impl FileSet {
+    /// Adds a finished temporary file, to be moved to `dest`.
+    pub(crate) fn add(&mut self, tmp: Temp, dest: &Path) {
+        self.files.push((tmp, dest.to_path_buf()));
+    }
+
+    /// Writes `bytes` to a temporary file beside `dest` and adds it.
+    pub(crate) fn add_bytes(&mut self, dest: &Path, bytes: &[u8]) -> Result<()> {
+        use std::io::Write;
+        let mut tmp = temp_file_for(dest)?;
+        tmp.file
+            .write_all(bytes)
+            .with_context(|| format!("cannot write {}", dest.display()))?;
+        tmp.file.as_file().sync_all()?;
+        self.add(tmp, dest);
+        Ok(())
+    }
+
+    /// Moves every file into place, in the order they were added.
+    pub(crate) fn commit(self) -> Result<()> {
+        let _renaming = COMMIT.lock().unwrap_or_else(|e| e.into_inner());
+        for (tmp, dest) in self.files {
+            tmp.persist(&dest)?;
+        }
+        Ok(())
+    }
+}
+
 /// Files that exist only while a command runs (temporary files, locks):
 /// removed by [`remove_live_files`] when a signal ends the process at once.
 static LIVE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
@@ -68,6 +112,9 @@ impl Drop for Registered {
 /// the signal handler before it exits, since a process ending in
 /// `std::process::exit` runs no destructors.
 pub(crate) fn remove_live_files() {
+    // A set of files being moved into place is finished first (renames
+    // take microseconds), so that it is never left half in place.
+    let _renamed = COMMIT.lock().unwrap_or_else(|e| e.into_inner());
     let live = match LIVE.try_lock() {
         Ok(live) => live.clone(),
         // Held by a thread that will never resume: read it anyway.

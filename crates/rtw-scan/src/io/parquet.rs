@@ -136,6 +136,13 @@ impl ParquetFile {
 
     /// Closes the writer, syncs the data and moves the file to its name.
     pub(crate) fn finish(self) -> Result<()> {
+        let (tmp, dest) = self.close()?;
+        tmp.persist(&dest)
+    }
+
+    /// Closes the writer and syncs the data: the finished temporary file
+    /// and its name, for a [`crate::io::files::FileSet`] to move into place.
+    pub(crate) fn close(self) -> Result<(Temp, PathBuf)> {
         let Self {
             tmp,
             mut writer,
@@ -151,16 +158,31 @@ impl ParquetFile {
             .close()
             .with_context(|| format!("closing {}", dest.display()))?;
         tmp.file.as_file().sync_all()?;
-        tmp.persist(&dest)
+        Ok((tmp, dest))
     }
 }
 
 /// Writes `batch` as one complete Parquet file at `dest` (atomically).
 pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> Result<()> {
+    let mut set = crate::io::files::FileSet::default();
+    add_file(&mut set, dest, batch, metadata)?;
+    set.commit()
+}
+
+/// Writes `batch` as one complete Parquet file for `dest` into `set`, to
+/// appear with the set's other files.
+pub(crate) fn add_file(
+    set: &mut crate::io::files::FileSet,
+    dest: &Path,
+    batch: &RecordBatch,
+    metadata: Vec<KeyValue>,
+) -> Result<()> {
     let props = writer_properties(&batch.schema(), batch.num_rows(), metadata);
     let mut f = ParquetFile::create(dest, batch.schema(), props)?;
     f.write(batch)?;
-    f.finish()
+    let (tmp, dest) = f.close()?;
+    set.add(tmp, &dest);
+    Ok(())
 }
 
 /// An open Parquet file: its key-value metadata and a batch reader.

@@ -12,6 +12,7 @@ use crate::io::robustness_measures::picked;
 use crate::io::table::{self, Column, Get};
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
+use rtw_model::options::RobustnessOptions;
 use rtw_model::outcome::FailureDetail;
 use rtw_model::{Label, Outcome, Params, Physical};
 use serde::ser::{Serialize, SerializeMap, Serializer};
@@ -400,8 +401,10 @@ pub(crate) fn to_batch(rows: &[Row]) -> RecordBatch {
 }
 
 /// A row as one flat JSON object, keys in column order (`outcome` is the
-/// label string; absent metrics and non-finite floats are `null`).
-pub(crate) struct JsonRow<'a>(pub(crate) &'a Row);
+/// label string; absent metrics and non-finite floats are `null`), then the
+/// robustness measures its options asked for (the second field): one set
+/// of keys for given options, however the run ended.
+pub(crate) struct JsonRow<'a>(pub(crate) &'a Row, pub(crate) &'a RobustnessOptions);
 
 impl Serialize for JsonRow<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
@@ -416,7 +419,7 @@ impl Serialize for JsonRow<'_> {
                 Get::Label { index, names } => map.serialize_entry(c.name, names()[index(r)])?,
             }
         }
-        for (name, value) in robustness_entries(r) {
+        for (name, value) in robustness_entries(r, self.1) {
             map.serialize_entry(name, &value.filter(|v| v.is_finite()))?;
         }
         map.end()
@@ -493,7 +496,7 @@ pub(crate) fn values(r: &Row) -> Vec<Value> {
 }
 
 /// A row as a readable two-column table, grouped by section.
-pub(crate) fn to_text(r: &Row) -> String {
+pub(crate) fn to_text(r: &Row, asked: &RobustnessOptions) -> String {
     let mut out = String::new();
     let mut group = "";
     for c in COLUMNS {
@@ -514,7 +517,7 @@ pub(crate) fn to_text(r: &Row) -> String {
             value.as_deref().unwrap_or("-")
         ));
     }
-    let robustness = robustness_entries(r);
+    let robustness = robustness_entries(r, asked);
     if !robustness.is_empty() {
         out.push_str("[robustness]\n");
     }
@@ -525,16 +528,20 @@ pub(crate) fn to_text(r: &Row) -> String {
     out
 }
 
-/// The robustness measures a run was asked for (`robustness.*`,
+/// The robustness measures `asked` for (`robustness.*`,
 /// docs/robustness.md), after the scan row's columns in its JSON and text
-/// forms: none unless asked for, so a row's form is unchanged by default.
-pub(crate) fn robustness_entries(r: &Row) -> Vec<(&'static str, Option<f64>)> {
-    match r.outcome.and_then(|o| o.robustness) {
-        Some(m) => picked(|c| (c.on)(&m.asked))
-            .map(|c| (c.name, (c.get)(&m)))
-            .collect(),
-        None => Vec::new(),
-    }
+/// forms: none unless asked for, so a row's form is unchanged by default;
+/// each asked for, with its value or `None`, whatever became of the run (a
+/// star that could not stand, a panic, a gait that is not stable), so that
+/// the keys depend on the options alone, as a scan file's columns do.
+pub(crate) fn robustness_entries(
+    r: &Row,
+    asked: &RobustnessOptions,
+) -> Vec<(&'static str, Option<f64>)> {
+    let measured = r.outcome.and_then(|o| o.robustness);
+    picked(|c| (c.on)(asked))
+        .map(|c| (c.name, measured.as_ref().and_then(|m| (c.get)(m))))
+        .collect()
 }
 
 #[cfg(test)]
@@ -666,7 +673,7 @@ pub(crate) mod tests {
     #[test]
     fn json_is_flat_and_ordered() {
         let r = row(4, Some(outcome(Label::Walk)));
-        let s = serde_json::to_string(&JsonRow(&r)).unwrap();
+        let s = serde_json::to_string(&JsonRow(&r, &Default::default())).unwrap();
         let v: serde_json::Value = serde_json::from_str(&s).unwrap();
         assert_eq!(v["outcome"], "walk");
         assert_eq!(v["slsp"], 0.5);
@@ -674,11 +681,11 @@ pub(crate) mod tests {
         assert_eq!(v["k"].as_f64().unwrap().round(), 500.0);
         assert!(v["failure"].is_null());
         assert!(s.starts_with("{\"sample_id\":4,\"length\":0.8"));
-        let d = serde_json::to_value(JsonRow(&row(1, None))).unwrap();
+        let d = serde_json::to_value(JsonRow(&row(1, None), &Default::default())).unwrap();
         assert_eq!(d["outcome"], "diverged");
         assert_eq!(d["message"], "boom");
         assert!(d["t_end"].is_null());
-        let text = to_text(&r);
+        let text = to_text(&r, &Default::default());
         // Every field of Outcome has a column: nested structs flatten to
         // their field names (`energy` with an `energy_` prefix).
         let o = serde_json::to_value(r.outcome.unwrap()).unwrap();

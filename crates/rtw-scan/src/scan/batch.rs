@@ -18,7 +18,7 @@ use std::time::Instant;
 
 /// The rows of the first `n` sample ids, computed in parallel on `pool`, in
 /// id order, each reported to `jobs.progress` as it comes in; `None` once `stop` is
-/// set (the rows in flight finish, the rest are skipped). The rows' memory
+/// set (the rows in flight stop at their runs' next step, the rest are skipped). The rows' memory
 /// is reserved first: an allocation that cannot be made is an error
 /// ([`std::collections::TryReserveError`] in its chain), not an abort.
 fn compute_rows(pool: &rayon::ThreadPool, n: usize, jobs: &Jobs<'_>) -> Result<Option<Vec<Row>>> {
@@ -29,7 +29,13 @@ fn compute_rows(pool: &rayon::ThreadPool, n: usize, jobs: &Jobs<'_>) -> Result<O
     pool.install(|| {
         (0..n)
             .into_par_iter()
-            .map(|i| (!jobs.stop.load(Ordering::SeqCst)).then(|| jobs.row(i as u64)))
+            .map(|i| {
+                if jobs.stop.load(Ordering::SeqCst) {
+                    None
+                } else {
+                    jobs.row(i as u64)
+                }
+            })
             .collect_into_vec(&mut results)
     });
     Ok(results.into_iter().collect())

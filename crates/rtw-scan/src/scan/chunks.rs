@@ -52,9 +52,9 @@ struct OpenChunk {
 /// scan on 2 threads), the chunks finish about in order, and this thread
 /// writes a finished chunk while the workers go on. Nothing is built per
 /// chunk or per sample ahead of time (a scan may have 10¹² samples). Once
-/// `jobs.stop` is set, the rows in flight finish, the chunks they complete
-/// are still handed over, and the rest is dropped: at most the chunks in
-/// progress are lost. An error from `finished` stops the workers the same
+/// `jobs.stop` is set, the samples in flight stop at their runs' next step
+/// and are dropped with the chunks they belong to; the chunks finished
+/// before are still handed over: at most the chunks in progress are lost. An error from `finished` stops the workers the same
 /// way and is returned.
 pub(crate) fn compute_chunks(
     pool: &rayon::ThreadPool,
@@ -112,7 +112,8 @@ pub(crate) fn compute_chunks(
             scope.spawn(move |_| {
                 while !stopped() {
                     let Some((c, id)) = take() else { break };
-                    if let Some(rows) = put(c, jobs.row(id))
+                    let Some(row) = jobs.row(id) else { break };
+                    if let Some(rows) = put(c, row)
                         && tx.send((c, rows)).is_err()
                     {
                         break;

@@ -16,6 +16,12 @@ pub trait Progress: Sync {
         let _ = total;
     }
 
+    /// The runs that follow are one stage of a longer study ("round 2 of
+    /// 16" of a refinement): each has its own [`Progress::start`] and count.
+    fn stage(&self, text: &str) {
+        let _ = text;
+    }
+
     /// A row kept from an interrupted run (`--resume`), with its label.
     fn kept(&self, label: Label) {
         let _ = label;

@@ -21,7 +21,7 @@ use crate::config::ScanConfig;
 use crate::config::axis::Axis;
 use crate::hash::fnv1a64;
 use crate::io::destination::check_destination;
-use crate::io::metadata::{self, FileKind, META_REFINE, kv};
+use crate::io::metadata::{self, FileKind, META_CONFIG, META_CONTENT_HASH, META_REFINE, kv};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS, ParquetFile, READ_BATCH_ROWS};
 use crate::io::scan_rows::label_index;
 use crate::io::table::{f64_column, label_column};
@@ -65,10 +65,23 @@ pub(crate) enum RefineStatus {
     },
 }
 
-/// Checks the flags: `budget ≥ 1`, `1 ≤ rounds ≤ budget`.
+/// Most new samples of a refinement: a round holds its pool of
+/// `POOL × n` candidates in memory (about 150 MB for 10⁵ points in 6
+/// inputs) and scores each against every row so far.
+pub(crate) const MAX_BUDGET: u64 = 100_000;
+
+/// Most rows of the scan refined: they are held in memory (about 100 bytes
+/// each) for the neighbour search.
+pub(crate) const MAX_BASE_ROWS: i64 = 1_000_000;
+
+/// Checks the flags: `1 ≤ budget ≤ MAX_BUDGET`, `1 ≤ rounds ≤ budget`.
 pub(crate) fn check_budget(budget: u64, rounds: u64) -> Result<()> {
-    if budget == 0 {
-        bail!("--budget: 0 is invalid: must be an integer >= 1 (new samples in all rounds)");
+    if !(1..=MAX_BUDGET).contains(&budget) {
+        bail!(
+            "--budget: {budget} is invalid: must be an integer in [1, {MAX_BUDGET}] (new samples \
+             in all rounds; each round holds 20 candidates a point in memory and compares each \
+             with every row so far)"
+        );
     }
     if rounds == 0 || rounds > budget {
         bail!(
@@ -77,6 +90,133 @@ pub(crate) fn check_budget(budget: u64, rounds: u64) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Whose a refinement is: the rows it refines (their content hash), its
+/// seed, budget and rounds. Its combined file carries it (`rtw.refine`), and
+/// a refinement replaces only its own files: another's (another seed,
+/// budget, rounds or base rows) are refused unless `--force`, saying what
+/// differs.
+struct Identity {
+    base: String,
+    seed: u64,
+    budget: u64,
+    rounds: u64,
+}
+
+impl Identity {
+    fn of(r: &Refine, base: &str) -> Self {
+        Self {
+            base: base.to_string(),
+            seed: r.seed,
+            budget: r.budget,
+            rounds: r.rounds,
+        }
+    }
+
+    fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "budget": self.budget, "rounds": self.rounds, "seed": self.seed, "base": self.base,
+        })
+    }
+
+    /// The flags that make this refinement.
+    fn flags(&self) -> String {
+        format!(
+            "--budget {} --rounds {} --seed {}",
+            self.budget, self.rounds, self.seed
+        )
+    }
+
+    /// What differs between this refinement and one whose `rtw.refine` is
+    /// `theirs` (a file made before the base rows were recorded leaves them
+    /// out), or nothing.
+    fn differences(&self, theirs: &serde_json::Value) -> Vec<String> {
+        let mut d = Vec::new();
+        for (key, ours) in [
+            ("budget", self.budget),
+            ("rounds", self.rounds),
+            ("seed", self.seed),
+        ] {
+            let there = theirs[key].as_u64();
+            if there != Some(ours) {
+                let there = there.map_or("none".to_string(), |v| v.to_string());
+                d.push(format!("--{key} {there} there, {ours} here"));
+            }
+        }
+        if let Some(base) = theirs["base"].as_str()
+            && base != self.base
+        {
+            d.push(format!(
+                "the scan's rows (content hash {base} there, {} here: the scan was rerun or \
+                 changed since)",
+                self.base
+            ));
+        }
+        d
+    }
+
+    /// Refuses a combined file at `combined` that is another refinement's,
+    /// or not a refinement's at all.
+    fn refuse_another_at(&self, combined: &Path) -> Result<()> {
+        let Ok(input) = parquet::open(combined, 1) else {
+            return Ok(()); // none, or refused by check_destination already
+        };
+        let theirs = input
+            .metadata
+            .get(META_REFINE)
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(t).ok());
+        let diffs = match &theirs {
+            None => vec!["it is not a refinement's file (no `rtw.refine` metadata)".to_string()],
+            Some(t) => self.differences(t),
+        };
+        if diffs.is_empty() {
+            return Ok(());
+        }
+        bail!(
+            "{} holds another refinement's rows: {}. Keep it (the same command with its flags \
+             goes on from it), move the folder {} away to make this one ({}), or pass --force \
+             to replace it",
+            combined.display(),
+            diffs.join("; "),
+            combined.parent().unwrap_or(Path::new(".")).display(),
+            self.flags()
+        )
+    }
+
+    /// Refuses round `round`'s directory `dir` when it holds another
+    /// refinement's round (its rows or its unfinished run were made for
+    /// other points than `rcfg`'s).
+    fn refuse_another_round(&self, dir: &Path, round: u64, rcfg: &ScanConfig) -> Result<()> {
+        let ours = rcfg.to_toml();
+        let theirs = {
+            let samples = dir.join("samples.parquet");
+            let manifest = dir.join(".partial").join("manifest.json");
+            if samples.exists() {
+                parquet::open(&samples, 1)
+                    .ok()
+                    .and_then(|i| i.metadata.get(META_CONFIG).cloned())
+            } else if manifest.exists() {
+                crate::scan::checkpoint::read_manifest(&manifest)
+                    .ok()
+                    .map(|m| m.config)
+            } else {
+                return Ok(());
+            }
+        };
+        if theirs.as_deref() == Some(ours.as_str()) {
+            return Ok(());
+        }
+        bail!(
+            "{} holds round {round} of another refinement of this scan (other points: another \
+             --budget, --rounds or --seed than this one's {}, or other rows before it). Finish \
+             that refinement with its own flags, move the folder {} away to make this one, or \
+             pass --force to discard that round",
+            dir.display(),
+            self.flags(),
+            dir.parent().unwrap_or(Path::new(".")).display()
+        )
+    }
 }
 
 /// The sizes of the rounds: `budget` split into `rounds`, the first ones one
@@ -174,10 +314,28 @@ pub(crate) fn refine(
 ) -> Result<RefineStatus> {
     check_budget(r.budget, r.rounds)?;
     let base = r.dir.join("samples.parquet");
-    let (_, cfg) = open_scan(&base)?;
+    let (input, cfg) = open_scan(&base)?;
+    if input.rows > MAX_BASE_ROWS {
+        bail!(
+            "{}: {} rows is more than refine reads: at most {MAX_BASE_ROWS} (held in memory for \
+             the neighbour search); refine a smaller scan",
+            base.display(),
+            input.rows
+        );
+    }
+    let base_hash = input
+        .metadata
+        .get(META_CONTENT_HASH)
+        .cloned()
+        .unwrap_or_default();
+    drop(input);
     let axes = uniform_axes(&cfg)?;
     let combined = r.dir.join("refine").join("samples.parquet");
     check_destination(&combined, FileKind::Scan, &[&base], "DIR", r.run.force)?;
+    let ours = Identity::of(r, &base_hash);
+    if !r.run.force {
+        ours.refuse_another_at(&combined)?;
+    }
     let fixed = Sampler::new(&cfg).params(0);
     let (mut x, mut labels) = (Vec::new(), Vec::new());
     read_rows(&base, &axes, &mut x, &mut labels)?;
@@ -198,11 +356,15 @@ pub(crate) fn refine(
         let dir = round_dir(&r.dir, round);
         let samples = dir.join("samples.parquet");
         if !is_complete(&samples, &rcfg.to_toml(), None) {
+            if !r.run.force {
+                ours.refuse_another_round(&dir, round, &rcfg)?;
+            }
             let settings = RunSettings {
                 out_dir: dir.clone(),
                 ..r.run.clone()
             };
             let sampler = Sampler::from_points(&rcfg, points);
+            progress.stage(&format!("round {round} of {}", r.rounds));
             let status = run_scan_with(&rcfg, &sampler, &settings, sim, stop, progress)?;
             if r.run.shard.is_some() || matches!(status, RunStatus::Interrupted { .. }) {
                 return Ok(RefineStatus::Stopped { round, dir, status });
@@ -211,10 +373,12 @@ pub(crate) fn refine(
         read_rows(&samples, &axes, &mut x, &mut labels)?;
         files.push(samples);
     }
-    let about = serde_json::json!({
-        "budget": r.budget, "rounds": r.rounds, "seed": r.seed,
-        "files": files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
-    });
+    let mut about = ours.to_json();
+    about["files"] = files
+        .iter()
+        .map(|f| f.display().to_string())
+        .collect::<Vec<_>>()
+        .into();
     let mut all = cfg.clone();
     all.name = Some(format!("{}+refined", cfg.name.as_deref().unwrap_or("scan")));
     all.samples = x.len() as u64;

@@ -105,7 +105,19 @@ pub(crate) fn part_index(name: &str) -> Option<u64> {
     if k.is_empty() || !k.bytes().all(|b| b.is_ascii_digit()) {
         return None;
     }
-    k.parse().ok()
+    // Only the name `run` writes: `part-01.parquet` is not shard 1's part.
+    let k: u64 = k.parse().ok()?;
+    (name == part_name(k)).then_some(k)
+}
+
+/// `K` of a file named like a part with leading zeros (`part-01.parquet`),
+/// a name `run` never writes.
+fn padded_part_index(name: &str) -> Option<u64> {
+    let k = name.strip_prefix("part-")?.strip_suffix(".parquet")?;
+    if k.len() < 2 || !k.starts_with('0') || !k.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some(k.trim_start_matches('0').parse().unwrap_or(0))
 }
 
 /// What a part file's metadata says.
@@ -119,14 +131,21 @@ struct Part {
 }
 
 impl Part {
+    /// Its file's name on disk.
     fn name(&self) -> String {
-        self.shard.part_name()
+        self.path.file_name().map_or_else(
+            || self.shard.part_name(),
+            |n| n.to_string_lossy().into_owned(),
+        )
     }
 }
 
 fn read_part(path: &Path, k: u64) -> Result<Part> {
     let input = parquet::open(path, 1)?;
-    let name = part_name(k);
+    // The name on disk, which every message about the file uses.
+    let name = path
+        .file_name()
+        .map_or_else(|| part_name(k), |n| n.to_string_lossy().into_owned());
     let get = |key: &str| {
         input.metadata.get(key).cloned().ok_or_else(|| {
             anyhow!("{name} has no `{key}` metadata: not written by `rtw-scan run --shard`")
@@ -189,8 +208,20 @@ pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
     let mut found = BTreeMap::new();
     for entry in entries {
         let entry = entry?;
-        if let Some(k) = entry.file_name().to_str().and_then(part_index) {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if let Some(k) = part_index(&name) {
             found.insert(k, entry.path());
+        } else if let Some(k) = padded_part_index(&name) {
+            // `part-01.parquet` would shadow `part-1.parquet`, and a
+            // message about shard 1 would name the good file.
+            bail!(
+                "{} in {}: not a part rtw-scan wrote (the part of shard {k} is named with no \
+                 leading zero): move {} out of {} and merge again",
+                name,
+                dir.display(),
+                name,
+                dir.display()
+            );
         }
     }
     if found.is_empty() {
@@ -402,9 +433,14 @@ mod tests {
             "part-.parquet",
             "part-1a.parquet",
             "part-1.parquet.tmp",
+            "part-01.parquet",
             "samples.parquet",
         ] {
             assert_eq!(part_index(not), None, "{not}");
         }
+        assert_eq!(padded_part_index("part-01.parquet"), Some(1));
+        assert_eq!(padded_part_index("part-00.parquet"), Some(0));
+        assert_eq!(padded_part_index("part-1.parquet"), None);
+        assert_eq!(padded_part_index("part-0.parquet"), None);
     }
 }

@@ -34,7 +34,7 @@ pub fn simulate_row(params: Params, options: &Options) -> RowValues {
     let row = run_one(0, params, options, rtw_model::simulate);
     RowValues {
         columns: values(&row),
-        robustness: robustness_entries(&row)
+        robustness: robustness_entries(&row, &options.robustness)
             .into_iter()
             .map(|(k, v)| (k, Value::Float(v.filter(|v| v.is_finite()))))
             .collect(),
@@ -87,7 +87,10 @@ pub fn simulate_traced(
         )));
     }
     let mut metadata = trace_metadata(&params, options)?;
-    metadata.push(kv(META_OUTCOME, serde_json::to_string(&JsonRow(&row))?));
+    metadata.push(kv(
+        META_OUTCOME,
+        serde_json::to_string(&JsonRow(&row, &options.robustness))?,
+    ));
     Ok(with_metadata(trace_batch(&samples), metadata)?)
 }
 

@@ -48,10 +48,16 @@ pub(crate) struct Jobs<'a> {
 }
 
 impl Jobs<'_> {
-    /// The row of sample `id`, counted in the progress.
-    pub(crate) fn row(&self, id: u64) -> Row {
-        let row = run_one(id, self.sampler.params(id), self.options, self.sim);
+    /// The row of sample `id`, counted in the progress; `None` when `stop`
+    /// was set while it ran: the stop reaches every run of the sample (the
+    /// flat run and the robustness measures' many runs,
+    /// [`rtw_model::cancellable`]), which ends at its next step, so a sample
+    /// in flight stops within moments, and what it computed is dropped.
+    pub(crate) fn row(&self, id: u64) -> Option<Row> {
+        let row = rtw_model::cancellable(self.stop, || {
+            run_one(id, self.sampler.params(id), self.options, self.sim)
+        })?;
         self.progress.computed(row.label());
-        row
+        Some(row)
     }
 }

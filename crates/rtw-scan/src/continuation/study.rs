@@ -1,0 +1,70 @@
+//! A diagram as a study: its outputs checked, the diagram (and with
+//! `through`, its segments) computed, and every file of it written
+//! together: `FILE.parquet`, `FILE.special.parquet`, `FILE.curve.parquet`
+//! (with a curve), `FILE.segments.json` (with `through`) and `FILE.md`,
+//! each to a temporary file first and all moved into place at the end
+//! ([`FileSet`]), so that an interrupted diagram leaves none of them (and an
+//! earlier diagram's files as they were). The command line only parses and
+//! prints.
+
+use super::{Continuation, files, segments, summary};
+use crate::io::destination::summary_path;
+use crate::io::files::FileSet;
+use anyhow::{Result, bail};
+use std::path::Path;
+use std::time::Instant;
+
+/// Most segments `through` follows each way.
+pub(crate) const THROUGH_MAX: usize = 100;
+
+/// Checks `through` (segments each way; 0: none), naming the flag and the
+/// range.
+pub(crate) fn check_through(through: usize) -> Result<()> {
+    if through > THROUGH_MAX {
+        bail!("--through {through}: must lie in [0, {THROUGH_MAX}]");
+    }
+    Ok(())
+}
+
+/// Runs the diagram `c` into `out` and its companions (refusing, unless
+/// `force`, files that are not a diagram's), with up to `through` segments
+/// each way (0: none); returns the summary written to `FILE.md`.
+pub(crate) fn run_to_files(
+    c: &Continuation,
+    through: usize,
+    out: &Path,
+    force: bool,
+) -> Result<String> {
+    check_through(through)?;
+    files::check_outputs(out, force)?;
+    if through > 0 {
+        segments::check_output(out, force)?;
+    }
+    let t0 = Instant::now();
+    let result = super::run(c)?;
+    let wall = t0.elapsed().as_secs_f64();
+    let rows = files::rows(c, &result);
+    let mut md = summary::summary_markdown(
+        c,
+        result.diagram.start.period,
+        result.diagram.start.floquet_max(),
+        &rows,
+        result.diagram.branches.len(),
+        wall,
+    );
+    let dirs = if through > 0 {
+        crate::pause_at("continuation-segments");
+        Some(segments::run(c, &result.diagram, through))
+    } else {
+        None
+    };
+    let mut set = FileSet::default();
+    files::write(&mut set, out, c, &rows, wall)?;
+    if let Some(dirs) = &dirs {
+        segments::write(&mut set, out, c, dirs)?;
+        md.push_str(&segments::markdown(c, dirs));
+    }
+    set.add_bytes(&summary_path(out), md.as_bytes())?;
+    set.commit()?;
+    Ok(md)
+}
