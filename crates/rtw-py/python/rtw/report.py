@@ -365,8 +365,13 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
 
     Raises:
         FileNotFoundError: no such directory or file.
-        ValueError: not a scan, an unknown output column, a bad option,
+        ValueError: not a scan, or a scan rtw-scan refuses (read with
+            :func:`rtw.read_scan`: corrupt, altered, an incomplete shard
+            set; the message names the file), sensitivity indices beside it
+            that are not its own, an unknown output column, a bad option,
             an output that is not an rtw report (without ``force``).
+        TypeError: ``samples`` not a list of integer ids, ``outputs`` not
+            a list of column names.
         ImportError: numpy is missing (``pip install 'rtw[report]'``), or
             rtw's Plotly.js bundle is missing or changed.
     """
