@@ -429,6 +429,38 @@ fn sensitivity<'py>(
     to_table(py, sa::to_batch(&rows))
 }
 
+/// A scan read whole through rtw-scan's verified reader (`summary`'s and
+/// `sensitivity`'s checks: footer and content hash, row values, ids once
+/// each in order, every shard of an unmerged set): a `pyarrow.Table` with
+/// the scan's metadata in its schema, and the files read.
+#[pyfunction]
+fn read_scan<'py>(py: Python<'py>, path: PathBuf) -> PyResult<(Bound<'py, PyAny>, Vec<PathBuf>)> {
+    let scan = py
+        .detach(|| rtw_scan::read_scan_table(&path))
+        .map_err(value_error)?;
+    let table = Table::try_new(scan.batches, scan.schema)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+        .into_pyarrow(py)?;
+    Ok((table, scan.files))
+}
+
+/// The sensitivity indices at `path` as a `pyarrow.Table`, refused unless
+/// they were computed from the scan with metadata `scan` and `rows` rows.
+#[pyfunction]
+fn read_indices<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    scan: std::collections::BTreeMap<String, String>,
+    rows: u64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (batches, schema) = py
+        .detach(|| rtw_scan::read_indices(&path, &scan, rows))
+        .map_err(value_error)?;
+    Table::try_new(batches, schema)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+        .into_pyarrow(py)
+}
+
 /// The module `rtw._rtw`.
 #[pymodule]
 fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -443,6 +475,8 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(label, m)?)?;
     m.add_function(wrap_pyfunction!(wilson, m)?)?;
     m.add_function(wrap_pyfunction!(failure_clusters, m)?)?;
+    m.add_function(wrap_pyfunction!(read_scan, m)?)?;
+    m.add_function(wrap_pyfunction!(read_indices, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;

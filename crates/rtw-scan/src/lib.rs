@@ -67,6 +67,8 @@ pub mod scan;
 pub use analysis::sensitivity;
 
 pub use analysis::report::{Z95, failure_clusters, wilson};
+/// A scan read whole and verified; its sensitivity indices checked as its own.
+pub use analysis::scan_table::{ScanTable, read_indices, read_scan_table};
 #[cfg(feature = "cli")]
 pub use cli::main;
 

@@ -60,6 +60,7 @@ __all__ = [
     "label",
     "limit_cycle",
     "modal",
+    "read_scan",
     "report",
     "scan",
     "sensitivity",
@@ -551,3 +552,23 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
         ValueError: ``k`` > ``n``; OverflowError: a negative count.
     """
     return _rtw.wilson(k, n, z)
+
+
+def read_scan(path: str | os.PathLike[str]) -> pyarrow.Table:
+    """A scan's rows as one ``pyarrow.Table``, read and checked as
+    ``rtw-scan summary`` and ``sensitivity`` read them.
+
+    ``path`` is a scan file, or a directory with ``samples.parquet`` (a plain
+    or merged scan) or else the ``part-K.parquet`` of a shard set. Each
+    file's footer and rows must match the hashes written with them, the row
+    values must be valid, the ``sample_id`` s must run once each, in order,
+    and a shard set must hold every shard of one scan. The table's schema
+    metadata is the scan's (``rtw.config``, ``rtw.seed``,
+    ``rtw.content_hash``, ...); a shard set's is what its merged file's
+    would be (``rtw.shards``, and the content hash of all its rows).
+
+    Raises:
+        ValueError: not a scan, or a file rtw-scan refuses (corrupt,
+            altered, an incomplete shard set); the message names the file.
+    """
+    return _rtw.read_scan(path)[0]

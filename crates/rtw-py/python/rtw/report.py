@@ -32,13 +32,16 @@ import hashlib
 import html
 import json
 import math
+import numbers
 import os
+import re
 import tempfile
 import tomllib
 from collections import Counter
 from pathlib import Path
 from typing import Any, Iterable, Sequence
 
+from . import _rtw
 from ._rtw import FAILURE_LABELS, LABELS, failure_clusters
 
 # The paper's five design inputs (L is fixed by its scan); L joins them when a scan varies it.
@@ -99,36 +102,30 @@ def _meta(md: dict | None) -> dict[str, str]:
             for k, v in (md or {}).items()}
 
 
-def _scan_files(directory: Path) -> list[Path]:
-    """The scan's row files: DIR/samples.parquet (a plain or merged scan), or
-    the parts DIR/part-*.parquet of an unmerged shard set; DIR may name a file."""
-    if directory.is_file():
-        return [directory]
-    if not directory.is_dir():
-        raise FileNotFoundError(f"DIR: {directory} is neither a scan directory nor a Parquet file")
-    merged = directory / "samples.parquet"
-    if merged.is_file():
-        return [merged]
-    parts = sorted(directory.glob("part-*.parquet"))
-    if parts:
-        return parts
-    raise ReportError(f"DIR: {directory} holds no samples.parquet and no part-*.parquet "
-                      "(a directory written by `rtw-scan run --out DIR` or `rtw-scan merge`)")
+def _sample_ids(samples: Any) -> list[int]:
+    """`samples` as a list of ids: an iterable of integers >= 0 (not bools,
+    not floats, not a string)."""
+    if isinstance(samples, (str, bytes)) or not isinstance(samples, Iterable):
+        raise TypeError(f"samples: {samples!r} is not a list of sample ids (integers >= 0)")
+    ids = []
+    for s in samples:
+        if isinstance(s, bool) or not isinstance(s, numbers.Integral):
+            raise TypeError(f"samples: {s!r} is not a sample id: must be an integer >= 0")
+        if s < 0:
+            raise ReportError(f"samples: {s} is invalid: must be a sample id >= 0")
+        ids.append(int(s))
+    return ids
 
 
-def _read_scan(files: Sequence[Path]):
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    metas = [_meta(pq.read_metadata(f).metadata) for f in files]
-    for f, m in zip(files, metas):
-        if "rtw.config" not in m:
-            raise ReportError(f"{f}: not a scan file written by rtw-scan (no rtw.config in its metadata)")
-        if m.get("rtw.config_hash") != metas[0].get("rtw.config_hash"):
-            raise ReportError(f"{f}: another scan's part (config hash {m.get('rtw.config_hash')}, "
-                              f"{files[0].name} has {metas[0].get('rtw.config_hash')})")
-    table = pa.concat_tables([pq.read_table(f) for f in files]).sort_by("sample_id")
-    return table, metas[0]
+def _column_names(outputs: Any) -> list[str]:
+    """`outputs` as a list of column names (a list, not one string)."""
+    if isinstance(outputs, (str, bytes)) or not isinstance(outputs, Iterable):
+        raise TypeError(f"outputs: {outputs!r} is not a list of column names (e.g. ['speed', 'f_w'])")
+    names = list(outputs)
+    for c in names:
+        if not isinstance(c, str):
+            raise TypeError(f"outputs: {c!r} is not a column name: must be a string")
+    return names
 
 
 def _assignments(directory: Path) -> tuple[dict[int, int], str] | None:
@@ -272,20 +269,17 @@ def _bins(values: list[float], lo: float, hi: float, n: int = 4) -> tuple[list[s
     return [labels[min(max(int((v - lo) / w), 0), n - 1)] for v in values], labels
 
 
-def _sensitivity(directory: Path) -> dict | None:
+def _sensitivity(directory: Path, meta: dict[str, str], rows: int) -> dict | None:
     """Sensitivity indices (indices.parquet: output, parameter, S1, S1_conf,
-    ST, ST_conf) in DIR or DIR/sensitivity, when there."""
-    import pyarrow.parquet as pq
-
+    ST, ST_conf) in DIR or DIR/sensitivity, when there: read by rtw-scan's
+    verified reader, which refuses indices not computed from this scan
+    (`meta`, its metadata, and `rows`, its row count)."""
     if not directory.is_dir():
         return None
     for f in (directory / "indices.parquet", directory / "sensitivity" / "indices.parquet"):
         if f.is_file():
-            t = pq.read_table(f)
+            t = _rtw.read_indices(f, meta, rows)
             need = ["output", "parameter", "S1", "S1_conf", "ST", "ST_conf"]
-            missing = [c for c in need if c not in t.column_names]
-            if missing:
-                raise ReportError(f"{f}: lacks the columns {', '.join(missing)} of sensitivity indices")
             return {"file": f.name, "rows": _clean(t.select(need).to_pylist())}
     return None
 
@@ -371,20 +365,27 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
 
     Raises:
         FileNotFoundError: no such directory or file.
-        ValueError: not a scan, an unknown output column, a bad option,
+        ValueError: not a scan, or a scan rtw-scan refuses (read with
+            :func:`rtw.read_scan`: corrupt, altered, an incomplete shard
+            set; the message names the file), sensitivity indices beside it
+            that are not its own, an unknown output column, a bad option,
             an output that is not an rtw report (without ``force``).
+        TypeError: ``samples`` not a list of integer ids, ``outputs`` not
+            a list of column names.
         ImportError: numpy is missing (``pip install 'rtw[report]'``), or
             rtw's Plotly.js bundle is missing or changed.
     """
     from . import __version__
 
     directory = Path(directory)
-    files = _scan_files(directory)
+    if not directory.exists():
+        raise FileNotFoundError(f"DIR: {directory} is neither a scan directory nor a Parquet file")
     base = directory if directory.is_dir() else directory.parent
     out = Path(out) if out is not None else base / "report.html"
     if isinstance(per_outcome, bool) or not isinstance(per_outcome, int) or not 0 <= per_outcome <= 10:
         raise ReportError(f"per_outcome: {per_outcome!r} is invalid: must be an integer in [0, 10]")
-    samples = [int(s) for s in samples]
+    samples = _sample_ids(samples)
+    outputs = list(DEFAULT_OUTPUTS) if outputs is None else _column_names(outputs)
     if out.is_symlink() or (out.exists() and not out.is_file()):
         raise ReportError(f"out: {out} is a symlink or not a regular file: choose another file")
     if out.exists() and not force:
@@ -396,7 +397,13 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         raise FileNotFoundError(f"out: the folder {out.parent} does not exist")
     plotly_js = _plotly_bundle()
 
-    table, meta = _read_scan(files)
+    # rtw-scan's verified reader: the files' hashes, the rows' values, the
+    # ids once each in order, every shard of an unmerged set; errors name the file.
+    try:
+        table, files = _rtw.read_scan(directory)
+    except ValueError as e:
+        raise ReportError(f"DIR: {e}") from None
+    meta = _meta(table.schema.metadata)
     n = table.num_rows
     if n == 0:
         raise ReportError(f"DIR: {files[0]} has no rows")
@@ -406,7 +413,6 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     config_text = meta["rtw.config"]
     config = tomllib.loads(config_text)
     inputs = [c for c in ("length", *INPUTS) if c != "length" or len(set(table["length"].to_pylist())) > 1]
-    outputs = list(DEFAULT_OUTPUTS if outputs is None else outputs)
     for c in outputs:
         if c not in table.column_names or c == "outcome":
             raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
@@ -414,7 +420,8 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     counts = Counter(rows["outcome"])
     summary_path = base / "summary.json"
     summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
-    centres = (summary or {}).get("clusters", {}).get("clusters", []) if summary else []
+    # "clusters" is null when there are fewer failures than the config's k.
+    centres = ((summary or {}).get("clusters") or {}).get("clusters") or []
 
     failed = [i for i, o in enumerate(rows["outcome"]) if o in FAILURE_LABELS]
     found = _assignments(base)
@@ -481,17 +488,22 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
                 g["row"] = _clean(row)
             gaits.append(g)
     data["gaits"] = gaits
-    data["sensitivity"] = _sensitivity(base)
+    data["sensitivity"] = _sensitivity(base, meta, n)
     data["images"] = _images(base)
 
     page = (ASSETS / "report.html").read_text(encoding="utf-8")
     script = (ASSETS / "report.js").read_text(encoding="utf-8")
-    text = (page.replace("{{GENERATOR}}", GENERATOR)
-            .replace("{{TITLE}}", html.escape(f"rtw report: {config.get('name', '?')}"))
-            .replace("{{HEADER}}", _header(meta, summary, n, counts, files, __version__))
-            .replace("{{PLOTLY}}", _b64gz(plotly_js))
-            .replace("{{DATA}}", _b64gz(json.dumps(_clean(data), separators=(",", ":"), allow_nan=False)))
-            .replace("{{SCRIPT}}", script))
+    parts = {
+        "GENERATOR": GENERATOR,
+        "TITLE": html.escape(f"rtw report: {config.get('name', '?')}"),
+        "HEADER": _header(meta, summary, n, counts, files, __version__),
+        "PLOTLY": _b64gz(plotly_js),
+        "DATA": _b64gz(json.dumps(_clean(data), separators=(",", ":"), allow_nan=False)),
+        "SCRIPT": script,
+    }
+    # One pass over the page's own placeholders: what is put in (a scan's
+    # name, its config) is never read again for them.
+    text = re.sub(r"\{\{(" + "|".join(parts) + r")\}\}", lambda m: parts[m.group(1)], page)
     # Atomic: a complete file or none (a temporary file beside it, renamed).
     fd, tmp_name = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
     try:

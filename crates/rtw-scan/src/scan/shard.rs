@@ -196,13 +196,24 @@ pub(crate) struct Merged {
     pub(crate) rows: u64,
 }
 
-/// Checks the `part-K.parquet` files in `dir` and concatenates them into
-/// `dir/samples.parquet`. Refuses, naming the files, when the parts come from
-/// different configs, versions or shard counts, when a shard is missing, or
-/// when their `sample_id`s are not exactly 0..n−1 once each, when a part is
-/// corrupt, or (unless `force`) when `dir/samples.parquet` holds another
-/// scan; nothing is written then.
-pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
+/// The parts of a complete shard set, checked by [`complete_parts`].
+pub(crate) struct ShardSet {
+    /// `part-0.parquet` … `part-(N-1).parquet`, in shard order.
+    pub(crate) paths: Vec<PathBuf>,
+    /// The scan's config, as the parts store it.
+    pub(crate) config: ScanConfig,
+    /// The rows of the whole scan.
+    pub(crate) total: u64,
+    /// N, the shard count.
+    pub(crate) shards: u64,
+    first: Part,
+}
+
+/// Checks that the `part-K.parquet` files in `dir` are every shard of one
+/// scan (one config, version and shard count, none missing, none beyond N),
+/// from their metadata; their rows are checked by whoever reads them
+/// ([`merge_parts`], `analysis::scan_table`).
+pub(crate) fn complete_parts(dir: &Path) -> Result<ShardSet> {
     let entries = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read directory {}", dir.display()))?;
     let mut found = BTreeMap::new();
@@ -322,6 +333,25 @@ pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
         );
     }
 
+    let paths = parts.iter().map(|p| p.path.clone()).collect();
+    Ok(ShardSet {
+        paths,
+        config: cfg,
+        total,
+        shards: n,
+        first: parts.into_iter().next().expect("at least one part"),
+    })
+}
+
+/// Checks the `part-K.parquet` files in `dir` ([`complete_parts`]) and
+/// concatenates them into `dir/samples.parquet`. Refuses, naming the files,
+/// when the parts come from different configs, versions or shard counts,
+/// when a shard is missing, or when their `sample_id`s are not exactly
+/// 0..n−1 once each, when a part is corrupt, or (unless `force`) when
+/// `dir/samples.parquet` holds another scan; nothing is written then.
+pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
+    let set = complete_parts(dir)?;
+    let (first, cfg, total, n) = (&set.first, set.config, set.total, set.shards);
     let samples = dir.join("samples.parquet");
     let _lock = Lock::acquire(&samples, &format!("writing {}", samples.display()))?;
     if !force && samples.exists() {
@@ -353,9 +383,8 @@ pub(crate) fn merge_parts(dir: &Path, force: bool) -> Result<Merged> {
         }
     }
     metadata.push(kv(META_SHARDS, n.to_string()));
-    let paths: Vec<PathBuf> = parts.iter().map(|p| p.path.clone()).collect();
     concat_scan_files(
-        &paths,
+        &set.paths,
         0..total,
         &samples,
         MAX_ROW_GROUP_ROWS,
