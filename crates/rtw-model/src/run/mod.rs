@@ -5,9 +5,11 @@
 //! | [`simulate`](mod@simulate) | `simulate(params, options) -> Outcome`: the plant run with its recorder |
 //! | `robustness` (crate-private; `meet_step` is re-exported) | how much disturbance a gait survives: the largest step down |
 //! | `steps_to_fall` (crate-private) | the mean steps to fall on seeded rough slopes (Monte Carlo) |
+//! | `mfpt` (crate-private) | the mean first-passage time on rough slopes, uncensored (splitting) |
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 
 pub(crate) mod gait;
+pub(crate) mod mfpt;
 pub(crate) mod recorder;
 pub(crate) mod robustness;
 pub(crate) mod simulate;
