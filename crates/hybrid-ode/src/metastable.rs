@@ -29,10 +29,15 @@
 //!    estimate is multiplied by `1 − K/N`; until every excursion has fallen.
 //!    The product estimates `q`, the probability that an excursion falls.
 //!
+//! The MFPT from the start adds the transient: the burn-in is plain Monte
+//! Carlo until each walker first falls, so `mfpt = E[min(T, burn_in)] +
+//! P(T > burn_in) / p` (the survivors having reached the QSD); its interval
+//! takes each term's interval end. The QSD's own MFPT is `1/fall_rate`.
+//!
 //! By the renewal argument (each return to `A` starts an excursion afresh)
 //! the fall rate `p` solves `(1 − q) E[(1 − p)^(−T) | returned] = 1` over
 //! the excursions' lengths `T` ([`fall_rate`]; `p ≈ q / E[T]` when falls
-//! are rare), and `mfpt = 1/p`. Each batch gives its
+//! are rare), and the MFPT from the QSD is `1/p`. Each batch gives its
 //! own `p`; the batches' mean and its Student-t 95 % interval give
 //! `fall_rate`, `mfpt` and its interval (`mfpt_hi` infinite when the interval
 //! of `p` reaches 0). The unbiasedness of AMS holds for any score; a score
@@ -141,7 +146,8 @@ impl Default for MfptOptions {
 /// The MFPT estimate of [`mfpt`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mfpt {
-    /// Expected steps to fall from the quasi-stationary regime, `1/fall_rate`.
+    /// Expected steps to fall from the start: the mean steps within the
+    /// burn-in, plus the share still walking after it times `1/fall_rate`.
     pub mfpt: f64,
     /// Lower end of its 95 % interval.
     pub lo: f64,
@@ -154,6 +160,17 @@ pub struct Mfpt {
     pub fall_rate_half: f64,
     /// Steps the walker took in all (the cost).
     pub steps: u64,
+}
+
+impl Mfpt {
+    /// The 95 % interval of the MFPT from the QSD, `1/fall_rate`.
+    pub fn qsd_interval(&self) -> (f64, f64) {
+        let (p, h) = (self.fall_rate, self.fall_rate_half);
+        (
+            1.0 / (p + h),
+            if p > h { 1.0 / (p - h) } else { f64::INFINITY },
+        )
+    }
 }
 
 /// Two-sided 95 % quantile of Student's t with `df` degrees of freedom.
@@ -178,23 +195,30 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
         "mfpt: at least 2 batches and 2 replicas"
     );
     let mut steps = 0u64;
-    let rates: Vec<f64> = (0..o.batches)
+    let batches: Vec<Batch> = (0..o.batches)
         .map(|b| {
             let mut rng = Rng::new(Rng::new(o.seed ^ 0x6d66_7074).next_u64() ^ b as u64);
             // Decorrelate neighbouring batch seeds.
             rng.next_u64();
-            batch_fall_rate(walker, start, o, &mut rng, &mut steps)
+            batch(walker, start, o, &mut rng, &mut steps)
         })
         .collect();
-    let m = rates.len() as f64;
-    let p = rates.iter().sum::<f64>() / m;
-    let var = rates.iter().map(|r| (r - p).powi(2)).sum::<f64>() / (m - 1.0);
-    let half = t95(rates.len() - 1) * (var / m).sqrt();
+    // Each mean over the batches and the half width of its interval.
+    let t = t95(batches.len() - 1);
+    let mean_half = |f: fn(&Batch) -> f64| {
+        let m = batches.len() as f64;
+        let mean = batches.iter().map(f).sum::<f64>() / m;
+        let var = batches.iter().map(|b| (f(b) - mean).powi(2)).sum::<f64>() / (m - 1.0);
+        (mean, t * (var / m).sqrt())
+    };
+    let (p, half) = mean_half(|b| b.fall_rate);
+    let (head, head_half) = mean_half(|b| b.head);
+    let (alive, alive_half) = mean_half(|b| b.alive);
     Mfpt {
-        mfpt: 1.0 / p,
-        lo: 1.0 / (p + half),
+        mfpt: head + alive / p,
+        lo: (head - head_half).max(0.0) + (alive - alive_half).max(0.0) / (p + half),
         hi: if p > half {
-            1.0 / (p - half)
+            head + head_half + (alive + alive_half).min(1.0) / (p - half)
         } else {
             f64::INFINITY
         },
@@ -204,20 +228,41 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
     }
 }
 
-/// One batch's fall rate `q / E[T]`.
-fn batch_fall_rate<W: Walker>(
+/// What one batch measured.
+struct Batch {
+    /// The fall rate in the QSD, `p`.
+    fall_rate: f64,
+    /// The walkers' mean steps within the burn-in, `E[min(T, burn_in)]`.
+    head: f64,
+    /// The share of them still walking after it.
+    alive: f64,
+}
+
+/// One batch: the transient from the start, and the fall rate.
+fn batch<W: Walker>(
     walker: &W,
     start: &W::State,
     o: &MfptOptions,
     rng: &mut Rng,
     steps: &mut u64,
-) -> f64 {
-    // Part 1: the Fleming–Viot cloud.
+) -> Batch {
+    // Part 1: the Fleming–Viot cloud. Until a walker first falls it is an
+    // independent walk from the start (plain Monte Carlo of the burn-in).
     let mut cloud: Vec<W::State> = vec![start.clone(); o.replicas];
+    let mut original = vec![true; o.replicas];
+    let mut head = 0.0;
     let mut sample: Vec<(f64, W::State)> = Vec::with_capacity(o.replicas * o.sample_steps);
     for i in 0..o.burn_in + o.sample_steps {
         *steps += o.replicas as u64;
         let next: Vec<Option<W::State>> = cloud.iter().map(|s| walker.step(s, rng)).collect();
+        if i < o.burn_in {
+            for (orig, s) in original.iter_mut().zip(&next) {
+                if *orig {
+                    head += 1.0;
+                    *orig = s.is_some();
+                }
+            }
+        }
         let alive: Vec<usize> = (0..next.len()).filter(|&j| next[j].is_some()).collect();
         cloud = next
             .iter()
@@ -244,7 +289,12 @@ fn batch_fall_rate<W: Walker>(
         .collect();
     // Part 2: the splitting, and the returns of its first round.
     let (q, returns) = splitting(walker, &near, level, o, rng, steps);
-    fall_rate(q, &returns)
+    let n = o.replicas as f64;
+    Batch {
+        fall_rate: fall_rate(q, &returns),
+        head: head / n,
+        alive: original.iter().filter(|&&a| a).count() as f64 / n,
+    }
 }
 
 /// The fall rate `p` that solves the renewal equation
@@ -481,8 +531,9 @@ mod tests {
                 ..MfptOptions::default()
             };
             let m = mfpt(&l, &top, &o);
-            assert!(m.lo <= exact && exact <= m.hi, "{exact} vs {m:?}");
-            assert!(m.hi / m.lo < 2.0, "{m:?}");
+            let (lo, hi) = m.qsd_interval();
+            assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
+            assert!(hi / lo < 2.0, "{m:?}");
             assert_eq!(m, mfpt(&l, &top, &o));
         }
     }

@@ -11,7 +11,8 @@
 //! for `1 / f_w_newfoot` seconds, never stopped early as settled (so the
 //! MFPT counts the steps that `steps_to_fall` counts, `f_w_newfoot × t`).
 //! Before it, the ground from the first patch that starts more than a rod
-//! length beyond the walker's furthest tip is drawn afresh
+//! length beyond the walker's furthest tip (before the first step, the
+//! whole rough slope) is drawn afresh
 //! ([`TerrainOptions::branch_beyond`]): the patches under and behind the
 //! walker are kept, the ones it has not reached are new, so a clone of the
 //! walker meets a future of its own, and the walker's steps are a Markov
@@ -19,6 +20,13 @@
 //! its run fails (a collapse, a riser trip, a numerical failure; too little
 //! progress within one step is not a fall), or when no tip has touched down
 //! for `stall_time` seconds of steps.
+//!
+//! `mfpt` is the expected steps to fall from the settled gait meeting the
+//! rough slope (what `steps_to_fall` estimates when nothing is censored):
+//! the estimator's burn-in (20 steps) is plain Monte Carlo from there, the
+//! rest `1 / fall_rate` from the quasi-stationary regime. A step's fall
+//! counts as a whole step (Monte Carlo counts `f_w_newfoot × t_end`, so the
+//! MFPT is about half a step longer).
 //!
 //! **The score** the splitting climbs is the distance of the centre of
 //! mass's velocity from the settled gait's at the same phase (every step
@@ -36,14 +44,14 @@ use hybrid_ode::metastable::{MfptOptions, Rng, Walker, mfpt};
 use std::cell::RefCell;
 
 /// The estimator's settings for the RTW (besides the seed, `terrain.seed`):
-/// 8 batches of a 20-walker Fleming–Viot cloud (10 steps onto the rough
-/// slope, 5 sampled) and a 20-replica splitting.
+/// 12 batches of a 40-walker Fleming–Viot cloud (20 steps onto the rough
+/// slope, 5 sampled) and a 40-replica splitting.
 pub const MFPT_SETTINGS: MfptOptions = MfptOptions {
     seed: 0,
-    batches: 8,
-    burn_in: 10,
+    batches: 12,
+    burn_in: 20,
     sample_steps: 5,
-    replicas: 20,
+    replicas: 40,
     quantile: 0.5,
     max_excursion: 200,
     max_rounds: 60,
@@ -57,6 +65,8 @@ pub(crate) struct State {
     rtw: Rtw,
     y: [f64; N],
     quiet: f64,
+    /// No step taken yet: the walker has reached no rough patch.
+    fresh: bool,
 }
 
 /// The settled gait as a walker on the rough slope.
@@ -92,7 +102,13 @@ impl Walker for RtwWalker<'_, '_> {
 
     fn step(&self, st: &State, rng: &mut Rng) -> Option<State> {
         let mut rtw = st.rtw.clone();
-        let reach = furthest_tip(&rtw, &st.y) + self.s.phys.length;
+        // Before its first step the walker stands before the rough slope:
+        // every patch is ahead of it.
+        let reach = if st.fresh {
+            f64::NEG_INFINITY
+        } else {
+            furthest_tip(&rtw, &st.y) + self.s.phys.length
+        };
         rtw.terrain.branch_beyond(reach, rng.next_u64());
         let (o, rtw, y) = run_from(
             self.s.params,
@@ -111,7 +127,12 @@ impl Walker for RtwWalker<'_, '_> {
         } else {
             0.0
         };
-        (!failed && quiet < self.options.stall_time).then_some(State { rtw, y, quiet })
+        (!failed && quiet < self.options.stall_time).then_some(State {
+            rtw,
+            y,
+            quiet,
+            fresh: false,
+        })
     }
 
     fn score(&self, st: &State) -> f64 {
@@ -150,7 +171,12 @@ pub(crate) fn mean_first_passage(
         },
         work: RefCell::new(Work::default()),
     };
-    let start = State { rtw, y, quiet: 0.0 };
+    let start = State {
+        rtw,
+        y,
+        quiet: 0.0,
+        fresh: true,
+    };
     let m = mfpt(
         &walker,
         &start,
