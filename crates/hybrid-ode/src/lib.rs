@@ -9,6 +9,7 @@ mod engine;
 mod events;
 mod integrate;
 pub mod limit;
+pub mod metastable;
 pub mod nonsmooth;
 #[cfg(feature = "testing")]
 pub mod rimless;

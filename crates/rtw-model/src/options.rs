@@ -478,6 +478,11 @@ pub struct RobustnessOptions {
     /// is censored there.
     #[serde(skip_serializing_if = "is_default_max_steps")]
     pub max_steps: u32,
+    /// Estimate the mean first-passage time on the rough slope of
+    /// roughness `sigma` (`mfpt`, `mfpt_lo`, `mfpt_hi`, `fall_rate`,
+    /// docs/robustness.md): uncensored, by splitting.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub mfpt: bool,
 }
 
 /// The default roughness of `steps_to_fall` (m).
@@ -509,6 +514,7 @@ impl Default for RobustnessOptions {
             sigma: SIGMA_DEFAULT,
             trials: TRIALS_DEFAULT,
             max_steps: MAX_STEPS_DEFAULT,
+            mfpt: false,
         }
     }
 }
@@ -516,13 +522,22 @@ impl Default for RobustnessOptions {
 impl RobustnessOptions {
     /// Is every measure off?
     pub(crate) fn is_off(&self) -> bool {
-        !self.step_down && !self.gsn && !self.steps_to_fall
+        !self.step_down && !self.gsn && !self.steps_to_fall && !self.mfpt
     }
 
-    /// Refuses a roughness outside [0, 1000] m, fewer than 2 or more than
+    /// Refuses a roughness outside [0, 1000] m (or 0 with `mfpt`: on the
+    /// flat slope the walker never falls), fewer than 2 or more than
     /// 100000 trials, a censoring step count outside [1, 1000000], or more
     /// than 10⁷ steps in all (`trials × max_steps`).
     pub fn validate(&self) -> Result<(), ParamError> {
+        if self.mfpt {
+            check(
+                "robustness.sigma",
+                self.sigma,
+                "in (0, 1000] with robustness.mfpt (m, standard deviation of a patch's height)",
+                |v| v > 0.0 && v <= STEP_HEIGHT_MAX,
+            )?;
+        }
         check(
             "robustness.sigma",
             self.sigma,
@@ -625,5 +640,22 @@ mod tests {
             ..Options::default()
         };
         assert_eq!(o.validate().unwrap_err().field, "rtol");
+    }
+
+    #[test]
+    fn mfpt_on_the_flat_slope_is_refused_naming_the_roughness() {
+        let mut r = RobustnessOptions {
+            mfpt: true,
+            sigma: 0.0,
+            ..RobustnessOptions::default()
+        };
+        let e = r.validate().unwrap_err();
+        assert_eq!(e.field, "robustness.sigma");
+        assert!(e.to_string().contains("robustness.mfpt"), "{e}");
+        r.sigma = 0.01;
+        r.validate().unwrap();
+        r.mfpt = false;
+        r.sigma = 0.0;
+        r.validate().unwrap();
     }
 }

@@ -498,6 +498,9 @@ pub struct Robustness {
     /// The mean steps to fall on a rough slope (Monte Carlo,
     /// docs/robustness.md).
     pub steps_to_fall: Option<StepsToFall>,
+    /// The mean first-passage time on a rough slope (splitting,
+    /// docs/robustness.md).
+    pub mfpt: Option<MeanFirstPassage>,
     /// Integrator work of the measures' runs.
     pub work: hybrid_ode::Work,
 }
@@ -520,6 +523,23 @@ pub struct StepsToFall {
     pub censored: u32,
     /// How many trials were run.
     pub trials: u32,
+}
+
+/// The mean first-passage time on seeded rough slopes (docs/robustness.md):
+/// the expected steps of the flat gait to the fall from the walker's
+/// quasi-stationary regime, estimated without censoring.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeanFirstPassage {
+    /// Expected steps to fall, `1 / fall_rate`.
+    pub mfpt: f64,
+    /// Lower end of its 95 % interval.
+    pub lo: f64,
+    /// Upper end (infinite when the fall rate's interval reaches 0).
+    pub hi: f64,
+    /// Per-step fall probability in the quasi-stationary regime.
+    pub fall_rate: f64,
+    /// Steps the estimate simulated (its cost).
+    pub steps: u64,
 }
 
 #[cfg(test)]

@@ -34,6 +34,55 @@ pub struct TerrainOptions {
     /// Length of a rough patch along the slope (m).
     #[serde(skip_serializing_if = "is_default_patch")]
     pub patch: f64,
+    /// Where the rough ground's future was drawn afresh (the MFPT's
+    /// walkers, `run/mfpt.rs`); none in a config.
+    #[serde(skip)]
+    pub(crate) branches: Branches,
+}
+
+/// How many branch points a rough ground keeps.
+pub(crate) const BRANCHES: usize = 32;
+
+/// Branch points of a rough ground: from patch `first[i]` on (until the
+/// next branch) the heights are drawn with `seed[i]` instead of the
+/// ground's seed. A walker's clone branches at a patch it has not reached
+/// yet, so it keeps the patches under and behind it and meets a fresh
+/// future, reproducibly. Each branch starts beyond the last; when
+/// [`BRANCHES`] are kept the oldest is dropped, and the patches it covered
+/// (at least `BRANCHES` patches behind the newest branch) take the heights
+/// of the branch before it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Branches {
+    len: u8,
+    first: [i64; BRANCHES],
+    seed: [u64; BRANCHES],
+}
+
+impl Branches {
+    /// The seed of patch `k`, if a branch covers it.
+    #[inline]
+    fn seed_of(&self, k: i64) -> Option<u64> {
+        (0..usize::from(self.len))
+            .rev()
+            .find(|&i| self.first[i] <= k)
+            .map(|i| self.seed[i])
+    }
+
+    /// Draws the patches from `first` on afresh with `seed`.
+    fn branch(&mut self, first: i64, seed: u64) {
+        while self.len > 0 && self.first[usize::from(self.len) - 1] >= first {
+            self.len -= 1;
+        }
+        if usize::from(self.len) == BRANCHES {
+            self.first.copy_within(1.., 0);
+            self.seed.copy_within(1.., 0);
+            self.len -= 1;
+        }
+        let i = usize::from(self.len);
+        self.first[i] = first;
+        self.seed[i] = seed;
+        self.len += 1;
+    }
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -64,6 +113,7 @@ impl Default for TerrainOptions {
             roughness: 0.0,
             seed: 0,
             patch: PATCH_DEFAULT,
+            branches: Branches::default(),
         }
     }
 }
@@ -182,7 +232,18 @@ impl TerrainOptions {
         } else if self.roughness == 0.0 {
             -self.step_height
         } else {
-            -self.step_height + self.roughness * standard_normal(self.seed, k as u64)
+            let seed = self.branches.seed_of(k).unwrap_or(self.seed);
+            -self.step_height + self.roughness * standard_normal(seed, k as u64)
+        }
+    }
+
+    /// Draws the rough patches at and beyond `x` afresh with `seed`: those
+    /// from the first patch that starts after `x` on. Nothing changes on a
+    /// ground without roughness.
+    pub(crate) fn branch_beyond(&mut self, x: f64, seed: u64) {
+        if self.roughness != 0.0 {
+            let first = self.patch_at(x).index.max(-1) + 1;
+            self.branches.branch(first, seed);
         }
     }
 
@@ -305,6 +366,45 @@ mod tests {
         assert_eq!(t.edge_rate(1.15, 2.0, own), -2.0);
         assert_eq!(t.level_beyond(1.19, 1.0, own), t.ground(1.2));
         assert_eq!(t.level_beyond(1.01, -1.0, own), 0.0);
+    }
+
+    #[test]
+    fn a_branch_keeps_the_patches_behind_it_and_draws_those_beyond_afresh() {
+        let t = TerrainOptions::rough(0.01, 3, 1.0, 0.2);
+        let mut b = t;
+        // x = 1.5 lies on patch 2: patches 3 on are drawn afresh.
+        b.branch_beyond(1.5, 99);
+        for x in [0.5, 1.0, 1.3, 1.5, 1.599] {
+            assert_eq!(b.ground(x).to_bits(), t.ground(x).to_bits(), "{x}");
+        }
+        for x in [1.6, 1.9, 3.0] {
+            assert_ne!(b.ground(x), t.ground(x), "{x}");
+        }
+        assert_eq!(b.ground(1.7), 0.01 * standard_normal(99, 3));
+        // Reproducible: the same branch gives the same ground.
+        let mut again = t;
+        again.branch_beyond(1.5, 99);
+        assert_eq!(again, b);
+        // A later branch keeps the earlier one's patches before it.
+        let mut c = b;
+        c.branch_beyond(2.1, 7);
+        assert_eq!(c.ground(1.7), b.ground(1.7));
+        assert_eq!(c.ground(2.25), 0.01 * standard_normal(7, 6));
+        // A branch before the last one replaces it.
+        c.branch_beyond(1.5, 8);
+        assert_eq!(c.ground(2.25), 0.01 * standard_normal(8, 6));
+        // The oldest of too many is dropped: its patches take the ground's
+        // seed again, the newer ones are kept.
+        let mut d = t;
+        for i in 0..=BRANCHES {
+            d.branch_beyond(1.1 + 0.2 * i as f64, 100 + i as u64);
+        }
+        assert_eq!(d.ground(1.3), t.ground(1.3));
+        assert_eq!(d.ground(1.5), 0.01 * standard_normal(101, 2));
+        // No roughness, no branch.
+        let mut step = TerrainOptions::step(0.02, 1.5);
+        step.branch_beyond(1.6, 5);
+        assert_eq!(step, TerrainOptions::step(0.02, 1.5));
     }
 
     #[test]

@@ -6,10 +6,12 @@
 //! | `robustness` (crate-private; `meet_step` is re-exported) | how much disturbance a gait survives: the largest step down |
 //! | `steps_to_fall` (crate-private) | the mean steps to fall on seeded rough slopes (Monte Carlo) |
 //! | `cancel` (`cancellable` is re-exported) | a stop flag that ends every run of a computation at its next step end |
+//! | `mfpt` (crate-private) | the mean first-passage time on rough slopes, uncensored (splitting) |
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 
 pub(crate) mod cancel;
 pub(crate) mod gait;
+pub(crate) mod mfpt;
 pub(crate) mod recorder;
 pub(crate) mod robustness;
 pub(crate) mod simulate;

@@ -66,6 +66,40 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
         on: |r| r.steps_to_fall,
         get: |m| m.steps_to_fall.map(|s| f64::from(s.censored)),
     },
+    RobustnessColumn {
+        name: "mfpt",
+        unit: "steps",
+        description: "mean first-passage time: expected steps of the flat gait to the fall from \
+                      the quasi-stationary regime on seeded rough slopes of roughness \
+                      robustness.sigma, uncensored (Fleming–Viot sample and multilevel \
+                      splitting; docs/robustness.md); null unless stable; only with \
+                      robustness.mfpt = true",
+        on: |r| r.mfpt,
+        get: |m| m.mfpt.map(|s| s.mfpt),
+    },
+    RobustnessColumn {
+        name: "mfpt_lo",
+        unit: "steps",
+        description: "lower end of the 95 % interval of mfpt",
+        on: |r| r.mfpt,
+        get: |m| m.mfpt.map(|s| s.lo),
+    },
+    RobustnessColumn {
+        name: "mfpt_hi",
+        unit: "steps",
+        description: "upper end of the 95 % interval of mfpt (inf when the fall rate's interval \
+                      reaches 0)",
+        on: |r| r.mfpt,
+        get: |m| m.mfpt.map(|s| s.hi),
+    },
+    RobustnessColumn {
+        name: "fall_rate",
+        unit: "1/step",
+        description: "per-step fall probability in the quasi-stationary regime on the rough \
+                      slope, 1 / mfpt",
+        on: |r| r.mfpt,
+        get: |m| m.mfpt.map(|s| s.fall_rate),
+    },
 ];
 
 /// The optional columns `on` picks.

@@ -1,0 +1,196 @@
+//! The mean first-passage time of a stable gait on a rough slope
+//! (docs/robustness.md, "Mean first-passage time"): the RTW as a
+//! step-to-step stochastic walker for [`hybrid_ode::metastable`].
+//!
+//! **The ground.** The rough slope of the steps to fall: patches
+//! `terrain.patch` long with heights from N(0, σ²), σ = `robustness.sigma`,
+//! from `EDGE_AHEAD × L` ahead of the settled gait's front-most grounded tip,
+//! first drawn with seed `terrain.seed`.
+//!
+//! **A step** is a step of the flat gait: the run from the walker's state
+//! for `1 / f_w_newfoot` seconds, never stopped early as settled (so the
+//! MFPT counts the steps that `steps_to_fall` counts, `f_w_newfoot × t`).
+//! Before it, the ground from the first patch that starts more than a rod
+//! length beyond the walker's furthest tip (before the first step, the
+//! whole rough slope) is drawn afresh
+//! ([`TerrainOptions::branch_beyond`]): the patches under and behind the
+//! walker are kept, the ones it has not reached are new, so a clone of the
+//! walker meets a future of its own, and the walker's steps are a Markov
+//! chain on (its state, the patches it has reached). The step **falls** when
+//! its run fails (a collapse, a riser trip, a numerical failure; too little
+//! progress within one step is not a fall), or when no tip has touched down
+//! for `stall_time` seconds of steps.
+//!
+//! `mfpt` is the expected steps to fall from the settled gait meeting the
+//! rough slope (what `steps_to_fall` estimates when nothing is censored):
+//! the estimator's burn-in (20 steps) is plain Monte Carlo from there, the
+//! rest `1 / fall_rate` from the quasi-stationary regime. A step's fall
+//! counts as a whole step (Monte Carlo counts `f_w_newfoot × t_end`, so the
+//! MFPT is about half a step longer).
+//!
+//! **The score** the splitting climbs is the distance of the centre of
+//! mass's velocity from the settled gait's at the same phase (every step
+//! starts a flat step after it), in units of the gait's mean speed.
+
+use crate::options::{Options, RobustnessOptions, TerrainOptions};
+use crate::outcome::{FailureDetail, MeanFirstPassage};
+use crate::plant::geometry::SPOKES;
+use crate::plant::rtw::Rtw;
+use crate::plant::slots::{DISSIPATED, FRICTION, N};
+use crate::run::recorder::run_from;
+use crate::run::robustness::SettledGait;
+use hybrid_ode::Work;
+use hybrid_ode::metastable::{MfptOptions, Rng, Walker, mfpt};
+use std::cell::RefCell;
+
+/// The estimator's settings for the RTW (besides the seed, `terrain.seed`):
+/// 12 batches of a 40-walker Fleming–Viot cloud (20 steps onto the rough
+/// slope, 5 sampled) and a 40-replica splitting.
+pub const MFPT_SETTINGS: MfptOptions = MfptOptions {
+    seed: 0,
+    batches: 12,
+    burn_in: 20,
+    sample_steps: 5,
+    replicas: 40,
+    quantile: 0.5,
+    max_excursion: 200,
+    max_rounds: 60,
+};
+
+/// The walker's state at a step: the system (its contact modes and the
+/// ground, with the patches it has reached), the state, and how long no tip
+/// has touched down.
+#[derive(Clone)]
+pub(crate) struct State {
+    rtw: Rtw,
+    y: [f64; N],
+    quiet: f64,
+    /// No step taken yet: the walker has reached no rough patch.
+    fresh: bool,
+}
+
+/// The settled gait as a walker on the rough slope.
+struct RtwWalker<'a, 'b> {
+    s: &'a SettledGait<'b>,
+    /// One step of the flat gait, never stopped early.
+    options: Options,
+    /// The centre of mass's velocity at the settled state.
+    v_settled: [f64; 2],
+    /// The flat gait's mean speed.
+    speed: f64,
+    work: RefCell<Work>,
+}
+
+/// The downhill position of the furthest tip of `y`.
+fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
+    let rods = rtw.rods(y);
+    SPOKES
+        .iter()
+        .map(|&(rod, tip)| rtw.body.tip_point(&rods[rod], tip).0[0])
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The centre of mass's velocity (the rods are equal).
+fn com_velocity(rtw: &Rtw, y: &[f64; N]) -> [f64; 2] {
+    let rods = rtw.rods(y);
+    let v = |k: usize| rods.iter().map(|r| r.v[k]).sum::<f64>() / 3.0;
+    [v(0), v(1)]
+}
+
+impl Walker for RtwWalker<'_, '_> {
+    type State = State;
+
+    fn step(&self, st: &State, rng: &mut Rng) -> Option<State> {
+        let mut rtw = st.rtw.clone();
+        // Before its first step the walker stands before the rough slope:
+        // every patch is ahead of it.
+        let reach = if st.fresh {
+            f64::NEG_INFINITY
+        } else {
+            furthest_tip(&rtw, &st.y) + self.s.phys.length
+        };
+        rtw.terrain.branch_beyond(reach, rng.next_u64());
+        let (o, rtw, y) = run_from(
+            self.s.params,
+            &self.options,
+            self.s.phys,
+            rtw,
+            st.y,
+            self.s.flat.start,
+            Work::default(),
+            None,
+        );
+        *self.work.borrow_mut() += o.work;
+        let failed = o.failure.is_some_and(|f| f != FailureDetail::NoProgress);
+        let quiet = if o.touchdowns == 0 {
+            st.quiet + o.t_end
+        } else {
+            0.0
+        };
+        (!failed && quiet < self.options.stall_time).then_some(State {
+            rtw,
+            y,
+            quiet,
+            fresh: false,
+        })
+    }
+
+    fn score(&self, st: &State) -> f64 {
+        let v = com_velocity(&st.rtw, &st.y);
+        (v[0] - self.v_settled[0]).hypot(v[1] - self.v_settled[1]) / self.speed
+    }
+}
+
+/// The MFPT of the settled gait `s` on the rough slope of `r.sigma` with
+/// `terrain`'s seed and patch length (see the module doc).
+pub(crate) fn mean_first_passage(
+    s: &SettledGait<'_>,
+    r: &RobustnessOptions,
+    terrain: TerrainOptions,
+    work: &mut Work,
+) -> MeanFirstPassage {
+    let options = Options {
+        t_max: 1.0 / s.flat.f_w_newfoot,
+        stop_when_settled: false,
+        ..s.options
+    };
+    let mut rtw = s.rtw.clone();
+    rtw.terrain = TerrainOptions::rough(r.sigma, terrain.seed, s.edge, terrain.patch);
+    // The energy dissipated so far is the flat run's, not this one's.
+    let mut y = *s.y;
+    y[DISSIPATED] = 0.0;
+    y[FRICTION] = 0.0;
+    let walker = RtwWalker {
+        s,
+        options,
+        v_settled: com_velocity(s.rtw, s.y),
+        speed: if s.flat.speed > 0.0 {
+            s.flat.speed
+        } else {
+            1.0
+        },
+        work: RefCell::new(Work::default()),
+    };
+    let start = State {
+        rtw,
+        y,
+        quiet: 0.0,
+        fresh: true,
+    };
+    let m = mfpt(
+        &walker,
+        &start,
+        &MfptOptions {
+            seed: terrain.seed,
+            ..MFPT_SETTINGS
+        },
+    );
+    *work += walker.work.into_inner();
+    MeanFirstPassage {
+        mfpt: m.mfpt,
+        lo: m.lo,
+        hi: m.hi,
+        fall_rate: m.fall_rate,
+        steps: m.steps,
+    }
+}

@@ -1,0 +1,50 @@
+//! The RTW's mean first-passage time (docs/robustness.md, "Mean
+//! first-passage time") against plain Monte Carlo run to the fall where
+//! that is affordable: the same rough slopes, the Monte Carlo trials
+//! (`steps_to_fall`) capped far beyond any of them, so uncensored.
+
+use rtw_model::options::RobustnessOptions;
+use rtw_model::{Options, Params, simulate};
+
+#[test]
+fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
+    let mut o = Options::default();
+    o.robustness = RobustnessOptions {
+        mfpt: true,
+        steps_to_fall: true,
+        sigma: 0.05,
+        trials: 200,
+        max_steps: 20_000,
+        ..RobustnessOptions::default()
+    };
+    let out = simulate(&Params::fig7a(), &o);
+    assert!(out.label.is_stable(), "{out:?}");
+    let r = out.robustness.unwrap();
+    let (mc, m) = (r.steps_to_fall.unwrap(), r.mfpt.unwrap());
+    eprintln!("Monte Carlo {mc:?}\nMFPT {m:?}");
+    assert_eq!(mc.censored, 0, "{mc:?}");
+    assert!(m.mfpt <= 200.0, "{m:?}");
+    // The two 95 % intervals overlap.
+    assert!(
+        m.lo <= mc.hi && mc.lo <= m.hi,
+        "Monte Carlo {mc:?} vs MFPT {m:?}"
+    );
+    assert!(m.fall_rate > 0.0 && m.fall_rate < 1.0, "{m:?}");
+}
+
+#[test]
+fn the_mfpt_is_a_function_of_the_seed_and_refused_on_the_flat_slope() {
+    let mut o = Options::default();
+    o.robustness = RobustnessOptions {
+        mfpt: true,
+        sigma: 0.05,
+        ..RobustnessOptions::default()
+    };
+    let p = Params::fig7a();
+    let a = simulate(&p, &o).robustness.unwrap().mfpt.unwrap();
+    assert_eq!(a, simulate(&p, &o).robustness.unwrap().mfpt.unwrap());
+    o.terrain.seed = 1;
+    assert_ne!(a, simulate(&p, &o).robustness.unwrap().mfpt.unwrap());
+    o.robustness.sigma = 0.0;
+    assert_eq!(o.validate().unwrap_err().field, "robustness.sigma");
+}
