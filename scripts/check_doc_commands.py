@@ -4,8 +4,8 @@ writes into a committed file.
 
 A documented command is a line of a fenced code block (```sh, ```bash or a
 block without a language) that starts with `rtw-scan `, `cargo run
---release -p rtw-scan -- ` or `v/bin/python -m rtw ` (the README's venv;
-here the test command's `.venv`). Lines continued with a backslash are
+--release -p rtw-scan -- `, `v/bin/python -m rtw ` (the README's venv;
+here the test command's `.venv`) or `cp configs/` (a config to edit). Lines continued with a backslash are
 joined; a trailing `# comment` is dropped. A line that still holds a
 placeholder (`CONFIG`, `DIR`, `[--flag]`, `…`, `|`) is a synopsis, not a
 command, and is only counted. A block preceded by
@@ -35,7 +35,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 BLOCK = re.compile(r"(?P<before>[^\n]*)\n```(?P<lang>[a-z]*)\n(?P<body>.*?)```", re.S)
-PREFIXES = ("rtw-scan ", "cargo run --release -p rtw-scan -- ", "v/bin/python -m rtw ")
+PREFIXES = ("rtw-scan ", "cargo run --release -p rtw-scan -- ", "v/bin/python -m rtw ", "cp configs/")
 PLACEHOLDER = re.compile(r"\[|…|\.\.\.| \| |\b(?:CONFIG|DIR|FILE|SAMPLES|SCAN|TRACE|OUT|K/N|KEY|N)\b")
 SKIP = re.compile(r"<!-- check: skip \((?P<why>[^)]+)\) -->")
 TIMEOUT_S = 180
