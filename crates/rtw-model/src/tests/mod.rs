@@ -3,6 +3,7 @@
 //! live inside the crate. Tests of the public API are in `tests/`.
 
 mod basin;
+mod cancel;
 mod crossings_inside_a_step;
 mod limit_cycle;
 mod modal;
