@@ -38,6 +38,7 @@ pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
 
 mod terrain;
+pub(crate) use terrain::Face;
 use terrain::STEP_HEIGHT_MAX;
 pub use terrain::TerrainOptions;
 

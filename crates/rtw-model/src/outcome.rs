@@ -97,8 +97,9 @@ pub enum FailureDetail {
     /// its shape but has no static equilibrium there
     /// (`initial.cannot_stand = "collapse"`).
     StandingRollsAway,
-    /// A tip met the riser of a step (docs/model.md §4, terrain): the walker
-    /// tripped.
+    /// A tip met the riser of a step. No longer produced: a tip meeting a
+    /// face of the ground is a contact (docs/model.md §4, "Faces"); the
+    /// name stays so that older result files read.
     Riser,
     /// No touchdown for `stall_time`.
     NoTouchdown,
