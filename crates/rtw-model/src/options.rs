@@ -459,6 +459,10 @@ impl Options {
 pub struct RobustnessOptions {
     /// Measure the largest survivable step down (`step_down_max`).
     pub step_down: bool,
+    /// Measure the step down over every phase (`step_down_h50`): the height
+    /// half of the edge positions over one step survive.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub step_down_h50: bool,
     /// Compute the gait sensitivity norm (`gsn`, docs/robustness.md).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub gsn: bool,
@@ -501,6 +505,7 @@ impl Default for RobustnessOptions {
     fn default() -> Self {
         Self {
             step_down: false,
+            step_down_h50: false,
             gsn: false,
             steps_to_fall: false,
             sigma: SIGMA_DEFAULT,
@@ -513,7 +518,7 @@ impl Default for RobustnessOptions {
 impl RobustnessOptions {
     /// Is every measure off?
     pub(crate) fn is_off(&self) -> bool {
-        !self.step_down && !self.gsn && !self.steps_to_fall
+        !self.step_down && !self.step_down_h50 && !self.gsn && !self.steps_to_fall
     }
 
     /// Refuses a roughness outside [0, 1000] m, fewer than 2 or more than
