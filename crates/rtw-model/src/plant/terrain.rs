@@ -151,28 +151,17 @@ impl Rtw {
     /// its face: the face's impact, then the wall or free. A tip meeting it
     /// at its foot arrives in the corner.
     pub(crate) fn meet_face(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
-        let mut rods = self.rods(y);
-        let (p, v) = self.body.tip_point(&rods[rod], tip);
+        let mut r = self.rods(y)[rod];
+        let (p, v) = self.body.tip_point(&r, tip);
         let face = self.terrain.face_crossed(p[0], v[0]);
-        // The event is located a hair past the face: put the tip on it.
-        rods[rod].c[0] += face.foot_x() - p[0];
-        if p[1] - face.low <= -self.touchdown_height {
-            return self.corner_impact(y, rod, tip, rods[rod], face);
+        // The event is located a hair past the face: put the tip on it (in
+        // the corner if it met the face at its foot).
+        r.c[0] += face.foot_x() - p[0];
+        let corner = p[1] - face.low <= -self.touchdown_height;
+        if corner {
+            r.c[1] += face.low - p[1];
         }
-        let impact = match self.replay.and_then(|c| c.impact) {
-            Some(kind) => self.body.impact(&rods[rod], tip, kind),
-            None => self.body.face_impact(&rods[rod], tip),
-        };
-        rods[rod] = impact.after;
-        let mode = match self.replay {
-            Some(choice) => choice.mode,
-            None => {
-                let (loads, _) = self.loads(&rods.map(|r| RodFrame::new(&r)));
-                self.body
-                    .choose_at_wall(&rods[rod], tip, &loads[rod], face.side, true)
-            }
-        };
-        self.place(y, rod, mode, &rods[rod], face, Some(impact.kind))
+        self.face_contact(y, rod, tip, r, face, corner)
     }
 
     /// A grounded tip arrives at the foot of `face` (sliding into it, or
@@ -183,22 +172,24 @@ impl Rtw {
         let mut r = self.rods(y)[rod];
         let (p, _) = self.body.tip_point(&r, tip);
         r.c = add(r.c, [face.foot_x() - p[0], face.low - p[1]]);
-        self.corner_impact(y, rod, tip, r, face)
+        self.face_contact(y, rod, tip, r, face, true)
     }
 
-    /// The corner's impact on rod `rod`, whose `tip` is in the corner of
-    /// `face` at `r`, then its mode choice.
-    fn corner_impact(
+    /// The impact of rod `rod`, whose `tip` is at `r` on `face` (in the
+    /// `corner` at its foot, or above it), then the mode choice there.
+    fn face_contact(
         &mut self,
         y: &mut [f64; N],
         rod: usize,
         tip: Tip,
         r: RodState,
         face: Face,
+        corner: bool,
     ) -> Transition {
         let impact = match self.replay.and_then(|c| c.impact) {
             Some(kind) => self.body.impact(&r, tip, kind),
-            None => self.body.corner_impact(&r, tip, face.side, self.mu),
+            None if corner => self.body.corner_impact(&r, tip, face.side, self.mu),
+            None => self.body.face_impact(&r, tip),
         };
         let mut rods = self.rods(y);
         rods[rod] = impact.after;
@@ -206,8 +197,13 @@ impl Rtw {
             Some(choice) => choice.mode,
             None => {
                 let (loads, _) = self.loads(&rods.map(|r| RodFrame::new(&r)));
-                self.body
-                    .choose_at_corner(&rods[rod], tip, &loads[rod], self.mu, face.side, true)
+                let (r, load) = (&rods[rod], &loads[rod]);
+                if corner {
+                    self.body
+                        .choose_at_corner(r, tip, load, self.mu, face.side, true)
+                } else {
+                    self.body.choose_at_wall(r, tip, load, face.side, true)
+                }
             }
         };
         self.place(y, rod, mode, &rods[rod], face, Some(impact.kind))

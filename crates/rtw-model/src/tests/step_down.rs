@@ -64,7 +64,10 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
     );
     // The value docs/robustness.md quotes (a regression pin of this model,
     // not a reference): the doc and the binary must agree.
-    assert!((h - 2.4286).abs() < 1e-4, "docs/robustness.md says 2.4286 m: {h}");
+    assert!(
+        (h - 2.4286).abs() < 1e-4,
+        "docs/robustness.md says 2.4286 m: {h}"
+    );
     for factor in [0.8, 1.0] {
         let (below, survived) = meet_step(&p, &o, factor * h).unwrap();
         assert!(survived, "{factor} × {h}: {below:?}");
