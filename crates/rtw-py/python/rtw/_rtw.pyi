@@ -69,8 +69,9 @@ class Outcome:
     events: int | None
     wall_time_s: float
     # Only when the options ask for them (docs/robustness.md), after the
-    # columns: step_down_max (robustness.step_down) and gsn (robustness.gsn),
-    # both float | None; read them with getattr or to_dict().
+    # columns: step_down_max (robustness.step_down), step_down_h50
+    # (robustness.step_down_h50) and gsn (robustness.gsn), each float | None;
+    # read them with getattr or to_dict().
     def to_dict(self) -> dict[str, Any]: ...
 
 class LimitCycle:
