@@ -39,6 +39,7 @@ use serde::{Deserialize, Serialize};
 
 mod seed;
 mod terrain;
+pub(crate) use terrain::Face;
 use terrain::STEP_HEIGHT_MAX;
 pub use terrain::TerrainOptions;
 
@@ -459,6 +460,10 @@ impl Options {
 pub struct RobustnessOptions {
     /// Measure the largest survivable step down (`step_down_max`).
     pub step_down: bool,
+    /// Measure the step down over every phase (`step_down_h50`): the height
+    /// half of the edge positions over one step survive.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub step_down_h50: bool,
     /// Compute the gait sensitivity norm (`gsn`, docs/robustness.md).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub gsn: bool,
@@ -509,6 +514,7 @@ impl Default for RobustnessOptions {
     fn default() -> Self {
         Self {
             step_down: false,
+            step_down_h50: false,
             gsn: false,
             steps_to_fall: false,
             sigma: SIGMA_DEFAULT,
@@ -522,7 +528,7 @@ impl Default for RobustnessOptions {
 impl RobustnessOptions {
     /// Is every measure off?
     pub(crate) fn is_off(&self) -> bool {
-        !self.step_down && !self.gsn && !self.steps_to_fall && !self.mfpt
+        !self.step_down && !self.step_down_h50 && !self.gsn && !self.steps_to_fall && !self.mfpt
     }
 
     /// Refuses a roughness outside [0, 1000] m (or 0 with `mfpt`: on the

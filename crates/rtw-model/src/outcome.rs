@@ -97,8 +97,9 @@ pub enum FailureDetail {
     /// its shape but has no static equilibrium there
     /// (`initial.cannot_stand = "collapse"`).
     StandingRollsAway,
-    /// A tip met the riser of a step (docs/model.md §4, terrain): the walker
-    /// tripped.
+    /// A tip met the riser of a step. No longer produced: a tip meeting a
+    /// face of the ground is a contact (docs/model.md §4, "Faces"); the
+    /// name stays so that older result files read.
     Riser,
     /// No touchdown for `stall_time`.
     NoTouchdown,
@@ -492,6 +493,10 @@ pub struct Robustness {
     /// The height the gait failed at just above it: the bisection's upper
     /// end (`None` when even the cap survived).
     pub step_down_fail: Option<f64>,
+    /// The step down over every phase (m): the height at which half of the
+    /// edge positions over one step of the gait survive, see the module doc
+    /// of `run::robustness`.
+    pub step_down_h50: Option<f64>,
     /// The gait sensitivity norm (dimensionless; NaN where it cannot be
     /// computed), docs/robustness.md.
     pub gsn: Option<f64>,

@@ -38,10 +38,13 @@ fn the_flat_slope_never_trips_the_fig7a_walk_and_a_rough_one_does_quickly() {
     // σ = 0 is the flat slope: every trial walks to the censoring count.
     let flat = steps_to_fall(0.0, 0);
     assert_eq!((flat.mean, flat.censored), (60.0, 10), "{flat:?}");
-    // σ = 5 cm (6 % of a rod): every trial falls within a few steps.
-    let rough = steps_to_fall(0.05, 0);
+    // A rough slope does fell it: at σ = 30 cm (37 % of a rod) every trial
+    // falls before the censoring count. (When a foot meeting a face tripped
+    // the walker, σ = 5 cm felled every trial within 15 steps; with faces as
+    // contacts, docs/model.md §4, σ = 5 cm leaves most trials walking.)
+    let rough = steps_to_fall(0.3, 0);
     assert_eq!(rough.censored, 0, "{rough:?}");
-    assert!(rough.hi < 15.0, "{rough:?}");
+    assert!(rough.hi < 60.0, "{rough:?}");
 }
 
 #[test]

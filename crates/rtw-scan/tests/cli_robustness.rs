@@ -38,6 +38,28 @@ fn step_down_max_is_in_the_json_row_only_when_asked_for() {
 }
 
 #[test]
+fn step_down_h50_is_in_the_json_row_only_when_asked_for() {
+    // A positive height, alone in the row (not step_down_max); asking for
+    // it changes nothing else in the row; a non-boolean is refused naming
+    // the key.
+    let flat = json(&[]);
+    assert!(flat.get("step_down_h50").is_none(), "{flat}");
+    let v = json(&["--set", "robustness.step_down_h50=true"]);
+    let h = v["step_down_h50"].as_f64().unwrap();
+    assert!(h > 0.0, "{v}");
+    assert!(v.get("step_down_max").is_none(), "{v}");
+    for (key, value) in flat.as_object().unwrap() {
+        if key != "wall_time_s" {
+            assert_eq!(&v[key], value, "{key}");
+        }
+    }
+    run_err(
+        &[&FIG7A[..], &["--set", "robustness.step_down_h50=2"]].concat(),
+        &["step_down_h50"],
+    );
+}
+
+#[test]
 fn terrain_options_run_over_a_step_and_are_validated() {
     let flat = json(&[]);
     let zero = json(&[

@@ -130,6 +130,14 @@ fn turned(mode: RodMode) -> RodMode {
             tip: tip.other(),
             dir,
         },
+        RodMode::Corner { tip, side } => RodMode::Corner {
+            tip: tip.other(),
+            side,
+        },
+        RodMode::Wall { tip, side } => RodMode::Wall {
+            tip: tip.other(),
+            side,
+        },
     }
 }
 

@@ -35,6 +35,23 @@ pub enum RodMode {
         /// The slip direction, ±1.
         dir: f64,
     },
+    /// 1 DOF θ: tip pinned in the inside corner at the foot of a face of the
+    /// ground, held by the lower patch and the face together
+    /// ([`crate::plant::face`]).
+    Corner {
+        /// The tip in the corner.
+        tip: Tip,
+        /// The side of the lower patch (±1 along x): the face's normal.
+        side: f64,
+    },
+    /// 2 DOF (y_tip, θ): tip on a face of the ground, sliding along it
+    /// without friction ([`crate::plant::face`]).
+    Wall {
+        /// The tip on the face.
+        tip: Tip,
+        /// The side of the lower patch (±1 along x): the face's normal.
+        side: f64,
+    },
 }
 
 impl RodMode {
@@ -43,16 +60,22 @@ impl RodMode {
     pub(crate) fn tip(self) -> Option<Tip> {
         match self {
             RodMode::Free => None,
-            RodMode::Stick { tip } | RodMode::Slide { tip, .. } => Some(tip),
+            RodMode::Stick { tip }
+            | RodMode::Slide { tip, .. }
+            | RodMode::Corner { tip, .. }
+            | RodMode::Wall { tip, .. } => Some(tip),
         }
     }
 
-    /// Trace code: 0 free, ±1 stick on tip ±, ±2 slide on tip ±.
+    /// Trace code: 0 free, ±1 stick on tip ±, ±2 slide on tip ±, ±3 in
+    /// the corner at a face's foot, ±4 sliding on a face.
     pub(crate) fn code(self) -> i8 {
         match self {
             RodMode::Free => 0,
             RodMode::Stick { tip } => tip.sign() as i8,
             RodMode::Slide { tip, .. } => 2 * tip.sign() as i8,
+            RodMode::Corner { tip, .. } => 3 * tip.sign() as i8,
+            RodMode::Wall { tip, .. } => 4 * tip.sign() as i8,
         }
     }
 }
@@ -117,6 +140,15 @@ impl RodBody {
                 };
                 s[..6].copy_from_slice(&[p[0], 0.0, r.theta, vx, 0.0, r.omega]);
             }
+            // At a face the tip's height is its own, not a patch's level.
+            RodMode::Corner { tip, .. } => {
+                let (p, _) = self.tip_point(r, tip);
+                s[..6].copy_from_slice(&[p[0], p[1], r.theta, 0.0, 0.0, r.omega]);
+            }
+            RodMode::Wall { tip, .. } => {
+                let (p, vp) = self.tip_point(r, tip);
+                s[..6].copy_from_slice(&[p[0], p[1], r.theta, 0.0, vp[1], r.omega]);
+            }
         }
     }
 
@@ -146,11 +178,20 @@ impl RodBody {
                 omega: s[5],
                 e,
             },
-            RodMode::Stick { tip } | RodMode::Slide { tip, .. } => {
+            RodMode::Stick { tip } | RodMode::Slide { tip, .. } | RodMode::Corner { tip, .. } => {
                 let d = self.arm(e, tip);
                 RodFrame {
                     c: sub([s[0], s[1]], d),
                     v: sub([s[3], 0.0], scale(s[5], perp(d))),
+                    omega: s[5],
+                    e,
+                }
+            }
+            RodMode::Wall { tip, .. } => {
+                let d = self.arm(e, tip);
+                RodFrame {
+                    c: sub([s[0], s[1]], d),
+                    v: sub([0.0, s[4]], scale(s[5], perp(d))),
                     omega: s[5],
                     e,
                 }
@@ -190,6 +231,8 @@ impl RodBody {
                     lambda: sub(scale(m, cdd), f),
                 }
             }
+            RodMode::Corner { tip, .. } => self.accel(RodMode::Stick { tip }, r, load, mu),
+            RodMode::Wall { tip, .. } => self.wall_accel(tip, r, load),
             RodMode::Slide { tip, dir } => {
                 let kappa = if mu.is_finite() { -mu * dir } else { 0.0 };
                 let d = self.arm(r.e, tip);
@@ -276,6 +319,7 @@ impl RodBody {
                     kind,
                 }
             }
+            ImpactKind::Face => self.face_impact(r, tip),
             ImpactKind::Slide { kappa } => {
                 // Π = (κ Π_y, Π_y) with the tip's normal velocity brought to zero.
                 let v_tip_y = r.v[1] + r.omega * d[0];
@@ -393,6 +437,9 @@ pub enum ImpactKind {
         /// Tangential over normal impulse.
         kappa: f64,
     },
+    /// A face of the ground stops the tip's velocity across it, without
+    /// friction ([`crate::plant::face`]).
+    Face,
 }
 
 /// Result of a touchdown impact.

@@ -63,6 +63,8 @@ pub fn coordinates(mode: RodMode) -> &'static [usize] {
         RodMode::Free => &[X, Y, THETA, VX, VY, OMEGA],
         RodMode::Stick { .. } => &[X, THETA, OMEGA],
         RodMode::Slide { .. } => &[X, THETA, VX, OMEGA],
+        RodMode::Corner { .. } => &[THETA, OMEGA],
+        RodMode::Wall { .. } => &[Y, THETA, VY, OMEGA],
     }
 }
 

@@ -20,24 +20,20 @@
 //!   ([`GuardKind::Edge`](crate::plant::rtw::GuardKind::Edge)); at a down
 //!   edge the rod becomes free (the tip has nothing under it any more) and
 //!   falls. A sticking tip does not move, so it never reaches an edge.
-//! * **A tip that meets a riser trips the walker.** A free tip below a
-//!   higher patch moving across its edge would pass through the riser: its
+//! * **A tip that meets a face is a contact.** A free tip below a higher
+//!   patch moving across its edge would pass through the face: its
 //!   touchdown guard jumps *down* there, the event is located at the face,
 //!   and the touchdown reset, finding the tip far below the ground it was
-//!   declared on, ends the run as a `collapse` with detail `riser`. A tip
-//!   sliding into a higher patch does the same through its edge guard. A tip
-//!   *above* the higher patch crosses its edge freely and lands on it. On a
-//!   step this happens when the step lies just ahead of the landing foot (a
-//!   falling foot moves downhill until it is level with the stance foot and
-//!   uphill below that level): the walker catches its foot on the step
-//!   instead of stepping down, which is a fall of a real walker too. Strings
-//!   and rods other than their tips never touch the ground or an edge (as on
-//!   the flat slope).
+//!   declared on, gives it the face's impact ([`crate::plant::face`]). A tip
+//!   sliding into a higher patch arrives at the face's foot through its
+//!   edge guard. A tip *above* the higher patch crosses its edge freely and
+//!   lands on it. Strings and rods other than their tips never touch the
+//!   ground or an edge (as on the flat slope).
 
-use crate::outcome::FailureDetail;
-use crate::plant::contact::RodMode;
-use crate::plant::geometry::SPOKES;
-use crate::plant::rtw::{Rtw, Transition};
+use crate::options::Face;
+use crate::plant::contact::{ImpactKind, RodMode};
+use crate::plant::geometry::{RodFrame, RodState, SPOKES, Tip, add};
+use crate::plant::rtw::{Choice, Rtw, Transition};
 use crate::plant::slots::{self, N, VX, X, Y};
 
 /// The hooks of the RTW's guards and resets into the terrain.
@@ -61,18 +57,24 @@ impl Rtw {
             .max_by(|a, b| a.1.total_cmp(&b.1))
     }
 
-    /// Puts a grounded rod's height slot at the ground under its tip (the
-    /// slots of a contact mode hold the tip's `x` and the ground's height).
+    /// Puts a rod's height slot at the ground under its tip while it sticks
+    /// or slides on the ground (the slots of those modes hold the tip's `x`
+    /// and the ground's height; at a face they hold the tip's own height).
     #[inline]
     pub(crate) fn set_level(&self, y: &mut [f64; N], rod: usize) {
-        if self.modes[rod] != RodMode::Free {
+        if let RodMode::Stick { .. } | RodMode::Slide { .. } = self.modes[rod] {
             y[slots::at(rod, Y)] = self.terrain.ground(y[slots::at(rod, X)]);
         }
     }
 
-    /// The value of a sliding rod's edge guard at `y`.
+    /// The value of a rod's edge guard at `y`: sliding on a patch, its
+    /// distance to the patch's nearer edge; on a face, to the face's nearer
+    /// end.
     #[inline]
     pub(crate) fn edge_guard(&self, y: &[f64; N], rod: usize) -> f64 {
+        if let RodMode::Wall { side, .. } = self.modes[rod] {
+            return self.wall_guard(y, rod, side).0;
+        }
         self.terrain
             .edge_distance(y[slots::at(rod, X)], y[slots::at(rod, Y)])
     }
@@ -80,6 +82,14 @@ impl Rtw {
     /// Its rate, from `ẏ`.
     #[inline]
     pub(crate) fn edge_guard_rate(&self, y: &[f64; N], dy: &[f64; N], rod: usize) -> f64 {
+        if let RodMode::Wall { side, .. } = self.modes[rod] {
+            let rate = dy[slots::at(rod, Y)];
+            return if self.wall_guard(y, rod, side).1 {
+                rate
+            } else {
+                -rate
+            };
+        }
         self.terrain.edge_rate(
             y[slots::at(rod, X)],
             dy[slots::at(rod, X)],
@@ -87,9 +97,19 @@ impl Rtw {
         )
     }
 
+    /// The reset of a rod's edge guard: a sliding tip at its patch's edge
+    /// ([`leave_edge`](Self::leave_edge)), a tip on a face at its foot or
+    /// top.
+    pub(crate) fn edge_reset(&mut self, y: &mut [f64; N], rod: usize) -> Transition {
+        match self.modes[rod] {
+            RodMode::Wall { side, .. } => self.wall_end(y, rod, side),
+            _ => self.leave_edge(y, rod),
+        }
+    }
+
     /// The reset of a sliding tip at the edge of its patch: onto a lower
     /// patch the rod is released (nothing is under its tip any more); into a
-    /// higher one the tip slid into the riser, and the walker trips.
+    /// higher one the tip arrives at the foot of that patch's face.
     pub(crate) fn leave_edge(&mut self, y: &mut [f64; N], rod: usize) -> Transition {
         let (x, vx, level) = (
             y[slots::at(rod, X)],
@@ -97,7 +117,8 @@ impl Rtw {
             y[slots::at(rod, Y)],
         );
         if self.terrain.level_beyond(x, vx, level) > level {
-            return Transition::Failure(FailureDetail::Riser);
+            let face = self.terrain.face_ahead(x, vx, level);
+            return self.meet_corner(y, rod, face);
         }
         let rods = self.rods(y);
         self.modes[rod] = RodMode::Free;
@@ -105,16 +126,149 @@ impl Rtw {
             .slots(RodMode::Free, &rods[rod], slots::rod_mut(y, rod));
         Transition::ModeChange { rod }
     }
+
+    /// The edge guard of a rod whose tip is on a face: its height above the
+    /// face's foot or below its top, whichever is nearer.
+    fn wall_guard(&self, y: &[f64; N], rod: usize, side: f64) -> (f64, bool) {
+        let face = self.terrain.face_beside(y[slots::at(rod, X)], side);
+        let h = y[slots::at(rod, Y)];
+        let (above_foot, below_top) = (h - face.low, face.high - h);
+        (above_foot.min(below_top), above_foot <= below_top)
+    }
+
+    /// A tip on the face has reached its foot (it arrives in the corner) or
+    /// its top (it leaves the face, to land on the higher patch).
+    fn wall_end(&mut self, y: &mut [f64; N], rod: usize, side: f64) -> Transition {
+        let face = self.terrain.face_beside(y[slots::at(rod, X)], side);
+        if self.wall_guard(y, rod, side).1 {
+            return self.meet_corner(y, rod, face);
+        }
+        let rods = self.rods(y);
+        self.place(y, rod, RodMode::Free, &rods[rod], face, None)
+    }
+
+    /// A free tip crossing a patch edge below the higher patch's level meets
+    /// its face: the face's impact, then the wall or free. A tip meeting it
+    /// at its foot arrives in the corner.
+    pub(crate) fn meet_face(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
+        let mut r = self.rods(y)[rod];
+        let (p, v) = self.body.tip_point(&r, tip);
+        let face = self.terrain.face_crossed(p[0], v[0]);
+        // The event is located a hair past the face: put the tip on it (in
+        // the corner if it met the face at its foot).
+        r.c[0] += face.foot_x() - p[0];
+        let corner = p[1] - face.low <= -self.touchdown_height;
+        if corner {
+            r.c[1] += face.low - p[1];
+        }
+        self.face_contact(y, rod, tip, r, face, corner)
+    }
+
+    /// A grounded tip arrives at the foot of `face` (sliding into it, or
+    /// down it): it is put in the corner exactly (the event located it a
+    /// hair past), then the corner's impact and mode choice.
+    fn meet_corner(&mut self, y: &mut [f64; N], rod: usize, face: Face) -> Transition {
+        let tip = self.modes[rod].tip().expect("grounded rod");
+        let mut r = self.rods(y)[rod];
+        let (p, _) = self.body.tip_point(&r, tip);
+        r.c = add(r.c, [face.foot_x() - p[0], face.low - p[1]]);
+        self.face_contact(y, rod, tip, r, face, true)
+    }
+
+    /// The impact of rod `rod`, whose `tip` is at `r` on `face` (in the
+    /// `corner` at its foot, or above it), then the mode choice there.
+    fn face_contact(
+        &mut self,
+        y: &mut [f64; N],
+        rod: usize,
+        tip: Tip,
+        r: RodState,
+        face: Face,
+        corner: bool,
+    ) -> Transition {
+        let impact = match self.replay.and_then(|c| c.impact) {
+            Some(kind) => self.body.impact(&r, tip, kind),
+            None if corner => self.body.corner_impact(&r, tip, face.side, self.mu),
+            None => self.body.face_impact(&r, tip),
+        };
+        let mut rods = self.rods(y);
+        rods[rod] = impact.after;
+        let mode = match self.replay {
+            Some(choice) => choice.mode,
+            None => {
+                let (loads, _) = self.loads(&rods.map(|r| RodFrame::new(&r)));
+                let (r, load) = (&rods[rod], &loads[rod]);
+                if corner {
+                    self.body
+                        .choose_at_corner(r, tip, load, self.mu, face.side, true)
+                } else {
+                    self.body.choose_at_wall(r, tip, load, face.side, true)
+                }
+            }
+        };
+        self.place(y, rod, mode, &rods[rod], face, Some(impact.kind))
+    }
+
+    /// The reset of a rod at a face whose lift-off (or, in the corner, slip)
+    /// guard has fired: the mode choice there, without the mode it leaves.
+    pub(crate) fn leave_face_mode(&mut self, y: &mut [f64; N], rod: usize) -> Transition {
+        let (tip, side, corner) = match self.modes[rod] {
+            RodMode::Corner { tip, side } => (tip, side, true),
+            RodMode::Wall { tip, side } => (tip, side, false),
+            _ => unreachable!("a rod at a face"),
+        };
+        let face = self.terrain.face_beside(y[slots::at(rod, X)], side);
+        let frames = self.frames(y);
+        let rods = Self::rods_of(y, &frames);
+        let mode = match self.replay {
+            Some(choice) => choice.mode,
+            None => {
+                let (loads, _) = self.loads(&frames);
+                let (r, load) = (&rods[rod], &loads[rod]);
+                if corner {
+                    self.body
+                        .choose_at_corner(r, tip, load, self.mu, side, false)
+                } else {
+                    self.body.choose_at_wall(r, tip, load, side, false)
+                }
+            }
+        };
+        self.place(y, rod, mode, &rods[rod], face, None)
+    }
+
+    /// Puts rod `rod`, at `r` with its tip at `face`, in `mode`: its slots,
+    /// with the tip's `x` exactly at the face (on the lower patch's side) and,
+    /// in the corner, its height exactly the face's foot.
+    fn place(
+        &mut self,
+        y: &mut [f64; N],
+        rod: usize,
+        mode: RodMode,
+        r: &RodState,
+        face: Face,
+        impact: Option<ImpactKind>,
+    ) -> Transition {
+        self.modes[rod] = mode;
+        self.last_choice = Some(Choice { mode, impact });
+        self.body.slots(mode, r, slots::rod_mut(y, rod));
+        if mode != RodMode::Free {
+            y[slots::at(rod, X)] = face.foot_x();
+        }
+        if let RodMode::Corner { .. } = mode {
+            y[slots::at(rod, Y)] = face.low;
+        }
+        self.set_level(y, rod);
+        Transition::ModeChange { rod }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use crate::options::{Options, TerrainOptions};
-    use crate::outcome::FailureDetail;
     use crate::params::{Params, Physical};
     use crate::plant::contact::RodMode;
     use crate::plant::geometry::{Tip, rest_star};
-    use crate::plant::rtw::{Rtw, Transition};
+    use crate::plant::rtw::{GuardKind, Rtw, Transition};
     use crate::plant::slots::{self, N, VX, X, Y};
 
     /// A rough ground from `at` whose first patch lies above level 0 (`up`)
@@ -144,50 +298,259 @@ mod tests {
         (sys, y)
     }
 
+    /// The energy of `y` (kinetic, gravity, strings).
+    fn energy(sys: &Rtw, y: &[f64; N]) -> f64 {
+        sys.total_energy(y)
+    }
+
+    /// The tip's position and velocity.
+    fn tip_of(sys: &Rtw, y: &[f64; N], tip: Tip) -> ([f64; 2], [f64; 2]) {
+        sys.body().tip_point(&sys.rods(y)[0], tip)
+    }
+
+    /// What every reset at a face must leave: the tip on the face (on the
+    /// lower patch's side) at or above its foot, not moving into the face
+    /// or the ground, the other rods untouched and no energy made.
+    /// (`before` and its energy `e0` were taken before the reset.)
+    fn assert_at_face(sys: &Rtw, before: (&[f64; N], f64), y: &[f64; N], face_x: f64, side: f64) {
+        let (before, e0) = before;
+        let (p, v) = tip_of(sys, y, Tip::Plus);
+        let mode = sys.modes()[0];
+        if mode != RodMode::Free {
+            assert_eq!(y[slots::at(0, X)], face_x, "{mode:?}");
+        }
+        assert!((p[0] - face_x).abs() < 1e-12, "{p:?} {face_x}");
+        assert!(side * v[0] >= -1e-12, "into the face: {v:?} {mode:?}");
+        assert!(p[1] >= sys.ground(face_x) - 1e-12, "below the foot: {p:?}");
+        assert_eq!(before[slots::at(1, 0)..], y[slots::at(1, 0)..]);
+        let e1 = energy(sys, y);
+        assert!(
+            e1 <= e0 + 1e-12 * e0.abs().max(1.0),
+            "energy made: {e0} -> {e1}"
+        );
+    }
+
     #[test]
-    fn a_tip_sliding_onto_a_lower_patch_leaves_the_ground_and_into_a_higher_one_trips() {
-        let slide = RodMode::Slide {
-            tip: Tip::Plus,
-            dir: 1.0,
-        };
+    fn a_tip_sliding_onto_a_lower_patch_leaves_the_ground_and_into_a_higher_one_meets_its_face() {
+        // Before faces were contacts, the sliding tip into the higher patch
+        // ended the run: Transition::Failure(FailureDetail::Riser).
         for up in [false, true] {
-            // The tip at the origin, 0.05 m before the patch's edge.
-            let (mut sys, mut y) = on_front_foot(slide, first_patch(up, 0.05));
-            assert_eq!((y[slots::at(0, X)], y[slots::at(0, Y)]), (0.0, 0.0));
-            y[slots::at(0, VX)] = 0.3;
-            assert!((sys.edge_guard(&y, 0) - 0.05).abs() < 1e-15);
-            let mut dy = [0.0; N];
-            dy[slots::at(0, X)] = 0.3;
-            assert_eq!(sys.edge_guard_rate(&y, &dy, 0), -0.3);
-            let t = sys.leave_edge(&mut y, 0);
-            if up {
-                assert_eq!(t, Transition::Failure(FailureDetail::Riser));
-            } else {
+            for vx in [0.3, 0.05] {
+                let slide = RodMode::Slide {
+                    tip: Tip::Plus,
+                    dir: 1.0,
+                };
+                // The tip at the origin, 0.05 m before the patch's edge.
+                let (mut sys, mut y) = on_front_foot(slide, first_patch(up, 0.05));
+                assert_eq!((y[slots::at(0, X)], y[slots::at(0, Y)]), (0.0, 0.0));
+                y[slots::at(0, VX)] = vx;
+                assert!((sys.edge_guard(&y, 0) - 0.05).abs() < 1e-15);
+                let mut dy = [0.0; N];
+                dy[slots::at(0, X)] = vx;
+                assert_eq!(sys.edge_guard_rate(&y, &dy, 0), -vx);
+                // Located a hair past the edge.
+                y[slots::at(0, X)] = 0.05 + 1e-13;
+                let before = (y, energy(&sys, &y));
+                let t = sys.leave_edge(&mut y, 0);
                 assert_eq!(t, Transition::ModeChange { rod: 0 });
-                assert_eq!(sys.modes()[0], RodMode::Free);
+                if up {
+                    // At the face's foot, on the lower patch's side of it.
+                    let foot = 0.05f64.next_down();
+                    assert_at_face(&sys, (&before.0, before.1), &y, foot, -1.0);
+                    let mode = sys.modes()[0];
+                    assert_ne!(mode, slide, "{vx}");
+                    assert_eq!(mode.tip().is_some(), mode != RodMode::Free);
+                    if let RodMode::Corner { side, .. } = mode {
+                        assert_eq!(side, -1.0);
+                        assert_eq!(y[slots::at(0, Y)], 0.0);
+                        let (_, v) = tip_of(&sys, &y, Tip::Plus);
+                        assert!(v[0].abs() < 1e-12 && v[1].abs() < 1e-12, "{v:?}");
+                    }
+                } else {
+                    assert_eq!(sys.modes()[0], RodMode::Free);
+                }
             }
         }
     }
 
     #[test]
-    fn a_free_tip_below_a_higher_patch_meets_its_riser_and_lands_on_a_lower_one() {
+    fn a_free_tip_below_a_higher_patch_meets_its_face_and_lands_on_a_lower_one() {
+        // Before faces were contacts, the free tip meeting the face ended
+        // the run: Transition::Failure(FailureDetail::Riser).
         for up in [false, true] {
             // The patch's edge just behind the tip at the origin (a
             // constructed ground: the options refuse a start at x ≤ 0).
             let terrain = TerrainOptions {
-                step_at: -0.01,
+                step_at: -1e-12,
                 ..first_patch(up, 0.05)
             };
             let (mut sys, mut y) = on_front_foot(RodMode::Free, terrain);
             let level = terrain.ground(0.0);
             assert_eq!(level > 0.0, up);
+            if up {
+                // The star raised to put the tip halfway up the face, moving
+                // into it (+x: the face's side is −1) and down.
+                let mut rods = sys.rods(&y);
+                for r in rods.iter_mut() {
+                    r.c[1] += level / 2.0;
+                    r.v = [0.4, -0.2];
+                }
+                sys.store(&rods, &mut y);
+            }
+            let before = (y, energy(&sys, &y));
             let t = sys.touchdown(&mut y, 0, Tip::Plus);
             if up {
-                assert_eq!(t, Transition::Failure(FailureDetail::Riser));
+                assert_eq!(t, Transition::ModeChange { rod: 0 });
+                let face = (-1e-12f64).next_down();
+                assert_eq!(face, terrain.face_crossed(0.0, 0.4).foot_x());
+                assert_at_face(&sys, (&before.0, before.1), &y, face, -1.0);
+                let (p, v) = tip_of(&sys, &y, Tip::Plus);
+                // The face's impact stopped the tip across it, not along it.
+                assert!(v[0].abs() < 1e-12, "{v:?}");
+                match sys.modes()[0] {
+                    RodMode::Wall {
+                        tip: Tip::Plus,
+                        side,
+                    } => {
+                        assert_eq!(side, -1.0);
+                        assert_eq!(y[slots::at(0, Y)], p[1]);
+                        assert!((sys.edge_guard(&y, 0) - level / 2.0).abs() < 1e-12);
+                    }
+                    RodMode::Free => {}
+                    m => panic!("{m:?}"),
+                }
             } else {
                 assert!(matches!(t, Transition::Touchdown { rod: 0, .. }), "{t:?}");
                 // The tip is put on the patch under it.
                 assert_eq!(y[slots::at(0, Y)], level);
+            }
+        }
+    }
+
+    /// Rod a's Plus tip on a face at `x_face` (side −1: the higher patch
+    /// beyond it), `height` above the foot, in `mode`, moving at `vy`.
+    fn on_face(mode: RodMode, height: f64, vy: f64) -> (Rtw, [f64; N], TerrainOptions) {
+        let terrain = first_patch(true, 0.05);
+        let (mut sys, mut y) = on_front_foot(RodMode::Free, terrain);
+        let foot = 0.05f64.next_down();
+        let mut rods = sys.rods(&y);
+        for r in rods.iter_mut() {
+            r.c = [r.c[0] + foot, r.c[1] + height];
+        }
+        rods[0].v = [0.0, vy];
+        sys.store(&rods, &mut y);
+        sys.set_modes([mode, RodMode::Free, RodMode::Free]);
+        sys.store(&rods, &mut y);
+        y[slots::at(0, X)] = foot;
+        if let RodMode::Corner { .. } = mode {
+            y[slots::at(0, Y)] = 0.0;
+        }
+        (sys, y, terrain)
+    }
+
+    #[test]
+    fn a_tip_on_a_face_arrives_in_the_corner_at_its_foot_and_leaves_it_over_its_top() {
+        let wall = RodMode::Wall {
+            tip: Tip::Plus,
+            side: -1.0,
+        };
+        let high = first_patch(true, 0.05).ground(0.1);
+        // Sliding down, located a hair below the foot: the corner.
+        let (mut sys, mut y, _) = on_face(wall, -1e-13, -0.5);
+        assert!(sys.edge_guard(&y, 0) < 0.0);
+        let mut dy = [0.0; N];
+        dy[slots::at(0, Y)] = -0.5;
+        assert_eq!(sys.edge_guard_rate(&y, &dy, 0), -0.5);
+        let before = (y, energy(&sys, &y));
+        let t = sys.reset_kind(&mut y, GuardKind::Edge { rod: 0 });
+        assert_eq!(t, Transition::ModeChange { rod: 0 });
+        assert_at_face(&sys, (&before.0, before.1), &y, 0.05f64.next_down(), -1.0);
+        let (p, v) = tip_of(&sys, &y, Tip::Plus);
+        assert!(p[1].abs() < 1e-12 && v[1] >= -1e-12, "{p:?} {v:?}");
+        assert_ne!(sys.modes()[0], wall);
+        // Sliding up, located a hair above the top: free, above the higher
+        // patch.
+        let (mut sys, mut y, _) = on_face(wall, high + 1e-13, 0.5);
+        dy[slots::at(0, Y)] = 0.5;
+        assert_eq!(sys.edge_guard_rate(&y, &dy, 0), -0.5);
+        let before = (y, energy(&sys, &y));
+        let t = sys.reset_kind(&mut y, GuardKind::Edge { rod: 0 });
+        assert_eq!(t, Transition::ModeChange { rod: 0 });
+        assert_eq!(sys.modes()[0], RodMode::Free);
+        assert_at_face(&sys, (&before.0, before.1), &y, 0.05f64.next_down(), -1.0);
+        let (p, v) = tip_of(&sys, &y, Tip::Plus);
+        assert!(p[1] >= high && v[1] > 0.0);
+    }
+
+    #[test]
+    fn the_face_lets_go_of_a_tip_it_no_longer_pushes_and_the_corner_of_one_it_cannot_hold() {
+        let (wall, corner) = (
+            RodMode::Wall {
+                tip: Tip::Plus,
+                side: -1.0,
+            },
+            RodMode::Corner {
+                tip: Tip::Plus,
+                side: -1.0,
+            },
+        );
+        for (mode, kind) in [
+            (wall, GuardKind::LiftOff { rod: 0 }),
+            (corner, GuardKind::LiftOff { rod: 0 }),
+            (corner, GuardKind::Slip { rod: 0 }),
+        ] {
+            let half = first_patch(true, 0.05).ground(0.1) / 2.0;
+            let height = if mode == wall { half } else { 0.0 };
+            let (mut sys, mut y, _) = on_face(mode, height, 0.0);
+            let before = (y, energy(&sys, &y));
+            let t = sys.reset_kind(&mut y, kind);
+            assert_eq!(t, Transition::ModeChange { rod: 0 });
+            // The mode whose condition the guard found violated is left.
+            assert_ne!(sys.modes()[0], mode, "{kind:?}");
+            if mode == wall {
+                assert_eq!(sys.modes()[0], RodMode::Free);
+            }
+            assert_at_face(&sys, (&before.0, before.1), &y, 0.05f64.next_down(), -1.0);
+        }
+    }
+
+    #[test]
+    fn the_guards_at_a_face_watch_its_normal_force_and_the_corners_friction() {
+        let mu = 0.8;
+        let half = first_patch(true, 0.05).ground(0.1) / 2.0;
+        for (mode, height) in [
+            (
+                RodMode::Wall {
+                    tip: Tip::Plus,
+                    side: -1.0,
+                },
+                half,
+            ),
+            (
+                RodMode::Corner {
+                    tip: Tip::Plus,
+                    side: -1.0,
+                },
+                0.0,
+            ),
+        ] {
+            let (sys, y, _) = on_face(mode, height, 0.0);
+            let lam = sys.contact_forces(&y)[0];
+            let mut kinds = Vec::new();
+            sys.guard_kinds(|k| kinds.push(k));
+            let value = |kind| {
+                let i = kinds.iter().position(|k| *k == kind).unwrap();
+                hybrid_ode::HybridSystem::guard(&sys, 0.0, &y, i)
+            };
+            if let RodMode::Wall { .. } = mode {
+                assert_eq!(lam[1], 0.0);
+                assert_eq!(value(GuardKind::LiftOff { rod: 0 }), -lam[0]);
+                assert!(kinds.contains(&GuardKind::Edge { rod: 0 }));
+                assert!(!kinds.contains(&GuardKind::Slip { rod: 0 }));
+            } else {
+                assert_eq!(value(GuardKind::LiftOff { rod: 0 }), lam[1]);
+                assert_eq!(value(GuardKind::Slip { rod: 0 }), -lam[0] + mu * lam[1]);
+                assert!(!kinds.contains(&GuardKind::Edge { rod: 0 }));
             }
         }
     }

@@ -24,7 +24,20 @@
 //! 2.6 m, and then 2.8 m and 3.0–3.4 m but not 2.7 or 2.9 m: how a star lands
 //! from a large drop is chaotic), so the ladder climbs from below in
 //! steps of 1.25: every rung below the reported height survived, the first
-//! one above it failed.
+//! one above it failed. It is the **best phase**: the edge
+//! [`EDGE_AHEAD`]` × L` ahead of the front-most grounded tip, where the next
+//! foot lands beyond it.
+//!
+//! **Step down over every phase** (`step_down_h50`, m): the height at which
+//! half of the edge positions spread over one step of the gait survive. The
+//! edge lies `(i + ½) ℓ / `[`H50_POSITIONS`] ahead of the front-most grounded
+//! tip, `i = 0 … 19`, with `ℓ = speed / f_w_newfoot` the flat gait's step
+//! length (a uniform edge position within one step, in 20 strata); the
+//! survival probability `S(h)` is the share of them that survive `h`. The
+//! heights are bracketed as for `step_down_max`: the ladder
+//! `0.05 L · 1.25ᵏ` from below until `S(h) < ½`, then bisection to the same
+//! tolerance; the last height with `S ≥ ½` is reported (0 when even the first
+//! rung, bisected down to `STEP_DOWN_ATOL × L`, has `S < ½`).
 
 use crate::options::TerrainOptions;
 use crate::options::{Options, RobustnessOptions};
@@ -55,6 +68,8 @@ pub const STEP_DOWN_CAP: f64 = 16.0;
 pub const STEP_DOWN_RTOL: f64 = 0.05;
 /// … or this many rod lengths, whichever is larger.
 pub const STEP_DOWN_ATOL: f64 = 1e-3;
+/// Edge positions over one step of the gait per height of `step_down_h50`.
+pub const H50_POSITIONS: usize = 20;
 
 /// The settled gait of a stable flat run, ready to meet a step.
 pub(crate) struct SettledGait<'a> {
@@ -67,6 +82,8 @@ pub(crate) struct SettledGait<'a> {
     /// Where the ground ahead of the gait starts (m): a step's edge, or the
     /// first rough patch.
     pub(super) edge: f64,
+    /// The front-most grounded tip's `x` (m).
+    front: f64,
 }
 
 impl SettledGait<'_> {
@@ -94,8 +111,40 @@ impl SettledGait<'_> {
 
     /// The run over a step of `h`: its outcome and whether the gait survived.
     pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
-        let o = self.run_on(TerrainOptions::step(h, self.edge), &self.options, work);
+        self.meet_step_at(h, self.edge, work)
+    }
+
+    /// [`meet_step`](Self::meet_step) with the edge at `edge` (m).
+    fn meet_step_at(&self, h: f64, edge: f64, work: &mut Work) -> (Outcome, bool) {
+        let o = self.run_on(TerrainOptions::step(h, edge), &self.options, work);
         (o, o.label == self.flat.label)
+    }
+
+    /// The runs over a step of `h` with its edge at each of the
+    /// [`H50_POSITIONS`] positions over one step of the gait (module doc).
+    pub(crate) fn over_every_phase(&self, h: f64, work: &mut Work) -> Vec<(Outcome, bool)> {
+        let step = self.flat.speed.abs() / self.flat.f_w_newfoot;
+        let step = if step.is_finite() && step > 0.0 {
+            step
+        } else {
+            self.phys.length
+        };
+        (0..H50_POSITIONS)
+            .map(|i| {
+                let u = (i as f64 + 0.5) / H50_POSITIONS as f64;
+                self.meet_step_at(h, self.front + u * step, work)
+            })
+            .collect()
+    }
+
+    /// Do at least half of the edge positions survive a step of `h`?
+    fn half_survive(&self, h: f64, work: &mut Work) -> bool {
+        let survived = self
+            .over_every_phase(h, work)
+            .iter()
+            .filter(|(_, ok)| *ok)
+            .count();
+        2 * survived >= H50_POSITIONS
     }
 }
 
@@ -129,16 +178,23 @@ pub(crate) fn settled<'a>(
         y,
         flat,
         edge: front + EDGE_AHEAD * phys.length,
+        front,
     }
 }
 
 /// The largest survivable step down of a settled gait and the failing
 /// height just above it (see the module doc).
 pub(crate) fn step_down_max(s: &SettledGait<'_>, work: &mut Work) -> (f64, Option<f64>) {
-    let length = s.phys.length;
+    largest_height(s.phys.length, |h| s.meet_step(h, work).1)
+}
+
+/// The largest height that `survives` on the ladder from below, bisected
+/// against the first that does not (the module doc), and that first
+/// failure (`None` when even the cap survived).
+fn largest_height(length: f64, mut survives: impl FnMut(f64) -> bool) -> (f64, Option<f64>) {
     let (mut lo, mut hi) = (0.0, STEP_DOWN_START * length);
     loop {
-        if !s.meet_step(hi, work).1 {
+        if !survives(hi) {
             break;
         }
         lo = hi;
@@ -149,7 +205,7 @@ pub(crate) fn step_down_max(s: &SettledGait<'_>, work: &mut Work) -> (f64, Optio
     }
     while hi - lo > (STEP_DOWN_RTOL * lo).max(STEP_DOWN_ATOL * length) {
         let mid = 0.5 * (lo + hi);
-        if s.meet_step(mid, work).1 {
+        if survives(mid) {
             lo = mid;
         } else {
             hi = mid;
@@ -177,6 +233,10 @@ pub(crate) fn measure(
         }
         false => (None, None),
     };
+    let step_down_h50 = options
+        .robustness
+        .step_down_h50
+        .then(|| largest_height(phys.length, |h| s.half_survive(h, &mut work)).0);
     let gsn = options.robustness.gsn.then(|| {
         crate::cycles::gsn::settled_cycle(params, options, rtw, y, &mut work)
             .map_or(f64::NAN, |(map, orbit)| {
@@ -201,6 +261,7 @@ pub(crate) fn measure(
         asked: options.robustness,
         step_down_max,
         step_down_fail,
+        step_down_h50,
         gsn,
         steps_to_fall,
         mfpt,
@@ -218,6 +279,34 @@ pub(crate) fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(O
     crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
         flat.label.is_stable().then(|| {
             settled(params, options, phys, rtw, y, flat).meet_step(h, &mut Work::default())
+        })
+    })
+    .flatten()
+}
+
+/// A stable gait's settled state met by a step of `h` (m) at every edge
+/// position of `step_down_h50`: each run's outcome and whether it survived;
+/// and the gait's `step_down_h50` with the failing height just above it.
+/// `None` when the flat run is not a stable gait.
+#[cfg(test)]
+#[allow(clippy::type_complexity)]
+pub(crate) fn every_phase(
+    params: &Params,
+    options: &Options,
+    heights: &[f64],
+) -> Option<(Vec<Vec<(Outcome, bool)>>, (f64, Option<f64>))> {
+    let mut flat_options = *options;
+    flat_options.robustness = RobustnessOptions::default();
+    crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
+        flat.label.is_stable().then(|| {
+            let s = settled(params, options, phys, rtw, y, flat);
+            let mut work = Work::default();
+            let runs = heights
+                .iter()
+                .map(|&h| s.over_every_phase(h, &mut work))
+                .collect();
+            let h50 = largest_height(phys.length, |h| s.half_survive(h, &mut work));
+            (runs, h50)
         })
     })
     .flatten()

@@ -3,7 +3,7 @@
 //! boundary of direct simulation.
 
 use crate::options::{RobustnessOptions, TerrainOptions};
-use crate::run::robustness::meet_step;
+use crate::run::robustness::{H50_POSITIONS, every_phase, meet_step};
 use crate::{Options, Params, simulate};
 
 #[test]
@@ -62,6 +62,12 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
         h > 0.0 && fail > h && fail <= 1.05 * h + 1e-3 * p.length,
         "{h} {fail}"
     );
+    // The value docs/robustness.md quotes (a regression pin of this model,
+    // not a reference): the doc and the binary must agree.
+    assert!(
+        (h - 2.4286).abs() < 1e-4,
+        "docs/robustness.md says 2.4286 m: {h}"
+    );
     for factor in [0.8, 1.0] {
         let (below, survived) = meet_step(&p, &o, factor * h).unwrap();
         assert!(survived, "{factor} × {h}: {below:?}");
@@ -74,4 +80,56 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
         "at 1.25×: survived {survived_125}, {:?} {:?}",
         at_125.label, at_125.failure
     );
+}
+
+/// The step down over every phase at Fig. 7(a): at `step_down_h50` at
+/// least half of the 20 edge positions over one step survive and at the
+/// failing height just above it (within the bisection's 5 %) fewer than
+/// half do. Prints the survival curve at stated heights (0.01 m, 0.2 m, and
+/// 0.5, 0.8, 1.0 × `step_down_max`) and the failures by kind
+/// (docs/robustness.md quotes them).
+#[test]
+fn the_fig7a_walk_survives_half_the_phases_at_its_step_down_h50() {
+    let p = Params::fig7a();
+    let o = Options {
+        robustness: RobustnessOptions {
+            step_down: true,
+            step_down_h50: true,
+            ..RobustnessOptions::default()
+        },
+        ..Options::default()
+    };
+    let r = simulate(&p, &o).robustness.unwrap();
+    let (max, h50) = (r.step_down_max.unwrap(), r.step_down_h50.unwrap());
+    let heights = [0.01, 0.2, 0.5 * max, 0.8 * max, max];
+    let (runs, (lo, fail)) = every_phase(&p, &o, &heights).unwrap();
+    assert_eq!(lo, h50, "the same bracketing as simulate");
+    let fail = fail.unwrap();
+    println!("Fig. 7(a): step_down_max = {max} m, step_down_h50 = {h50} m, first failure {fail} m");
+    for (h, runs) in heights.iter().zip(&runs) {
+        let survived = runs.iter().filter(|(_, ok)| *ok).count();
+        let mut kinds: Vec<String> = runs
+            .iter()
+            .filter(|(_, ok)| !*ok)
+            .map(|(o, _)| match o.failure {
+                Some(f) => f.as_str().to_string(),
+                None => format!("{:?}", o.label).to_lowercase(),
+            })
+            .collect();
+        kinds.sort();
+        println!("h = {h:.4} m: {survived}/{H50_POSITIONS} survive; failures {kinds:?}");
+        assert!(kinds.iter().all(|k| k != "riser"), "{kinds:?}");
+    }
+    assert!(
+        fail > h50 && fail <= 1.05 * h50 + 1e-3 * p.length,
+        "{h50} {fail}"
+    );
+    let share = |h: f64| {
+        let (runs, _) = every_phase(&p, &o, &[h]).unwrap();
+        runs[0].iter().filter(|(_, ok)| *ok).count()
+    };
+    if h50 > 0.0 {
+        assert!(2 * share(h50) >= H50_POSITIONS, "at {h50}");
+    }
+    assert!(2 * share(fail) < H50_POSITIONS, "at {fail}");
 }

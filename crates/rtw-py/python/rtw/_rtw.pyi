@@ -70,10 +70,10 @@ class Outcome:
     events: int | None
     wall_time_s: float
     # Only when the options ask for them (docs/robustness.md), after the
-    # columns: step_down_max (robustness.step_down), gsn (robustness.gsn),
-    # steps_to_fall… (robustness.steps_to_fall), mfpt, mfpt_lo, mfpt_hi and
-    # fall_rate (robustness.mfpt), all float | None; read them with getattr
-    # or to_dict().
+    # columns: step_down_max (robustness.step_down), step_down_h50
+    # (robustness.step_down_h50), gsn (robustness.gsn), steps_to_fall…
+    # (robustness.steps_to_fall), mfpt, mfpt_lo, mfpt_hi and fall_rate
+    # (robustness.mfpt), all float | None; read them with getattr or to_dict().
     def to_dict(self) -> dict[str, Any]: ...
 
 class LimitCycle:

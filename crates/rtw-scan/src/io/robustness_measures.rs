@@ -20,10 +20,20 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
     RobustnessColumn {
         name: "step_down_max",
         unit: "m",
-        description: "largest survivable step down of the gait (docs/robustness.md); null unless \
+        description: "largest survivable step down of the gait at its best phase, the edge 0.05 L \
+                      ahead of its front-most grounded tip (docs/robustness.md); null unless \
                       stable; only with robustness.step_down = true",
         on: |r| r.step_down,
         get: |m| m.step_down_max,
+    },
+    RobustnessColumn {
+        name: "step_down_h50",
+        unit: "m",
+        description: "step down over every phase: the height at which half of 20 edge positions \
+                      spread over one step of the gait survive (docs/robustness.md); null unless \
+                      stable; only with robustness.step_down_h50 = true",
+        on: |r| r.step_down_h50,
+        get: |m| m.step_down_h50,
     },
     RobustnessColumn {
         name: "gsn",

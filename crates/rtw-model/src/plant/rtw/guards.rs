@@ -53,6 +53,19 @@ impl Rtw {
                         visit(GuardKind::Edge { rod })?;
                     }
                 }
+                // At a face (never on the flat slope).
+                RodMode::Corner { .. } => {
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
+                    if self.mu.is_finite() {
+                        visit(GuardKind::Slip { rod })?;
+                    }
+                }
+                RodMode::Wall { .. } => {
+                    visit(GuardKind::LiftOff { rod })?;
+                    visit(GuardKind::RodDown { rod })?;
+                    visit(GuardKind::Edge { rod })?;
+                }
             }
         }
         visit(GuardKind::ComLow)
@@ -89,7 +102,11 @@ impl Rtw {
         };
         match kind {
             GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
-            GuardKind::LiftOff { rod } => lambda(rod)[1],
+            GuardKind::LiftOff { rod } => match self.modes[rod] {
+                // On a face: the face's normal force.
+                RodMode::Wall { side, .. } => side * lambda(rod)[0],
+                _ => lambda(rod)[1],
+            },
             GuardKind::RodDown { rod } => {
                 let tip = self.modes[rod].tip().expect("grounded rod");
                 tip_height(rod, tip.other())
@@ -102,7 +119,12 @@ impl Rtw {
             }
             GuardKind::Slip { rod } => {
                 let l = lambda(rod);
-                self.mu * l[1] - l[0].abs()
+                match self.modes[rod] {
+                    // In the corner only a pull towards the face can slip
+                    // (crate::plant::face).
+                    RodMode::Corner { side, .. } => side * l[0] + self.mu * l[1],
+                    _ => self.mu * l[1] - l[0].abs(),
+                }
             }
             GuardKind::ComLow => {
                 let (a, b, c) = (frame(0).c, frame(1).c, frame(2).c);

@@ -27,4 +27,5 @@ mod hybrid;
 mod model;
 mod resets;
 
+pub(crate) use model::Choice;
 pub use model::{AtState, GuardKind, Rtw, Transition};

@@ -27,8 +27,9 @@ pub enum GuardKind {
     Slip { rod: usize },
     /// The centre of mass sinks below the collapse height.
     ComLow,
-    /// A sliding tip reaches the edge of a step
-    /// (`plant::terrain`); watched only on a terrain with a step.
+    /// A sliding tip reaches the edge of its patch, or a tip on a face the
+    /// face's foot or top (`plant::terrain`); watched only off the flat
+    /// slope.
     Edge { rod: usize },
 }
 
@@ -73,8 +74,8 @@ pub struct AtState {
 /// touchdown, the kind of impact.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Choice {
-    pub(super) mode: RodMode,
-    pub(super) impact: Option<ImpactKind>,
+    pub(crate) mode: RodMode,
+    pub(crate) impact: Option<ImpactKind>,
 }
 
 /// The RTW: its constants and its current contact modes.
@@ -152,7 +153,7 @@ impl Rtw {
     }
 
     /// [`rods`](Self::rods) from the frames of `y` (no trigonometry again).
-    pub(super) fn rods_of(y: &[f64; N], frames: &[RodFrame; 3]) -> [RodState; 3] {
+    pub(crate) fn rods_of(y: &[f64; N], frames: &[RodFrame; 3]) -> [RodState; 3] {
         std::array::from_fn(|i| frames[i].state(y[slots::at(i, THETA)]))
     }
 

@@ -9,9 +9,17 @@ use crate::plant::slots::{self, N, OMEGA, VX};
 
 impl Rtw {
     /// The reset of guard `kind`, which has just fired at `y`.
-    pub(super) fn reset_kind(&mut self, y: &mut [f64; N], kind: GuardKind) -> Transition {
+    pub(crate) fn reset_kind(&mut self, y: &mut [f64; N], kind: GuardKind) -> Transition {
         match kind {
             GuardKind::Touchdown { rod, tip } => self.touchdown(y, rod, tip),
+            GuardKind::LiftOff { rod } | GuardKind::Slip { rod }
+                if matches!(
+                    self.modes[rod],
+                    RodMode::Corner { .. } | RodMode::Wall { .. }
+                ) =>
+            {
+                self.leave_face_mode(y, rod)
+            }
             GuardKind::LiftOff { rod } => {
                 let tip = self.modes[rod].tip().expect("grounded rod");
                 let at_rest = matches!(self.modes[rod], RodMode::Stick { .. });
@@ -33,7 +41,7 @@ impl Rtw {
             }
             GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
             GuardKind::ComLow => Transition::Failure(FailureDetail::CentreOfMassLow),
-            GuardKind::Edge { rod } => self.leave_edge(y, rod),
+            GuardKind::Edge { rod } => self.edge_reset(y, rod),
         }
     }
 
@@ -80,7 +88,7 @@ impl Rtw {
                 .terrain
                 .met_riser(p[1] - self.ground(p[0]), self.touchdown_height)
             {
-                return Transition::Failure(FailureDetail::Riser);
+                return self.meet_face(y, rod, tip);
             }
         }
         let impact = match self.replay.and_then(|c| c.impact) {
