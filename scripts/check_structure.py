@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
-"""Two structural rules for the library crates (docs/architecture.md):
+"""Three structural rules for the library crates (docs/architecture.md):
 
 1. No source file has more than 600 lines outside its `#[cfg(test)]` module
    (files that are wholly tests, declared under a `#[cfg(test)] mod`, are
    exempt).
 2. No file imports a file that imports it back, test modules included.
+3. Imports go down the layers: outside its tests, a file of a top-level
+   module imports only from its own module or from one in a layer above
+   (`LAYERS`: rank 0 is the top). Items defined in the crate root (`lib.rs`,
+   such as the fault-injection hook) may be used everywhere.
 
 An import is any path `crate::…` or `super::…` in code (a `use` or an
 inline path; comments and doc links are not imports). A path is resolved to
@@ -22,6 +26,40 @@ import re
 import sys
 
 MAX_LINES = 600
+
+# Each crate's top-level modules by layer (docs/architecture.md, "The
+# layers"): a module may import from its own layer or a lower rank. A
+# module missing here is reported, so a new one must be placed.
+LAYERS = {
+    "hybrid-ode": [
+        {"tableau", "dense"},
+        {"system"},
+        {"events", "integrate", "kernels"},
+        {"engine"},
+        {"variational", "nonsmooth", "limit"},
+        {"continuation"},
+        {"rimless", "counting"},
+    ],
+    "rtw-model": [
+        {"params"},
+        {"options"},
+        {"outcome"},
+        {"plant"},
+        {"cycles", "modal"},
+        {"run"},
+    ],
+    "rtw-scan": [
+        {"hash", "files", "sizes"},
+        {"sampling"},
+        {"config"},
+        {"io"},
+        {"scan"},
+        {"analysis", "bifurcation", "continuation", "refine", "studies"},
+        {"basin"},
+        {"dictionary", "fake"},
+        {"cli"},
+    ],
+}
 IDENT = r"[A-Za-z_][A-Za-z0-9_]*"
 
 
@@ -134,6 +172,16 @@ def resolve(path, here, files, facades):
     return files[mod]
 
 
+def import_paths(code):
+    """Every `crate::…` or `super::…` path of some code, as a list of parts."""
+    paths = []
+    for m in re.finditer(r"\buse\s+((?:crate|super)\b[^;]*);", code):
+        paths += expand([], m.group(1))
+    for m in re.finditer(r"(?<![\w:])((?:crate|super)(?:\s*::\s*" + IDENT + r")+)", code):
+        paths.append([p.strip() for p in m.group(1).split("::")])
+    return paths
+
+
 def check(crate):
     src = os.path.join(crate, "src")
     files = module_files(src)
@@ -143,6 +191,10 @@ def check(crate):
         facades[mod] = reexports(strip_comments(open(path, encoding="utf-8").read()))
     bad = []
     edges = {f: set() for f in files.values()}
+    layers = LAYERS.get(os.path.basename(os.path.normpath(crate)))
+    rank = {m: i for i, group in enumerate(layers or []) for m in group}
+    where = {f: m for m, f in files.items()}
+    against = []
     for mod, path in files.items():
         raw = open(path, encoding="utf-8").read()
         is_test = any(mod[: len(t)] == t for t in tests)
@@ -152,14 +204,16 @@ def check(crate):
             if outside > MAX_LINES:
                 bad.append(f"{path}: {outside} lines outside its tests (max {MAX_LINES})")
         code = strip_comments(raw)
+        # The same file without its inline test modules: tests may import
+        # across layers, the library may not.
+        lines_of = raw.split("\n")
+        for a, b in test_block_spans(raw):
+            for i in range(a, b + 1):
+                lines_of[i] = ""
+        library_code = "" if is_test else strip_comments("\n".join(lines_of))
         # The module a `super::` in this file means: its parent (a file
         # `x.rs` or `x/mod.rs` is module x; its parent is one up).
-        paths = []
-        for m in re.finditer(r"\buse\s+((?:crate|super)\b[^;]*);", code):
-            paths += expand([], m.group(1))
-        for m in re.finditer(r"(?<![\w:])((?:crate|super)(?:\s*::\s*" + IDENT + r")+)", code):
-            paths.append([p.strip() for p in m.group(1).split("::")])
-        for p in paths:
+        for p, in_library in [(p, False) for p in import_paths(code)] + [(p, True) for p in import_paths(library_code)]:
             if p[0] == "crate":
                 absolute = p[1:]
             else:
@@ -171,8 +225,19 @@ def check(crate):
             if any(not re.fullmatch(IDENT, s) for s in absolute):
                 continue
             target = resolve(absolute, mod, files, facades)
-            if target != path:
-                edges[path].add(target)
+            if not in_library:
+                if target != path:
+                    edges[path].add(target)
+                continue
+            there = where[target]
+            if layers is None or not mod or not there or mod[0] == there[0]:
+                continue
+            for m in (mod[0], there[0]):
+                if m not in rank:
+                    bad.append(f"{crate}: module {m} has no layer in LAYERS (scripts/check_structure.py)")
+                    rank[m] = -1
+            if rank[there[0]] > rank[mod[0]]:
+                against.append(f"{path} imports from {target} ({there[0]} is below {mod[0]})")
     # Strongly connected components (Tarjan).
     index, low, stack, on, sccs = {}, {}, [], set(), []
 
@@ -203,9 +268,12 @@ def check(crate):
             visit(v)
     for comp in sccs:
         bad.append("import cycle: " + " <-> ".join(comp))
+    against = sorted(set(against))
+    bad += ["import against the layers: " + a for a in against]
     n_edges = sum(len(e) for e in edges.values())
     print(f"{crate}: {len(files)} files, {n_edges} import edges, "
-          f"{len(sccs)} cycles, {sum(1 for b in bad if 'lines' in b)} files over {MAX_LINES} lines")
+          f"{len(sccs)} cycles, {len(against)} imports against the layers, "
+          f"{sum(1 for b in bad if 'lines outside' in b)} files over {MAX_LINES} lines")
     return bad
 
 

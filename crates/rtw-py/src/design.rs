@@ -7,7 +7,7 @@
 
 use anyhow::{Result, anyhow};
 use rtw_scan::config::{self, ScanConfig};
-use rtw_scan::scan::design::Sampling;
+use rtw_scan::sampling::Sampling;
 
 /// The design keys of one `rtw.scan` call (`None`: the config's own).
 pub(crate) struct DesignKeys {

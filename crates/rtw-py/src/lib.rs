@@ -375,7 +375,7 @@ fn label_names(keep: fn(Label) -> bool) -> Vec<&'static str> {
 #[pyfunction]
 #[pyo3(signature = (dims, n, seed=None))]
 fn sobol_points(dims: usize, n: u64, seed: Option<u64>) -> PyResult<Vec<Vec<f64>>> {
-    use rtw_scan::scan::design::{SOBOL_MAX_DIMS, Sobol};
+    use rtw_scan::sampling::{SOBOL_MAX_DIMS, Sobol};
     if !(1..=SOBOL_MAX_DIMS).contains(&dims) {
         return Err(PyValueError::new_err(format!(
             "dims: {dims} is invalid: must be in [1, {SOBOL_MAX_DIMS}]"

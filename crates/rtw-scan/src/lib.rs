@@ -9,10 +9,14 @@
 //!
 //! | module | role |
 //! |---|---|
+//! | `files` | the file system's primitives: temporary files renamed into place, bounded reads, cleanup on a signal |
+//! | `sizes` | byte counts read from text (`2GB`) and written for people |
+//! | [`sampling`] | the sampling designs: draw → unit-cube point (random, Sobol, Halton, LHS, grid, Saltelli) |
 //! | [`config`] | TOML → validated [`config::ScanConfig`]: schema, variant and `--set` layers, the parameter vocabulary, hashing |
 //! | [`io`] | column tables; Parquet written atomically with a content hash and read back checked; traces, assignments |
 //! | [`scan`] | sample ids → parameters → rows: parallel chunks, resume, shards, progress, locks |
 //! | `analysis` | k-means of the failures, shares with Wilson intervals, summary files |
+//! | `refine` | refinement rounds: where a round samples (candidates whose nearest samples' labels disagree) and each round run as a scan of stored points |
 //! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
 //! | `basin` | a slice of a gait's basin of attraction: its grid points in parallel, its Parquet file |
 //! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
@@ -60,9 +64,13 @@ pub(crate) mod continuation;
 pub mod dictionary;
 #[cfg(any(test, feature = "fake-sim"))]
 pub(crate) mod fake;
+pub(crate) mod files;
 pub(crate) mod hash;
 pub mod io;
+pub(crate) mod refine;
+pub mod sampling;
 pub mod scan;
+pub(crate) mod sizes;
 /// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
 pub use analysis::sensitivity;
 

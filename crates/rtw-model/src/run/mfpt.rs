@@ -38,7 +38,7 @@ use crate::plant::geometry::SPOKES;
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
 use crate::run::recorder::run_from;
-use crate::run::robustness::SettledGait;
+use crate::run::settled::SettledGait;
 use hybrid_ode::Work;
 use hybrid_ode::metastable::{MfptOptions, Rng, Walker, mfpt};
 use std::cell::RefCell;

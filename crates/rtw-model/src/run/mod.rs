@@ -7,6 +7,7 @@
 //! | `steps_to_fall` (crate-private) | the mean steps to fall on seeded rough slopes (Monte Carlo) |
 //! | `cancel` (`cancellable` is re-exported) | a stop flag that ends every run of a computation at its next step end |
 //! | `mfpt` (crate-private) | the mean first-passage time on rough slopes, uncensored (splitting) |
+//! | `settled` (crate-private) | the settled gait every robustness measure starts from, and the run from it on other ground |
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 
 pub(crate) mod cancel;
@@ -14,5 +15,6 @@ pub(crate) mod gait;
 pub(crate) mod mfpt;
 pub(crate) mod recorder;
 pub(crate) mod robustness;
+pub(crate) mod settled;
 pub(crate) mod simulate;
 pub(crate) mod steps_to_fall;

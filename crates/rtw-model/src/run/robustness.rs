@@ -7,7 +7,7 @@
 //! with `stop_when_settled` at a touchdown), the step's edge
 //! [`EDGE_AHEAD`]` × L` ahead of its front-most grounded tip; the run from
 //! there, on the stepped ground, under the same options for
-//! [`SURVIVAL_STEPS`] (20) steps of the flat gait (a step is a new foot's
+//! [`SURVIVAL_STEPS`](crate::run::settled::SURVIVAL_STEPS) (20) steps of the flat gait (a step is a new foot's
 //! touchdown: `20 / f_w_newfoot` seconds, at most `t_max`), must
 //! not fail and must have the flat gait's label over the second half of
 //! them (`analysis_window = 0.5`). Anything else (a collapse, a trip on the
@@ -44,20 +44,11 @@ use crate::options::{Options, RobustnessOptions};
 use crate::outcome::{Outcome, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
-use crate::plant::slots::{DISSIPATED, FRICTION, N};
-use crate::run::gait::steps_to_time;
-use crate::run::recorder::run_from;
+use crate::plant::slots::N;
+use crate::run::settled::{EDGE_AHEAD, SettledGait, settled};
 use crate::run::steps_to_fall::steps_to_fall;
 use hybrid_ode::Work;
 
-/// The step's edge lies this many rod lengths ahead of the front-most
-/// grounded tip of the settled gait: the next foot lands beyond it, and far
-/// from the riser.
-pub const EDGE_AHEAD: f64 = 0.05;
-/// A step down is survived when, this many steps of the flat gait (at its
-/// new-foot rate `f_w_newfoot`) after the settled state, the run has not failed
-/// and the second half of them has the flat gait's label.
-pub const SURVIVAL_STEPS: f64 = 20.0;
 /// The first height tried, in rod lengths.
 pub const STEP_DOWN_START: f64 = 0.05;
 /// Each height tried is this many times the last, until one fails.
@@ -71,44 +62,7 @@ pub const STEP_DOWN_ATOL: f64 = 1e-3;
 /// Edge positions over one step of the gait per height of `step_down_h50`.
 pub const H50_POSITIONS: usize = 20;
 
-/// The settled gait of a stable flat run, ready to meet a step.
-pub(crate) struct SettledGait<'a> {
-    pub(super) params: &'a Params,
-    pub(super) options: Options,
-    pub(super) phys: &'a Physical,
-    pub(super) rtw: &'a Rtw,
-    pub(super) y: &'a [f64; N],
-    pub(super) flat: &'a Outcome,
-    /// Where the ground ahead of the gait starts (m): a step's edge, or the
-    /// first rough patch.
-    pub(super) edge: f64,
-    /// The front-most grounded tip's `x` (m).
-    front: f64,
-}
-
 impl SettledGait<'_> {
-    /// The run from the settled state on `terrain` under `options`.
-    fn run_on(&self, terrain: TerrainOptions, options: &Options, work: &mut Work) -> Outcome {
-        let mut sys = self.rtw.clone();
-        sys.terrain = terrain;
-        // The energy dissipated so far is the flat run's, not this one's.
-        let mut y = *self.y;
-        y[DISSIPATED] = 0.0;
-        y[FRICTION] = 0.0;
-        let (o, _, _) = run_from(
-            self.params,
-            options,
-            self.phys,
-            sys,
-            y,
-            self.flat.start,
-            Work::default(),
-            None,
-        );
-        *work += o.work;
-        o
-    }
-
     /// The run over a step of `h`: its outcome and whether the gait survived.
     pub(crate) fn meet_step(&self, h: f64, work: &mut Work) -> (Outcome, bool) {
         self.meet_step_at(h, self.edge, work)
@@ -145,40 +99,6 @@ impl SettledGait<'_> {
             .filter(|(_, ok)| *ok)
             .count();
         2 * survived >= H50_POSITIONS
-    }
-}
-
-/// The settled state of a flat run that ended in `rtw`, `y` with outcome
-/// `flat`.
-pub(crate) fn settled<'a>(
-    params: &'a Params,
-    options: &Options,
-    phys: &'a Physical,
-    rtw: &'a Rtw,
-    y: &'a [f64; N],
-    flat: &'a Outcome,
-) -> SettledGait<'a> {
-    // Every stable gait has a foot down at a touchdown; a run that ended
-    // mid-flight (no early stop) measures from its centre of mass instead.
-    let front = rtw
-        .front_foot(y)
-        .map_or_else(|| rtw.centre_of_mass(y)[0], |(_, x)| x);
-    let mut options = *options;
-    options.limit_cycle = false;
-    options.robustness = RobustnessOptions::default();
-    // Judged over `SURVIVAL_STEPS` steps of the flat gait after the edge,
-    // the label over their second half; at most the run's own `t_max`.
-    options.t_max = steps_to_time(SURVIVAL_STEPS, flat, options.t_max).min(options.t_max);
-    options.analysis_window = 0.5;
-    SettledGait {
-        params,
-        options,
-        phys,
-        rtw,
-        y,
-        flat,
-        edge: front + EDGE_AHEAD * phys.length,
-        front,
     }
 }
 
@@ -315,6 +235,7 @@ pub(crate) fn every_phase(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::run::settled::SURVIVAL_STEPS;
     use crate::outcome::Label;
     use crate::run::recorder::with_end_state;
 

@@ -7,14 +7,12 @@
 //! | [`clusters`] | (a bounded sample of) the failures clustered, named by kind, counted exactly |
 //! | [`assignments`] | `cluster --assignments` files: each failure and its cluster |
 //! | [`report`] | shares with Wilson intervals, paper numbers, `summary.json`/`summary.md` |
-//! | `refine` | where a refinement round samples: candidates whose nearest samples' labels disagree |
 //! | [`scan_table`] | a scan read whole and verified (files, hashes, ids, shard set); its sensitivity indices checked as its own |
 //! | [`sensitivity`] | Sobol indices of every output to every uniform input (Saltelli design or given data) |
 
 pub(crate) mod assignments;
 pub(crate) mod clusters;
 pub(crate) mod kmeans;
-pub(crate) mod refine;
 pub(crate) mod report;
 pub mod scan_table;
 pub mod sensitivity;

@@ -12,8 +12,8 @@ use crate::analysis::clusters::{
 };
 use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
+use crate::files::{self, write_atomic};
 use crate::io::destination::SUMMARY_MAX_BYTES;
-use crate::io::files::{self, write_atomic};
 use crate::io::metadata::{META_CONFIG, META_REFINE, META_VERSION, META_WALL_TIME};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files;

@@ -27,7 +27,7 @@ use crate::config::axis::Axis;
 use crate::io::metadata::META_REFINE;
 use crate::io::scan_files;
 use crate::io::table::{f64_column, label_column};
-use crate::scan::design::Sampling;
+use crate::sampling::Sampling;
 use anyhow::{Context, Result, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
@@ -401,7 +401,7 @@ mod tests {
 
     #[test]
     fn saltelli_indices_of_ishigami_match_the_closed_form() {
-        use crate::scan::design::Design;
+        use crate::sampling::Design;
         let n = 1 << 13;
         let design = Design::new(Sampling::Saltelli, 3, n, 3).unwrap();
         let y: Vec<f64> = (0..n * 5)

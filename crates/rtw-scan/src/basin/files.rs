@@ -4,8 +4,8 @@
 use crate::basin::{OUTCOMES, outcome_index, point_label};
 use crate::bifurcation::sweep::PointLabel;
 use crate::config::variant::ModelChoices;
+use crate::files;
 use crate::io::destination::check_destination;
-use crate::io::files;
 use crate::io::metadata::{
     FileKind, META_BASIN, META_CYCLE, META_OPTIONS, META_PARAMS, META_VARIANT, META_VERSION,
     META_WALL_TIME, kv,

@@ -2,8 +2,9 @@
 
 use crate::analysis::assignments::AssignmentsWriter;
 use crate::analysis::report::{self, clusters_markdown};
+use crate::files;
+use crate::io::destination;
 use crate::io::metadata::{FileKind, META_SEED, META_VERSION, kv};
-use crate::io::{destination, files};
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use std::num::NonZeroUsize;

@@ -2,7 +2,7 @@
 
 use super::progress::{ProgressMode, StderrProgress};
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
-use crate::scan::refine::{self, Refine, RefineStatus, check_budget};
+use crate::refine::{self, Refine, RefineStatus, check_budget};
 use crate::scan::run::{DEFAULT_CHUNK_SIZE, RunSettings, RunStatus};
 use crate::scan::shard::Shard;
 use crate::scan::workers::check_threads;

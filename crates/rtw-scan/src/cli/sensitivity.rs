@@ -1,8 +1,9 @@
 //! `sensitivity`: Sobol indices of a finished scan's outputs.
 
 use crate::analysis::sensitivity::{self, Index};
+use crate::files;
 use crate::io::metadata::{FileKind, META_SENSITIVITY, META_VERSION, kv};
-use crate::io::{destination, files, parquet};
+use crate::io::{destination, parquet};
 use anyhow::Result;
 use clap::Args;
 use std::num::NonZeroUsize;

@@ -3,7 +3,7 @@
 //! their runs' next step), keeping its finished chunks, and end any other
 //! command at once, its temporary files removed.
 
-use crate::io::files;
+use crate::files;
 use anyhow::{Context, Result};
 use std::sync::atomic::{AtomicBool, Ordering};
 

@@ -2,10 +2,11 @@
 
 use super::validate::simulation_options;
 use crate::config::params::checked_params;
+use crate::files;
+use crate::io::destination;
 use crate::io::metadata::FileKind;
 use crate::io::scan_rows::{self, JsonRow};
 use crate::io::trace::{self, TraceWriter};
-use crate::io::{destination, files};
 use crate::scan::one::run_one;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -51,7 +52,7 @@ pub(super) struct SimulateArgs {
     trace: Option<PathBuf>,
     /// Refuse a trace whose size before compression (samples × bytes per sample, estimated from
     /// t_max / trace_dt, or max_steps when trace_dt = 0) exceeds this, e.g. 500MB, 10GB.
-    #[arg(long, value_name = "SIZE", default_value = "2GB", value_parser = crate::io::sizes::parse_size)]
+    #[arg(long, value_name = "SIZE", default_value = "2GB", value_parser = crate::sizes::parse_size)]
     trace_limit: u64,
     /// Write the trace even over a file that is not a trace.
     #[arg(long)]

@@ -4,7 +4,7 @@
 //! name = "paper"            # optional
 //! seed = 20240501
 //! samples = 1000            # draws per grid point
-//! sampling = "random"       # or sobol, halton, lhs, grid, saltelli (scan::design)
+//! sampling = "random"       # or sobol, halton, lhs, grid, saltelli (sampling)
 //!
 //! [params]                  # each: fixed, uniform range, or grid
 //! length = 0.8                          # fixed
@@ -35,7 +35,7 @@ pub(crate) mod raw;
 pub(crate) mod variant;
 
 use crate::hash::fnv1a64;
-use crate::scan::design::{self, Sampling};
+use crate::sampling::{self, Sampling};
 use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
 use raw::{from_value_ranged, parse_table, read_text};

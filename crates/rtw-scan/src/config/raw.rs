@@ -2,7 +2,7 @@
 //! TOML table, a table deserialized with every error naming its key path,
 //! a dotted key set in a table, and the valid range of a `[simulation]` key.
 
-use crate::io::files::{CONFIG_MAX_BYTES, read_limited};
+use crate::files::{CONFIG_MAX_BYTES, read_limited};
 use anyhow::{Result, anyhow};
 use rtw_model::Options;
 use serde::Deserialize;

@@ -157,6 +157,9 @@ mod tests {
         // The flat run without measures names neither, so its line (and
         // every committed file's metadata) is what it was.
         let flat = ModelChoices::of(&Options::default()).to_string();
-        assert!(!flat.contains("terrain") && !flat.contains("robustness"), "{flat}");
+        assert!(
+            !flat.contains("terrain") && !flat.contains("robustness"),
+            "{flat}"
+        );
     }
 }

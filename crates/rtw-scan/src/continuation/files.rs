@@ -5,8 +5,8 @@
 
 use super::{Continuation, Result2, critical, end_name, kind_name};
 use crate::config::variant::ModelChoices;
+use crate::files::FileSet;
 use crate::io::destination::{self, Output, companion};
-use crate::io::files::FileSet;
 use crate::io::metadata::{
     FileKind, META_CONT_CURVE, META_CONT_PARAM, META_CYCLE, META_OPTIONS, META_PARAMS,
     META_VARIANT, META_VERSION, META_WALL_TIME, kv,

@@ -10,7 +10,7 @@
 //! check against the attractor sweep) and a table in `FILE.md`.
 
 use super::Continuation;
-use crate::io::files::FileSet;
+use crate::files::FileSet;
 use anyhow::{Result, bail};
 use hybrid_ode::continuation::End;
 use rtw_model::Num;

@@ -8,8 +8,8 @@
 //! prints.
 
 use super::{Continuation, files, segments, summary};
+use crate::files::FileSet;
 use crate::io::destination::summary_path;
-use crate::io::files::FileSet;
 use anyhow::{Result, bail};
 use std::path::Path;
 use std::time::Instant;

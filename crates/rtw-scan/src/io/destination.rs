@@ -1,7 +1,7 @@
 //! The refusal to write one kind of file over another (or over a command's
 //! own input), unless `--force`.
 
-use crate::io::files;
+use crate::files;
 use crate::io::metadata::FileKind;
 use crate::io::parquet::open;
 use anyhow::{Result, bail};

@@ -12,26 +12,23 @@
 //! | `content_hash` | the hash of a table's values, independent of batches and pages, and of its metadata |
 //! | `metadata` | the metadata keys, a scan's metadata, the kind of a file |
 //! | `destination` | the refusal to write one kind of file over another |
-//! | `files` | temporary files renamed into place; cleanup on a signal |
 //! | `trace` | `simulate --trace` files and their size bound |
 //!
 //! Public: what a reader of rtw-scan's files needs, re-exported here.
 
 pub(crate) mod content_hash;
 pub(crate) mod destination;
-pub(crate) mod files;
 pub(crate) mod metadata;
 pub(crate) mod parquet;
 pub(crate) mod robustness_columns;
 pub(crate) mod robustness_measures;
 pub(crate) mod scan_files;
 pub(crate) mod scan_rows;
-pub(crate) mod sizes;
 pub(crate) mod table;
 pub(crate) mod trace;
 
+pub use crate::sizes::parse_size;
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
 pub use scan_rows::{ColumnKind, Kind, Value, row_columns, schema};
-pub use sizes::parse_size;
 pub use trace::{TraceNames, check_trace_size, trace_batch, trace_metadata, trace_schema};

@@ -10,8 +10,8 @@
 
 use crate::config;
 use crate::config::variant::ModelChoices;
+use crate::files::{Temp, temp_file_for};
 use crate::io::content_hash::{ContentHash, metadata_hash};
-use crate::io::files::{Temp, temp_file_for};
 use crate::io::metadata::{
     KEYS_BEFORE_METADATA_HASH, META_CONFIG, META_CONFIG_HASH, META_CONTENT_HASH,
     META_METADATA_HASH, META_SEED, META_VARIANT, kv,
@@ -141,7 +141,7 @@ impl ParquetFile {
     }
 
     /// Closes the writer and syncs the data: the finished temporary file
-    /// and its name, for a [`crate::io::files::FileSet`] to move into place.
+    /// and its name, for a [`crate::files::FileSet`] to move into place.
     pub(crate) fn close(self) -> Result<(Temp, PathBuf)> {
         let Self {
             tmp,
@@ -164,7 +164,7 @@ impl ParquetFile {
 
 /// Writes `batch` as one complete Parquet file at `dest` (atomically).
 pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> Result<()> {
-    let mut set = crate::io::files::FileSet::default();
+    let mut set = crate::files::FileSet::default();
     add_file(&mut set, dest, batch, metadata)?;
     set.commit()
 }
@@ -172,7 +172,7 @@ pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> 
 /// Writes `batch` as one complete Parquet file for `dest` into `set`, to
 /// appear with the set's other files.
 pub(crate) fn add_file(
-    set: &mut crate::io::files::FileSet,
+    set: &mut crate::files::FileSet,
     dest: &Path,
     batch: &RecordBatch,
     metadata: Vec<KeyValue>,

@@ -3,8 +3,8 @@
 
 use crate::io::metadata::{META_OPTIONS, META_PARAMS, META_VERSION, kv};
 use crate::io::parquet::{ParquetFile, writer_properties};
-use crate::io::sizes::human_bytes;
 use crate::io::table;
+use crate::sizes::human_bytes;
 use anyhow::{Result, bail};
 use arrow_array::{ArrayRef, Float64Array, Int8Array, RecordBatch};
 use arrow_schema::{DataType, Field, Schema, SchemaRef};

@@ -5,7 +5,7 @@
 
 use crate::config;
 use crate::config::ScanConfig;
-use crate::io::files;
+use crate::files;
 use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::{scan_files, table};
@@ -115,7 +115,7 @@ enum Entry {
     Manifest,
     Chunk(u64),
     /// The temporary file of a killed writer of the manifest or a chunk
-    /// (`.NAME.XXXXXX.tmp`, [`crate::io::files`]).
+    /// (`.NAME.XXXXXX.tmp`, [`crate::files`]).
     Temp,
     /// Anything else: not made by rtw-scan, so never removed by it.
     Unknown,

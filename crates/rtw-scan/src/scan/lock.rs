@@ -1,6 +1,6 @@
 //! One writer per result: a lock file beside it.
 
-use crate::io::files::{self, Registered};
+use crate::files::{self, Registered};
 use anyhow::{Context, Result, bail};
 use std::fs::File;
 use std::path::{Path, PathBuf};

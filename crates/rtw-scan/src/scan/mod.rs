@@ -4,7 +4,6 @@
 //! | module | role |
 //! |---|---|
 //! | [`sample`] | sample id → parameters, from (seed, id) only |
-//! | [`design`] | the sampling designs: draw → unit-cube point (Sobol, Halton, LHS, grid, Saltelli) |
 //! | `run` | a run into durable files: its chunks, resume, the merge |
 //! | `chunks` | the chunk scheduler: samples in id order, each chunk handed over once its rows are in |
 //! | `batch` | [`scan_batch`]: a scan in memory |
@@ -12,7 +11,6 @@
 //! | `workers` | the worker pool, the thread cap, a worker's sample |
 //! | [`single`] | one run in memory: its `--json` row and its trace (the Python package) |
 //! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks |
-//! | `refine` | refinement rounds: samples added where labels change, each round a scan of stored points |
 //! | `shard` | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | [`progress`] | what watches a scan: the [`Progress`] observer |
 //! | `panic` | a sample's panic caught as its message |
@@ -22,14 +20,12 @@
 pub(crate) mod batch;
 pub(crate) mod checkpoint;
 pub(crate) mod chunks;
-pub mod design;
 #[cfg(test)]
 mod fixtures;
 pub(crate) mod lock;
 pub(crate) mod one;
 pub(crate) mod panic;
 pub mod progress;
-pub(crate) mod refine;
 pub(crate) mod run;
 pub mod sample;
 pub(crate) mod shard;

@@ -30,7 +30,7 @@
 //! `message`; the scan never aborts for one sample.
 
 use crate::config::ScanConfig;
-use crate::io::files;
+use crate::files;
 use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, VERSION};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
 use crate::io::robustness_columns::with_robustness;

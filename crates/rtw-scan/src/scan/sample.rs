@@ -17,7 +17,7 @@
 
 use crate::config::ScanConfig;
 use crate::config::axis::{Axis, linspace_point};
-use crate::scan::design::Design;
+use crate::sampling::Design;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::Param;

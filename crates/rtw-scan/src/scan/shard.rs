@@ -11,7 +11,7 @@
 //! 0..n−1 once each) and concatenates them into `DIR/samples.parquet`.
 
 use crate::config::{self, ScanConfig};
-use crate::io::files;
+use crate::files;
 use crate::io::metadata::{
     self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_SHARDS, META_TOTAL_ROWS, META_VERSION,
     META_WALL_TIME, kv,

@@ -5,9 +5,9 @@
 use crate::io::kv;
 use crate::io::metadata::with_metadata;
 use crate::io::scan_rows::{JsonRow, Value, robustness_entries, values};
-use crate::io::sizes::human_bytes;
 use crate::io::trace::{TraceNames, check_trace_size, trace_batch, trace_metadata};
 use crate::scan::one::run_one;
+use crate::sizes::human_bytes;
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_model::{Options, Params};

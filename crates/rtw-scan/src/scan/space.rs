@@ -2,7 +2,7 @@
 //! scan that cannot finish (10¹² samples, about 200 TB) is refused at once
 //! rather than filling the disk after months.
 
-use crate::io::sizes::human_bytes;
+use crate::sizes::human_bytes;
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! shards and merge treat a designed scan exactly like a random one, and a
 //! 10⁶-sample design costs no more memory than a random one.
 //!
-//! - `random`: the ChaCha8 draws of [`super::sample`] (the default).
+//! - `random`: the ChaCha8 draws of [`crate::scan::sample`] (the default).
 //! - `sobol`: the Sobol sequence (direction numbers of Joe & Kuo,
 //!   "Constructing Sobol sequences with better two-dimensional projections",
 //!   SIAM J. Sci. Comput. 30 (2008) 2635–2654, file new-joe-kuo-6.21201),

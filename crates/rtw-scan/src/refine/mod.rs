@@ -2,7 +2,7 @@
 //!
 //! `rtw-scan refine DIR --budget N --rounds R --seed S` splits the budget
 //! into R rounds (sizes differing by at most one). Round r's points are
-//! proposed by [`crate::analysis::refine::propose`] from the rows of
+//! proposed by [`propose::propose`] from the rows of
 //! `DIR/samples.parquet` and of rounds 1 … r − 1, in that order, so a round
 //! is a deterministic function of those rows and the seed. Each round is an
 //! ordinary scan in `DIR/refine/round-RRR/` (its rows `0 … n − 1` in
@@ -15,7 +15,8 @@
 //! every row, the scan's first and then each round's, with `sample_id`s
 //! numbered on from the scan's (round r's row i is `N₀ + n₁ + … + i`).
 
-use crate::analysis::refine::propose;
+pub(crate) mod propose;
+
 use crate::analysis::report::open_scan;
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
@@ -25,8 +26,8 @@ use crate::io::metadata::{self, FileKind, META_CONFIG, META_CONTENT_HASH, META_R
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS, ParquetFile, READ_BATCH_ROWS};
 use crate::io::scan_rows::label_index;
 use crate::io::table::{f64_column, label_column};
+use crate::sampling::Sampling;
 use crate::scan::checkpoint::is_complete;
-use crate::scan::design::Sampling;
 use crate::scan::one::Simulator;
 use crate::scan::progress::Progress;
 use crate::scan::run::{RunSettings, RunStatus, run_scan_with};
@@ -34,6 +35,7 @@ use crate::scan::sample::Sampler;
 use ::parquet::file::metadata::KeyValue;
 use anyhow::{Context, Result, bail};
 use arrow_array::{Int64Array, RecordBatch};
+use propose::propose;
 use rtw_model::{Param, Params};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -395,7 +397,7 @@ pub(crate) fn refine(
 /// Concatenates scan files into `dest`, their `sample_id`s numbered `0 …`
 /// in file order (every other value as it is).
 fn renumber(files: &[PathBuf], dest: &Path, meta: Vec<KeyValue>) -> Result<()> {
-    crate::io::files::remove_stray_temps(dest)?;
+    crate::files::remove_stray_temps(dest)?;
     let first = parquet::open(&files[0], READ_BATCH_ROWS)?;
     let schema = first.reader.schema();
     let props = parquet::writer_properties(&schema, MAX_ROW_GROUP_ROWS, meta);

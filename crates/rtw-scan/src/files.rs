@@ -245,8 +245,8 @@ pub(crate) fn read_limited(path: &Path, what: &str, limit: u64) -> Result<Vec<u8
         anyhow::anyhow!(
             "cannot read {what} {}: it is {} ({len} bytes), and a {what} may be at most {}",
             path.display(),
-            crate::io::sizes::human_bytes(len as f64),
-            crate::io::sizes::human_bytes(limit as f64)
+            crate::sizes::human_bytes(len as f64),
+            crate::sizes::human_bytes(limit as f64)
         )
     };
     if !meta.is_file() {
