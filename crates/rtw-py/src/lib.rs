@@ -454,7 +454,8 @@ fn sensitivity<'py>(
                 PyValueError::new_err(format!("scan: not a path nor a pyarrow table: {e}"))
             })?
             .into_inner();
-        let metadata = schema.metadata().clone();
+        let metadata: std::collections::HashMap<String, String> =
+            schema.metadata().clone().into_iter().collect();
         interruptible(
             py,
             |cancel| sa::analyse_table(&metadata, batches, &settings, cancel),
