@@ -131,36 +131,18 @@ fn indices_record_their_scan_and_another_scans_are_never_replaced() {
     run_ok(&["sensitivity", s(&b), "--resamples", "5"]);
     let before = std::fs::read(&theirs).unwrap();
     // The file says whose indices it holds: the scan's content hash.
+    let footer = |p: &std::path::Path, key: &str| -> String {
+        use parquet::file::reader::FileReader;
+        let f = std::fs::File::open(p).unwrap();
+        let r = parquet::file::reader::SerializedFileReader::new(f).unwrap();
+        let kv = r.metadata().file_metadata().key_value_metadata().unwrap();
+        let v = kv.iter().find(|k| k.key == key).unwrap();
+        v.value.clone().unwrap()
+    };
     let meta = |p: &std::path::Path| -> serde_json::Value {
-        let f = std::fs::File::open(p).unwrap();
-        let r = parquet::file::reader::SerializedFileReader::new(f).unwrap();
-        use parquet::file::reader::FileReader;
-        let kv = r
-            .metadata()
-            .file_metadata()
-            .key_value_metadata()
-            .unwrap()
-            .clone();
-        let v = kv.iter().find(|k| k.key == "rtw.sensitivity").unwrap();
-        serde_json::from_str(v.value.as_ref().unwrap()).unwrap()
+        serde_json::from_str(&footer(p, "rtw.sensitivity")).unwrap()
     };
-    let hash = |p: &std::path::Path| -> String {
-        let f = std::fs::File::open(p).unwrap();
-        let r = parquet::file::reader::SerializedFileReader::new(f).unwrap();
-        use parquet::file::reader::FileReader;
-        let kv = r
-            .metadata()
-            .file_metadata()
-            .key_value_metadata()
-            .unwrap()
-            .clone();
-        kv.iter()
-            .find(|k| k.key == "rtw.content_hash")
-            .unwrap()
-            .value
-            .clone()
-            .unwrap()
-    };
+    let hash = |p: &std::path::Path| footer(p, "rtw.content_hash");
     assert_eq!(
         meta(&theirs)["scan_content_hash"],
         hash(&b.join("samples.parquet"))
