@@ -105,7 +105,9 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     let cfg = super::validate::scan_config(&a.config, a.variant.as_deref(), &a.set)?;
-    let threads = (a.threads.as_deref())
+    let threads = a
+        .threads
+        .as_deref()
         .map(|t| parse_threads(t, "--threads"))
         .transpose()?;
     let out = match a.out.clone() {
