@@ -104,12 +104,13 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 }
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
-    let cfg = super::validate::scan_config(&a.config, a.variant.as_deref(), &a.set)?;
+    // A flag's value is refused before the config is read, as clap refuses it.
     let threads = a
         .threads
         .as_deref()
         .map(|t| parse_threads(t, "--threads"))
         .transpose()?;
+    let cfg = super::validate::scan_config(&a.config, a.variant.as_deref(), &a.set)?;
     let out = match a.out.clone() {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,
