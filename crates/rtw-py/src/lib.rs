@@ -20,20 +20,19 @@ use design::DesignKeys;
 use options::PyOverrides;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
-use rtw_model::cycles::{BasinSpec, CycleOptions, StepMap};
+use pyo3::types::{PyBool, PyDict, PyInt, PyTuple};
+use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
-use rtw_scan::basin::{parse_axis, slice_table};
+use rtw_scan::basin::{Settings as BasinSettings, slice_table};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
 use rtw_scan::scan::scan_batch;
 use rtw_scan::scan::single::{simulate_row, simulate_traced};
+use rtw_scan::scan::workers::{Stopped, parse_threads};
 use std::collections::TryReserveError;
-use std::num::NonZeroUsize;
 use std::path::PathBuf;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::Duration;
@@ -81,6 +80,71 @@ fn to_table(py: Python<'_>, batch: RecordBatch) -> PyResult<Bound<'_, PyAny>> {
     Table::try_new(vec![batch], schema)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
         .into_pyarrow(py)
+}
+
+/// A count's text for the library's parsers, which check it against its
+/// range as they check a flag's value: a Python `int`'s digits (any size),
+/// anything else as `repr` shows it (`2.5`, `True`, `'10'`), which no parser
+/// takes for a count.
+fn digits(value: &Bound<'_, PyAny>) -> PyResult<String> {
+    let text = if value.is_instance_of::<PyInt>() && !value.is_instance_of::<PyBool>() {
+        value.str()?
+    } else {
+        value.repr()?
+    };
+    Ok(text.to_string())
+}
+
+/// Runs `job` on a worker thread with the GIL released, handing it a cancel
+/// flag. This thread polls Python's signal handlers every [`SIGNAL_POLL`]
+/// and calls `tick` between polls; on an exception (KeyboardInterrupt, or
+/// one `tick` raised) it sets the flag, waits for the job to stop, and
+/// raises the exception.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    job: impl FnOnce(&AtomicBool) -> T + Send,
+    mut tick: impl FnMut() -> PyResult<()>,
+) -> PyResult<T> {
+    let cancel = AtomicBool::new(false);
+    let (done, finished) = channel();
+    std::thread::scope(|s| {
+        let flag = &cancel;
+        let worker = s.spawn(move || {
+            let result = job(flag);
+            // The receiver is gone only if this function already returned.
+            let _ = done.send(());
+            result
+        });
+        let mut finished = finished;
+        loop {
+            // The receiver is `Send` but not `Sync`: it goes into the
+            // detached closure and comes back.
+            let (wait, back) = py.detach(move || (finished.recv_timeout(SIGNAL_POLL), finished));
+            finished = back;
+            match wait {
+                Err(RecvTimeoutError::Timeout) => {}
+                Ok(()) | Err(RecvTimeoutError::Disconnected) => break,
+            }
+            if let Err(interrupt) = tick().and_then(|()| py.check_signals()) {
+                cancel.store(true, Ordering::SeqCst);
+                // What is in flight ends soon: a scan's samples at their runs'
+                // next step (rtw_model::cancellable), a grid point, a resample.
+                let _ = py.detach(|| worker.join());
+                return Err(interrupt);
+            }
+        }
+        py.detach(|| worker.join())
+            .map_err(|_| PyRuntimeError::new_err("the worker thread panicked"))
+    })
+}
+
+/// An rtw error as Python's, a study stopped by its cancel flag as
+/// `KeyboardInterrupt` (only a signal sets it).
+fn study_error(e: anyhow::Error) -> PyErr {
+    if e.is::<Stopped>() {
+        return PyKeyboardInterrupt::new_err(e.to_string());
+    }
+    value_error(e)
 }
 
 /// One run: its row, the fields of `rtw-scan simulate --json`.
@@ -136,7 +200,7 @@ fn scan<'py>(
     text: Option<String>,
     variant: Option<PathBuf>,
     options: Option<Bound<'py, PyDict>>,
-    threads: Option<usize>,
+    threads: Option<Bound<'py, PyAny>>,
     progress: Option<Bound<'py, PyAny>>,
     sampling: Option<Bound<'py, PyAny>>,
     samples: Option<u64>,
@@ -167,52 +231,20 @@ fn scan<'py>(
     .map_err(value_error)?;
     let threads = match threads {
         None => None,
-        Some(n) => Some(
-            NonZeroUsize::new(n)
-                .ok_or_else(|| PyValueError::new_err("threads: 0 is invalid: must be >= 1"))?,
-        ),
+        Some(n) => Some(parse_threads(&digits(&n)?, "threads").map_err(value_error)?),
     };
     let total = cfg.total_rows().map_err(value_error)?;
-    let stop = Arc::new(AtomicBool::new(false));
-    let rows_done = Arc::new(AtomicU64::new(0));
-    let (done, finished) = channel();
-    let worker = {
-        let stop = Arc::clone(&stop);
-        let rows_done = Arc::clone(&rows_done);
-        std::thread::spawn(move || {
-            let result = scan_batch(&cfg, threads, &stop, &*rows_done);
-            // The receiver is gone only if this function already returned.
-            let _ = done.send(());
-            result
-        })
-    };
-    let mut finished = finished;
-    loop {
-        // The receiver is `Send` but not `Sync`: it goes into the detached
-        // closure and comes back.
-        let (wait, back) = py.detach(move || (finished.recv_timeout(SIGNAL_POLL), finished));
-        finished = back;
-        match wait {
-            Err(RecvTimeoutError::Timeout) => {}
-            Ok(()) | Err(RecvTimeoutError::Disconnected) => break,
-        }
-        let shown = match &progress {
+    let rows_done = AtomicU64::new(0);
+    let result = interruptible(
+        py,
+        |stop| scan_batch(&cfg, threads, stop, &rows_done),
+        || match &progress {
             Some(f) => f
                 .call1((rows_done.load(Ordering::Relaxed), total))
                 .map(drop),
             None => Ok(()),
-        };
-        if let Err(interrupt) = shown.and_then(|()| py.check_signals()) {
-            stop.store(true, Ordering::SeqCst);
-            // The samples in flight end at their runs' next step (the stop
-            // reaches every run of a sample: rtw_model::cancellable).
-            let _ = py.detach(|| worker.join());
-            return Err(interrupt);
-        }
-    }
-    let result = py
-        .detach(|| worker.join())
-        .map_err(|_| PyRuntimeError::new_err("the scan's worker thread panicked"))?;
+        },
+    )?;
     match result.map_err(value_error)? {
         Some(batch) => {
             if let Some(f) = &progress {
@@ -256,7 +288,9 @@ fn limit_cycle(
 
 /// A slice of the gait's basin of attraction (`rtw-scan basin`): a
 /// `pyarrow.Table` with one row per grid point, the columns of the CLI's
-/// Parquet file, made by the same library function.
+/// Parquet file, made by the same library function from the settings as
+/// given (checked there, as the CLI's flags are). Runs as `scan` does:
+/// Ctrl-C stops it after the points in flight and raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (values, config, variant, options, x, y, steps, tol, threads))]
 #[allow(clippy::too_many_arguments)] // the design's layers and the slice's settings, as `rtw-scan basin`
@@ -268,27 +302,20 @@ fn basin<'py>(
     options: Option<Bound<'_, PyDict>>,
     x: &str,
     y: &str,
-    steps: usize,
+    steps: Bound<'py, PyAny>,
     tol: f64,
-    threads: Option<usize>,
+    threads: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let (params, options) = inputs(values, config, variant, options.as_ref())?;
-    let spec = BasinSpec {
-        x: parse_axis(x, "x").map_err(value_error)?,
-        y: parse_axis(y, "y").map_err(value_error)?,
-        steps,
-        tol,
-    };
-    let threads =
-        match threads {
-            None => None,
-            Some(n) => Some(NonZeroUsize::new(n).ok_or_else(|| {
-                PyValueError::new_err("threads: 0 is invalid: must be at least 1")
-            })?),
-        };
-    let batch = py
-        .detach(|| slice_table(&params, &options, spec, threads))
+    let threads = threads.as_ref().map(digits).transpose()?;
+    let settings = BasinSettings::parse(x, y, &digits(&steps)?, tol, threads.as_deref(), "")
         .map_err(value_error)?;
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
+    let batch = interruptible(
+        py,
+        |cancel| slice_table(&params, &options, &settings, cancel),
+        || Ok(()),
+    )?
+    .map_err(study_error)?;
     to_table(py, batch)
 }
 
@@ -396,37 +423,48 @@ fn sobol_points(dims: usize, n: u64, seed: Option<u64>) -> PyResult<Vec<Vec<f64>
         .collect())
 }
 
-/// Sobol indices of a scan table's outputs (`rtw-scan sensitivity`): a
-/// `pyarrow.Table` of output, parameter, S1, S1_conf, ST, ST_conf. The
-/// table carries its config in the schema's `rtw.config` metadata (as
-/// `scan` returns it and a scan file holds it).
+/// Sobol indices of a scan's outputs (`rtw-scan sensitivity`): a
+/// `pyarrow.Table` of output, parameter, S1, S1_conf, ST, ST_conf. `scan`
+/// is a scan file's path (or its directory), read through the library's
+/// verified reader, or a table carrying its config in the schema's
+/// `rtw.config` metadata (as `scan` returns it), checked as a file's rows
+/// are. `resamples` and `seed` are checked by the library, as the CLI's
+/// flags. Runs as `scan` does: Ctrl-C stops it and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (table, resamples, seed))]
+#[pyo3(signature = (scan, resamples, seed))]
 fn sensitivity<'py>(
     py: Python<'py>,
-    table: Bound<'py, PyAny>,
-    resamples: usize,
-    seed: Option<u64>,
+    scan: Bound<'py, PyAny>,
+    resamples: Bound<'py, PyAny>,
+    seed: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use arrow_pyarrow::FromPyArrow;
     use rtw_scan::sensitivity as sa;
-    let (batches, schema) = Table::from_pyarrow_bound(&table)
-        .map_err(|e| PyValueError::new_err(format!("table: not a pyarrow table: {e}")))?
-        .into_inner();
-    let text = schema.metadata().get("rtw.config").ok_or_else(|| {
-        PyValueError::new_err(
-            "table: no `rtw.config` in its schema metadata: not a table of rtw.scan; give a scan file by its path",
-        )
-    })?;
-    let cfg = rtw_scan::config::parse(text).map_err(value_error)?;
-    let rows = py
-        .detach(|| {
-            let cols = sa::columns(&cfg, batches.into_iter().map(Ok))?;
-            sa::indices(&cfg, &cols, resamples, seed.unwrap_or(cfg.seed))
-        })
-        .map_err(value_error)?
-        .1;
-    to_table(py, sa::to_batch(&rows))
+    let seed = seed.as_ref().map(digits).transpose()?;
+    let settings =
+        sa::Settings::parse(&digits(&resamples)?, seed.as_deref(), "").map_err(value_error)?;
+    let analysis = if let Ok(path) = scan.extract::<PathBuf>() {
+        interruptible(
+            py,
+            |cancel| sa::analyse_file(&path, &settings, cancel),
+            || Ok(()),
+        )?
+    } else {
+        let (batches, schema) = Table::from_pyarrow_bound(&scan)
+            .map_err(|e| {
+                PyValueError::new_err(format!("scan: not a path nor a pyarrow table: {e}"))
+            })?
+            .into_inner();
+        let metadata: std::collections::HashMap<String, String> =
+            schema.metadata().clone().into_iter().collect();
+        interruptible(
+            py,
+            |cancel| sa::analyse_table(&metadata, batches, &settings, cancel),
+            || Ok(()),
+        )?
+    }
+    .map_err(study_error)?;
+    to_table(py, sa::to_batch(&analysis.indices))
 }
 
 /// A scan read whole through rtw-scan's verified reader (`summary`'s and

@@ -126,6 +126,17 @@ fn bad_axes_and_settings_name_the_flag_and_the_range() {
     let mut a = base("omega_a:-1:1:3", "theta_b:0:0:1");
     a.extend(["--alpha", "0.6"]);
     run_err(&a, &["--alpha: 0.6 is invalid: must be"]);
+    // Counts too large for any integer type, and no threads at all, are
+    // refused by their range like any other value.
+    let mut a = base("omega_a:-1:1:3", "theta_b:0:0:1");
+    a.extend(["--steps", "1000000000000000000000000000000"]);
+    run_err(
+        &a,
+        &["--steps: 1000000000000000000000000000000 is invalid: must be an integer in [1, 100000]"],
+    );
+    let mut a = base("omega_a:-1:1:3", "theta_b:0:0:1");
+    a.extend(["--threads", "0"]);
+    run_err(&a, &["--threads: 0 is invalid: must be an integer in [1, "]);
     assert!(!std::path::Path::new(out).exists());
 }
 

@@ -75,9 +75,27 @@ fn a_random_scan_gets_given_data_indices_and_a_grid_scan_is_refused() {
     let gout = dir.path().join("g");
     fake_run_ok(&g, &gout, &[]);
     run_err(&["sensitivity", s(&gout)], &["grid axes"]);
+    // The resamples' range is the library's, as in Python: at least 2 (a
+    // half-width needs two resamples), at most 10^4 (not an allocation that
+    // aborts).
+    for n in [
+        "0",
+        "1",
+        "1000000000000",
+        "100000000000000000000000000000000000000000",
+    ] {
+        run_err(
+            &["sensitivity", s(&out), "--resamples", n],
+            &[&format!(
+                "--resamples: {n} is invalid: must be an integer in [2, 10000]"
+            )],
+        );
+    }
     run_err(
-        &["sensitivity", s(&out), "--resamples", "0"],
-        &["0 is invalid: must be an integer >= 1"],
+        &["sensitivity", s(&out), "--seed", "18446744073709551616"],
+        &[
+            "--seed: 18446744073709551616 is invalid: must be an integer in [0, 18446744073709551615]",
+        ],
     );
 }
 
@@ -101,4 +119,45 @@ fn a_shard_of_another_design_is_refused_and_threads_do_not_change_a_design() {
         stdout(&o)
     };
     assert_eq!(rows(&a), rows(&b));
+}
+
+#[test]
+fn indices_record_their_scan_and_another_scans_are_never_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    fake_run_ok(&write(dir.path(), "a.toml", &paper_like(40, 1)), &a, &[]);
+    fake_run_ok(&write(dir.path(), "b.toml", &paper_like(40, 2)), &b, &[]);
+    let theirs = b.join("indices.parquet");
+    run_ok(&["sensitivity", s(&b), "--resamples", "5"]);
+    let before = std::fs::read(&theirs).unwrap();
+    // The file says whose indices it holds: the scan's content hash.
+    let footer = |p: &std::path::Path, key: &str| -> String {
+        use parquet::file::reader::FileReader;
+        let f = std::fs::File::open(p).unwrap();
+        let r = parquet::file::reader::SerializedFileReader::new(f).unwrap();
+        let kv = r.metadata().file_metadata().key_value_metadata().unwrap();
+        let v = kv.iter().find(|k| k.key == key).unwrap();
+        v.value.clone().unwrap()
+    };
+    let meta = |p: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&footer(p, "rtw.sensitivity")).unwrap()
+    };
+    let hash = |p: &std::path::Path| footer(p, "rtw.content_hash");
+    assert_eq!(
+        meta(&theirs)["scan_content_hash"],
+        hash(&b.join("samples.parquet"))
+    );
+    // A's indices are not written over B's.
+    run_err(
+        &["sensitivity", s(&a), "--out", s(&theirs)],
+        &["holds the indices of another scan", "--force"],
+    );
+    assert_eq!(std::fs::read(&theirs).unwrap(), before);
+    // B's own are replaced; with --force A's go there too.
+    run_ok(&["sensitivity", s(&b), "--resamples", "6"]);
+    run_ok(&["sensitivity", s(&a), "--out", s(&theirs), "--force"]);
+    assert_eq!(
+        meta(&theirs)["scan_content_hash"],
+        hash(&a.join("samples.parquet"))
+    );
 }

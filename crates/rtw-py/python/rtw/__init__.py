@@ -384,8 +384,6 @@ def scan(
         text = config
     else:
         path = os.fspath(config)
-    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
-        raise ValueError(f"threads: {threads!r} is invalid: must be an integer >= 1")
     if isinstance(progress, bool):
         stream = sys.stderr
         report = _Bar(stream) if progress and stream is not None else None
@@ -466,10 +464,10 @@ def basin(
         x, y: the grid's axes, ``"COORD:FROM:TO:POINTS"`` with COORD one of
             ``omega_a``, ``omega_b``, ``omega_c``, ``theta_a``, ``theta_b``,
             ``theta_c`` (e.g. ``"omega_a:-40:40:41"``).
-        steps: most steps a point is iterated.
-        tol: a point returns at this scaled distance to the orbit.
-        threads: worker threads (default: one per core); the rows do not
-            depend on it.
+        steps: most steps a point is iterated, an integer in [1, 100000].
+        tol: a point returns at this scaled distance to the orbit, in (0, 0.1].
+        threads: worker threads (default: one per core; at most 4 per
+            core); the rows do not depend on it.
         design, config, variant, options, more: as for :func:`simulate`.
 
     Returns:
@@ -477,13 +475,13 @@ def basin(
         the CLI's Parquet file (docs/results-on-disk.md).
 
     Raises:
-        ValueError: an input, option or setting is invalid (named), or the
-            gait has no stable limit cycle.
+        ValueError: an input, option or setting is invalid (named with its
+            range, in the words of ``rtw-scan basin``), or the gait has no
+            stable limit cycle.
+        KeyboardInterrupt: interrupted (Ctrl-C stops it after the points in
+            flight).
     """
     values = _design("basin", design, more)
-    for name, v in (("steps", steps), ("threads", threads)):
-        if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
-            raise ValueError(f"{name}: {v!r} is invalid: must be a non-negative integer")
     return _rtw.basin(
         values, _path(config), _path(variant), _options(options, more), x, y, steps, float(tol), threads
     )

@@ -29,31 +29,28 @@ def sensitivity(
     Args:
         table: the table :func:`rtw.scan` returns, or a scan file's path
             (``samples.parquet``, or its directory); the config is read from
-            the table's schema metadata, or the file's.
-        resamples: bootstrap resamples of the 95 % intervals.
-        seed: seed of the resamples (default: the scan's seed).
+            the table's schema metadata, or the file's. Either is checked as
+            ``rtw-scan sensitivity`` checks a scan file, by the same library
+            code: its content hash (a file's, or a table's that carries
+            one), its values, its ``sample_id`` once each in order from 0
+            (Saltelli's estimator pairs rows by position), not a refine's
+            combined file (its rows are not draws from the inputs).
+        resamples: bootstrap resamples of the 95 % intervals, an integer in
+            [2, 10000].
+        seed: seed of the resamples, an integer in [0, 2^64 - 1] (default:
+            the scan's seed).
 
     Returns:
         A ``pyarrow.Table`` with columns output, parameter, S1, S1_conf, ST,
         ST_conf (S1_conf, ST_conf: half-widths of 95 % bootstrap intervals).
 
     Raises:
-        ValueError: the table is not a complete scan of uniform axes without
-            a grid, or an argument is out of range.
+        ValueError: the table or file is not a complete scan of uniform axes
+            without a grid, is refused as corrupt or refined, or an argument
+            is out of range (the words of ``rtw-scan sensitivity``, with
+            ``resamples`` for ``--resamples``).
+        KeyboardInterrupt: interrupted (Ctrl-C stops it within a resample).
     """
-    if isinstance(resamples, bool) or not isinstance(resamples, int) or resamples < 2:
-        raise ValueError(f"resamples: {resamples!r} is invalid: must be an integer >= 2")
-    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**64):
-        raise ValueError(f"seed: {seed!r} is invalid: must be an integer in [0, 2^64)")
     if isinstance(table, (str, os.PathLike)):
-        import pyarrow.parquet as pq
-
-        path = os.fspath(table)
-        if os.path.isdir(path):
-            path = os.path.join(path, "samples.parquet")
-        # The config is in the file's key-value metadata, which pyarrow keeps
-        # out of the table's schema when the file stores an Arrow schema.
-        meta = pq.read_metadata(path).metadata or {}
-        table = pq.read_table(path)
-        table = table.replace_schema_metadata({**(table.schema.metadata or {}), **meta})
+        table = os.fspath(table)
     return _rtw.sensitivity(table, resamples, seed)

@@ -7,26 +7,107 @@
 pub(crate) mod files;
 
 use crate::bifurcation::sweep::{PointLabel, failure_label};
-use crate::scan::workers::worker_pool;
-use anyhow::{Result, bail};
+use crate::scan::workers::{Stopped, parse_threads, worker_pool};
+use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rayon::prelude::*;
-use rtw_model::cycles::{Axis, Basin, BasinPoint, Coord, CycleOptions, Fate};
+use rtw_model::cycles::{
+    Axis, Basin, BasinError, BasinPoint, BasinSpec, Coord, CycleOptions, Fate,
+};
 use rtw_model::{Options, Params};
 use std::num::NonZeroUsize;
+use std::sync::atomic::{AtomicBool, Ordering};
 
-/// The basin slice of `spec` around the gait of `params` under `options`
-/// (both already checked), as the rows `rtw-scan basin` writes: one per
-/// grid point, row-major (`y` outer, `x` inner), the same on any number of
-/// `threads`. Python's `rtw.basin` is this function.
+/// A slice's settings, checked: the grid and its steps and tolerance, and
+/// the worker threads (`None`: one per core).
+#[derive(Clone, Copy, Debug)]
+pub struct Settings {
+    /// The grid, the steps and the tolerance.
+    pub spec: BasinSpec,
+    /// Worker threads.
+    pub threads: Option<NonZeroUsize>,
+}
+
+impl Settings {
+    /// The settings as given (the axes `COORD:FROM:TO:POINTS`, the steps
+    /// and threads as the digits written), each checked against its range
+    /// and named in an error as `prefix` + its name (`--steps` on the
+    /// command line, `steps` in Python), the axes with their text.
+    pub fn parse(
+        x: &str,
+        y: &str,
+        steps: &str,
+        tol: f64,
+        threads: Option<&str>,
+        prefix: &str,
+    ) -> Result<Self> {
+        let name = |n: &str| format!("{prefix}{n}");
+        // The range of the steps is rtw-model's (`BasinSpec::validate`): a
+        // count beyond any integer is out of it like a large one, and text
+        // that is no count at all like zero; the message shows it as given.
+        let digits = steps.trim();
+        let spec = BasinSpec {
+            x: parse_axis(x, &name("x"))?,
+            y: parse_axis(y, &name("y"))?,
+            steps: digits.parse().unwrap_or_else(|_| {
+                if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+                    usize::MAX
+                } else {
+                    0
+                }
+            }),
+            tol,
+        };
+        if let Err(BasinError::Invalid { field, what, range }) = spec.validate() {
+            let (given, what) = match field {
+                "x" => (format!(" {x}"), what),
+                "y" => (format!(" {y}"), what),
+                "steps" => (String::new(), digits.to_string()),
+                _ => (String::new(), what),
+            };
+            bail!("{}{given}: {what} is invalid: must be {range}", name(field));
+        }
+        let threads = threads
+            .map(|t| parse_threads(t, &name("threads")))
+            .transpose()?;
+        Ok(Self { spec, threads })
+    }
+}
+
+/// The basin slice of `settings` around the gait of `params` under
+/// `options` (both already checked): the gait, and every grid point in
+/// grid order (row-major: `y` outer, `x` inner), the same on any number of
+/// threads. Setting `cancel` stops it after the points in flight, with the
+/// error [`Stopped`]. `rtw-scan basin` and Python's `rtw.basin` both run it.
+pub fn slice(
+    params: &Params,
+    options: &Options,
+    settings: &Settings,
+    cancel: &AtomicBool,
+) -> Result<(Basin, Vec<BasinPoint>)> {
+    // Started first: the pool refuses a thread count beyond its cap before
+    // the gait is solved.
+    let pool = worker_pool(settings.threads)?;
+    let slice = Basin::new(params, options, &CycleOptions::default(), settings.spec)?;
+    let points: Option<Vec<BasinPoint>> = pool.install(|| {
+        (0..slice.len())
+            .into_par_iter()
+            .map(|i| (!cancel.load(Ordering::Relaxed)).then(|| slice.point(i)))
+            .collect()
+    });
+    let points = points.ok_or_else(|| anyhow!(Stopped))?;
+    Ok((slice, points))
+}
+
+/// [`slice`] as the rows `rtw-scan basin` writes: one per grid point.
+/// Python's `rtw.basin` is this function.
 pub fn slice_table(
     params: &Params,
     options: &Options,
-    spec: rtw_model::cycles::BasinSpec,
-    threads: Option<NonZeroUsize>,
+    settings: &Settings,
+    cancel: &AtomicBool,
 ) -> Result<RecordBatch> {
-    let slice = Basin::new(params, options, &CycleOptions::default(), spec)?;
-    let points = run(&slice, threads)?;
+    let (slice, points) = slice(params, options, settings, cancel)?;
     Ok(files::batch(&files::rows(&slice, &points)))
 }
 
@@ -52,17 +133,6 @@ pub(crate) fn point_label(p: &BasinPoint) -> Option<PointLabel> {
         (_, Some(l)) => Some(PointLabel::Outcome(l)),
         _ => None,
     }
-}
-
-/// Every point of `basin`, in grid order, on `threads` workers.
-pub(crate) fn run(basin: &Basin, threads: Option<NonZeroUsize>) -> Result<Vec<BasinPoint>> {
-    let pool = worker_pool(threads)?;
-    Ok(pool.install(|| {
-        (0..basin.len())
-            .into_par_iter()
-            .map(|i| basin.point(i))
-            .collect()
-    }))
 }
 
 /// Parses an axis `COORD:FROM:TO:POINTS` given by `flag`, naming the flag

@@ -2,14 +2,13 @@
 //! section points each iterated on the step map and classified.
 
 use super::bifurcation::ModelArgs;
-use crate::basin::{self, OUTCOMES, files, outcome_index, parse_axis};
+use super::signal::STOP;
+use crate::basin::{self, OUTCOMES, Settings, files, outcome_index};
 use crate::config::params::checked_params;
 use crate::config::validate_options;
-use crate::scan::workers::check_threads;
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
-use rtw_model::cycles::{Basin, BasinError, BasinSpec, CycleOptions};
-use std::num::NonZeroUsize;
+use rtw_model::cycles::CycleOptions;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -26,15 +25,20 @@ pub(super) struct BasinArgs {
     /// The grid's second axis, as --x, another coordinate.
     #[arg(long, value_name = "COORD:FROM:TO:POINTS", allow_hyphen_values = true)]
     y: String,
-    /// Most steps each point is iterated on the step map.
-    #[arg(long, default_value_t = 60)]
-    steps: usize,
+    /// Most steps each point is iterated on the step map, an integer in [1, 100000].
+    #[arg(
+        long,
+        value_name = "N",
+        default_value = "60",
+        allow_hyphen_values = true
+    )]
+    steps: String,
     /// A point returns when its scaled distance to the gait's orbit is at most this.
     #[arg(long, default_value_t = 1e-3)]
     tol: f64,
-    /// Worker threads [default: one per core]. The rows do not depend on it.
-    #[arg(long)]
-    threads: Option<NonZeroUsize>,
+    /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    threads: Option<String>,
     /// The grid, one row per point.
     #[arg(long, value_name = "FILE.parquet")]
     out: PathBuf,
@@ -47,30 +51,14 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     let (p, options) = a.model.resolve()?;
     let params = checked_params([p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi], "--")?;
     validate_options(&options, "simulation")?;
-    let spec = BasinSpec {
-        x: parse_axis(&a.x, "--x")?,
-        y: parse_axis(&a.y, "--y")?,
-        steps: a.steps,
-        tol: a.tol,
-    };
-    // The settings by the flags that give them (--x, --y, --steps, --tol).
-    if let Err(BasinError::Invalid { field, what, range }) = spec.validate() {
-        let given = match field {
-            "x" => format!(" {}", a.x),
-            "y" => format!(" {}", a.y),
-            _ => String::new(),
-        };
-        bail!("--{field}{given}: {what} is invalid: must be {range}");
-    }
-    check_threads(a.threads, "--threads")?;
+    let settings = Settings::parse(&a.x, &a.y, &a.steps, a.tol, a.threads.as_deref(), "--")?;
+    let spec = settings.spec;
     files::check_output(&a.out, a.force)?;
     let cycle = CycleOptions::default();
     let t0 = Instant::now();
-    let slice = Basin::new(&params, &options, &cycle, spec)?;
-    let t1 = Instant::now();
-    let points = basin::run(&slice, a.threads)?;
+    let (slice, points) = basin::slice(&params, &options, &settings, &STOP)?;
     let wall = t0.elapsed().as_secs_f64();
-    let per_point = t1.elapsed().as_secs_f64() / points.len() as f64;
+    let per_point = wall / points.len() as f64;
     files::write(
         &a.out,
         &slice,

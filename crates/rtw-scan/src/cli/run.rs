@@ -10,7 +10,7 @@ use crate::scan::checkpoint::Layout;
 use crate::scan::run::{self, RunSettings, RunStatus};
 use crate::scan::shard::{self, Shard};
 use crate::scan::space;
-use crate::scan::workers::check_threads;
+use crate::scan::workers::parse_threads;
 use anyhow::{Result, anyhow};
 use clap::Args;
 use std::num::NonZeroUsize;
@@ -27,8 +27,8 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
-    #[arg(long, value_name = "N", value_parser = super::values::positive)]
-    threads: Option<NonZeroUsize>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    threads: Option<String>,
     /// Layer a model variant file (configs/variants/*.toml: name, description, [simulation]) over the
     /// config's [simulation] table; the scan is named CONFIG-NAME+VARIANT-NAME.
     #[arg(long, value_name = "FILE")]
@@ -104,8 +104,13 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
 }
 
 pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
+    // A flag's value is refused before the config is read, as clap refuses it.
+    let threads = a
+        .threads
+        .as_deref()
+        .map(|t| parse_threads(t, "--threads"))
+        .transpose()?;
     let cfg = super::validate::scan_config(&a.config, a.variant.as_deref(), &a.set)?;
-    check_threads(a.threads, "--threads")?;
     let out = match a.out.clone() {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,
@@ -114,7 +119,7 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     GRACEFUL.store(true, Ordering::SeqCst);
     let settings = RunSettings {
         out_dir: out.clone(),
-        threads: a.threads,
+        threads,
         resume: a.resume,
         chunk_size: a.chunk_size,
         shard: a.shard,

@@ -1,12 +1,10 @@
-//! `sensitivity`: Sobol indices of a finished scan's outputs.
+//! `sensitivity`: Sobol indices of a finished scan's outputs. The study is
+//! the library's ([`crate::sensitivity`]); this parses and prints.
 
-use crate::analysis::sensitivity::{self, Index};
-use crate::files;
-use crate::io::metadata::{FileKind, META_SENSITIVITY, META_VERSION, kv};
-use crate::io::{destination, parquet};
+use super::signal::STOP;
+use crate::sensitivity::{self, Index, Settings};
 use anyhow::Result;
 use clap::Args;
-use std::num::NonZeroUsize;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -17,57 +15,41 @@ pub(super) struct SensitivityArgs {
     /// Where to write the indices [default: indices.parquet beside the scan file].
     #[arg(long, value_name = "FILE.parquet")]
     out: Option<PathBuf>,
-    /// Bootstrap resamples of the confidence intervals.
-    #[arg(long, default_value = "100", value_parser = super::values::positive)]
-    resamples: NonZeroUsize,
-    /// Seed of the bootstrap resamples [default: the scan's seed].
-    #[arg(long)]
-    seed: Option<u64>,
+    /// Bootstrap resamples of the confidence intervals, an integer in [2, 10000].
+    #[arg(
+        long,
+        value_name = "N",
+        default_value = "100",
+        allow_hyphen_values = true
+    )]
+    resamples: String,
+    /// Seed of the bootstrap resamples, an integer in [0, 2^64 - 1] [default: the scan's seed].
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    seed: Option<String>,
     /// Print JSON (one object per index) instead of a table.
     #[arg(long)]
     json: bool,
-    /// Write the indices even over a file that is not an indices file (never over a symlink or a
-    /// special file).
+    /// Write the indices even over a file that is not an indices file, or over another scan's
+    /// indices (never over a symlink or a special file).
     #[arg(long)]
     force: bool,
 }
 
 pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
-    let scan = if a.scan.is_dir() {
-        a.scan.join("samples.parquet")
-    } else {
-        a.scan.clone()
-    };
+    let settings = Settings::parse(&a.resamples, a.seed.as_deref(), "--")?;
+    let scan = sensitivity::scan_file(&a.scan);
     let out = a
         .out
         .clone()
         .unwrap_or_else(|| scan.with_file_name("indices.parquet"));
-    destination::check_destination(&out, FileKind::Sensitivity, &[&scan], "--out", a.force)?;
-    let (cfg, cols) = sensitivity::read(&scan)?;
-    let seed = a.seed.unwrap_or(cfg.seed);
-    let (method, rows) = sensitivity::indices(&cfg, &cols, a.resamples.get(), seed)?;
-    let about = serde_json::json!({
-        "method": method.name(),
-        "scan": scan.display().to_string(),
-        "config_hash": cfg.hash(),
-        "rows": cols.outputs.first().map_or(0, |(_, y)| y.len()),
-        "resamples": a.resamples.get(),
-        "seed": seed,
-    });
-    files::remove_stray_temps(&out)?;
-    parquet::write_file(
-        &out,
-        &sensitivity::to_batch(&rows),
-        vec![
-            kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
-            kv(META_SENSITIVITY, about.to_string()),
-        ],
-    )?;
+    sensitivity::check_out(&out, &scan, a.force)?;
+    let analysis = sensitivity::analyse_file(&scan, &settings, &STOP)?;
+    sensitivity::write(&out, &analysis)?;
     if a.json {
-        let all: Vec<_> = rows.iter().map(json).collect();
+        let all: Vec<_> = analysis.indices.iter().map(json).collect();
         println!("{}", serde_json::to_string_pretty(&all)?);
     } else {
-        print!("{}", table(method.name(), &rows));
+        print!("{}", table(analysis.method.name(), &analysis.indices));
     }
     eprintln!("wrote {}", out.display());
     Ok(ExitCode::SUCCESS)

@@ -29,6 +29,7 @@
 //! range whose ends are valid only yields valid samples.
 
 pub mod axis;
+pub mod count;
 pub mod layers;
 pub mod params;
 pub(crate) mod raw;

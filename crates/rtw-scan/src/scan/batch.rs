@@ -8,7 +8,7 @@ use crate::io::scan_rows::{self, Row};
 use crate::scan::one::Simulator;
 use crate::scan::progress::Progress;
 use crate::scan::sample::Sampler;
-use crate::scan::workers::{Jobs, check_threads, worker_pool};
+use crate::scan::workers::{Jobs, worker_pool};
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rayon::prelude::*;
@@ -69,7 +69,6 @@ pub fn scan_batch(
              rows to DIR/samples.parquet, and read that file (polars.scan_parquet reads it lazily)"
         );
     }
-    check_threads(threads, "threads")?;
     let pool = worker_pool(threads)?;
     let started = Instant::now();
     progress.start(total);

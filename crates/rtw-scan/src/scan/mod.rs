@@ -31,7 +31,7 @@ pub mod sample;
 pub(crate) mod shard;
 pub mod single;
 pub(crate) mod space;
-pub(crate) mod workers;
+pub mod workers;
 
 pub use batch::scan_batch;
 pub use progress::{Progress, Silent};

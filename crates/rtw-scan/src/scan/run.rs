@@ -46,7 +46,7 @@ use crate::scan::one::Simulator;
 use crate::scan::progress::Progress;
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
-use crate::scan::workers::{Jobs, check_threads, worker_pool};
+use crate::scan::workers::{Jobs, worker_pool};
 use anyhow::{Context, Result, anyhow, bail};
 use std::collections::BTreeSet;
 use std::num::NonZeroUsize;
@@ -121,7 +121,9 @@ pub(crate) fn run_scan_with(
     let rows = ids.end - ids.start;
     let shard_text = settings.shard.map(|s| s.to_string());
     let config_toml = cfg.to_toml();
-    check_threads(settings.threads, "--threads")?;
+    // Started here, before any file is made: the pool refuses a thread
+    // count beyond its cap.
+    let pool = worker_pool(settings.threads)?;
     check_chunk_size(settings.chunk_size.get())?;
     let out = &settings.out_dir;
     std::fs::create_dir_all(out)
@@ -225,7 +227,6 @@ pub(crate) fn run_scan_with(
         }
     }
 
-    let pool = worker_pool(settings.threads)?;
     let mut computed = 0;
     let jobs = Jobs {
         sampler,

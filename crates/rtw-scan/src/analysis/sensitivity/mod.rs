@@ -21,22 +21,28 @@
 //! Confidence: `Z₀.₉₇₅ × ` the standard deviation (ddof 1) of the index over
 //! bootstrap resamples (of base rows, or of rows), drawn from a seed.
 
-use crate::analysis::report::{Z95, open_scan};
+mod study;
+
+pub use study::{
+    Analysis, RESAMPLES, Settings, analyse_file, analyse_table, check_out, scan_file, write,
+};
+
+use crate::analysis::report::Z95;
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
-use crate::io::metadata::META_REFINE;
-use crate::io::scan_files;
+use crate::config::count::count;
 use crate::io::table::{f64_column, label_column};
 use crate::sampling::Sampling;
-use anyhow::{Context, Result, bail};
+use crate::scan::workers::Stopped;
+use anyhow::{Result, anyhow, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rtw_model::Param;
 use rtw_model::outcome::Label;
-use std::path::Path;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// One row of `indices.parquet`.
 #[derive(Clone, Debug, PartialEq)]
@@ -111,6 +117,16 @@ pub fn columns(
         for (name, v, complete) in continuous.iter_mut() {
             let c = f64_column(b, name)?;
             *complete &= c.null_count() == 0;
+            // A run without a value has a null: a NaN is no value rtw-scan
+            // writes, and would silently drop the output.
+            if let Some(i) = (0..c.len()).find(|&i| c.is_valid(i) && !c.value(i).is_finite()) {
+                bail!(
+                    "column `{name}`, row {}: {} is invalid: must be a finite number or null; the \
+                     file is corrupt or was not written by rtw-scan",
+                    v.len() + i,
+                    c.value(i)
+                );
+            }
             v.extend((0..c.len()).map(|i| if c.is_null(i) { f64::NAN } else { c.value(i) }));
         }
     }
@@ -124,43 +140,11 @@ pub fn columns(
     outputs.push(("stable".into(), indicator(&|x| x.is_stable())));
     outputs.push(("failure".into(), indicator(&|x| x.is_failure())));
     for (name, v, complete) in continuous {
-        if complete && v.iter().all(|x| x.is_finite()) {
+        if complete {
             outputs.push((name.to_string(), v));
         }
     }
     Ok(Columns { inputs, outputs })
-}
-
-/// A scan file's config and its inputs and outputs, its rows checked
-/// (values, ids in order from 0) as every reader of scan files checks them.
-pub fn read(path: &Path) -> Result<(ScanConfig, Columns)> {
-    let (input, cfg) = open_scan(path)?;
-    // Refinement adds samples where the labels change: they are not draws
-    // from the inputs' distribution, and every estimator here weighs each
-    // row as one.
-    if input.metadata.contains_key(META_REFINE) {
-        let own = path
-            .parent()
-            .and_then(Path::parent)
-            .map(|d| d.join("samples.parquet"));
-        bail!(
-            "{} holds a refined scan: its added samples crowd where the labels change, so they \
-             are not draws from the inputs' distribution and Sobol indices from them would be \
-             biased; analyse the scan's own rows{}",
-            path.display(),
-            own.map_or(String::new(), |p| format!(" ({})", p.display()))
-        );
-    }
-    let (mut rows, mut next) = (0u64, None);
-    let batches = input.reader.map(|b| {
-        let b = b.with_context(|| format!("reading {}", path.display()))?;
-        scan_files::check_scan_values(&b, path, rows)?;
-        next = scan_files::check_ids(&b, path, rows, next)?;
-        rows += b.num_rows() as u64;
-        Ok(b)
-    });
-    let cols = columns(&cfg, batches).with_context(|| path.display().to_string())?;
-    Ok((cfg, cols))
 }
 
 /// Population mean and variance.
@@ -207,7 +191,14 @@ fn saltelli_once(y: &[f64], d: usize, rows: &[usize]) -> Vec<(f64, f64)> {
 /// S1, S1_conf, ST, ST_conf of each input from a Saltelli output `y`
 /// (`N (d + 2)` values in SALib's order), with `resamples` bootstrap
 /// resamples of the base rows drawn from `seed`.
-pub fn saltelli(y: &[f64], d: usize, resamples: usize, seed: u64) -> Vec<[f64; 4]> {
+/// Setting `cancel` ends it between two resamples, with `None`.
+pub fn saltelli(
+    y: &[f64],
+    d: usize,
+    resamples: usize,
+    seed: u64,
+    cancel: &AtomicBool,
+) -> Option<Vec<[f64; 4]>> {
     let n = y.len() / (d + 2);
     let (m, var) = mean_var(y.iter().copied());
     let sd = var.sqrt();
@@ -222,21 +213,26 @@ pub fn saltelli(y: &[f64], d: usize, resamples: usize, seed: u64) -> Vec<[f64; 4
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let boot: Vec<Vec<(f64, f64)>> = (0..resamples)
         .map(|_| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
             let rows: Vec<usize> = (0..n).map(|_| rng.random_range(0..n)).collect();
-            if constant {
+            Some(if constant {
                 vec![(0.0, 0.0); d]
             } else {
                 saltelli_once(&z, d, &rows)
-            }
+            })
         })
-        .collect();
-    (0..d)
-        .map(|k| {
-            let s1: Vec<f64> = boot.iter().map(|r| r[k].0).collect();
-            let st: Vec<f64> = boot.iter().map(|r| r[k].1).collect();
-            [point[k].0, Z95 * std1(&s1), point[k].1, Z95 * std1(&st)]
-        })
-        .collect()
+        .collect::<Option<_>>()?;
+    Some(
+        (0..d)
+            .map(|k| {
+                let s1: Vec<f64> = boot.iter().map(|r| r[k].0).collect();
+                let st: Vec<f64> = boot.iter().map(|r| r[k].1).collect();
+                [point[k].0, Z95 * std1(&s1), point[k].1, Z95 * std1(&st)]
+            })
+            .collect(),
+    )
 }
 
 /// The number of equal-frequency bins for `n` rows (SALib delta's rule).
@@ -284,27 +280,42 @@ fn binned_once(x: &[f64], y: &[f64], rows: &[usize]) -> f64 {
 }
 
 /// S1 and S1_conf of `y` to `x` from given data, with `resamples`
-/// bootstrap resamples of the rows drawn from `seed`.
-pub fn binned(x: &[f64], y: &[f64], resamples: usize, seed: u64) -> [f64; 2] {
+/// bootstrap resamples of the rows drawn from `seed`. Setting `cancel` ends
+/// it between two resamples, with `None`.
+pub fn binned(
+    x: &[f64],
+    y: &[f64],
+    resamples: usize,
+    seed: u64,
+    cancel: &AtomicBool,
+) -> Option<[f64; 2]> {
     let n = y.len();
     let all: Vec<usize> = (0..n).collect();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let boot: Vec<f64> = (0..resamples)
         .map(|_| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
             let rows: Vec<usize> = (0..n).map(|_| rng.random_range(0..n)).collect();
-            binned_once(x, y, &rows)
+            Some(binned_once(x, y, &rows))
         })
-        .collect();
-    [binned_once(x, y, &all), Z95 * std1(&boot)]
+        .collect::<Option<_>>()?;
+    Some([binned_once(x, y, &all), Z95 * std1(&boot)])
 }
 
-/// The indices of every output to every uniform input of a complete scan.
+/// The indices of every output to every uniform input of a complete scan,
+/// with `resamples` (in [`RESAMPLES`]) bootstrap resamples drawn from
+/// `seed`. Setting `cancel` ends it between two resamples, with the error
+/// [`Stopped`].
 pub fn indices(
     cfg: &ScanConfig,
     cols: &Columns,
     resamples: usize,
     seed: u64,
+    cancel: &AtomicBool,
 ) -> Result<(Method, Vec<Index>)> {
+    count("resamples", &resamples.to_string(), RESAMPLES, "")?;
     let d = cols.inputs.len();
     if d == 0 {
         bail!("the scan has no uniform axis: there is no input to attribute its outputs to");
@@ -322,9 +333,6 @@ pub fn indices(
             cfg.total_rows()?
         );
     }
-    if resamples < 2 {
-        bail!("--resamples: {resamples} is invalid: must be an integer >= 2");
-    }
     let method = if cfg.sampling == Sampling::Saltelli {
         Method::Saltelli
     } else {
@@ -333,16 +341,17 @@ pub fn indices(
     let mut out = Vec::new();
     for (name, y) in &cols.outputs {
         let rows = match method {
-            Method::Saltelli => saltelli(y, d, resamples, seed),
+            Method::Saltelli => saltelli(y, d, resamples, seed, cancel),
             Method::Binned => cols
                 .inputs
                 .iter()
                 .map(|(_, x)| {
-                    let [s1, c] = binned(x, y, resamples, seed);
-                    [s1, c, f64::NAN, f64::NAN]
+                    let [s1, c] = binned(x, y, resamples, seed, cancel)?;
+                    Some([s1, c, f64::NAN, f64::NAN])
                 })
                 .collect(),
-        };
+        }
+        .ok_or_else(|| anyhow!(Stopped))?;
         for ((parameter, _), [s1, s1_conf, st, st_conf]) in cols.inputs.iter().zip(rows) {
             out.push(Index {
                 output: name.clone(),
@@ -411,7 +420,8 @@ mod tests {
                 ishigami(p)
             })
             .collect();
-        let s = saltelli(&y, 3, 100, 1);
+        let go = AtomicBool::new(false);
+        let s = saltelli(&y, 3, 100, 1, &go).unwrap();
         // Ishigami (a = 7, b = 0.1): S1 = 0.314, 0.442, 0; ST = 0.558, 0.442, 0.244.
         let (s1, st) = ([0.3139, 0.4424, 0.0], [0.5576, 0.4424, 0.2437]);
         for k in 0..3 {
@@ -420,7 +430,12 @@ mod tests {
             assert!(s[k][1] > 0.0 && s[k][1] < 0.1 && s[k][3] > 0.0 && s[k][3] < 0.1);
         }
         // A constant output has no influence, as in SALib.
-        assert_eq!(saltelli(&vec![1.0; 50], 3, 10, 1)[0], [0.0; 4]);
+        assert_eq!(
+            saltelli(&vec![1.0; 50], 3, 10, 1, &go).unwrap()[0],
+            [0.0; 4]
+        );
+        // A set cancel flag ends it.
+        assert!(saltelli(&y, 3, 100, 1, &AtomicBool::new(true)).is_none());
     }
 
     #[test]
@@ -430,8 +445,10 @@ mod tests {
         let x0: Vec<f64> = (0..n).map(|_| rng.random()).collect();
         let x1: Vec<f64> = (0..n).map(|_| rng.random()).collect();
         let y: Vec<f64> = x0.iter().map(|v| f64::from(u8::from(*v > 0.5))).collect();
-        let [s0, c0] = binned(&x0, &y, 50, 1);
-        let [s1, _] = binned(&x1, &y, 50, 1);
+        let go = AtomicBool::new(false);
+        let [s0, c0] = binned(&x0, &y, 50, 1, &go).unwrap();
+        let [s1, _] = binned(&x1, &y, 50, 1, &go).unwrap();
+        assert!(binned(&x0, &y, 50, 1, &AtomicBool::new(true)).is_none());
         assert!(s0 > 0.9 && c0 < 0.05, "{s0} ± {c0}");
         assert!(s1 < 0.05, "{s1}");
         assert_eq!((bins(256), bins(1000), bins(28672)), (5, 6, 31));
