@@ -33,12 +33,13 @@
 //! starts a flat step after it), in units of the gait's mean speed.
 
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
+use crate::outcome::Outcome;
 use crate::outcome::{FailureDetail, MeanFirstPassage};
+use crate::params::{Params, Physical};
 use crate::plant::geometry::SPOKES;
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
 use crate::run::recorder::run_from;
-use crate::run::robustness::SettledGait;
 use hybrid_ode::Work;
 use hybrid_ode::metastable::{MfptOptions, Rng, Walker, mfpt};
 use std::cell::RefCell;
@@ -69,9 +70,23 @@ pub(crate) struct State {
     fresh: bool,
 }
 
+/// A stable gait's settled state (as the step down meets it,
+/// robustness.rs): what the walker starts from.
+pub(crate) struct Settled<'a> {
+    pub(crate) params: &'a Params,
+    /// The options the step down is judged under.
+    pub(crate) options: Options,
+    pub(crate) phys: &'a Physical,
+    pub(crate) rtw: &'a Rtw,
+    pub(crate) y: &'a [f64; N],
+    pub(crate) flat: &'a Outcome,
+    /// Where the rough slope starts (m).
+    pub(crate) edge: f64,
+}
+
 /// The settled gait as a walker on the rough slope.
 struct RtwWalker<'a, 'b> {
-    s: &'a SettledGait<'b>,
+    s: &'a Settled<'b>,
     /// One step of the flat gait, never stopped early.
     options: Options,
     /// The centre of mass's velocity at the settled state.
@@ -144,7 +159,7 @@ impl Walker for RtwWalker<'_, '_> {
 /// The MFPT of the settled gait `s` on the rough slope of `r.sigma` with
 /// `terrain`'s seed and patch length (see the module doc).
 pub(crate) fn mean_first_passage(
-    s: &SettledGait<'_>,
+    s: &Settled<'_>,
     r: &RobustnessOptions,
     terrain: TerrainOptions,
     work: &mut Work,

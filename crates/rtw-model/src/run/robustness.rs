@@ -58,15 +58,15 @@ pub const STEP_DOWN_ATOL: f64 = 1e-3;
 
 /// The settled gait of a stable flat run, ready to meet a step.
 pub(crate) struct SettledGait<'a> {
-    pub(super) params: &'a Params,
-    pub(super) options: Options,
-    pub(super) phys: &'a Physical,
-    pub(super) rtw: &'a Rtw,
-    pub(super) y: &'a [f64; N],
-    pub(super) flat: &'a Outcome,
+    params: &'a Params,
+    options: Options,
+    phys: &'a Physical,
+    rtw: &'a Rtw,
+    y: &'a [f64; N],
+    flat: &'a Outcome,
     /// Where the ground ahead of the gait starts (m): a step's edge, or the
     /// first rough patch.
-    pub(super) edge: f64,
+    edge: f64,
 }
 
 impl SettledGait<'_> {
@@ -195,7 +195,21 @@ pub(crate) fn measure(
         )
     });
     let mfpt = options.robustness.mfpt.then(|| {
-        crate::run::mfpt::mean_first_passage(&s, &options.robustness, options.terrain, &mut work)
+        let settled = crate::run::mfpt::Settled {
+            params: s.params,
+            options: s.options,
+            phys: s.phys,
+            rtw: s.rtw,
+            y: s.y,
+            flat: s.flat,
+            edge: s.edge,
+        };
+        crate::run::mfpt::mean_first_passage(
+            &settled,
+            &options.robustness,
+            options.terrain,
+            &mut work,
+        )
     });
     Robustness {
         asked: options.robustness,
