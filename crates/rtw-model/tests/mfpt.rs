@@ -8,14 +8,16 @@ use rtw_model::{Options, Params, simulate};
 
 #[test]
 fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
-    let mut o = Options::default();
-    o.robustness = RobustnessOptions {
-        mfpt: true,
-        steps_to_fall: true,
-        sigma: 0.05,
-        trials: 200,
-        max_steps: 20_000,
-        ..RobustnessOptions::default()
+    let o = Options {
+        robustness: RobustnessOptions {
+            mfpt: true,
+            steps_to_fall: true,
+            sigma: 0.05,
+            trials: 200,
+            max_steps: 20_000,
+            ..RobustnessOptions::default()
+        },
+        ..Options::default()
     };
     let out = simulate(&Params::fig7a(), &o);
     assert!(out.label.is_stable(), "{out:?}");
@@ -34,11 +36,13 @@ fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
 
 #[test]
 fn the_mfpt_is_a_function_of_the_seed_and_refused_on_the_flat_slope() {
-    let mut o = Options::default();
-    o.robustness = RobustnessOptions {
-        mfpt: true,
-        sigma: 0.05,
-        ..RobustnessOptions::default()
+    let mut o = Options {
+        robustness: RobustnessOptions {
+            mfpt: true,
+            sigma: 0.05,
+            ..RobustnessOptions::default()
+        },
+        ..Options::default()
     };
     let p = Params::fig7a();
     let a = simulate(&p, &o).robustness.unwrap().mfpt.unwrap();
