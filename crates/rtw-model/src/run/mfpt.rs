@@ -33,9 +33,7 @@
 //! starts a flat step after it), in units of the gait's mean speed.
 
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
-use crate::outcome::Outcome;
 use crate::outcome::{FailureDetail, MeanFirstPassage};
-use crate::params::{Params, Physical};
 use crate::plant::geometry::SPOKES;
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};

@@ -39,8 +39,8 @@
 //! tolerance; the last height with `S ≥ ½` is reported (0 when even the first
 //! rung, bisected down to `STEP_DOWN_ATOL × L`, has `S < ½`).
 
+use crate::options::Options;
 use crate::options::TerrainOptions;
-use crate::options::{Options, RobustnessOptions};
 use crate::outcome::{Outcome, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
@@ -195,7 +195,7 @@ pub(crate) fn measure(
 #[cfg(test)]
 pub(crate) fn meet_step(params: &Params, options: &Options, h: f64) -> Option<(Outcome, bool)> {
     let mut flat_options = *options;
-    flat_options.robustness = RobustnessOptions::default();
+    flat_options.robustness = crate::options::RobustnessOptions::default();
     crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
         flat.label.is_stable().then(|| {
             settled(params, options, phys, rtw, y, flat).meet_step(h, &mut Work::default())
@@ -216,7 +216,7 @@ pub(crate) fn every_phase(
     heights: &[f64],
 ) -> Option<(Vec<Vec<(Outcome, bool)>>, (f64, Option<f64>))> {
     let mut flat_options = *options;
-    flat_options.robustness = RobustnessOptions::default();
+    flat_options.robustness = crate::options::RobustnessOptions::default();
     crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
         flat.label.is_stable().then(|| {
             let s = settled(params, options, phys, rtw, y, flat);
@@ -235,9 +235,9 @@ pub(crate) fn every_phase(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::run::settled::SURVIVAL_STEPS;
     use crate::outcome::Label;
     use crate::run::recorder::with_end_state;
+    use crate::run::settled::SURVIVAL_STEPS;
 
     /// A step is a new foot's touchdown (docs/model.md, the step map's
     /// section), not any touchdown: the window a step down is judged over

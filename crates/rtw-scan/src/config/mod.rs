@@ -183,7 +183,7 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
         cluster: raw.cluster,
         simulation: raw.simulation,
     };
-    design::check(cfg.sampling, cfg.samples, cfg.uniform_axes()).map_err(|e| anyhow!(e))?;
+    sampling::check(cfg.sampling, cfg.samples, cfg.uniform_axes()).map_err(|e| anyhow!(e))?;
     cfg.total_rows()?;
     Ok(cfg)
 }

@@ -8,11 +8,11 @@ use super::{Columns, Index, Method, columns, indices, to_batch};
 use crate::analysis::report::open_scan;
 use crate::config::count::count;
 use crate::config::{self, ScanConfig};
+use crate::files;
 use crate::io::content_hash::ContentHash;
 use crate::io::metadata::{
     FileKind, META_CONFIG, META_CONTENT_HASH, META_REFINE, META_SENSITIVITY, VERSION, kv,
 };
-use crate::files;
 use crate::io::{destination, parquet, scan_files};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
