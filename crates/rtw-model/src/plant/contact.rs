@@ -37,7 +37,7 @@ pub enum RodMode {
     },
     /// 1 DOF θ: tip pinned in the inside corner at the foot of a face of the
     /// ground, held by the lower patch and the face together
-    /// ([`crate::plant::face`]).
+    /// (`plant::face`).
     Corner {
         /// The tip in the corner.
         tip: Tip,
@@ -45,7 +45,7 @@ pub enum RodMode {
         side: f64,
     },
     /// 2 DOF (y_tip, θ): tip on a face of the ground, sliding along it
-    /// without friction ([`crate::plant::face`]).
+    /// without friction (`plant::face`).
     Wall {
         /// The tip on the face.
         tip: Tip,
@@ -438,7 +438,7 @@ pub enum ImpactKind {
         kappa: f64,
     },
     /// A face of the ground stops the tip's velocity across it, without
-    /// friction ([`crate::plant::face`]).
+    /// friction (`plant::face`).
     Face,
 }
 

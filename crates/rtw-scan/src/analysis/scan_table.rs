@@ -161,7 +161,7 @@ fn read_files(files: &[PathBuf], set_total: Option<u64>) -> Result<ScanTable> {
 /// Reads the sensitivity indices at `path` (`rtw-scan sensitivity`'s
 /// file, verified as every read is) and checks that they are of the scan
 /// whose metadata is `scan` and which has `rows` rows: by the scan's
-/// content hash when the indices record it ([`SENSITIVITY_SCAN_HASH`]),
+/// content hash when the indices record it (`SENSITIVITY_SCAN_HASH`),
 /// else by its config hash and row count. A file of other indices, or of
 /// none, is refused, naming it.
 pub fn read_indices(

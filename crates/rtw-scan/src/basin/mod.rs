@@ -99,7 +99,7 @@ pub fn slice(
     Ok((slice, points))
 }
 
-/// [`slice`] as the rows `rtw-scan basin` writes: one per grid point.
+/// [`slice()`] as the rows `rtw-scan basin` writes: one per grid point.
 /// Python's `rtw.basin` is this function.
 pub fn slice_table(
     params: &Params,

@@ -8,7 +8,7 @@
 //! not), so a value depends only on (seed, i, its own range). Any subset,
 //! shard, resume or thread count reproduces the same rows.
 //!
-//! With another `sampling` design ([`super::design`]), the uniform axes of
+//! With another `sampling` design ([`crate::sampling`]), the uniform axes of
 //! draw `d = i mod rows_per_grid_point` are instead the coordinates of the
 //! design's point `d` (the uniform axes in [`Param::ALL`] order), mapped to
 //! `lo + x (hi − lo)`; the grid point is `i / rows_per_grid_point`.

@@ -1,5 +1,5 @@
 //! The worker threads of a scan and what each of them needs: the pool (at
-//! most [`MAX_THREADS_PER_CORE`] a core) and a sample's row, counted in the
+//! most `MAX_THREADS_PER_CORE` a core) and a sample's row, counted in the
 //! progress.
 
 use crate::config::count::count_usize;
@@ -28,7 +28,7 @@ fn thread_range() -> (std::ops::RangeInclusive<usize>, String) {
 }
 
 /// A thread count given as text (`--threads`, Python's `threads`), in the
-/// range every [`worker_pool`] accepts; the error names it as `name`.
+/// range every worker pool accepts; the error names it as `name`.
 pub fn parse_threads(text: &str, name: &str) -> Result<NonZeroUsize> {
     let (range, note) = thread_range();
     let n = count_usize(name, text, range, &note)?;
