@@ -484,11 +484,14 @@ impl Summary {
             .parent()
             .and_then(|d| d.file_name())
             .map(|d| d.to_string_lossy().into_owned());
-        let title = self
-            .name
-            .clone()
-            .or(dir_name)
-            .unwrap_or_else(|| "scan".into());
+        // A `--set` run's directory is `NAME+set-HASH` (cli/run.rs): its
+        // name says which run this is, the config's name alone does not.
+        let title = match (&self.name, dir_name) {
+            (Some(n), Some(d)) if d.starts_with(&format!("{n}+set-")) => d,
+            (Some(n), _) => n.clone(),
+            (None, Some(d)) => d,
+            (None, None) => "scan".into(),
+        };
         writeln!(md, "# rtw-scan summary: {title}\n").unwrap();
         writeln!(md, "- file: `{}`", self.file).unwrap();
         writeln!(
@@ -569,6 +572,41 @@ mod tests {
     use crate::scan::run::{RunSettings, run_scan};
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
+
+    /// `run --set …` writes to `runs/NAME+set-HASH/` so that its rows never
+    /// mix with the plain scan's; its summary must be headed by that name
+    /// too, or the two summaries read alike.
+    #[test]
+    fn a_set_runs_summary_is_headed_by_its_directory_not_the_plain_scans_name() {
+        let cfg = config::parse(
+            "name = \"paper\"\nseed = 3\nsamples = 8\n[params]\nlength = 0.8\nrho = 2.5\n\
+             alpha = { uniform = [0, 0.4] }\nfn = 3.0\nzeta = 0.05\nphi = 0.15\n",
+        )
+        .unwrap();
+        let root = tempfile::tempdir().unwrap();
+        let mut titles = Vec::new();
+        for name in ["paper", "paper+set-0123abcd"] {
+            let dir = root.path().join(name);
+            let settings = RunSettings {
+                out_dir: dir.clone(),
+                threads: NonZeroUsize::new(1),
+                resume: false,
+                chunk_size: NonZeroUsize::new(8).unwrap(),
+                shard: None,
+                force: false,
+            };
+            let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
+                crate::fake::simulate(p, o, std::time::Duration::ZERO)
+            };
+            run_scan(&cfg, &settings, &sim, &AtomicBool::new(false), &Silent).unwrap();
+            let md = summarize(&dir.join("samples.parquet"), None)
+                .unwrap()
+                .to_markdown();
+            titles.push(md.lines().next().unwrap().to_string());
+        }
+        assert_eq!(titles[0], "# rtw-scan summary: paper");
+        assert_eq!(titles[1], "# rtw-scan summary: paper+set-0123abcd");
+    }
 
     #[test]
     fn more_failures_than_the_cap_are_clustered_from_a_sample_and_counted_exactly() {
