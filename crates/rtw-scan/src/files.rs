@@ -230,8 +230,10 @@ pub(crate) fn refuse_special(dest: &Path, flag: &str) -> Result<()> {
 }
 
 /// Most bytes of a config or variant file: the committed ones are under
-/// 2 kB, so a larger file is a mistake (`/dev/zero`, a data file).
-pub(crate) const CONFIG_MAX_BYTES: u64 = 1_000_000;
+/// 2 kB, and a refinement round's, which stores up to 10⁴ points of six
+/// inputs, under 1.5 MB; a larger file is a mistake (`/dev/zero`, a data
+/// file).
+pub(crate) const CONFIG_MAX_BYTES: u64 = 4_000_000;
 
 /// Reads `path` (`what` names it in messages: `config`, `variant`) whole,
 /// refusing a file that is not a regular file (a device or FIFO never

@@ -49,10 +49,15 @@ pub enum Sampling {
     /// Saltelli's design for first-order and total Sobol indices:
     /// `samples` base rows of `D + 2` runs each.
     Saltelli,
+    /// The points of the config's `[points]` table, row `i` its `i`-th
+    /// ([`crate::config::points`]): a refinement round's, which depend on
+    /// the rows before it rather than on the seed.
+    Points,
 }
 
 impl Sampling {
-    /// Every design, as spelled in a config.
+    /// Every design drawn from the seed, as spelled in a config (not
+    /// [`Sampling::Points`], whose points the config gives).
     pub const ALL: [Sampling; 6] = [
         Sampling::Random,
         Sampling::Sobol,
@@ -71,6 +76,7 @@ impl Sampling {
             Sampling::Lhs => "lhs",
             Sampling::Grid => "grid",
             Sampling::Saltelli => "saltelli",
+            Sampling::Points => "points",
         }
     }
 
@@ -370,7 +376,7 @@ impl Design {
     /// The design of a validated config; `None` for random sampling.
     pub(crate) fn new(sampling: Sampling, seed: u64, samples: u64, dims: usize) -> Option<Self> {
         Some(match sampling {
-            Sampling::Random => return None,
+            Sampling::Random | Sampling::Points => return None,
             Sampling::Sobol => Design::Sobol(Sobol::scrambled(dims, seed)),
             Sampling::Halton => Design::Halton(Halton::scrambled(dims, seed)),
             Sampling::Lhs => {

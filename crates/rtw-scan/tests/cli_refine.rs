@@ -234,6 +234,20 @@ fn a_refine_budget_beyond_its_range_is_refused_up_front() {
             &[&format!("--budget: {budget} is invalid"), "[1, 100000]"],
         );
     }
+    // A round stores its points in its config, at most 10⁴ of them.
+    run_err(
+        &[
+            "refine",
+            s(&a),
+            "--budget",
+            "20001",
+            "--rounds",
+            "2",
+            "--fake-sim",
+            "0",
+        ],
+        &["--rounds: 2 is invalid: must be an integer from 3 to --budget (20001)"],
+    );
     assert!(!a.join("refine").exists());
 }
 
@@ -368,5 +382,34 @@ fn refine_refuses_another_refinements_files_saying_what_differs() {
     assert_eq!(
         std::fs::read(c.join("refine/samples.parquet")).unwrap(),
         plain
+    );
+}
+
+/// A round's points depend on the rows before it, not on (seed, id), so the
+/// round must carry them: its config stores them (`sampling = "points"`).
+/// Then `run` of that config, resumed in the round's folder, replays the
+/// same points; the round's summary says it is refined; and `sensitivity`
+/// refuses the round, whose points crowd where the labels change.
+#[test]
+fn a_round_carries_its_points_so_a_rerun_replays_them_and_sensitivity_refuses_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(100, 6));
+    refine(&a, &["--budget", "40", "--rounds", "2", "--seed", "2"]);
+    let round = a.join("refine/round-002");
+    let finished = round.join("samples.parquet");
+    let want = rows(&finished);
+    // The round's own config, as stored in its file, run again from nothing.
+    let text = file_metadata(&finished, "rtw.config");
+    assert!(text.contains("sampling = \"points\""), "{text}");
+    let cfg = write(dir.path(), "round.toml", &text);
+    let again = dir.path().join("again");
+    fake_run_ok(&cfg, &again, &[]);
+    assert_eq!(rows(&again.join("samples.parquet")), want);
+    // Its summary says its shares are not the box's, in text and JSON.
+    let o = run_ok(&["summary", s(&finished), "--json"]);
+    assert!(stdout(&o).contains("\"refined\": true"), "{}", stdout(&o));
+    run_err(
+        &["sensitivity", s(&round), "--resamples", "20"],
+        &["refined", "not draws", "a/samples.parquet"],
     );
 }

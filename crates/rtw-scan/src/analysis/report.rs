@@ -138,6 +138,9 @@ pub(crate) fn open_scan(path: &Path) -> Result<(parquet::ParquetInput, ScanConfi
 /// Reads a scan's Parquet file: stored config, label counts, failures.
 pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
     let (input, config) = open_scan(path)?;
+    // A refine's combined file, or one of its rounds (whose config stores
+    // the points chosen near the label changes).
+    let refined = input.metadata.contains_key(META_REFINE) || config.points.is_some();
     let mut data = ScanData {
         path: path.to_path_buf(),
         failures: FailureSample::new(CLUSTER_MAX_POINTS, config.seed),
@@ -154,7 +157,7 @@ pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
             .metadata
             .get(META_WALL_TIME)
             .and_then(|v| v.parse().ok()),
-        refined: input.metadata.contains_key(META_REFINE),
+        refined,
     };
     let mut next_id = None;
     for batch in input.reader {
@@ -282,8 +285,8 @@ pub(crate) struct Summary {
     pub(crate) wall_time_s: Option<f64>,
     pub(crate) samples_per_s: Option<f64>,
     pub(crate) sample_time_s: f64,
-    /// A refine's combined file (written only then): its shares are the
-    /// refined sample's, not the box's.
+    /// A refine's combined file or one of its rounds (written only then):
+    /// its shares are the refined sample's, not the box's.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub(crate) refined: bool,
 }

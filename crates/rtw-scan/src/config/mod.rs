@@ -4,7 +4,8 @@
 //! name = "paper"            # optional
 //! seed = 20240501
 //! samples = 1000            # draws per grid point
-//! sampling = "random"       # or sobol, halton, lhs, grid, saltelli (sampling)
+//! sampling = "random"       # or sobol, halton, lhs, grid, saltelli (sampling);
+//!                           # "points" with a [points] table (config::points)
 //!
 //! [params]                  # each: fixed, uniform range, or grid
 //! length = 0.8                          # fixed
@@ -32,6 +33,7 @@ pub mod axis;
 pub mod count;
 pub mod layers;
 pub mod params;
+pub mod points;
 pub(crate) mod raw;
 pub(crate) mod variant;
 
@@ -41,9 +43,10 @@ use anyhow::{Context, Result, anyhow, bail};
 use axis::Axis;
 use raw::{from_value_ranged, parse_table, read_text};
 use rtw_model::Param;
-use rtw_model::{Num, Options};
+use rtw_model::{Num, Options, Params};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use std::sync::Arc;
 
 /// The most rows a scan may have (grid points × samples): about 100 TB of
 /// Parquet and 10⁴ core-years at the paper scan's speed, far beyond any
@@ -93,6 +96,7 @@ struct RawConfig {
     cluster: ClusterConfig,
     #[serde(default)]
     simulation: Options,
+    points: Option<toml::Table>,
 }
 
 /// A validated scan configuration.
@@ -112,6 +116,9 @@ pub struct ScanConfig {
     pub cluster: ClusterConfig,
     /// `[simulation]`: the model's options, validated.
     pub simulation: Options,
+    /// `[points]` (with `sampling = "points"`): row `i`'s parameters, given
+    /// rather than drawn, as a refinement round stores them ([`points`]).
+    pub points: Option<Arc<[Params]>>,
 }
 
 /// Reads and validates a config file; errors name the file and the key.
@@ -174,6 +181,12 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
     for (input, axis) in Param::ALL.into_iter().zip(&params) {
         validate_axis(input, axis)?;
     }
+    let points = points::parse(
+        raw.points,
+        raw.sampling == Sampling::Points,
+        raw.samples as u64,
+        &params,
+    )?;
     let cfg = ScanConfig {
         name: raw.name,
         seed: raw.seed,
@@ -182,6 +195,7 @@ fn parse_value(table: toml::Table) -> Result<ScanConfig> {
         params,
         cluster: raw.cluster,
         simulation: raw.simulation,
+        points,
     };
     sampling::check(cfg.sampling, cfg.samples, cfg.uniform_axes()).map_err(|e| anyhow!(e))?;
     cfg.total_rows()?;
@@ -352,6 +366,12 @@ impl ScanConfig {
             "simulation".into(),
             toml::Value::try_from(self.simulation).expect("options serialize"),
         );
+        if let Some(points) = &self.points {
+            t.insert(
+                "points".into(),
+                points::to_toml(points, &self.params).into(),
+            );
+        }
         toml::to_string(&t).expect("config serializes")
     }
 

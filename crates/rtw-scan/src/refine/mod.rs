@@ -9,7 +9,9 @@
 //! `samples.parquet`, its summary beside them), run by the scan machinery
 //! (chunks, `--resume`, `--shard K/N` and `merge`), with its points stored
 //! in the config it carries: the scan's config with `samples = n`, `sampling
-//! = "random"` and the name `NAME+refine-r-HASH`, HASH a hash of the points
+//! = "points"`, the points in its `[points]` table
+//! ([`crate::config::points`]), and the name `NAME+refine-r-HASH`, HASH a
+//! hash of the points
 //! and the seed, so that another seed or other rows never resume or merge
 //! into it. When every round is complete, `DIR/refine/samples.parquet` holds
 //! every row, the scan's first and then each round's, with `sample_id`s
@@ -20,6 +22,7 @@ pub(crate) mod propose;
 use crate::analysis::report::open_scan;
 use crate::config::ScanConfig;
 use crate::config::axis::Axis;
+use crate::config::points::MAX_POINTS;
 use crate::hash::fnv1a64;
 use crate::io::destination::check_destination;
 use crate::io::metadata::{self, FileKind, META_CONFIG, META_CONTENT_HASH, META_REFINE, kv};
@@ -76,7 +79,8 @@ pub(crate) const MAX_BUDGET: u64 = 100_000;
 /// each) for the neighbour search.
 pub(crate) const MAX_BASE_ROWS: i64 = 1_000_000;
 
-/// Checks the flags: `1 ≤ budget ≤ MAX_BUDGET`, `1 ≤ rounds ≤ budget`.
+/// Checks the flags: `1 ≤ budget ≤ MAX_BUDGET`, `⌈budget / MAX_POINTS⌉ ≤
+/// rounds ≤ budget`.
 pub(crate) fn check_budget(budget: u64, rounds: u64) -> Result<()> {
     if !(1..=MAX_BUDGET).contains(&budget) {
         bail!(
@@ -85,10 +89,13 @@ pub(crate) fn check_budget(budget: u64, rounds: u64) -> Result<()> {
              with every row so far)"
         );
     }
-    if rounds == 0 || rounds > budget {
+    // A round stores its points in its config: at most MAX_POINTS each.
+    let fewest = budget.div_ceil(MAX_POINTS);
+    if rounds < fewest || rounds > budget {
         bail!(
-            "--rounds: {rounds} is invalid: must be an integer from 1 to --budget ({budget}), so \
-             that every round adds a sample"
+            "--rounds: {rounds} is invalid: must be an integer from {fewest} to --budget \
+             ({budget}), so that every round adds a sample and holds at most {MAX_POINTS} points \
+             (a round's config stores them)"
         );
     }
     Ok(())
@@ -284,9 +291,9 @@ fn read_rows(
 }
 
 /// The config of round `round` with `points`: see the module's text.
-fn round_config(cfg: &ScanConfig, round: u64, seed: u64, points: &[Params]) -> ScanConfig {
+fn round_config(cfg: &ScanConfig, round: u64, seed: u64, points: Vec<Params>) -> ScanConfig {
     let mut bytes = seed.to_le_bytes().to_vec();
-    for p in points {
+    for p in &points {
         for q in Param::ALL {
             bytes.extend(p[q].to_bits().to_le_bytes());
         }
@@ -298,7 +305,8 @@ fn round_config(cfg: &ScanConfig, round: u64, seed: u64, points: &[Params]) -> S
         fnv1a64(&bytes)
     ));
     c.samples = points.len() as u64;
-    c.sampling = Sampling::Random;
+    c.sampling = Sampling::Points;
+    c.points = Some(points.into());
     c
 }
 
@@ -354,7 +362,7 @@ pub(crate) fn refine(
                 p
             })
             .collect();
-        let rcfg = round_config(&cfg, round, r.seed, &points);
+        let rcfg = round_config(&cfg, round, r.seed, points);
         let dir = round_dir(&r.dir, round);
         let samples = dir.join("samples.parquet");
         if !is_complete(&samples, &rcfg.to_toml(), None) {
@@ -365,7 +373,7 @@ pub(crate) fn refine(
                 out_dir: dir.clone(),
                 ..r.run.clone()
             };
-            let sampler = Sampler::from_points(&rcfg, points);
+            let sampler = Sampler::new(&rcfg);
             progress.stage(&format!("round {round} of {}", r.rounds));
             let status = run_scan_with(&rcfg, &sampler, &settings, sim, stop, progress)?;
             if r.run.shard.is_some() || matches!(status, RunStatus::Interrupted { .. }) {
@@ -385,6 +393,7 @@ pub(crate) fn refine(
     all.name = Some(format!("{}+refined", cfg.name.as_deref().unwrap_or("scan")));
     all.samples = x.len() as u64;
     all.sampling = Sampling::Random;
+    all.points = None;
     let mut meta = metadata::scan_metadata(&all);
     meta.push(kv(META_REFINE, about.to_string()));
     renumber(&files, &combined, meta)?;

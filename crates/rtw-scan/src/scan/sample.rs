@@ -43,7 +43,8 @@ pub struct Sampler {
     total: u64,
     sources: Vec<Source>,
     design: Option<Design>,
-    /// Stored points (a refinement round): row `id` is `points[id]`.
+    /// The config's stored points (`sampling = "points"`): row `id` is
+    /// `points[id]`.
     points: Option<std::sync::Arc<[Params]>>,
 }
 
@@ -68,17 +69,8 @@ impl Sampler {
             total: cfg.total_rows().expect("validated config has a row count"),
             design: Design::new(cfg.sampling, cfg.seed, cfg.samples, cfg.uniform_axes()),
             sources,
-            points: None,
+            points: cfg.points.clone(),
         }
-    }
-
-    /// The sampler of stored points: row `id` is `points[id]` (a refinement
-    /// round, whose points depend on earlier rows, not on (seed, id) alone).
-    pub(crate) fn from_points(cfg: &ScanConfig, points: Vec<Params>) -> Self {
-        let mut s = Self::new(cfg);
-        s.total = points.len() as u64;
-        s.points = Some(points.into());
-        s
     }
 
     /// Number of rows of the scan.

@@ -152,3 +152,15 @@ pub fn column_names(path: &Path) -> Vec<String> {
         .map(|f| f.name().clone())
         .collect()
 }
+
+/// The value of key `key` in a Parquet file's key-value metadata.
+pub fn file_metadata(path: &Path, key: &str) -> String {
+    let f = std::fs::File::open(path).unwrap();
+    let b = ParquetRecordBatchReaderBuilder::try_new(f).unwrap();
+    b.metadata()
+        .file_metadata()
+        .key_value_metadata()
+        .and_then(|kv| kv.iter().find(|k| k.key == key))
+        .and_then(|k| k.value.clone())
+        .unwrap_or_else(|| panic!("{}: no `{key}` in its metadata", path.display()))
+}

@@ -118,12 +118,15 @@ fn checked_columns(
 pub fn analyse_file(scan: &Path, settings: &Settings, cancel: &AtomicBool) -> Result<Analysis> {
     let scan = scan_file(scan);
     let (input, cfg) = open_scan(&scan)?;
+    // The scan refined is the folder holding `refine/` (its combined file
+    // and its rounds are inside it).
     let own = scan
-        .parent()
+        .ancestors()
+        .find(|d| d.file_name().is_some_and(|n| n == "refine"))
         .and_then(Path::parent)
         .map(|d| d.join("samples.parquet"));
     refuse_refined(
-        input.metadata.contains_key(META_REFINE),
+        input.metadata.contains_key(META_REFINE) || cfg.points.is_some(),
         &scan.display().to_string(),
         own,
     )?;
@@ -157,7 +160,11 @@ pub fn analyse_table(
         )
     })?;
     let cfg = config::parse(text).context("the config stored in the table")?;
-    refuse_refined(metadata.contains_key(META_REFINE), "the table", None)?;
+    refuse_refined(
+        metadata.contains_key(META_REFINE) || cfg.points.is_some(),
+        "the table",
+        None,
+    )?;
     let expected = metadata.get(META_CONTENT_HASH);
     if let Some(want) = expected {
         let mut hash = ContentHash::new(batches.first().map_or(0, RecordBatch::num_columns));
