@@ -3,18 +3,22 @@
 # samples spent where labels change than for uniform ones, at equal counts?
 #
 #   results/refine/reference/   a dense uniform scan (configs/refine/reference.toml, 4000 samples)
-#   results/refine/seed-S/      for each seed S: a uniform start of 100 samples (the same slice,
-#                               seed S), then `rtw-scan refine --budget 400 --rounds 16 --seed S`
-#   results/refine/summary.md   nearest-neighbour misclassification on the reference, uniform vs
-#                               refined, mean ± SE over the seeds, and the ratio of sample counts
-#                               at equal error (scripts/refine_bench.py)
+#   results/refine/seed-S/      for each seed S of 1 … 16: a uniform start of 100 samples (the
+#                               same slice, seed S), then
+#                               `rtw-scan refine --budget 400 --rounds 16 --seed S`
+#   results/refine/summary.md   nearest-neighbour misclassification on the reference, uniform
+#                               (64 seeds) vs refined (16 seeds), mean ± SE, and the ratio of
+#                               sample counts at equal error with a bootstrap 95 % interval
+#                               (scripts/refine_bench.py)
 #
-#   ./scripts/refine_bench.sh                # ~4 min on two idle cores
+#   ./scripts/refine_bench.sh                # ~7 min on two idle cores
+#   ROUNDS=4 ./scripts/refine_bench.sh       # the same budget in other rounds
 #   REPORT_ONLY=1 ./scripts/refine_bench.sh  # re-tabulate
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=results/refine
-SEEDS="1 2 3 4 5 6 7 8"
+SEEDS=$(seq -s " " 1 16)
+ROUNDS=${ROUNDS:-16}
 if [ -z "${REPORT_ONLY:-}" ]; then
   cargo build --release -q -p rtw-scan
   B=target/release/rtw-scan
@@ -27,7 +31,7 @@ if [ -z "${REPORT_ONLY:-}" ]; then
         -e "s/^name = .*/name = \"refine-start-$s\"/" configs/refine/reference.toml \
         > "runs/refine-bench/start-$s.toml"
     $B run "runs/refine-bench/start-$s.toml" --out "$OUT/seed-$s" --quiet >/dev/null
-    $B refine "$OUT/seed-$s" --budget 400 --rounds 16 --seed "$s" --quiet
+    $B refine "$OUT/seed-$s" --budget 400 --rounds "$ROUNDS" --seed "$s" --quiet
   done
 fi
 ./scripts/venv.sh

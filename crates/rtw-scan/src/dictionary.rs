@@ -130,7 +130,7 @@ pub fn markdown() -> String {
                 type_name(f.data_type()),
                 null,
                 unit,
-                description.replace('|', "\\|")
+                crate::io::markdown::cell(description)
             );
         }
     }

@@ -62,7 +62,7 @@ pub(crate) fn summary_markdown(sweep: &Sweep, rows: &[PointRow], wall_time_s: f6
     let _ = writeln!(s);
     let _ = writeln!(
         s,
-        "| {name} from | {name} to | values | label | period | stable | max |μ| range |"
+        "| {name} from | {name} to | values | label | period | stable | max \\|μ\\| range |"
     );
     let _ = writeln!(s, "|---:|---:|---:|---|---:|---|---|");
     let key = |r: &PointRow| (r.label, r.period, r.stable);

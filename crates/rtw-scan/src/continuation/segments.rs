@@ -11,6 +11,7 @@
 
 use super::Continuation;
 use crate::files::FileSet;
+use crate::io::markdown::cell;
 use anyhow::{Result, bail};
 use hybrid_ode::continuation::End;
 use rtw_model::Num;
@@ -343,7 +344,7 @@ pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
             let (at, what, mu, jump) = match &seg.end {
                 Some(e) => (
                     format!("{:.6}", e.old.p),
-                    end_detail(e),
+                    cell(&end_detail(e)),
                     format!(
                         "{:.4} → {}",
                         radius(&e.old.cycle.multipliers),
@@ -368,7 +369,7 @@ pub(crate) fn markdown(c: &Continuation, dirs: &[Direction]) -> String {
                 way(d),
                 i,
                 seg.label.as_str(),
-                seg.sequence,
+                cell(&seg.sequence.to_string()),
                 end_name(seg).replace('_', " "),
             );
         }

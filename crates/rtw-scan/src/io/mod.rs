@@ -13,11 +13,13 @@
 //! | `metadata` | the metadata keys, a scan's metadata, the kind of a file |
 //! | `destination` | the refusal to write one kind of file over another |
 //! | `trace` | `simulate --trace` files and their size bound |
+//! | `markdown` | a Markdown table's cell text |
 //!
 //! Public: what a reader of rtw-scan's files needs, re-exported here.
 
 pub(crate) mod content_hash;
 pub(crate) mod destination;
+pub(crate) mod markdown;
 pub(crate) mod metadata;
 pub(crate) mod parquet;
 pub(crate) mod robustness_columns;
