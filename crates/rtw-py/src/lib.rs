@@ -28,6 +28,7 @@ use rtw_scan::basin::{Settings as BasinSettings, slice_table};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
+use rtw_scan::scan::progress::Counter;
 use rtw_scan::scan::scan_batch;
 use rtw_scan::scan::single::{simulate_row, simulate_traced};
 use rtw_scan::scan::workers::{Stopped, parse_threads};
@@ -145,6 +146,18 @@ fn study_error(e: anyhow::Error) -> PyErr {
         return PyKeyboardInterrupt::new_err(e.to_string());
     }
     value_error(e)
+}
+
+/// Calls a study's `progress(done, total)`, when given, once it has
+/// started (its total known).
+fn report(progress: Option<&Bound<'_, PyAny>>, counter: &Counter) -> PyResult<()> {
+    let total = counter.total.load(Ordering::Relaxed);
+    match progress {
+        Some(f) if total > 0 => f
+            .call1((counter.done.load(Ordering::Relaxed), total))
+            .map(drop),
+        _ => Ok(()),
+    }
 }
 
 /// One run: its row, the fields of `rtw-scan simulate --json`.
@@ -292,7 +305,7 @@ fn limit_cycle(
 /// given (checked there, as the CLI's flags are). Runs as `scan` does:
 /// Ctrl-C stops it after the points in flight and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (values, config, variant, options, x, y, steps, tol, threads))]
+#[pyo3(signature = (values, config, variant, options, x, y, steps, tol, threads, progress=None))]
 #[allow(clippy::too_many_arguments)] // the design's layers and the slice's settings, as `rtw-scan basin`
 fn basin<'py>(
     py: Python<'py>,
@@ -305,17 +318,20 @@ fn basin<'py>(
     steps: Bound<'py, PyAny>,
     tol: f64,
     threads: Option<Bound<'py, PyAny>>,
+    progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let threads = threads.as_ref().map(digits).transpose()?;
     let settings = BasinSettings::parse(x, y, &digits(&steps)?, tol, threads.as_deref(), "")
         .map_err(value_error)?;
     let (params, options) = inputs(values, config, variant, options.as_ref())?;
+    let counter = Counter::default();
     let batch = interruptible(
         py,
-        |cancel| slice_table(&params, &options, &settings, cancel),
-        || Ok(()),
+        |cancel| slice_table(&params, &options, &settings, cancel, &counter),
+        || report(progress.as_ref(), &counter),
     )?
     .map_err(study_error)?;
+    report(progress.as_ref(), &counter)?;
     to_table(py, batch)
 }
 
@@ -431,23 +447,25 @@ fn sobol_points(dims: usize, n: u64, seed: Option<u64>) -> PyResult<Vec<Vec<f64>
 /// are. `resamples` and `seed` are checked by the library, as the CLI's
 /// flags. Runs as `scan` does: Ctrl-C stops it and raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scan, resamples, seed))]
+#[pyo3(signature = (scan, resamples, seed, progress=None))]
 fn sensitivity<'py>(
     py: Python<'py>,
     scan: Bound<'py, PyAny>,
     resamples: Bound<'py, PyAny>,
     seed: Option<Bound<'py, PyAny>>,
+    progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use arrow_pyarrow::FromPyArrow;
     use rtw_scan::sensitivity as sa;
     let seed = seed.as_ref().map(digits).transpose()?;
     let settings =
         sa::Settings::parse(&digits(&resamples)?, seed.as_deref(), "").map_err(value_error)?;
+    let counter = Counter::default();
     let analysis = if let Ok(path) = scan.extract::<PathBuf>() {
         interruptible(
             py,
-            |cancel| sa::analyse_file(&path, &settings, cancel),
-            || Ok(()),
+            |cancel| sa::analyse_file(&path, &settings, cancel, &counter),
+            || report(progress.as_ref(), &counter),
         )?
     } else {
         let (batches, schema) = Table::from_pyarrow_bound(&scan)
@@ -459,11 +477,12 @@ fn sensitivity<'py>(
             schema.metadata().clone().into_iter().collect();
         interruptible(
             py,
-            |cancel| sa::analyse_table(&metadata, batches, &settings, cancel),
-            || Ok(()),
+            |cancel| sa::analyse_table(&metadata, batches, &settings, cancel, &counter),
+            || report(progress.as_ref(), &counter),
         )?
     }
     .map_err(study_error)?;
+    report(progress.as_ref(), &counter)?;
     to_table(py, sa::to_batch(&analysis.indices))
 }
 

@@ -100,3 +100,35 @@ def test_a_callable_gets_done_and_total() -> None:
     assert seen and seen[-1] == (6, 6), seen
     assert all(t == 6 and 0 <= d <= 6 for d, t in seen), seen
     assert [d for d, _ in seen] == sorted(d for d, _ in seen), seen
+
+
+FIG7A = (0.8, 2.5, 0.125, 3.269, 0.0514, 0.15)
+
+
+def test_basin_and_sensitivity_report_their_progress_to_a_callable() -> None:
+    """The studies that can take minutes count their units as a scan counts rows:
+    a basin slice its grid points, a sensitivity analysis its bootstrap
+    resamples (one per output, input and resample for the binned index)."""
+    seen: list[tuple[int, int]] = []
+    rtw.basin(*FIG7A, x="omega_a:-10:10:3", y="theta_b:-0.2:0.2:2", steps=4, threads=1, progress=lambda d, t: seen.append((d, t)))
+    assert seen and seen[-1] == (6, 6), seen
+    assert all(t == 6 and 0 <= d <= 6 for d, t in seen), seen
+    table = rtw.scan(str(SMOKE), progress=False)
+    seen.clear()
+    indices = rtw.sensitivity(table, resamples=7, progress=lambda d, t: seen.append((d, t)))
+    outputs = len(set(indices.column("output").to_pylist()))
+    inputs = len(set(indices.column("parameter").to_pylist()))
+    assert seen[-1] == (outputs * inputs * 7,) * 2, (seen[-1], outputs, inputs)
+
+
+def test_a_study_in_a_log_gets_plain_lines_naming_it() -> None:
+    err = io.StringIO()
+    sys_err, sys.stderr = sys.stderr, err
+    try:
+        rtw.basin(*FIG7A, x="omega_a:-10:10:3", y="theta_b:-0.2:0.2:2", steps=4, threads=1)
+        rtw.basin(*FIG7A, x="omega_a:-10:10:3", y="theta_b:-0.2:0.2:2", steps=4, threads=1, progress=False)
+    finally:
+        sys.stderr = sys_err
+    lines = err.getvalue().splitlines()
+    assert lines and all(l.startswith("rtw.basin: ") for l in lines), lines
+    assert "6/6 (100%)" in lines[-1] and "points/s" in lines[-1], lines

@@ -159,3 +159,54 @@ fn a_slice_never_writes_over_a_file_it_did_not_make() {
     );
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "not mine");
 }
+
+/// A slice and a sensitivity analysis can run for minutes: each shows its
+/// progress on stderr (plain lines when stderr is not a terminal, its units
+/// named), and `--quiet` shows none.
+#[test]
+fn basin_and_sensitivity_show_their_progress_and_quiet_silences_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b.parquet");
+    let o = slice(out.to_str().unwrap(), "1");
+    let err = stderr(&o);
+    let last = err
+        .lines()
+        .rfind(|l| l.starts_with("basin: grid points: "))
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!(last.contains("4/4 (100.0 %)"), "{err}");
+    let again = dir.path().join("c.parquet");
+    let o = run_ok(&[
+        "basin",
+        "--x",
+        "omega_a:-10:10:2",
+        "--y",
+        "theta_b:-0.2:0.2:2",
+        "--steps",
+        "4",
+        "--threads",
+        "1",
+        "--out",
+        s(&again),
+        "--quiet",
+    ]);
+    assert!(!stderr(&o).contains("grid points"), "{}", stderr(&o));
+    let cfg = write(dir.path(), "p.toml", &paper_like(40, 3));
+    let scan = dir.path().join("scan");
+    fake_run_ok(&cfg, &scan, &[]);
+    let o = run_ok(&["sensitivity", s(&scan), "--resamples", "5"]);
+    let err = stderr(&o);
+    let last = err
+        .lines()
+        .rfind(|l| l.starts_with("sensitivity: bootstrap resamples: "))
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!(last.contains("(100.0 %)"), "{err}");
+    let o = run_ok(&[
+        "sensitivity",
+        s(&scan),
+        "--resamples",
+        "5",
+        "--quiet",
+        "--force",
+    ]);
+    assert!(!stderr(&o).contains("resamples:"), "{}", stderr(&o));
+}

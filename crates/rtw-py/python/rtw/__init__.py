@@ -240,7 +240,7 @@ def trace(
 
 
 class _Bar:
-    """A scan's progress on stderr, drawn as Python users know it from tqdm.
+    """A run's progress on stderr, drawn as Python users know it from tqdm.
 
     A terminal gets a bar redrawn in place (``\\r``), ended by a newline
     when the scan is done; a notebook (ipykernel's stream, which draws
@@ -253,8 +253,9 @@ class _Bar:
     REDRAW = 0.1  # s between redraws in place
     LOG_EVERY = 10.0  # s between plain lines
 
-    def __init__(self, stream: TextIO) -> None:
+    def __init__(self, stream: TextIO, name: str = "rtw.scan", unit: str = "samples") -> None:
         self.stream = stream
+        self.name, self.unit = name, unit
         self.started = time.monotonic()
         self.drawn_at = -math.inf
         self.decile = 0
@@ -277,7 +278,7 @@ class _Bar:
             finished or decile > self.decile or now - self.drawn_at >= self.LOG_EVERY
         ):
             self.drawn_at, self.decile, self.last_done = now, decile, done
-            self.stream.write(f"rtw.scan: {self._counts(done, total, now)}\n")
+            self.stream.write(f"{self.name}: {self._counts(done, total, now)}\n")
             self.stream.flush()
 
     def _counts(self, done: int, total: int, now: float) -> str:
@@ -286,7 +287,7 @@ class _Bar:
         left = (total - done) / rate if rate > 0 else math.inf
         pct = 100 * done // max(total, 1)
         return (
-            f"{done}/{total} ({pct}%) [{_clock(elapsed)}<{_clock(left)}, {rate:.1f} samples/s]"
+            f"{done}/{total} ({pct}%) [{_clock(elapsed)}<{_clock(left)}, {rate:.1f} {self.unit}/s]"
         )
 
     def _bar(self, done: int, total: int, now: float) -> str:
@@ -298,9 +299,21 @@ class _Bar:
         full = width * done // max(total, 1)
         bar = self.fill * full + " " * (width - full)
         return (
-            f"rtw.scan {pct:3d}%|{bar}| {done}/{total} "
-            f"[{_clock(elapsed)}<{_clock(left)}, {rate:.1f} samples/s]"
+            f"{self.name} {pct:3d}%|{bar}| {done}/{total} "
+            f"[{_clock(elapsed)}<{_clock(left)}, {rate:.1f} {self.unit}/s]"
         )
+
+
+def _reporter(
+    progress: bool | Callable[[int, int], object], name: str, unit: str
+) -> Callable[[int, int], object] | None:
+    """What ``progress=`` asks for: a bar on stderr (``True``), nothing, or the caller's callable."""
+    if isinstance(progress, bool):
+        stream = sys.stderr
+        return _Bar(stream, name, unit) if progress and stream is not None else None
+    if callable(progress):
+        return progress
+    raise ValueError(f"progress: {progress!r} is invalid: must be True, False or a callable")
 
 
 def _draws_in_place(stream: TextIO) -> bool:
@@ -384,13 +397,7 @@ def scan(
         text = config
     else:
         path = os.fspath(config)
-    if isinstance(progress, bool):
-        stream = sys.stderr
-        report = _Bar(stream) if progress and stream is not None else None
-    elif callable(progress):
-        report = progress
-    else:
-        raise ValueError(f"progress: {progress!r} is invalid: must be True, False or a callable")
+    report = _reporter(progress, "rtw.scan", "samples")
     if set is not None:
         warnings.warn(
             "rtw.scan(set=...) is deprecated: use options=..., the keyword of every rtw function",
@@ -448,6 +455,7 @@ def basin(
     steps: int = 60,
     tol: float = 1e-3,
     threads: int | None = None,
+    progress: bool | Callable[[int, int], object] = True,
     config: Config | None = None,
     variant: Config | None = None,
     options: Mapping[str, Any] | None = None,
@@ -468,6 +476,7 @@ def basin(
         tol: a point returns at this scaled distance to the orbit, in (0, 0.1].
         threads: worker threads (default: one per core; at most 4 per
             core); the rows do not depend on it.
+        progress: as for :func:`scan`, counting grid points.
         design, config, variant, options, more: as for :func:`simulate`.
 
     Returns:
@@ -482,8 +491,9 @@ def basin(
             flight).
     """
     values = _design("basin", design, more)
+    report = _reporter(progress, "rtw.basin", "points")
     return _rtw.basin(
-        values, _path(config), _path(variant), _options(options, more), x, y, steps, float(tol), threads
+        values, _path(config), _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
     )
 
 

@@ -138,6 +138,7 @@ def basin(
     steps: int,
     tol: float,
     threads: int | None,
+    progress: Callable[[int, int], object] | None = None,
 ) -> pyarrow.Table: ...
 def modes(
     values: list[float],
@@ -157,6 +158,11 @@ def failure_clusters(path: str | os.PathLike[str]) -> list[tuple[int, int]] | No
 def sobol_points(dims: int, n: int, seed: int | None = None) -> list[list[float]]: ...
 # `resamples`, `seed`, `steps` and `threads` are any object: the library checks each
 # against its range (an int of any size, or the refusal that names its range).
-def sensitivity(scan: pyarrow.Table | str, resamples: int, seed: int | None) -> pyarrow.Table: ...
+def sensitivity(
+    scan: pyarrow.Table | str,
+    resamples: int,
+    seed: int | None,
+    progress: Callable[[int, int], object] | None = None,
+) -> pyarrow.Table: ...
 def read_scan(path: str | os.PathLike[str]) -> tuple[pyarrow.Table, list[Path]]: ...
 def read_indices(path: str | os.PathLike[str], scan: Mapping[str, str], rows: int) -> pyarrow.Table: ...

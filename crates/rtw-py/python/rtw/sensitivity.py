@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from . import _rtw
@@ -16,6 +17,7 @@ def sensitivity(
     *,
     resamples: int = 100,
     seed: int | None = None,
+    progress: bool | Callable[[int, int], object] = True,
 ) -> pyarrow.Table:
     """First-order and total Sobol indices of every output to every uniform input.
 
@@ -39,6 +41,8 @@ def sensitivity(
             [2, 10000].
         seed: seed of the resamples, an integer in [0, 2^64 - 1] (default:
             the scan's seed).
+        progress: as for :func:`rtw.scan`, counting bootstrap resamples (of
+            each output, and of each input for the binned index).
 
     Returns:
         A ``pyarrow.Table`` with columns output, parameter, S1, S1_conf, ST,
@@ -53,4 +57,7 @@ def sensitivity(
     """
     if isinstance(table, (str, os.PathLike)):
         table = os.fspath(table)
-    return _rtw.sensitivity(table, resamples, seed)
+    from . import _reporter  # the package's, defined after this module is imported
+
+    report = _reporter(progress, "rtw.sensitivity", "resamples")
+    return _rtw.sensitivity(table, resamples, seed, report)

@@ -7,6 +7,7 @@
 pub(crate) mod files;
 
 use crate::bifurcation::sweep::{PointLabel, failure_label};
+use crate::scan::progress::Progress;
 use crate::scan::workers::{Stopped, parse_threads, worker_pool};
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
@@ -77,22 +78,31 @@ impl Settings {
 /// The basin slice of `settings` around the gait of `params` under
 /// `options` (both already checked): the gait, and every grid point in
 /// grid order (row-major: `y` outer, `x` inner), the same on any number of
-/// threads. Setting `cancel` stops it after the points in flight, with the
+/// threads. `progress` counts the grid points as they are done. Setting
+/// `cancel` stops it after the points in flight, with the
 /// error [`Stopped`]. `rtw-scan basin` and Python's `rtw.basin` both run it.
 pub fn slice(
     params: &Params,
     options: &Options,
     settings: &Settings,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Result<(Basin, Vec<BasinPoint>)> {
     // Started first: the pool refuses a thread count beyond its cap before
     // the gait is solved.
     let pool = worker_pool(settings.threads)?;
     let slice = Basin::new(params, options, &CycleOptions::default(), settings.spec)?;
+    progress.start(slice.len() as u64);
     let points: Option<Vec<BasinPoint>> = pool.install(|| {
         (0..slice.len())
             .into_par_iter()
-            .map(|i| (!cancel.load(Ordering::Relaxed)).then(|| slice.point(i)))
+            .map(|i| {
+                (!cancel.load(Ordering::Relaxed)).then(|| {
+                    let point = slice.point(i);
+                    progress.advanced();
+                    point
+                })
+            })
             .collect()
     });
     let points = points.ok_or_else(|| anyhow!(Stopped))?;
@@ -106,8 +116,9 @@ pub fn slice_table(
     options: &Options,
     settings: &Settings,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Result<RecordBatch> {
-    let (slice, points) = slice(params, options, settings, cancel)?;
+    let (slice, points) = slice(params, options, settings, cancel, progress)?;
     Ok(files::batch(&files::rows(&slice, &points)))
 }
 

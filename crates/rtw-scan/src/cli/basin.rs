@@ -2,10 +2,12 @@
 //! section points each iterated on the step map and classified.
 
 use super::bifurcation::ModelArgs;
+use super::progress::StderrProgress;
 use super::signal::STOP;
 use crate::basin::{self, OUTCOMES, Settings, files, outcome_index};
 use crate::config::params::checked_params;
 use crate::config::validate_options;
+use crate::scan::progress::Progress;
 use anyhow::Result;
 use clap::Args;
 use rtw_model::cycles::CycleOptions;
@@ -45,6 +47,9 @@ pub(super) struct BasinArgs {
     /// Write even over a file that is not a basin slice.
     #[arg(long)]
     force: bool,
+    /// Print no progress (errors still go to stderr).
+    #[arg(long)]
+    quiet: bool,
 }
 
 pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
@@ -56,7 +61,10 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     files::check_output(&a.out, a.force)?;
     let cycle = CycleOptions::default();
     let t0 = Instant::now();
-    let (slice, points) = basin::slice(&params, &options, &settings, &STOP)?;
+    let progress = StderrProgress::study(a.quiet, "basin: grid points");
+    let slice = basin::slice(&params, &options, &settings, &STOP, &progress);
+    progress.finish(slice.is_ok());
+    let (slice, points) = slice?;
     let wall = t0.elapsed().as_secs_f64();
     let per_point = wall / points.len() as f64;
     files::write(

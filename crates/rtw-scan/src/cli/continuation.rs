@@ -2,6 +2,7 @@
 //! and period doublings in two) by pseudo-arclength on the step map.
 
 use super::bifurcation::ModelArgs;
+use super::progress::StderrProgress;
 use crate::continuation::{Continuation, CurveSettings, study};
 use anyhow::Result;
 use clap::Args;
@@ -58,6 +59,10 @@ pub(super) struct ContinuationArgs {
     /// Write even over files that are not this command's kind.
     #[arg(long)]
     force: bool,
+    /// Print no progress (the diagram, then each direction followed through the mode
+    /// changes; errors still go to stderr).
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// Parses an input's name, naming the flag and the choices.
@@ -105,7 +110,8 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
     let out = a.out.unwrap_or_else(|| {
         Path::new("runs/continuation").join(format!("{}.parquet", param.name()))
     });
-    let md = study::run_to_files(&c, a.through, &out, a.force)?;
+    let progress = StderrProgress::study(a.quiet, "continuation");
+    let md = study::run_to_files(&c, a.through, &out, a.force, &progress)?;
     print!("{md}");
     Ok(ExitCode::SUCCESS)
 }

@@ -90,6 +90,40 @@ impl StderrProgress {
             .join(", ")
     }
 
+    /// Whether the work counted is labelled rows (a scan's), not a study's
+    /// units.
+    fn labelled(&self) -> bool {
+        self.counts.iter().any(|c| c.load(Ordering::Relaxed) > 0)
+    }
+
+    /// A study's progress on stderr (nothing with `quiet`), its units named
+    /// by `stage` ("basin: grid points").
+    pub(crate) fn study(quiet: bool, stage: &str) -> Self {
+        let p = Self::new(if quiet {
+            ProgressMode::Quiet
+        } else {
+            ProgressMode::Auto
+        });
+        p.stage(stage);
+        p
+    }
+
+    /// Prints the progress line, in line mode, every [`Self::EVERY`] or
+    /// tenth of the total.
+    fn show_line(&self) {
+        if let Some(lines) = &self.lines {
+            let mut st = lines.lock().expect("progress lock");
+            let done = self.done.load(Ordering::Relaxed);
+            let decile = done * 10 / self.total.load(Ordering::Relaxed).max(1);
+            if st.last.elapsed() >= Self::EVERY || decile > st.decile {
+                st.last = Instant::now();
+                st.decile = decile;
+                st.printed = done;
+                eprintln!("{}", self.line());
+            }
+        }
+    }
+
     fn line(&self) -> String {
         let done = self.done.load(Ordering::Relaxed);
         let new = done - self.previous.load(Ordering::Relaxed);
@@ -112,11 +146,16 @@ impl StderrProgress {
         } else {
             format!("{stage}: ")
         };
+        let (unit, counts) = if self.labelled() {
+            (" samples/s", format!(" | {}", self.counts_text()))
+        } else {
+            // A study's units (grid points, resamples): named by its stage.
+            ("/s", String::new())
+        };
         format!(
-            "{stage}[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2} samples/s, ETA {eta} | {}",
+            "{stage}[{secs:.1} s] {done}/{} ({:.1} %), {rate:.2}{unit}, ETA {eta}{counts}",
             total,
             100.0 * done as f64 / total.max(1) as f64,
-            self.counts_text()
         )
     }
 }
@@ -179,17 +218,15 @@ impl Progress for StderrProgress {
             bar.inc(1);
             bar.set_message(self.counts_text());
         }
-        if let Some(lines) = &self.lines {
-            let mut st = lines.lock().expect("progress lock");
-            let done = self.done.load(Ordering::Relaxed);
-            let decile = done * 10 / self.total.load(Ordering::Relaxed).max(1);
-            if st.last.elapsed() >= Self::EVERY || decile > st.decile {
-                st.last = Instant::now();
-                st.decile = decile;
-                st.printed = done;
-                eprintln!("{}", self.line());
-            }
+        self.show_line();
+    }
+
+    fn advanced(&self) {
+        self.done.fetch_add(1, Ordering::Relaxed);
+        if let Some(bar) = self.bar() {
+            bar.inc(1);
         }
+        self.show_line();
     }
 
     fn note(&self, text: &str) {
@@ -209,7 +246,9 @@ impl Progress for StderrProgress {
 
     fn finish(&self, complete: bool) {
         if let Some(bar) = self.bar() {
-            bar.set_message(self.counts_text());
+            if self.labelled() {
+                bar.set_message(self.counts_text());
+            }
             if complete {
                 bar.finish()
             } else {

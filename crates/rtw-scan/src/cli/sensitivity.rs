@@ -1,7 +1,9 @@
 //! `sensitivity`: Sobol indices of a finished scan's outputs. The study is
 //! the library's ([`crate::sensitivity`]); this parses and prints.
 
+use super::progress::StderrProgress;
 use super::signal::STOP;
+use crate::scan::progress::Progress;
 use crate::sensitivity::{self, Index, Settings};
 use anyhow::Result;
 use clap::Args;
@@ -33,6 +35,9 @@ pub(super) struct SensitivityArgs {
     /// indices (never over a symlink or a special file).
     #[arg(long)]
     force: bool,
+    /// Print no progress (errors still go to stderr).
+    #[arg(long)]
+    quiet: bool,
 }
 
 pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
@@ -43,7 +48,10 @@ pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
         .clone()
         .unwrap_or_else(|| scan.with_file_name("indices.parquet"));
     sensitivity::check_out(&out, &scan, a.force)?;
-    let analysis = sensitivity::analyse_file(&scan, &settings, &STOP)?;
+    let progress = StderrProgress::study(a.quiet, "sensitivity: bootstrap resamples");
+    let analysis = sensitivity::analyse_file(&scan, &settings, &STOP, &progress);
+    progress.finish(analysis.is_ok());
+    let analysis = analysis?;
     sensitivity::write(&out, &analysis)?;
     if a.json {
         let all: Vec<_> = analysis.indices.iter().map(json).collect();

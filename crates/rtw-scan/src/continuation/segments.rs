@@ -12,6 +12,7 @@
 use super::Continuation;
 use crate::files::FileSet;
 use crate::io::markdown::cell;
+use crate::scan::progress::Progress;
 use anyhow::{Result, bail};
 use hybrid_ode::continuation::End;
 use rtw_model::Num;
@@ -80,7 +81,12 @@ pub(crate) enum Origin {
 /// smooth continuation ("no continuation"), continued on from its last
 /// point. The directions share nothing, so two threads take them in turn;
 /// they are returned in that order.
-pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direction> {
+pub(crate) fn run(
+    c: &Continuation,
+    diagram: &Diagram,
+    max: usize,
+    progress: &dyn Progress,
+) -> Vec<Direction> {
     let s = Setting {
         base: &c.base,
         options: &c.options,
@@ -141,6 +147,7 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
             ),
         }
     };
+    progress.start(jobs.len() as u64);
     let next = AtomicUsize::new(0);
     let work = || {
         let mut done = Vec::new();
@@ -150,6 +157,7 @@ pub(crate) fn run(c: &Continuation, diagram: &Diagram, max: usize) -> Vec<Direct
                 return done;
             }
             done.push((i, go(i)));
+            progress.advanced();
         }
     };
     let mut done = std::thread::scope(|scope| {

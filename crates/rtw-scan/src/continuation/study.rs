@@ -10,6 +10,7 @@
 use super::{Continuation, files, segments, summary};
 use crate::files::FileSet;
 use crate::io::destination::summary_path;
+use crate::scan::progress::Progress;
 use anyhow::{Result, bail};
 use std::path::Path;
 use std::time::Instant;
@@ -28,12 +29,15 @@ pub(crate) fn check_through(through: usize) -> Result<()> {
 
 /// Runs the diagram `c` into `out` and its companions (refusing, unless
 /// `force`, files that are not a diagram's), with up to `through` segments
-/// each way (0: none); returns the summary written to `FILE.md`.
+/// each way (0: none); returns the summary written to `FILE.md`. `progress`
+/// sees two stages: the diagram (one unit), then the directions followed
+/// through the mode changes (a unit each).
 pub(crate) fn run_to_files(
     c: &Continuation,
     through: usize,
     out: &Path,
     force: bool,
+    progress: &dyn Progress,
 ) -> Result<String> {
     check_through(through)?;
     files::check_outputs(out, force)?;
@@ -41,7 +45,14 @@ pub(crate) fn run_to_files(
         segments::check_output(out, force)?;
     }
     let t0 = Instant::now();
-    let result = super::run(c)?;
+    progress.stage("continuation: the branches through the start");
+    progress.start(1);
+    let result = super::run(c);
+    if result.is_ok() {
+        progress.advanced();
+    }
+    progress.finish(result.is_ok());
+    let result = result?;
     let wall = t0.elapsed().as_secs_f64();
     let rows = files::rows(c, &result);
     let mut md = summary::summary_markdown(
@@ -54,7 +65,10 @@ pub(crate) fn run_to_files(
     );
     let dirs = if through > 0 {
         crate::pause_at("continuation-segments");
-        Some(segments::run(c, &result.diagram, through))
+        progress.stage("continuation --through: directions followed");
+        let dirs = segments::run(c, &result.diagram, through, progress);
+        progress.finish(true);
+        Some(dirs)
     } else {
         None
     };

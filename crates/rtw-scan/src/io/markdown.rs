@@ -15,7 +15,10 @@ mod tests {
     fn a_bar_inside_a_cell_is_escaped_so_the_row_keeps_its_cells() {
         let row = format!("| {} | next |", cell("slip c · td b+ | slip a · td c+"));
         // Cell boundaries: the bars not preceded by a backslash.
-        let bounds = row.match_indices('|').filter(|(i, _)| !row[..*i].ends_with('\\')).count();
+        let bounds = row
+            .match_indices('|')
+            .filter(|(i, _)| !row[..*i].ends_with('\\'))
+            .count();
         assert_eq!(bounds, 3, "{row}");
         assert_eq!(cell("max |μ|"), "max \\|μ\\|");
     }

@@ -30,6 +30,11 @@ pub trait Progress: Sync {
     /// A row just computed, with its label.
     fn computed(&self, label: Label);
 
+    /// One unit of a study's work that has no label done (a basin slice's
+    /// grid point, a bootstrap resample of a sensitivity analysis), out of
+    /// the `total` of its [`Progress::start`].
+    fn advanced(&self) {}
+
     /// A detail of the run's progress (a damaged chunk computed again), for
     /// a display that shows the progress.
     fn note(&self, text: &str) {
@@ -61,5 +66,39 @@ impl Progress for Silent {
 impl Progress for AtomicU64 {
     fn computed(&self, _: Label) {
         self.fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn advanced(&self) {
+        self.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// A study's progress read from another thread while it runs: its total
+/// (set by [`Progress::start`]) and the units done (Python's `rtw.basin`
+/// and `rtw.sensitivity` call `progress(done, total)` with it).
+#[derive(Debug, Default)]
+pub struct Counter {
+    /// Units done: rows computed or kept, or unlabelled units.
+    pub done: AtomicU64,
+    /// The total of the last [`Progress::start`].
+    pub total: AtomicU64,
+}
+
+impl Progress for Counter {
+    fn start(&self, total: u64) {
+        self.done.store(0, Ordering::Relaxed);
+        self.total.store(total, Ordering::Relaxed);
+    }
+
+    fn kept(&self, _: Label) {
+        self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn computed(&self, _: Label) {
+        self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn advanced(&self) {
+        self.done.fetch_add(1, Ordering::Relaxed);
     }
 }

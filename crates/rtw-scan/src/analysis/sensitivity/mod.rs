@@ -33,12 +33,14 @@ use crate::config::axis::Axis;
 use crate::config::count::count;
 use crate::io::table::{f64_column, label_column};
 use crate::sampling::Sampling;
+use crate::scan::progress::Progress;
 use crate::scan::workers::Stopped;
 use anyhow::{Result, anyhow, bail};
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 use rtw_model::Param;
 use rtw_model::outcome::Label;
 use std::sync::Arc;
@@ -198,6 +200,7 @@ pub fn saltelli(
     resamples: usize,
     seed: u64,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Option<Vec<[f64; 4]>> {
     let n = y.len() / (d + 2);
     let (m, var) = mean_var(y.iter().copied());
@@ -217,11 +220,13 @@ pub fn saltelli(
                 return None;
             }
             let rows: Vec<usize> = (0..n).map(|_| rng.random_range(0..n)).collect();
-            Some(if constant {
+            let once = if constant {
                 vec![(0.0, 0.0); d]
             } else {
                 saltelli_once(&z, d, &rows)
-            })
+            };
+            progress.advanced();
+            Some(once)
         })
         .collect::<Option<_>>()?;
     Some(
@@ -246,7 +251,7 @@ fn bins(n: usize) -> usize {
 /// variance of the means of `y` in equal-frequency bins of `x`'s ranks
 /// (ties in the rows' order) over `y`'s variance, as SALib's
 /// `delta.sobol_first`.
-fn binned_once(x: &[f64], y: &[f64], rows: &[usize]) -> f64 {
+fn binned_once(ranks: &Ranks, y: &[f64], rows: &[usize], scratch: &mut Scratch) -> f64 {
     let n = rows.len();
     let yr = rows.iter().map(|&i| y[i]);
     let (lo, hi) = yr
@@ -258,8 +263,8 @@ fn binned_once(x: &[f64], y: &[f64], rows: &[usize]) -> f64 {
         return 0.0;
     }
     let (mean, var) = mean_var(yr);
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&p, &q| x[rows[p]].total_cmp(&x[rows[q]]));
+    ranks.order(rows, scratch);
+    let order = &scratch.order;
     let m = bins(n);
     let edge = |j: usize| j as f64 * n as f64 / m as f64;
     let mut vi = 0.0;
@@ -279,6 +284,63 @@ fn binned_once(x: &[f64], y: &[f64], rows: &[usize]) -> f64 {
     vi / var
 }
 
+/// The rows of `x` ranked once, so that each resample is put in the order
+/// of its `x` by counting (O(n)) rather than by sorting (O(n log n)).
+struct Ranks {
+    /// The dense rank of each row's `x` among `x`'s distinct values.
+    group: Vec<usize>,
+    /// Number of distinct values.
+    groups: usize,
+}
+
+/// A resample's working memory, kept from one resample to the next.
+#[derive(Default)]
+struct Scratch {
+    /// Rows per distinct value, then where each value's rows go.
+    counts: Vec<usize>,
+    /// The resample's positions in the order of their `x`.
+    order: Vec<usize>,
+}
+
+impl Ranks {
+    fn of(x: &[f64]) -> Self {
+        let mut by_x: Vec<usize> = (0..x.len()).collect();
+        by_x.sort_by(|&p, &q| x[p].total_cmp(&x[q]));
+        let mut group = vec![0; x.len()];
+        let mut g = 0;
+        for k in 1..by_x.len() {
+            if x[by_x[k]].total_cmp(&x[by_x[k - 1]]).is_ne() {
+                g += 1;
+            }
+            group[by_x[k]] = g;
+        }
+        let groups = if x.is_empty() { 0 } else { g + 1 };
+        Self { group, groups }
+    }
+
+    /// The positions `0 … n − 1` of `rows` in the order of their `x`, ties
+    /// in position order: exactly what a stable sort by `x` gives (a
+    /// counting sort by the value's rank, which keeps the positions' order).
+    fn order(&self, rows: &[usize], scratch: &mut Scratch) {
+        let Scratch { counts, order } = scratch;
+        counts.clear();
+        counts.resize(self.groups + 1, 0);
+        for &r in rows {
+            counts[self.group[r] + 1] += 1;
+        }
+        for g in 1..counts.len() {
+            counts[g] += counts[g - 1];
+        }
+        order.clear();
+        order.resize(rows.len(), 0);
+        for (p, &r) in rows.iter().enumerate() {
+            let at = &mut counts[self.group[r]];
+            order[*at] = p;
+            *at += 1;
+        }
+    }
+}
+
 /// S1 and S1_conf of `y` to `x` from given data, with `resamples`
 /// bootstrap resamples of the rows drawn from `seed`. Setting `cancel` ends
 /// it between two resamples, with `None`.
@@ -288,32 +350,44 @@ pub fn binned(
     resamples: usize,
     seed: u64,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Option<[f64; 2]> {
     let n = y.len();
     let all: Vec<usize> = (0..n).collect();
+    let ranks = Ranks::of(x);
+    let mut scratch = Scratch::default();
+    let mut rows = Vec::with_capacity(n);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let boot: Vec<f64> = (0..resamples)
         .map(|_| {
             if cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let rows: Vec<usize> = (0..n).map(|_| rng.random_range(0..n)).collect();
-            Some(binned_once(x, y, &rows))
+            rows.clear();
+            rows.extend((0..n).map(|_| rng.random_range(0..n)));
+            let once = binned_once(&ranks, y, &rows, &mut scratch);
+            progress.advanced();
+            Some(once)
         })
         .collect::<Option<_>>()?;
-    Some([binned_once(x, y, &all), Z95 * std1(&boot)])
+    Some([
+        binned_once(&ranks, y, &all, &mut scratch),
+        Z95 * std1(&boot),
+    ])
 }
 
 /// The indices of every output to every uniform input of a complete scan,
 /// with `resamples` (in [`RESAMPLES`]) bootstrap resamples drawn from
-/// `seed`. Setting `cancel` ends it between two resamples, with the error
-/// [`Stopped`].
+/// `seed`, `progress` counting the resamples (of each output, and of each
+/// input for the binned index). Setting `cancel` ends it between two
+/// resamples, with the error [`Stopped`].
 pub fn indices(
     cfg: &ScanConfig,
     cols: &Columns,
     resamples: usize,
     seed: u64,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Result<(Method, Vec<Index>)> {
     count("resamples", &resamples.to_string(), RESAMPLES, "")?;
     let d = cols.inputs.len();
@@ -338,15 +412,24 @@ pub fn indices(
     } else {
         Method::Binned
     };
+    // A resample of one output (of one output to one input, binned) is the
+    // unit of progress.
+    let per_output = match method {
+        Method::Saltelli => resamples,
+        Method::Binned => resamples * d,
+    };
+    progress.start((per_output * cols.outputs.len()) as u64);
     let mut out = Vec::new();
     for (name, y) in &cols.outputs {
         let rows = match method {
-            Method::Saltelli => saltelli(y, d, resamples, seed, cancel),
+            Method::Saltelli => saltelli(y, d, resamples, seed, cancel, progress),
+            // Each input's resamples are drawn alike from `seed` and share
+            // nothing: the inputs run in parallel, the same on any thread count.
             Method::Binned => cols
                 .inputs
-                .iter()
+                .par_iter()
                 .map(|(_, x)| {
-                    let [s1, c] = binned(x, y, resamples, seed, cancel)?;
+                    let [s1, c] = binned(x, y, resamples, seed, cancel, progress)?;
                     Some([s1, c, f64::NAN, f64::NAN])
                 })
                 .collect(),
@@ -401,6 +484,29 @@ pub fn to_batch(rows: &[Index]) -> RecordBatch {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scan::progress::Silent;
+
+    /// Counting a resample into the order of its `x` gives exactly the
+    /// stable sort's order (ties, repeated rows and all), so the binned
+    /// index is what it was when each resample was sorted.
+    #[test]
+    fn a_resample_counted_into_order_is_the_stable_sort_of_its_x() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        for levels in [3, 50, 1_000_000] {
+            let x: Vec<f64> = (0..500)
+                .map(|_| rng.random_range(0..levels) as f64 / levels as f64)
+                .collect();
+            let ranks = Ranks::of(&x);
+            let mut scratch = Scratch::default();
+            for _ in 0..20 {
+                let rows: Vec<usize> = (0..500).map(|_| rng.random_range(0..500)).collect();
+                let mut sorted: Vec<usize> = (0..500).collect();
+                sorted.sort_by(|&p, &q| x[rows[p]].total_cmp(&x[rows[q]]));
+                ranks.order(&rows, &mut scratch);
+                assert_eq!(scratch.order, sorted, "{levels} levels");
+            }
+        }
+    }
 
     /// The Ishigami function, whose indices are known in closed form.
     fn ishigami(x: [f64; 3]) -> f64 {
@@ -421,7 +527,7 @@ mod tests {
             })
             .collect();
         let go = AtomicBool::new(false);
-        let s = saltelli(&y, 3, 100, 1, &go).unwrap();
+        let s = saltelli(&y, 3, 100, 1, &go, &Silent).unwrap();
         // Ishigami (a = 7, b = 0.1): S1 = 0.314, 0.442, 0; ST = 0.558, 0.442, 0.244.
         let (s1, st) = ([0.3139, 0.4424, 0.0], [0.5576, 0.4424, 0.2437]);
         for k in 0..3 {
@@ -431,11 +537,11 @@ mod tests {
         }
         // A constant output has no influence, as in SALib.
         assert_eq!(
-            saltelli(&vec![1.0; 50], 3, 10, 1, &go).unwrap()[0],
+            saltelli(&vec![1.0; 50], 3, 10, 1, &go, &Silent).unwrap()[0],
             [0.0; 4]
         );
         // A set cancel flag ends it.
-        assert!(saltelli(&y, 3, 100, 1, &AtomicBool::new(true)).is_none());
+        assert!(saltelli(&y, 3, 100, 1, &AtomicBool::new(true), &Silent).is_none());
     }
 
     #[test]
@@ -446,9 +552,9 @@ mod tests {
         let x1: Vec<f64> = (0..n).map(|_| rng.random()).collect();
         let y: Vec<f64> = x0.iter().map(|v| f64::from(u8::from(*v > 0.5))).collect();
         let go = AtomicBool::new(false);
-        let [s0, c0] = binned(&x0, &y, 50, 1, &go).unwrap();
-        let [s1, _] = binned(&x1, &y, 50, 1, &go).unwrap();
-        assert!(binned(&x0, &y, 50, 1, &AtomicBool::new(true)).is_none());
+        let [s0, c0] = binned(&x0, &y, 50, 1, &go, &Silent).unwrap();
+        let [s1, _] = binned(&x1, &y, 50, 1, &go, &Silent).unwrap();
+        assert!(binned(&x0, &y, 50, 1, &AtomicBool::new(true), &Silent).is_none());
         assert!(s0 > 0.9 && c0 < 0.05, "{s0} ± {c0}");
         assert!(s1 < 0.05, "{s1}");
         assert_eq!((bins(256), bins(1000), bins(28672)), (5, 6, 31));

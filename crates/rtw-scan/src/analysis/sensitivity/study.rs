@@ -14,6 +14,7 @@ use crate::io::metadata::{
     FileKind, META_CONFIG, META_CONTENT_HASH, META_REFINE, META_SENSITIVITY, VERSION, kv,
 };
 use crate::io::{destination, parquet, scan_files};
+use crate::scan::progress::Progress;
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use std::collections::HashMap;
@@ -115,7 +116,12 @@ fn checked_columns(
 /// through the verified reader: its content hash, its values and ids, and
 /// not a refine's combined file. Setting `cancel` stops it between two
 /// resamples (the error [`Stopped`](crate::scan::workers::Stopped)).
-pub fn analyse_file(scan: &Path, settings: &Settings, cancel: &AtomicBool) -> Result<Analysis> {
+pub fn analyse_file(
+    scan: &Path,
+    settings: &Settings,
+    cancel: &AtomicBool,
+    progress: &dyn Progress,
+) -> Result<Analysis> {
     let scan = scan_file(scan);
     let (input, cfg) = open_scan(&scan)?;
     // The scan refined is the folder holding `refine/` (its combined file
@@ -137,6 +143,7 @@ pub fn analyse_file(scan: &Path, settings: &Settings, cancel: &AtomicBool) -> Re
         &cols,
         settings,
         cancel,
+        progress,
         &scan.display().to_string(),
         hash,
     )
@@ -151,6 +158,7 @@ pub fn analyse_table(
     batches: Vec<RecordBatch>,
     settings: &Settings,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
 ) -> Result<Analysis> {
     let what = Path::new("the table");
     let text = metadata.get(META_CONFIG).ok_or_else(|| {
@@ -180,7 +188,15 @@ pub fn analyse_table(
         }
     }
     let cols = checked_columns(&cfg, what, batches.into_iter().map(Ok))?;
-    analyse(&cfg, &cols, settings, cancel, "a table", expected.cloned())
+    analyse(
+        &cfg,
+        &cols,
+        settings,
+        cancel,
+        progress,
+        "a table",
+        expected.cloned(),
+    )
 }
 
 fn analyse(
@@ -188,11 +204,12 @@ fn analyse(
     cols: &Columns,
     settings: &Settings,
     cancel: &AtomicBool,
+    progress: &dyn Progress,
     scan: &str,
     content_hash: Option<String>,
 ) -> Result<Analysis> {
     let seed = settings.seed.unwrap_or(cfg.seed);
-    let (method, rows) = indices(cfg, cols, settings.resamples, seed, cancel)?;
+    let (method, rows) = indices(cfg, cols, settings.resamples, seed, cancel, progress)?;
     let about = serde_json::json!({
         "method": method.name(),
         "scan": scan,
