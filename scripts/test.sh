@@ -65,6 +65,8 @@ echo "== the quickstart notebook, executed (scripts/run_notebook.sh)"
 ./scripts/run_notebook.sh
 echo "== every command README.md and docs/*.md document, run as written in a temporary folder (scripts/check_doc_commands.py)"
 .venv/bin/python scripts/check_doc_commands.py
+echo "== every Markdown table row in README.md, docs/ and results/ has its header's cells (scripts/check_markdown_tables.py)"
+.venv/bin/python scripts/check_markdown_tables.py
 echo "== no file over 600 lines outside its tests, no import cycle (scripts/check_structure.py)"
 .venv/bin/python scripts/check_structure.py
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
