@@ -320,3 +320,133 @@ impl Modes {
         }
     }
 }
+
+/// A pyarrow table as a field: compared with pyarrow's `==` (`Table.equals`).
+pub(crate) struct TableField(pub(crate) Py<PyAny>);
+
+impl PartialEq for TableField {
+    fn eq(&self, other: &Self) -> bool {
+        Python::attach(|py| self.0.bind(py).eq(other.0.bind(py)).unwrap_or(false))
+    }
+}
+
+impl<'py> IntoPyObject<'py> for &TableField {
+    type Target = PyAny;
+    type Output = Bound<'py, PyAny>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(self.0.bind(py).clone())
+    }
+}
+
+/// Intervals `(lo, hi)`, which Python sees as a tuple of pairs.
+#[derive(PartialEq)]
+pub(crate) struct Intervals(pub(crate) Vec<(f64, f64)>);
+
+impl<'py> IntoPyObject<'py> for &Intervals {
+    type Target = PyTuple;
+    type Output = Bound<'py, PyTuple>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(py, &self.0)
+    }
+}
+
+/// Each stable gait's intervals, which Python sees as a `dict`.
+#[derive(PartialEq)]
+pub(crate) struct GaitIntervals(pub(crate) Vec<(&'static str, Intervals)>);
+
+impl<'py> IntoPyObject<'py> for &GaitIntervals {
+    type Target = PyDict;
+    type Output = Bound<'py, PyDict>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (gait, i) in &self.0 {
+            d.set_item(*gait, i)?;
+        }
+        Ok(d)
+    }
+}
+
+/// Label changes `(phi_left, phi_right, label_left, label_right, sharp)`, which
+/// Python sees as a tuple of tuples.
+#[derive(PartialEq)]
+pub(crate) struct Changes(pub(crate) Vec<(f64, f64, &'static str, &'static str, bool)>);
+
+impl<'py> IntoPyObject<'py> for &Changes {
+    type Target = PyTuple;
+    type Output = Bound<'py, PyTuple>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        PyTuple::new(py, &self.0)
+    }
+}
+
+fields_class! {
+/// A design's slope profile (``rtw-scan profile``): its gait along φ, each
+/// change of label located to ``tol`` by bisection.
+///
+/// Attributes:
+///     intervals: each stable gait (``walk``, ``skip``, ``crawl``) → its
+///         intervals ``(lo, hi)`` of slopes [rad], each end a simulated slope
+///         with that gait.
+///     stable_intervals: the intervals of stable slopes, whatever the gait
+///         (neighbouring stable intervals joined).
+///     phi_min: the shallowest stable slope (``None``: none in the range).
+///     phi_lo: the start of the widest interval of stable slopes.
+///     phi_hi: its end.
+///     changes: every change of label, ``(phi_left, phi_right, label_left,
+///         label_right, sharp)``, ``phi_right - phi_left <= tol``, in φ order;
+///         ``sharp``: the labels one ``tol`` either side of its middle are
+///         ``label_left`` and ``label_right`` (not so where two labels
+///         interleave at scales below ``tol``).
+///     runs: the simulations made (grid and bisection).
+///     table: every simulated slope as a ``pyarrow.Table``, in φ order, with
+///         the columns of a scan's rows (docs/data-dictionary.md).
+    Profile {
+        intervals: GaitIntervals,
+        stable_intervals: Intervals,
+        phi_min: Option<f64>,
+        phi_lo: Option<f64>,
+        phi_hi: Option<f64>,
+        changes: Changes,
+        runs: usize,
+        table: TableField,
+    }
+}
+
+impl Profile {
+    pub(crate) fn new(p: &rtw_scan::profile::Profile, table: Py<PyAny>) -> Self {
+        let widest = p.widest();
+        Self {
+            intervals: GaitIntervals(
+                rtw_model::Label::ALL
+                    .into_iter()
+                    .filter(|l| l.is_stable())
+                    .map(|l| (l.as_str(), Intervals(p.intervals(l))))
+                    .collect(),
+            ),
+            stable_intervals: Intervals(p.stable_intervals()),
+            phi_min: p.phi_min(),
+            phi_lo: widest.map(|w| w.0),
+            phi_hi: widest.map(|w| w.1),
+            changes: Changes(
+                p.changes
+                    .iter()
+                    .map(|c| {
+                        (
+                            c.phi_left,
+                            c.phi_right,
+                            c.label_left.as_str(),
+                            c.label_right.as_str(),
+                            c.sharp(),
+                        )
+                    })
+                    .collect(),
+            ),
+            runs: p.runs(),
+            table: TableField(table),
+        }
+    }
+}

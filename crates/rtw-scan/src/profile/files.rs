@@ -142,16 +142,28 @@ pub fn markdown(p: &Profile) -> String {
     }
     let _ = writeln!(
         md,
-        "\n| φ_left | φ_right | label_left | label_right |\n|---|---|---|---|"
+        "\n| φ_left | φ_right | label_left | label_right | one tol below / above | sharp |\n\
+         |---|---|---|---|---|---|"
     );
     for c in &p.changes {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} / {} | {} |",
             f(c.phi_left),
             f(c.phi_right),
             c.label_left.as_str(),
-            c.label_right.as_str()
+            c.label_right.as_str(),
+            c.label_below.as_str(),
+            c.label_above.as_str(),
+            if c.sharp() { "yes" } else { "no" }
+        );
+    }
+    if p.changes.iter().any(|c| !c.sharp()) {
+        let _ = writeln!(
+            md,
+            "\nA change that is not sharp has other labels one tol either side of its bracket's \
+             middle: there the labels interleave at scales below tol, and the bracket holds one \
+             change of a band of them."
         );
     }
     let _ = writeln!(md, "\n| label | φ from | φ to | runs |\n|---|---|---|---|");

@@ -19,6 +19,20 @@ pub struct Change {
     pub label_left: Label,
     /// The label at `phi_right`.
     pub label_right: Label,
+    /// The label one `tol` below the bracket's middle (within the range).
+    pub label_below: Label,
+    /// The label one `tol` above the bracket's middle (within the range).
+    pub label_above: Label,
+}
+
+impl Change {
+    /// Whether the change is sharp: the labels one `tol` either side of it
+    /// are those of its bracket's ends. Where two labels interleave at
+    /// scales below `tol` (a walk that turns into a skip through a band of
+    /// both), the bracket holds a change, but not the only one nearby.
+    pub fn sharp(&self) -> bool {
+        self.label_below == self.label_left && self.label_above == self.label_right
+    }
 }
 
 /// A run of one label along φ, between two changes (or the range's ends):
@@ -77,6 +91,8 @@ pub(crate) fn locate<T: Send>(
                 phi_right: w[1].0,
                 label_left: a,
                 label_right: b,
+                label_below: a,
+                label_above: b,
             })
         })
         .collect();
@@ -118,8 +134,27 @@ pub(crate) fn locate<T: Send>(
         }
         points.extend(found);
     }
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
     changes.sort_by(|a, b| a.phi_left.total_cmp(&b.phi_left));
+    // Each change checked one tol either side of its middle, as a direct
+    // simulation there would check it; these runs are not profile points.
+    let (from, to) = (coarse[0], coarse[coarse.len() - 1]);
+    let checks: Vec<f64> = changes
+        .iter()
+        .flat_map(|c| {
+            let mid = c.phi_left + 0.5 * (c.phi_right - c.phi_left);
+            [(mid - tol).max(from), (mid + tol).min(to)]
+        })
+        .collect();
+    if !checks.is_empty() {
+        progress.stage("each change checked one tol either side");
+        progress.start(checks.len() as u64);
+    }
+    let checked = round(&checks, eval)?;
+    for (c, pair) in changes.iter_mut().zip(checked.chunks(2)) {
+        c.label_below = label(&pair[0].1);
+        c.label_above = label(&pair[1].1);
+    }
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut segments: Vec<Segment> = Vec::new();
     for (phi, t) in &points {
         let l = label(t);
@@ -192,7 +227,9 @@ mod tests {
             // (4 at 1e-3, 14 at 1e-6), where a grid at tol would take
             // 0.25 / tol + 1 runs.
             let halvings = (0.01 / tol).log2().ceil() as usize;
-            assert_eq!(runs.load(Ordering::Relaxed), 26 + halvings);
+            // And two runs checking it, one tol either side: it is sharp.
+            assert_eq!(runs.load(Ordering::Relaxed), 26 + halvings + 2);
+            assert!(c.sharp(), "{c:?}");
             assert_eq!(l.points.len(), 26 + halvings);
             assert!(l.points.windows(2).all(|w| w[0].0 < w[1].0));
         }
@@ -225,6 +262,27 @@ mod tests {
         assert_eq!(l.segments[2].hi, 0.3);
         assert_eq!(l.segments[1].lo, l.changes[0].phi_right);
         assert_eq!(l.segments[1].hi, l.changes[1].phi_left);
+    }
+
+    #[test]
+    fn a_change_inside_a_band_of_two_labels_is_not_sharp() {
+        // Walk below 0.1537, skip above, but also a skip blip in
+        // [0.1510, 0.1513] and a walk blip in [0.1551, 0.1553]: the grid and
+        // the bisection (midpoints 0.155, 0.1525, 0.15375) find the change
+        // in [0.1525, 0.15375]; one tol (2e-3) either side of its middle
+        // (0.151125, 0.155125) the labels are the other ones.
+        let coarse = grid(0.05, 0.3, 25);
+        let eval = |phi: f64| {
+            let skip = (phi >= 0.1537 && !(0.1551..0.1553).contains(&phi))
+                || (0.1510..0.1513).contains(&phi);
+            Some(if skip { Label::Skip } else { Label::Walk })
+        };
+        let l = locate(&coarse, 2e-3, &eval, |l| *l, &Silent).unwrap();
+        assert_eq!(l.changes.len(), 1);
+        let c = l.changes[0];
+        assert!(c.phi_left < 0.1537 && 0.1537 <= c.phi_right, "{c:?}");
+        assert_eq!((c.label_below, c.label_above), (Label::Skip, Label::Walk));
+        assert!(!c.sharp());
     }
 
     #[test]

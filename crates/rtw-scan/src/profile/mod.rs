@@ -298,6 +298,8 @@ impl Profile {
             "changes": self.changes.iter().map(|c| serde_json::json!({
                 "phi_left": c.phi_left, "phi_right": c.phi_right,
                 "label_left": c.label_left.as_str(), "label_right": c.label_right.as_str(),
+                "label_below": c.label_below.as_str(), "label_above": c.label_above.as_str(),
+                "sharp": c.sharp(),
             })).collect::<Vec<_>>(),
             "segments": self.segments.iter().map(|g| serde_json::json!({
                 "label": g.label.as_str(), "lo": g.lo, "hi": g.hi, "runs": g.runs,
