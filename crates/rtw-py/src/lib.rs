@@ -28,7 +28,7 @@ use rtw_scan::basin::{Settings as BasinSettings, slice_table};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
-use rtw_scan::profile::{self, Names as ProfileNames, Settings as ProfileSettings};
+use rtw_scan::profile::{Names as ProfileNames, Settings as ProfileSettings, run as run_profile};
 use rtw_scan::scan::scan_batch;
 use rtw_scan::scan::single::{simulate_row, simulate_traced};
 use rtw_scan::scan::workers::{Stopped, parse_threads};
@@ -358,7 +358,7 @@ fn profile<'py>(
     let done = AtomicU64::new(0);
     let p = interruptible(
         py,
-        |cancel| profile::run(&settings, &options, &done, cancel),
+        |cancel| run_profile(&settings, &options, &done, cancel),
         || Ok(()),
     )?
     .map_err(study_error)?;

@@ -204,11 +204,14 @@ fn dict_of<'py>(slf: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
     Ok(d)
 }
 
-/// Floats that Python sees as a tuple.
+/// Values that Python sees as a tuple (floats, intervals, changes).
 #[derive(PartialEq)]
-struct Floats(Vec<f64>);
+pub(crate) struct Tuple<T>(pub(crate) Vec<T>);
 
-impl<'py> IntoPyObject<'py> for &Floats {
+impl<'a, 'py, T> IntoPyObject<'py> for &'a Tuple<T>
+where
+    &'a T: IntoPyObject<'py>,
+{
     type Target = PyTuple;
     type Output = Bound<'py, PyTuple>;
     type Error = PyErr;
@@ -216,6 +219,9 @@ impl<'py> IntoPyObject<'py> for &Floats {
         PyTuple::new(py, &self.0)
     }
 }
+
+/// Floats that Python sees as a tuple.
+type Floats = Tuple<f64>;
 
 /// Complex numbers (re, im) that Python sees as a tuple of `complex`.
 #[derive(PartialEq)]
@@ -270,14 +276,14 @@ impl LimitCycle {
     pub(crate) fn new(lc: &rtw_model::cycles::LimitCycle, label: &str) -> Self {
         Self {
             period: lc.period,
-            fixed_point: Floats(lc.fixed_point.z.clone()),
+            fixed_point: Tuple(lc.fixed_point.z.clone()),
             residual: lc.fixed_point.residual,
             iterations: lc.fixed_point.iterations,
             multipliers: Complexes(lc.multipliers.iter().map(|m| (m.re, m.im)).collect()),
             floquet_max: lc.floquet_max(),
             stable: lc.is_stable(),
             label: label.to_string(),
-            step_times: Floats(lc.steps.iter().map(|s| s.time).collect()),
+            step_times: Tuple(lc.steps.iter().map(|s| s.time).collect()),
         }
     }
 }
@@ -312,10 +318,10 @@ impl Modes {
     ) -> Self {
         Self {
             s18_hz,
-            approx_hz: Floats(approx.freq_hz.clone()),
-            approx_damped_hz: Floats(approx.damped_freq_hz.clone()),
-            approx_damping_ratio: Floats(approx.damping_ratio.clone()),
-            star_hz: Floats(star.freq_hz.to_vec()),
+            approx_hz: Tuple(approx.freq_hz.clone()),
+            approx_damped_hz: Tuple(approx.damped_freq_hz.clone()),
+            approx_damping_ratio: Tuple(approx.damping_ratio.clone()),
+            star_hz: Tuple(star.freq_hz.to_vec()),
             star_rigid_modes: star.rigid_modes,
         }
     }
@@ -340,17 +346,7 @@ impl<'py> IntoPyObject<'py> for &TableField {
 }
 
 /// Intervals `(lo, hi)`, which Python sees as a tuple of pairs.
-#[derive(PartialEq)]
-pub(crate) struct Intervals(pub(crate) Vec<(f64, f64)>);
-
-impl<'py> IntoPyObject<'py> for &Intervals {
-    type Target = PyTuple;
-    type Output = Bound<'py, PyTuple>;
-    type Error = PyErr;
-    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        PyTuple::new(py, &self.0)
-    }
-}
+type Intervals = Tuple<(f64, f64)>;
 
 /// Each stable gait's intervals, which Python sees as a `dict`.
 #[derive(PartialEq)]
@@ -369,19 +365,9 @@ impl<'py> IntoPyObject<'py> for &GaitIntervals {
     }
 }
 
-/// Label changes `(phi_left, phi_right, label_left, label_right, sharp)`, which
-/// Python sees as a tuple of tuples.
-#[derive(PartialEq)]
-pub(crate) struct Changes(pub(crate) Vec<(f64, f64, &'static str, &'static str, bool)>);
-
-impl<'py> IntoPyObject<'py> for &Changes {
-    type Target = PyTuple;
-    type Output = Bound<'py, PyTuple>;
-    type Error = PyErr;
-    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        PyTuple::new(py, &self.0)
-    }
-}
+/// Label changes `(phi_left, phi_right, label_left, label_right, sharp)`,
+/// which Python sees as a tuple of tuples.
+type Changes = Tuple<(f64, f64, &'static str, &'static str, bool)>;
 
 fields_class! {
 /// A design's slope profile (``rtw-scan profile``): its gait along φ, each
@@ -424,14 +410,14 @@ impl Profile {
                 rtw_model::Label::ALL
                     .into_iter()
                     .filter(|l| l.is_stable())
-                    .map(|l| (l.as_str(), Intervals(p.intervals(l))))
+                    .map(|l| (l.as_str(), Tuple(p.intervals(l))))
                     .collect(),
             ),
-            stable_intervals: Intervals(p.stable_intervals()),
+            stable_intervals: Tuple(p.stable_intervals()),
             phi_min: p.phi_min(),
             phi_lo: widest.map(|w| w.0),
             phi_hi: widest.map(|w| w.1),
-            changes: Changes(
+            changes: Tuple(
                 p.changes
                     .iter()
                     .map(|c| {

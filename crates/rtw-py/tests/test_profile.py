@@ -41,13 +41,14 @@ def test_profile_equals_the_cli_profile_and_its_file(tmp_path) -> None:
     # The table is the file's rows (the runs' own wall times aside).
     assert isinstance(p.table, pa.Table) and p.table.num_rows == p.runs
     file = pq.read_table(out)
-    drop = lambda t: t.drop_columns(["wall_time_s"]).replace_schema_metadata(None)  # noqa: E731
-    assert drop(p.table).equals(drop(file))
+    assert p.table.schema.equals(file.schema, check_metadata=False)
+    assert p.table.drop_columns(["wall_time_s"]).to_pylist() == file.drop_columns(["wall_time_s"]).to_pylist()
     phi = p.table.column("phi").to_pylist()
     assert phi == sorted(phi) and (phi[0], phi[-1]) == (0.05, 0.3)
     # A Design's phi is not used: the slope is the profile's axis.
     again = rtw.profile(rtw.Design(**FIG7A, phi=0.2), phi_from=0.05, phi_to=0.3)
-    assert again == p
+    assert again.to_dict() | {"table": None} == p.to_dict() | {"table": None}
+    assert again.table.drop_columns(["wall_time_s"]).equals(p.table.drop_columns(["wall_time_s"]))
     with pytest.raises(TypeError, match="takes no phi"):
         rtw.profile(**FIG7A, phi=0.1, phi_from=0.05, phi_to=0.3)
 
