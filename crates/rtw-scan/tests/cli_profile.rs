@@ -206,3 +206,55 @@ fn bad_input_is_named_with_its_range() {
     args.extend(["--from", "0.05", "--to", "0.3"]);
     run_err(&args, &["--alpha: 0.6 is invalid: must be in [0, 0.49]"]);
 }
+
+#[test]
+fn ctrl_c_stops_a_profile_at_once_and_leaves_the_earlier_files_as_they_were() {
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.parquet");
+    let md = dir.path().join("p.md");
+    profile(&["--out", s(&out)]);
+    let (before, before_md) = (std::fs::read(&out).unwrap(), std::fs::read(&md).unwrap());
+    // 100 001 slopes on the grid: minutes of runs.
+    let mut child = bin()
+        .arg("profile")
+        .args(DESIGN)
+        .args([
+            "--from", "0.05", "--to", "0.3", "--grid", "2.5e-6", "--tol", "1e-6",
+        ])
+        .args(["--quiet", "--out", s(&out)])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "it ended before the signal"
+    );
+    let sent = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(10),
+            "still running 10 s after SIGINT"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(std::fs::read(&out).unwrap(), before);
+    assert_eq!(std::fs::read(&md).unwrap(), before_md);
+    let temps: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(temps.is_empty(), "{temps:?}");
+}
