@@ -258,3 +258,67 @@ fn ctrl_c_stops_a_profile_at_once_and_leaves_the_earlier_files_as_they_were() {
         .collect();
     assert!(temps.is_empty(), "{temps:?}");
 }
+
+#[test]
+fn the_mfpt_along_phi_is_in_the_file_as_simulate_gives_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.parquet");
+    let mfpt = [
+        "--set",
+        "robustness.mfpt=true",
+        "--set",
+        "robustness.sigma=0.05",
+    ];
+    let mut args = vec!["profile"];
+    args.extend(DESIGN);
+    args.extend([
+        "--from",
+        "0.27",
+        "--to",
+        "0.29",
+        "--quiet",
+        "--out",
+        s(&out),
+    ]);
+    args.extend(mfpt);
+    run_ok(&args);
+    let names = column_names(&out);
+    for c in ["mfpt", "mfpt_lo", "mfpt_hi", "fall_rate"] {
+        assert!(names.iter().any(|n| n == c), "no {c} in {names:?}");
+    }
+    let rows = rows(&out);
+    let get = |r: &[String], name: &str| -> String {
+        let prefix = format!("{name}=");
+        r.iter()
+            .find_map(|c| c.strip_prefix(&prefix))
+            .unwrap()
+            .to_string()
+    };
+    // A stable slope has the MFPT `simulate` gives at that slope; a
+    // collapse has none.
+    let first = &rows[0];
+    assert_eq!(get(first, "outcome"), "skip");
+    let mut sim = vec!["simulate"];
+    sim.extend(DESIGN);
+    let phi = get(first, "phi");
+    sim.extend(["--phi", &phi, "--json"]);
+    sim.extend(mfpt);
+    let v: Value = serde_json::from_str(&stdout(&run_ok(&sim))).unwrap();
+    assert_eq!(get(first, "mfpt").parse::<f64>().unwrap(), f(&v["mfpt"]));
+    let last = rows.last().unwrap();
+    assert_eq!(get(last, "outcome"), "collapse");
+    assert_eq!(get(last, "mfpt"), "null");
+    // A profile without the measure does not replace one with it.
+    let mut plain = vec!["profile"];
+    plain.extend(DESIGN);
+    plain.extend([
+        "--from",
+        "0.27",
+        "--to",
+        "0.29",
+        "--quiet",
+        "--out",
+        s(&out),
+    ]);
+    run_err(&plain, &["its columns are not those of this one"]);
+}

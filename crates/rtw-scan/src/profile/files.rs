@@ -11,7 +11,8 @@ use crate::io::metadata::{
     FileKind, META_OPTIONS, META_PARAMS, META_PROFILE, META_VARIANT, META_VERSION, META_WALL_TIME,
     kv,
 };
-use crate::io::{parquet, scan_rows};
+use crate::io::parquet;
+use crate::io::robustness_columns::schema_for;
 use crate::scan::progress::Progress;
 use anyhow::Result;
 use rtw_model::{Label, Options};
@@ -25,12 +26,13 @@ use std::time::Instant;
 const HEADING: &str = "# Slope profile of ";
 
 /// Refuses, unless `force`, to write a profile at `out` (and its summary)
-/// over files that are not a profile's; removes stray temporary files.
-pub(crate) fn check_outputs(out: &Path, force: bool) -> Result<()> {
+/// over files that are not a profile's (a profile with other robustness
+/// columns included); removes stray temporary files.
+pub(crate) fn check_outputs(out: &Path, options: &Options, force: bool) -> Result<()> {
     let files_ = [Output {
         path: out.to_path_buf(),
         flag: "--out",
-        schema: scan_rows::schema(),
+        schema: schema_for(options),
     }];
     destination::check_outputs(
         out,
@@ -53,7 +55,7 @@ pub fn run_to_files(
     progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Result<Profile> {
-    check_outputs(out, force)?;
+    check_outputs(out, options, force)?;
     let t0 = Instant::now();
     let profile = super::run(settings, options, progress, cancel)?;
     let wall = t0.elapsed().as_secs_f64();

@@ -19,6 +19,7 @@ pub(crate) mod files;
 mod locate;
 
 use crate::config::params::checked_params;
+use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_rows::{self, Row};
 use crate::scan::one::run_one;
 use crate::scan::progress::Progress;
@@ -195,6 +196,8 @@ impl Settings {
 pub struct Profile {
     /// The settings it was made with.
     pub settings: Settings,
+    /// The simulation options of its runs.
+    pub(crate) options: Options,
     /// One row per simulated slope, in φ order (`sample_id` its position).
     pub(crate) rows: Vec<Row>,
     /// Every change of label, each bracket at most `tol` wide, in φ order.
@@ -260,9 +263,11 @@ impl Profile {
     }
 
     /// Every simulated slope as a record batch: the columns of a scan's
-    /// rows (docs/data-dictionary.md), one row per slope in φ order.
+    /// rows (docs/data-dictionary.md), with the robustness columns its
+    /// options ask for (`robustness.mfpt`: the MFPT along φ), one row per
+    /// slope in φ order.
     pub fn table(&self) -> RecordBatch {
-        scan_rows::to_batch(&self.rows)
+        with_robustness(scan_rows::to_batch(&self.rows), &self.rows, &self.options)
     }
 
     /// The profile as JSON: what `rtw-scan profile --json` prints and its
@@ -343,6 +348,7 @@ pub fn run(
     }
     Ok(Profile {
         settings: *settings,
+        options: options.clone(),
         rows,
         changes: located.changes,
         segments: located.segments,
