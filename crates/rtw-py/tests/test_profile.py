@@ -82,3 +82,13 @@ def test_a_bad_design_gets_the_clis_refusal() -> None:
     cli = cli_error("profile", *flags, "--from", "0.05", "--to", "0.3")
     py = python_error(lambda: rtw.profile(**{**FIG7A, "alpha": 0.6}, phi_from=0.05, phi_to=0.3))
     assert py == as_python(cli) == "alpha: 0.6 is invalid: must be in [0, 0.49]"
+
+
+def test_the_mfpt_along_phi_is_in_the_table_when_asked() -> None:
+    options = {"robustness.mfpt": True, "robustness.sigma": 0.05}
+    p = rtw.profile(**FIG7A, phi_from=0.27, phi_to=0.29, options=options)
+    rows = p.table.select(["phi", "outcome", "mfpt"]).to_pylist()
+    for r in rows:
+        assert (r["mfpt"] is not None) == (r["outcome"] in rtw.STABLE_LABELS), r
+    first = rows[0]
+    assert first["mfpt"] == rtw.simulate(**FIG7A, phi=first["phi"], options=options).mfpt
