@@ -15,12 +15,26 @@ const DESIGN: [&str; 10] = [
     "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta", "0.0514",
 ];
 
+/// `rtw-scan profile` of the design over [from, to], then `extra`.
+fn args<'a>(from: &'a str, to: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut a = vec!["profile"];
+    a.extend(DESIGN);
+    a.extend(["--from", from, "--to", to]);
+    a.extend(extra);
+    a
+}
+
+/// The column `name` of a row of [`rows`].
+fn field<'a>(row: &'a [String], name: &str) -> &'a str {
+    let prefix = format!("{name}=");
+    row.iter()
+        .find_map(|c| c.strip_prefix(&prefix))
+        .unwrap_or_else(|| panic!("no {name} in {row:?}"))
+}
+
 fn profile(extra: &[&str]) -> Value {
-    let mut args = vec!["profile"];
-    args.extend(DESIGN);
-    args.extend(["--from", "0.05", "--to", "0.3", "--json", "--quiet"]);
-    args.extend(extra);
-    serde_json::from_str(&stdout(&run_ok(&args))).unwrap()
+    let a = args("0.05", "0.3", &[&["--json", "--quiet"], extra].concat());
+    serde_json::from_str(&stdout(&run_ok(&a))).unwrap()
 }
 
 /// The label `rtw-scan simulate` gives the design at `phi`.
@@ -119,13 +133,7 @@ fn out_writes_every_slope_and_its_summary_and_refuses_a_file_it_did_not_make() {
     assert_eq!(rows.len() as u64, p["runs"].as_u64().unwrap());
     let phis: Vec<f64> = rows
         .iter()
-        .map(|r| {
-            r.iter()
-                .find_map(|c| c.strip_prefix("phi="))
-                .unwrap()
-                .parse()
-                .unwrap()
-        })
+        .map(|r| field(r, "phi").parse().unwrap())
         .collect();
     assert!(phis.windows(2).all(|w| w[0] < w[1]), "not in φ order");
     assert_eq!((phis[0], *phis.last().unwrap()), (0.05, 0.3));
@@ -269,56 +277,32 @@ fn the_mfpt_along_phi_is_in_the_file_as_simulate_gives_it() {
         "--set",
         "robustness.sigma=0.05",
     ];
-    let mut args = vec!["profile"];
-    args.extend(DESIGN);
-    args.extend([
-        "--from",
+    let out_s = s(&out);
+    run_ok(&args(
         "0.27",
-        "--to",
         "0.29",
-        "--quiet",
-        "--out",
-        s(&out),
-    ]);
-    args.extend(mfpt);
-    run_ok(&args);
+        &[&["--quiet", "--out", out_s], &mfpt[..]].concat(),
+    ));
     let names = column_names(&out);
     for c in ["mfpt", "mfpt_lo", "mfpt_hi", "fall_rate"] {
         assert!(names.iter().any(|n| n == c), "no {c} in {names:?}");
     }
     let rows = rows(&out);
-    let get = |r: &[String], name: &str| -> String {
-        let prefix = format!("{name}=");
-        r.iter()
-            .find_map(|c| c.strip_prefix(&prefix))
-            .unwrap()
-            .to_string()
-    };
     // A stable slope has the MFPT `simulate` gives at that slope; a
     // collapse has none.
     let first = &rows[0];
-    assert_eq!(get(first, "outcome"), "skip");
+    assert_eq!(field(first, "outcome"), "skip");
     let mut sim = vec!["simulate"];
     sim.extend(DESIGN);
-    let phi = get(first, "phi");
+    let phi = field(first, "phi");
     sim.extend(["--phi", &phi, "--json"]);
     sim.extend(mfpt);
     let v: Value = serde_json::from_str(&stdout(&run_ok(&sim))).unwrap();
-    assert_eq!(get(first, "mfpt").parse::<f64>().unwrap(), f(&v["mfpt"]));
+    assert_eq!(field(first, "mfpt").parse::<f64>().unwrap(), f(&v["mfpt"]));
     let last = rows.last().unwrap();
-    assert_eq!(get(last, "outcome"), "collapse");
-    assert_eq!(get(last, "mfpt"), "null");
+    assert_eq!(field(last, "outcome"), "collapse");
+    assert_eq!(field(last, "mfpt"), "null");
     // A profile without the measure does not replace one with it.
-    let mut plain = vec!["profile"];
-    plain.extend(DESIGN);
-    plain.extend([
-        "--from",
-        "0.27",
-        "--to",
-        "0.29",
-        "--quiet",
-        "--out",
-        s(&out),
-    ]);
+    let plain = args("0.27", "0.29", &["--quiet", "--out", out_s]);
     run_err(&plain, &["its columns are not those of this one"]);
 }

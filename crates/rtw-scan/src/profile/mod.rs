@@ -348,7 +348,7 @@ pub fn run(
     }
     Ok(Profile {
         settings: *settings,
-        options: options.clone(),
+        options: *options,
         rows,
         changes: located.changes,
         segments: located.segments,
