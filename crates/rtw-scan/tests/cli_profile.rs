@@ -295,7 +295,7 @@ fn the_mfpt_along_phi_is_in_the_file_as_simulate_gives_it() {
     let mut sim = vec!["simulate"];
     sim.extend(DESIGN);
     let phi = field(first, "phi");
-    sim.extend(["--phi", &phi, "--json"]);
+    sim.extend(["--phi", phi, "--json"]);
     sim.extend(mfpt);
     let v: Value = serde_json::from_str(&stdout(&run_ok(&sim))).unwrap();
     assert_eq!(field(first, "mfpt").parse::<f64>().unwrap(), f(&v["mfpt"]));
