@@ -11,9 +11,9 @@ use rtw_model::Label;
 /// `label_left` at `phi_left`, `label_right` at `phi_right`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Change {
-    /// The slope below the change [rad].
+    /// The slope below the change (rad).
     pub phi_left: f64,
-    /// The slope above the change [rad].
+    /// The slope above the change (rad).
     pub phi_right: f64,
     /// The label at `phi_left`.
     pub label_left: Label,
@@ -41,9 +41,9 @@ impl Change {
 pub struct Segment {
     /// The label.
     pub label: Label,
-    /// Its lowest simulated slope [rad].
+    /// Its lowest simulated slope (rad).
     pub lo: f64,
-    /// Its highest simulated slope [rad].
+    /// Its highest simulated slope (rad).
     pub hi: f64,
     /// The slopes simulated in it.
     pub runs: usize,

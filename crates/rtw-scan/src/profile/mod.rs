@@ -34,7 +34,7 @@ pub use locate::{Change, Segment};
 
 /// Most slopes of the coarse grid: (to − from) / grid is at most this.
 pub const MAX_GRID_POINTS: f64 = 100_000.0;
-/// The finest tolerance in φ [rad]: below it the bisection would chase the
+/// The finest tolerance in φ (rad): below it the bisection would chase the
 /// integration error of the runs, not the slope where the gait changes.
 pub const MIN_TOL: f64 = 1e-9;
 
@@ -84,13 +84,13 @@ impl Names {
 pub struct Settings {
     /// The design; its `phi` is `from`.
     pub design: Params,
-    /// The range's start [rad].
+    /// The range's start (rad).
     pub from: f64,
-    /// The range's end [rad], above `from`.
+    /// The range's end (rad), above `from`.
     pub to: f64,
-    /// Each change of label is located to a bracket at most this wide [rad].
+    /// Each change of label is located to a bracket at most this wide (rad).
     pub tol: f64,
-    /// The coarse grid's spacing is at most this [rad].
+    /// The coarse grid's spacing is at most this (rad).
     pub grid: f64,
     /// Worker threads (`None`: one per core).
     pub threads: Option<NonZeroUsize>,
