@@ -375,7 +375,7 @@ fields_class! {
 ///
 /// Attributes:
 ///     intervals: each stable gait (``walk``, ``skip``, ``crawl``) → its
-///         intervals ``(lo, hi)`` of slopes [rad], each end a simulated slope
+///         intervals ``(lo, hi)`` of slopes (rad), each end a simulated slope
 ///         with that gait.
 ///     stable_intervals: the intervals of stable slopes, whatever the gait
 ///         (neighbouring stable intervals joined).
