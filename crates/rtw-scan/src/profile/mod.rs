@@ -355,3 +355,99 @@ pub fn run(
         coarse_runs: coarse.len(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seg(label: Label, lo: f64, hi: f64) -> Segment {
+        Segment {
+            label,
+            lo,
+            hi,
+            runs: 2,
+        }
+    }
+
+    /// A profile with these segments (no rows: the summaries read only them).
+    fn profile(segments: Vec<Segment>) -> Profile {
+        let settings = Settings::parse(
+            [0.8, 2.5, 0.125, 3.269, 0.0514],
+            0.0,
+            0.4,
+            1e-3,
+            0.01,
+            None,
+            &Names::CLI,
+        )
+        .unwrap();
+        Profile {
+            settings,
+            options: Options::default(),
+            rows: Vec::new(),
+            changes: Vec::new(),
+            segments,
+            coarse_runs: 0,
+        }
+    }
+
+    #[test]
+    fn neighbouring_stable_gaits_join_and_the_widest_interval_is_the_longest_run_of_them() {
+        use Label::*;
+        let p = profile(vec![
+            seg(Stall, 0.0, 0.04),
+            seg(Walk, 0.041, 0.1),
+            seg(Collapse, 0.101, 0.11),
+            seg(Walk, 0.111, 0.2),
+            seg(Skip, 0.201, 0.25),
+            seg(Crawl, 0.251, 0.26),
+            seg(Collapse, 0.261, 0.4),
+        ]);
+        assert_eq!(p.phi_min(), Some(0.041));
+        assert_eq!(p.intervals(Walk), [(0.041, 0.1), (0.111, 0.2)]);
+        assert_eq!(p.intervals(Crawl), [(0.251, 0.26)]);
+        assert_eq!(p.stable_intervals(), [(0.041, 0.1), (0.111, 0.26)]);
+        assert_eq!(p.widest(), Some((0.111, 0.26)));
+        let json = p.to_json();
+        assert_eq!(
+            (json["phi_lo"].as_f64(), json["phi_hi"].as_f64()),
+            (Some(0.111), Some(0.26))
+        );
+        // No stable slope: none of them.
+        let p = profile(vec![seg(Collapse, 0.0, 0.4)]);
+        assert_eq!((p.phi_min(), p.widest()), (None, None));
+        assert!(p.stable_intervals().is_empty());
+    }
+
+    #[test]
+    fn the_grid_spans_the_range_in_equal_cells_at_most_grid_wide() {
+        let s = Settings::parse(
+            [0.8, 2.5, 0.125, 3.269, 0.0514],
+            0.05,
+            0.3,
+            1e-3,
+            0.01,
+            None,
+            &Names::CLI,
+        )
+        .unwrap();
+        let g = s.coarse();
+        assert_eq!(g.len(), 26);
+        assert_eq!((g[0], g[25]), (0.05, 0.3));
+        assert!(g.windows(2).all(|w| w[1] - w[0] <= 0.01 + 1e-15));
+        // A grid that does not divide the range: ceil, so cells stay within it.
+        let s = Settings::parse(
+            [0.8, 2.5, 0.125, 3.269, 0.0514],
+            0.0,
+            0.1,
+            1e-3,
+            0.03,
+            None,
+            &Names::CLI,
+        )
+        .unwrap();
+        let g = s.coarse();
+        assert_eq!(g.len(), 5);
+        assert!(g.windows(2).all(|w| w[1] - w[0] <= 0.03));
+    }
+}
