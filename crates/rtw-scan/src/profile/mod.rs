@@ -360,6 +360,12 @@ pub fn run(
 mod tests {
     use super::*;
 
+    /// The Fig. 7(a) design's settings over [from, to] at `grid`, tol 1e-3.
+    fn fig7a(from: f64, to: f64, grid: f64) -> Settings {
+        let design = [0.8, 2.5, 0.125, 3.269, 0.0514];
+        Settings::parse(design, from, to, 1e-3, grid, None, &Names::CLI).unwrap()
+    }
+
     fn seg(label: Label, lo: f64, hi: f64) -> Segment {
         Segment {
             label,
@@ -371,16 +377,7 @@ mod tests {
 
     /// A profile with these segments (no rows: the summaries read only them).
     fn profile(segments: Vec<Segment>) -> Profile {
-        let settings = Settings::parse(
-            [0.8, 2.5, 0.125, 3.269, 0.0514],
-            0.0,
-            0.4,
-            1e-3,
-            0.01,
-            None,
-            &Names::CLI,
-        )
-        .unwrap();
+        let settings = fig7a(0.0, 0.4, 0.01);
         Profile {
             settings,
             options: Options::default(),
@@ -421,31 +418,13 @@ mod tests {
 
     #[test]
     fn the_grid_spans_the_range_in_equal_cells_at_most_grid_wide() {
-        let s = Settings::parse(
-            [0.8, 2.5, 0.125, 3.269, 0.0514],
-            0.05,
-            0.3,
-            1e-3,
-            0.01,
-            None,
-            &Names::CLI,
-        )
-        .unwrap();
+        let s = fig7a(0.05, 0.3, 0.01);
         let g = s.coarse();
         assert_eq!(g.len(), 26);
         assert_eq!((g[0], g[25]), (0.05, 0.3));
         assert!(g.windows(2).all(|w| w[1] - w[0] <= 0.01 + 1e-15));
         // A grid that does not divide the range: ceil, so cells stay within it.
-        let s = Settings::parse(
-            [0.8, 2.5, 0.125, 3.269, 0.0514],
-            0.0,
-            0.1,
-            1e-3,
-            0.03,
-            None,
-            &Names::CLI,
-        )
-        .unwrap();
+        let s = fig7a(0.0, 0.1, 0.03);
         let g = s.coarse();
         assert_eq!(g.len(), 5);
         assert!(g.windows(2).all(|w| w[1] - w[0] <= 0.03));
