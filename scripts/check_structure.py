@@ -55,7 +55,7 @@ LAYERS = {
         {"io"},
         {"scan"},
         {"analysis", "bifurcation", "continuation", "refine", "studies"},
-        {"basin"},
+        {"basin", "profile"},
         {"dictionary", "fake"},
         {"cli"},
     ],

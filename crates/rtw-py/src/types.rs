@@ -204,11 +204,14 @@ fn dict_of<'py>(slf: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
     Ok(d)
 }
 
-/// Floats that Python sees as a tuple.
+/// Values that Python sees as a tuple (floats, intervals, changes).
 #[derive(PartialEq)]
-struct Floats(Vec<f64>);
+pub(crate) struct Tuple<T>(pub(crate) Vec<T>);
 
-impl<'py> IntoPyObject<'py> for &Floats {
+impl<'a, 'py, T> IntoPyObject<'py> for &'a Tuple<T>
+where
+    &'a T: IntoPyObject<'py>,
+{
     type Target = PyTuple;
     type Output = Bound<'py, PyTuple>;
     type Error = PyErr;
@@ -216,6 +219,9 @@ impl<'py> IntoPyObject<'py> for &Floats {
         PyTuple::new(py, &self.0)
     }
 }
+
+/// Floats that Python sees as a tuple.
+type Floats = Tuple<f64>;
 
 /// Complex numbers (re, im) that Python sees as a tuple of `complex`.
 #[derive(PartialEq)]
@@ -270,14 +276,14 @@ impl LimitCycle {
     pub(crate) fn new(lc: &rtw_model::cycles::LimitCycle, label: &str) -> Self {
         Self {
             period: lc.period,
-            fixed_point: Floats(lc.fixed_point.z.clone()),
+            fixed_point: Tuple(lc.fixed_point.z.clone()),
             residual: lc.fixed_point.residual,
             iterations: lc.fixed_point.iterations,
             multipliers: Complexes(lc.multipliers.iter().map(|m| (m.re, m.im)).collect()),
             floquet_max: lc.floquet_max(),
             stable: lc.is_stable(),
             label: label.to_string(),
-            step_times: Floats(lc.steps.iter().map(|s| s.time).collect()),
+            step_times: Tuple(lc.steps.iter().map(|s| s.time).collect()),
         }
     }
 }
@@ -312,11 +318,121 @@ impl Modes {
     ) -> Self {
         Self {
             s18_hz,
-            approx_hz: Floats(approx.freq_hz.clone()),
-            approx_damped_hz: Floats(approx.damped_freq_hz.clone()),
-            approx_damping_ratio: Floats(approx.damping_ratio.clone()),
-            star_hz: Floats(star.freq_hz.to_vec()),
+            approx_hz: Tuple(approx.freq_hz.clone()),
+            approx_damped_hz: Tuple(approx.damped_freq_hz.clone()),
+            approx_damping_ratio: Tuple(approx.damping_ratio.clone()),
+            star_hz: Tuple(star.freq_hz.to_vec()),
             star_rigid_modes: star.rigid_modes,
+        }
+    }
+}
+
+/// A pyarrow table as a field: compared with pyarrow's `==` (`Table.equals`).
+pub(crate) struct TableField(pub(crate) Py<PyAny>);
+
+impl PartialEq for TableField {
+    fn eq(&self, other: &Self) -> bool {
+        Python::attach(|py| self.0.bind(py).eq(other.0.bind(py)).unwrap_or(false))
+    }
+}
+
+impl<'py> IntoPyObject<'py> for &TableField {
+    type Target = PyAny;
+    type Output = Bound<'py, PyAny>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        Ok(self.0.bind(py).clone())
+    }
+}
+
+/// Intervals `(lo, hi)`, which Python sees as a tuple of pairs.
+type Intervals = Tuple<(f64, f64)>;
+
+/// Each stable gait's intervals, which Python sees as a `dict`.
+#[derive(PartialEq)]
+pub(crate) struct GaitIntervals(pub(crate) Vec<(&'static str, Intervals)>);
+
+impl<'py> IntoPyObject<'py> for &GaitIntervals {
+    type Target = PyDict;
+    type Output = Bound<'py, PyDict>;
+    type Error = PyErr;
+    fn into_pyobject(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (gait, i) in &self.0 {
+            d.set_item(*gait, i)?;
+        }
+        Ok(d)
+    }
+}
+
+/// Label changes `(phi_left, phi_right, label_left, label_right, sharp)`,
+/// which Python sees as a tuple of tuples.
+type Changes = Tuple<(f64, f64, &'static str, &'static str, bool)>;
+
+fields_class! {
+/// A design's slope profile (``rtw-scan profile``): its gait along φ, each
+/// change of label located to ``tol`` by bisection.
+///
+/// Attributes:
+///     intervals: each stable gait (``walk``, ``skip``, ``crawl``) → its
+///         intervals ``(lo, hi)`` of slopes (rad), each end a simulated slope
+///         with that gait.
+///     stable_intervals: the intervals of stable slopes, whatever the gait
+///         (neighbouring stable intervals joined).
+///     phi_min: the shallowest stable slope (``None``: none in the range).
+///     phi_lo: the start of the widest interval of stable slopes.
+///     phi_hi: its end.
+///     changes: every change of label, ``(phi_left, phi_right, label_left,
+///         label_right, sharp)``, ``phi_right - phi_left <= tol``, in φ order;
+///         ``sharp``: the labels one ``tol`` either side of its middle are
+///         ``label_left`` and ``label_right`` (not so where two labels
+///         interleave at scales below ``tol``).
+///     runs: the simulations made (grid and bisection).
+///     table: every simulated slope as a ``pyarrow.Table``, in φ order, with
+///         the columns of a scan's rows (docs/data-dictionary.md).
+    Profile {
+        intervals: GaitIntervals,
+        stable_intervals: Intervals,
+        phi_min: Option<f64>,
+        phi_lo: Option<f64>,
+        phi_hi: Option<f64>,
+        changes: Changes,
+        runs: usize,
+        table: TableField,
+    }
+}
+
+impl Profile {
+    pub(crate) fn new(p: &rtw_scan::profile::Profile, table: Py<PyAny>) -> Self {
+        let widest = p.widest();
+        Self {
+            intervals: GaitIntervals(
+                rtw_model::Label::ALL
+                    .into_iter()
+                    .filter(|l| l.is_stable())
+                    .map(|l| (l.as_str(), Tuple(p.intervals(l))))
+                    .collect(),
+            ),
+            stable_intervals: Tuple(p.stable_intervals()),
+            phi_min: p.phi_min(),
+            phi_lo: widest.map(|w| w.0),
+            phi_hi: widest.map(|w| w.1),
+            changes: Tuple(
+                p.changes
+                    .iter()
+                    .map(|c| {
+                        (
+                            c.phi_left,
+                            c.phi_right,
+                            c.label_left.as_str(),
+                            c.label_right.as_str(),
+                            c.sharp(),
+                        )
+                    })
+                    .collect(),
+            ),
+            runs: p.runs(),
+            table: TableField(table),
         }
     }
 }

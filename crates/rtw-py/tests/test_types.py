@@ -49,7 +49,7 @@ def test_outcome_stub_is_the_rust_row_columns() -> None:
         assert v is None and ty.endswith("| None") or type(v).__name__ == ty.split(" ")[0], name
 
 
-@pytest.mark.parametrize("cls", ["LimitCycle", "Modes"])
+@pytest.mark.parametrize("cls", ["LimitCycle", "Modes", "Profile"])
 def test_result_class_stub_is_the_pyclass(cls: str) -> None:
     c = getattr(_rtw, cls)
     getters = {n for n, v in vars(c).items() if type(v).__name__ == "getset_descriptor" and not n.startswith("_")}

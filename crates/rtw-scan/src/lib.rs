@@ -19,6 +19,7 @@
 //! | `refine` | refinement rounds: where a round samples (candidates whose nearest samples' labels disagree) and each round run as a scan of stored points |
 //! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
 //! | `basin` | a slice of a gait's basin of attraction: its grid points in parallel, its Parquet file |
+//! | [`profile`] | a design's slope profile: its gait along φ, each change of label located by bisection, its stable intervals |
 //! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
 //! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
 //! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands; the progress bar and the signal handler (the `cli` feature only) |
@@ -67,6 +68,7 @@ pub(crate) mod fake;
 pub(crate) mod files;
 pub(crate) mod hash;
 pub mod io;
+pub mod profile;
 pub(crate) mod refine;
 pub mod sampling;
 pub mod scan;

@@ -38,7 +38,7 @@ from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
-from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, LimitCycle, Modes, Outcome
+from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, LimitCycle, Modes, Outcome, Profile
 from .report import report
 from .sensitivity import sensitivity
 
@@ -55,11 +55,13 @@ __all__ = [
     "LimitCycle",
     "Modes",
     "Outcome",
+    "Profile",
     "animate",
     "basin",
     "label",
     "limit_cycle",
     "modal",
+    "profile",
     "read_scan",
     "report",
     "scan",
@@ -494,6 +496,70 @@ def basin(
     report = _reporter(progress, "rtw.basin", "points")
     return _rtw.basin(
         values, _path(config), _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
+    )
+
+
+def profile(
+    *design: Design | float,
+    phi_from: float,
+    phi_to: float,
+    tol: float = 1e-3,
+    grid: float = 0.01,
+    threads: int | None = None,
+    config: Config | None = None,
+    variant: Config | None = None,
+    options: Mapping[str, Any] | None = None,
+    **more: Any,
+) -> Profile:
+    """The slope profile of one design, as ``rtw-scan profile`` makes it.
+
+    ``rtw.profile(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514,
+    phi_from=0.05, phi_to=0.3)``: the design's gait at each slope of
+    [``phi_from``, ``phi_to``], on a grid at most ``grid`` apart, then each
+    pair of neighbouring slopes whose labels differ halved until it is at
+    most ``tol`` wide (docs/design.md).
+
+    Args:
+        design: the five inputs ``length``, ``rho``, ``alpha``, ``fn``,
+            ``zeta`` (by keyword or position), or a :class:`Design`, whose
+            ``phi`` is not used: the slope is the profile's axis.
+        phi_from, phi_to: the slope range [rad], each in (-pi/2, pi/2),
+            ``phi_to`` above ``phi_from``.
+        tol: each change of label is located to this [rad], in [1e-9, grid].
+        grid: the coarse grid's spacing, at most [rad]; a feature narrower
+            than it, with one label at both its ends, is not seen.
+        threads: worker threads (default: one per core; at most 4 per core);
+            the profile does not depend on it.
+        config, variant, options, more: as for :func:`simulate`.
+
+    Returns:
+        A :class:`Profile`: ``intervals`` per stable gait, ``stable_intervals``,
+        ``phi_min``, ``phi_lo``, ``phi_hi``, ``changes``, ``runs`` and
+        ``table`` (every simulated slope as a ``pyarrow.Table``).
+
+    Raises:
+        ValueError: an input, option or setting is invalid (named with its
+            range, in the words of ``rtw-scan profile``).
+        KeyboardInterrupt: interrupted (Ctrl-C stops the runs in flight).
+    """
+    if "phi" in more:
+        raise TypeError("profile() takes no phi: the slope is its axis (phi_from, phi_to)")
+    given_design = len(design) == 1 and isinstance(design[0], Design)
+    # The slope is not an input of a profile: a placeholder completes the design.
+    if not given_design:
+        more["phi"] = 0.0
+    values = _design("profile", design, more)  # takes the inputs out of `more`
+    more.pop("phi", None)
+    return _rtw.profile(
+        values[:5],
+        _path(config),
+        _path(variant),
+        _options(options, more),
+        float(phi_from),
+        float(phi_to),
+        float(tol),
+        float(grid),
+        threads,
     )
 
 

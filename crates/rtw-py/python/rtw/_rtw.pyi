@@ -97,6 +97,17 @@ class Modes:
     star_rigid_modes: int
     def to_dict(self) -> dict[str, Any]: ...
 
+class Profile:
+    intervals: dict[str, tuple[tuple[float, float], ...]]
+    stable_intervals: tuple[tuple[float, float], ...]
+    phi_min: float | None
+    phi_lo: float | None
+    phi_hi: float | None
+    changes: tuple[tuple[float, float, str, str, bool], ...]
+    runs: int
+    table: pyarrow.Table
+    def to_dict(self) -> dict[str, Any]: ...
+
 def simulate(
     values: list[float],
     config: str | None,
@@ -140,6 +151,17 @@ def basin(
     threads: int | None,
     progress: Callable[[int, int], object] | None = None,
 ) -> pyarrow.Table: ...
+def profile(
+    design: list[float],
+    config: str | None,
+    variant: str | None,
+    options: Mapping[str, Any] | None,
+    phi_from: float,
+    phi_to: float,
+    tol: float,
+    grid: float,
+    threads: int | None,
+) -> Profile: ...
 def modes(
     values: list[float],
     config: str | None,

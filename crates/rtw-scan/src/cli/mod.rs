@@ -10,6 +10,7 @@ mod analysis;
 mod basin;
 mod bifurcation;
 mod continuation;
+mod profile;
 mod progress;
 mod refine;
 mod run;
@@ -24,6 +25,7 @@ use basin::BasinArgs;
 use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
 use continuation::ContinuationArgs;
+use profile::ProfileArgs;
 use refine::RefineArgs;
 use run::{MergeArgs, RunArgs};
 use sensitivity::SensitivityArgs;
@@ -178,6 +180,20 @@ enum Command {
         after_help = EXIT_CODES
     )]
     Refine(RefineArgs),
+    /// A design's gait along the slope: each change of label located by bisection, the stable intervals per gait.
+    #[command(
+        long_about = "The slope profile of one design: its gait at each slope φ of [--from, --to], every change \
+        of label located to --tol by bisection.\n\n\
+        Simulates the design (the flags of `simulate`) on a grid of slopes at most --grid apart, then halves each \
+        pair of neighbouring slopes whose labels differ until it is at most --tol wide (about log2(grid/tol) runs \
+        per change), the runs of each round in parallel. Prints the stable slope intervals of each gait (walk, \
+        skip, crawl), phi_min (the shallowest stable slope), the widest interval of stable slopes (phi_lo, \
+        phi_hi) and the changes (φ_left, φ_right, label_left, label_right); with --out, writes every simulated \
+        slope (a scan's columns) to FILE.parquet and the summary to FILE.md. Options as `simulate` (--config, \
+        --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Profile(ProfileArgs),
 }
 
 /// Parses the command line, runs it, and turns errors into a message and
@@ -199,6 +215,7 @@ pub fn main() -> ExitCode {
         Command::Summary(a) => analysis::cmd_summary(a),
         Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),
         Command::Refine(a) => refine::cmd_refine(a),
+        Command::Profile(a) => profile::cmd_profile(a),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e:#}");

@@ -15,8 +15,10 @@ use rtw_model::{Label, Options, Outcome, Params};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// A design's five inputs without its slope: the flags of `simulate`,
+/// which `profile` takes alike.
 #[derive(Args, Debug)]
-pub(super) struct SimulateArgs {
+pub(super) struct DesignArgs {
     /// Rod length L [m].
     #[arg(long)]
     length: f64,
@@ -32,9 +34,19 @@ pub(super) struct SimulateArgs {
     /// Damping ratio ζ.
     #[arg(long)]
     zeta: f64,
-    /// Slope φ [rad].
-    #[arg(long, allow_negative_numbers = true)]
-    phi: f64,
+}
+
+impl DesignArgs {
+    /// L, ρ, α, f_n, ζ as given (unchecked).
+    pub(super) fn values(&self) -> [f64; 5] {
+        [self.length, self.rho, self.alpha, self.f_n, self.zeta]
+    }
+}
+
+/// The simulation options of `simulate` (and `profile`): a config's
+/// `[simulation]`, a variant over it, `--set` overrides over both.
+#[derive(Args, Debug)]
+pub(super) struct OptionArgs {
     /// Take the [simulation] options of this config file.
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
@@ -44,6 +56,24 @@ pub(super) struct SimulateArgs {
     /// Override one simulation option after the variant (repeatable), e.g. contact.mu=0.8.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
+}
+
+impl OptionArgs {
+    /// The options, layered and validated.
+    pub(super) fn resolve(&self) -> Result<Options> {
+        simulation_options(self.config.as_deref(), self.variant.as_deref(), &self.set)
+    }
+}
+
+#[derive(Args, Debug)]
+pub(super) struct SimulateArgs {
+    #[command(flatten)]
+    design: DesignArgs,
+    /// Slope φ [rad].
+    #[arg(long, allow_negative_numbers = true)]
+    phi: f64,
+    #[command(flatten)]
+    options: OptionArgs,
     /// Print one JSON object: `outcome` (the label) and every metric, flattened, with the derived parameters.
     #[arg(long)]
     json: bool,
@@ -64,8 +94,9 @@ pub(super) struct SimulateArgs {
 }
 
 pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
-    let params = checked_params([a.length, a.rho, a.alpha, a.f_n, a.zeta, a.phi], "--")?;
-    let options = simulation_options(a.config.as_deref(), a.variant.as_deref(), &a.set)?;
+    let [length, rho, alpha, f_n, zeta] = a.design.values();
+    let params = checked_params([length, rho, alpha, f_n, zeta, a.phi], "--")?;
+    let options = a.options.resolve()?;
     let mut trace = match &a.trace {
         Some(path) => {
             destination::check_destination(path, FileKind::Trace, &[], "--trace", a.force)?;

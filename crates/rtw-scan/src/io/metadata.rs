@@ -71,6 +71,9 @@ pub(crate) const META_RECORD: &str = "rtw.bifurcation.record";
 /// Metadata key of a basin slice (`basin`): its axes, steps, tolerance and
 /// the gait's fixed point, as JSON.
 pub(crate) const META_BASIN: &str = "rtw.basin";
+/// Metadata key of a slope profile (`profile`): its settings, changes and
+/// intervals, as JSON (what `profile --json` prints).
+pub(crate) const META_PROFILE: &str = "rtw.profile";
 
 /// Every key rtw-scan wrote before [`META_METADATA_HASH`] existed (the
 /// committed results are such files), and the Arrow schema the parquet crate
@@ -179,12 +182,16 @@ pub(crate) enum FileKind {
     Sensitivity,
     /// A basin slice (`rtw.basin`).
     Basin,
+    /// A slope profile (`rtw.profile`).
+    Profile,
 }
 
 impl FileKind {
     /// The kind of a file with metadata `meta`, if rtw-scan wrote it.
     pub(crate) fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
-        if meta.contains_key(META_SENSITIVITY) {
+        if meta.contains_key(META_PROFILE) {
+            Some(Self::Profile)
+        } else if meta.contains_key(META_SENSITIVITY) {
             Some(Self::Sensitivity)
         } else if meta.contains_key(META_BASIN) {
             Some(Self::Basin)
@@ -212,6 +219,7 @@ impl FileKind {
             Self::Continuation => "a continuation diagram (`continuation`)",
             Self::Sensitivity => "sensitivity indices (`sensitivity`)",
             Self::Basin => "a basin slice (`basin`)",
+            Self::Profile => "a slope profile (`profile`)",
         }
     }
 }

@@ -29,6 +29,13 @@ fn scan_schema<'a>(columns: impl Iterator<Item = &'a RobustnessColumn>) -> Schem
     Arc::new(Schema::new(fields))
 }
 
+/// The schema of scan rows under `options`: the scan schema, with the
+/// robustness columns they ask for.
+pub(crate) fn schema_for(options: &Options) -> SchemaRef {
+    let asked = options.robustness;
+    scan_schema(picked(|c| (c.on)(&asked)))
+}
+
 /// `batch` (scan rows in the scan schema) with the robustness columns the
 /// scan's `options` ask for, read from `rows`.
 pub(crate) fn with_robustness(batch: RecordBatch, rows: &[Row], options: &Options) -> RecordBatch {

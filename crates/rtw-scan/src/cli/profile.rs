@@ -1,0 +1,80 @@
+//! `profile`: a design's gait along the slope, each change of label located
+//! by bisection (the library's `profile`; this only turns flags into its
+//! settings and prints what it returns).
+
+use super::progress::{ProgressMode, StderrProgress};
+use super::signal::STOP;
+use super::simulate::{DesignArgs, OptionArgs};
+use crate::profile::{self, Names, Settings, files};
+use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Args, Debug)]
+pub(super) struct ProfileArgs {
+    #[command(flatten)]
+    design: DesignArgs,
+    /// The slope range's start φ [rad].
+    #[arg(long, allow_negative_numbers = true)]
+    from: f64,
+    /// The slope range's end φ [rad], above --from.
+    #[arg(long, allow_negative_numbers = true)]
+    to: f64,
+    /// Locate each change of label to a bracket at most this wide [rad], in [1e-9, --grid].
+    #[arg(long, default_value_t = 1e-3)]
+    tol: f64,
+    /// The coarse grid's spacing [rad] (at most; the range is cut into equal cells): a feature
+    /// narrower than it, with one label at both its ends, is not seen.
+    #[arg(long, default_value_t = 0.01)]
+    grid: f64,
+    #[command(flatten)]
+    options: OptionArgs,
+    /// Worker threads [default: one per core; at most 4 per core]. The profile does not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    threads: Option<String>,
+    /// Print the profile as one JSON object (intervals per gait, phi_min, phi_lo, phi_hi, changes,
+    /// segments) instead of its summary.
+    #[arg(long)]
+    json: bool,
+    /// Write every simulated slope (a scan's columns) to this Parquet file, its summary beside it (FILE.md).
+    #[arg(long, value_name = "FILE.parquet")]
+    out: Option<PathBuf>,
+    /// Write even over files that are not a slope profile's.
+    #[arg(long)]
+    force: bool,
+    /// Show no progress.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub(super) fn cmd_profile(a: ProfileArgs) -> Result<ExitCode> {
+    let settings = Settings::parse(
+        a.design.values(),
+        a.from,
+        a.to,
+        a.tol,
+        a.grid,
+        a.threads.as_deref(),
+        &Names::CLI,
+    )?;
+    let options = a.options.resolve()?;
+    let progress = StderrProgress::new(if a.quiet {
+        ProgressMode::Quiet
+    } else {
+        ProgressMode::Auto
+    });
+    let p = match &a.out {
+        Some(out) => files::run_to_files(&settings, &options, out, a.force, &progress, &STOP)?,
+        None => profile::run(&settings, &options, &progress, &STOP)?,
+    };
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&p.to_json())?);
+    } else {
+        print!("{}", files::markdown(&p));
+    }
+    if let Some(out) = &a.out {
+        eprintln!("rtw-scan: {} slopes written to {}", p.runs(), out.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}

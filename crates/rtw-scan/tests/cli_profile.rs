@@ -1,0 +1,308 @@
+//! `rtw-scan profile` through the binary, on the Fig. 7(a) design over
+//! φ ∈ [0.05, 0.3]: every located change is checked by direct simulation
+//! (`rtw-scan simulate --json`, an independent run of the design at one
+//! slope) at both ends of its bracket and at its middle ± tol; slopes inside
+//! the reported widest interval are simulated and must be stable; the
+//! Parquet file and its summary; the same profile on any thread count; bad
+//! input named with its range.
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+
+const DESIGN: [&str; 10] = [
+    "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta", "0.0514",
+];
+
+/// `rtw-scan profile` of the design over [from, to], then `extra`.
+fn args<'a>(from: &'a str, to: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut a = vec!["profile"];
+    a.extend(DESIGN);
+    a.extend(["--from", from, "--to", to]);
+    a.extend(extra);
+    a
+}
+
+/// The column `name` of a row of [`rows`].
+fn field<'a>(row: &'a [String], name: &str) -> &'a str {
+    let prefix = format!("{name}=");
+    row.iter()
+        .find_map(|c| c.strip_prefix(&prefix))
+        .unwrap_or_else(|| panic!("no {name} in {row:?}"))
+}
+
+fn profile(extra: &[&str]) -> Value {
+    let a = args("0.05", "0.3", &[&["--json", "--quiet"], extra].concat());
+    serde_json::from_str(&stdout(&run_ok(&a))).unwrap()
+}
+
+/// The label `rtw-scan simulate` gives the design at `phi`.
+fn simulated_label(phi: f64) -> String {
+    let phi = format!("{phi}");
+    let mut args = vec!["simulate"];
+    args.extend(DESIGN);
+    args.extend(["--phi", &phi, "--json"]);
+    let v: Value = serde_json::from_str(&stdout(&run_ok(&args))).unwrap();
+    v["outcome"].as_str().unwrap().to_string()
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[test]
+fn fig7a_changes_hold_under_direct_simulation_at_the_change_plus_minus_tol() {
+    let tol = 1e-3;
+    let p = profile(&[]);
+    let changes = p["changes"].as_array().unwrap();
+    assert!(!changes.is_empty(), "{p:#}");
+    for c in changes {
+        let (lo, hi) = (f(&c["phi_left"]), f(&c["phi_right"]));
+        let (left, right) = (
+            c["label_left"].as_str().unwrap(),
+            c["label_right"].as_str().unwrap(),
+        );
+        assert_ne!(left, right, "{c}");
+        assert!(hi > lo && hi - lo <= tol, "bracket wider than tol: {c}");
+        assert_eq!(simulated_label(lo), left, "at phi_left of {c}");
+        assert_eq!(simulated_label(hi), right, "at phi_right of {c}");
+        // One tol either side of the change, direct simulation gives the
+        // labels the profile reports there: its ends' labels where it is
+        // sharp; others where two labels interleave below tol.
+        let mid = 0.5 * (lo + hi);
+        let (below, above) = (simulated_label(mid - tol), simulated_label(mid + tol));
+        assert_eq!(below, c["label_below"].as_str().unwrap(), "{c}");
+        assert_eq!(above, c["label_above"].as_str().unwrap(), "{c}");
+        assert_eq!(c["sharp"], below == left && above == right, "{c}");
+    }
+    // Where the design stops being stable (skip → collapse) the change is
+    // sharp; the walk turns into a skip through a band where both interleave
+    // at scales below 1e-4 rad (0.2173..0.2286: walk at 0.2175, skip at 0.21755).
+    let last = changes.last().unwrap();
+    assert_eq!(
+        (last["label_left"].as_str(), last["label_right"].as_str()),
+        (Some("skip"), Some("collapse"))
+    );
+    assert_eq!(last["sharp"], true, "{last}");
+    assert_eq!(changes[0]["sharp"], false, "{}", changes[0]);
+    assert_eq!(simulated_label(0.2175), "walk");
+    assert_eq!(simulated_label(0.21755), "skip");
+    // Bisection, not a fine grid: the grid's 26 slopes, then at most
+    // ceil(log2(0.01 / 1e-3)) = 4 per change (and 2 checks, not rows),
+    // against 251 at a 1e-3 grid.
+    let runs = p["runs"].as_u64().unwrap() as usize;
+    assert_eq!(p["coarse_runs"], 26);
+    assert!(runs <= 26 + 4 * changes.len(), "{runs} runs");
+    // The widest stable interval holds: every slope tried inside it is stable.
+    let (lo, hi) = (f(&p["phi_lo"]), f(&p["phi_hi"]));
+    assert!(hi > lo);
+    for i in 0..=8 {
+        let phi = lo + (hi - lo) * f64::from(i) / 8.0;
+        let label = simulated_label(phi);
+        assert!(
+            ["walk", "skip", "crawl"].contains(&label.as_str()),
+            "{label} at {phi} inside [{lo}, {hi}]"
+        );
+    }
+    // The article's walk from φ = 0.05 (Fig. S3): the profile starts walking.
+    assert_eq!(f(&p["phi_min"]), 0.05);
+    assert_eq!(p["segments"][0]["label"], "walk");
+}
+
+#[test]
+fn the_profile_is_the_same_on_one_and_two_threads() {
+    let one = profile(&["--threads", "1", "--tol", "1e-4"]);
+    let two = profile(&["--threads", "2", "--tol", "1e-4"]);
+    assert_eq!(one, two);
+    for c in one["changes"].as_array().unwrap() {
+        assert!(f(&c["phi_right"]) - f(&c["phi_left"]) <= 1e-4, "{c}");
+    }
+}
+
+#[test]
+fn out_writes_every_slope_and_its_summary_and_refuses_a_file_it_did_not_make() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.parquet");
+    let p = profile(&["--out", s(&out)]);
+    let names = column_names(&out);
+    for c in ["sample_id", "phi", "outcome", "speed", "f_w"] {
+        assert!(names.iter().any(|n| n == c), "no {c} in {names:?}");
+    }
+    let rows = rows(&out);
+    assert_eq!(rows.len() as u64, p["runs"].as_u64().unwrap());
+    let phis: Vec<f64> = rows
+        .iter()
+        .map(|r| field(r, "phi").parse().unwrap())
+        .collect();
+    assert!(phis.windows(2).all(|w| w[0] < w[1]), "not in φ order");
+    assert_eq!((phis[0], *phis.last().unwrap()), (0.05, 0.3));
+    let md = std::fs::read_to_string(dir.path().join("p.md")).unwrap();
+    assert!(md.starts_with("# Slope profile of L = 0.8 m"), "{md}");
+    assert!(md.contains("phi_lo = "), "{md}");
+    // Its own earlier output is replaced; another file is not.
+    profile(&["--out", s(&out)]);
+    let other = dir.path().join("notes.parquet");
+    std::fs::write(&other, "a person's notes").unwrap();
+    let mut args = vec!["profile"];
+    args.extend(DESIGN);
+    args.extend(["--from", "0.05", "--to", "0.1", "--out", s(&other)]);
+    run_err(&args, &["--out", "not a Parquet file", "--force"]);
+    assert_eq!(std::fs::read(&other).unwrap(), b"a person's notes");
+    std::fs::write(dir.path().join("mine.md"), "my summary").unwrap();
+    let mine = dir.path().join("mine.parquet");
+    let last = args.len() - 1;
+    args[last] = s(&mine);
+    run_err(&args, &["is not the summary of a slope profile"]);
+    assert!(!mine.exists());
+}
+
+#[test]
+fn bad_input_is_named_with_its_range() {
+    let base = |from: &str, to: &str, extra: &[&str], needles: &[&str]| {
+        let mut args = vec!["profile"];
+        args.extend(DESIGN);
+        args.extend(["--from", from, "--to", to]);
+        args.extend(extra);
+        run_err(&args, needles);
+    };
+    base(
+        "0.3",
+        "0.05",
+        &[],
+        &["--to: 0.05 is invalid: must be above --from (0.3)"],
+    );
+    base(
+        "0.05",
+        "0.3",
+        &["--tol", "0"],
+        &["--tol: 0 is invalid: must be in [1e-9, 0.01] rad"],
+    );
+    base(
+        "0.05",
+        "0.3",
+        &["--tol", "0.02"],
+        &["--tol: 0.02 is invalid: must be in [1e-9, 0.01] rad (at most --grid"],
+    );
+    base(
+        "-2",
+        "0.3",
+        &[],
+        &["--from: -2 is invalid: must be a slope φ in (-pi/2, pi/2) rad"],
+    );
+    base(
+        "0.05",
+        "1.6",
+        &[],
+        &["--to: 1.6 is invalid: must be a slope φ in (-pi/2, pi/2) rad"],
+    );
+    base(
+        "0.05",
+        "0.3",
+        &["--grid", "1"],
+        &["--grid: 1 is invalid: must be in [2.5e-6, 0.25] rad"],
+    );
+    base(
+        "0.05",
+        "0.3",
+        &["--threads", "0"],
+        &["--threads: 0 is invalid: must be an integer in [1, "],
+    );
+    let mut args = vec!["profile"];
+    args.extend(DESIGN);
+    args[6] = "0.6";
+    args.extend(["--from", "0.05", "--to", "0.3"]);
+    run_err(&args, &["--alpha: 0.6 is invalid: must be in [0, 0.49]"]);
+}
+
+#[test]
+fn ctrl_c_stops_a_profile_at_once_and_leaves_the_earlier_files_as_they_were() {
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.parquet");
+    let md = dir.path().join("p.md");
+    profile(&["--out", s(&out)]);
+    let (before, before_md) = (std::fs::read(&out).unwrap(), std::fs::read(&md).unwrap());
+    // 100 001 slopes on the grid: minutes of runs.
+    let mut child = bin()
+        .arg("profile")
+        .args(DESIGN)
+        .args([
+            "--from", "0.05", "--to", "0.3", "--grid", "2.5e-6", "--tol", "1e-6",
+        ])
+        .args(["--quiet", "--out", s(&out)])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "it ended before the signal"
+    );
+    let sent = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(
+            t0.elapsed() < Duration::from_secs(10),
+            "still running 10 s after SIGINT"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(std::fs::read(&out).unwrap(), before);
+    assert_eq!(std::fs::read(&md).unwrap(), before_md);
+    let temps: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(temps.is_empty(), "{temps:?}");
+}
+
+#[test]
+fn the_mfpt_along_phi_is_in_the_file_as_simulate_gives_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.parquet");
+    let mfpt = [
+        "--set",
+        "robustness.mfpt=true",
+        "--set",
+        "robustness.sigma=0.05",
+    ];
+    let out_s = s(&out);
+    run_ok(&args(
+        "0.27",
+        "0.29",
+        &[&["--quiet", "--out", out_s], &mfpt[..]].concat(),
+    ));
+    let names = column_names(&out);
+    for c in ["mfpt", "mfpt_lo", "mfpt_hi", "fall_rate"] {
+        assert!(names.iter().any(|n| n == c), "no {c} in {names:?}");
+    }
+    let rows = rows(&out);
+    // A stable slope has the MFPT `simulate` gives at that slope; a
+    // collapse has none.
+    let first = &rows[0];
+    assert_eq!(field(first, "outcome"), "skip");
+    let mut sim = vec!["simulate"];
+    sim.extend(DESIGN);
+    let phi = field(first, "phi");
+    sim.extend(["--phi", phi, "--json"]);
+    sim.extend(mfpt);
+    let v: Value = serde_json::from_str(&stdout(&run_ok(&sim))).unwrap();
+    assert_eq!(field(first, "mfpt").parse::<f64>().unwrap(), f(&v["mfpt"]));
+    let last = rows.last().unwrap();
+    assert_eq!(field(last, "outcome"), "collapse");
+    assert_eq!(field(last, "mfpt"), "null");
+    // A profile without the measure does not replace one with it.
+    let plain = args("0.27", "0.29", &["--quiet", "--out", out_s]);
+    run_err(&plain, &["its columns are not those of this one"]);
+}
