@@ -109,8 +109,11 @@ def tobit(columns: list[np.ndarray], y: np.ndarray, censored: np.ndarray, reps: 
     model (χ² with len(columns) degrees of freedom) and the residual SD."""
     n = len(y)
     Z = np.column_stack([np.ones(n)] + [normal_scores(c) for c in columns])
-    theta, ll = tobit_fit(Z, y, censored)
-    _, ll0 = tobit_fit(Z[:, :1], y, censored)
+    # The full model starts from the intercept-only fit (slopes 0), so its
+    # likelihood cannot end below the null's.
+    theta0, ll0 = tobit_fit(Z[:, :1], y, censored)
+    start = np.concatenate([theta0[:1], np.zeros(Z.shape[1] - 1), theta0[-1:]])
+    theta, ll = tobit_fit(Z, y, censored, start=start)
     lr = 2.0 * (ll - ll0)
     k = len(columns)
     rng = np.random.default_rng(SEED)
@@ -119,7 +122,7 @@ def tobit(columns: list[np.ndarray], y: np.ndarray, censored: np.ndarray, reps: 
         i = rng.integers(0, n, n)
         # Rescored on the resample, as the fit itself scores its gaits.
         Zb = np.column_stack([np.ones(n)] + [normal_scores(c[i]) for c in columns])
-        boot.append(tobit_fit(Zb, y[i], censored[i], start=theta)[0][1 : 1 + k])
+        boot.append(tobit_fit(Zb, y[i], censored[i], start=start)[0][1 : 1 + k])
     lo, hi = np.percentile(np.array(boot), [2.5, 97.5], axis=0)
     return {
         "beta": theta[1 : 1 + k],

@@ -317,7 +317,7 @@ def map_mfpt_figure(scan: Scan, png: Path) -> None:
     phi, fn, m = scan.cols["phi"], scan.cols["fn"], scan.cols["mfpt"]
     hi = scan.cols["mfpt_hi"]
     ok = scan.stable & np.isfinite(m)
-    fig, ax = plt.subplots(figsize=(6.4, 5.0))
+    fig, ax = plt.subplots(figsize=(6.6, 6.0))
     nof = scan.stable & np.isinf(m)
     ax.scatter(phi[~ok & ~nof], fn[~ok & ~nof], s=260, marker="s", color="0.85", label="not a stable gait")
     ax.scatter(phi[nof], fn[nof], s=260, marker="s", color="white", edgecolors="k",
@@ -332,8 +332,8 @@ def map_mfpt_figure(scan: Scan, png: Path) -> None:
     ax.set_xlabel("slope φ (rad)")
     ax.set_ylabel("f_n (Hz)")
     sigma = setting(scan, "robustness.sigma", "0.01")
-    ax.set_title(f"MFPT around Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, ζ 0.0514), σ = {sigma} m", fontsize=9)
-    ax.legend(fontsize=7, loc="lower right", framealpha=0.8)
+    ax.set_title(f"MFPT around Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, ζ 0.0514), σ = {sigma.split()[0]} m", fontsize=9)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     plt.close(fig)
