@@ -36,5 +36,6 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
   python3 -c "print(f'map_scan_(all_measures)={$t1 - $t0:.1f} s;paper_scan_(all_measures)={$t2 - $t1:.1f} s;threads=$threads')" \
     >"$out/times.txt"
 fi
+.venv/bin/python scripts/robustness_stats.py >/dev/null # its self-check against SciPy and a simulated sample
 .venv/bin/python scripts/robustness_study.py "$out" --times "$(cat "$out/times.txt")" >/dev/null
 echo "robustness_study: done ($out/summary.md)"
