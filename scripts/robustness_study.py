@@ -1,16 +1,19 @@
 """The robustness study's tables and figures (docs/robustness.md), from the
 scans scripts/robustness_study.sh makes: the (φ, f_n) map around Fig. 7(a)
-and the paper scan's stable gaits, each with Floquet max |μ|, the largest
-survivable step down, the gait sensitivity norm when rtw has it, and the
-Monte Carlo steps to fall.
+and the paper scan, every stable gait with Floquet max |μ|, the gait
+sensitivity norm, step_down_max, step_down_h50, the Monte Carlo steps to
+fall and the mean first-passage time (MFPT).
 
-Writes OUT/summary.md (the correlation table, the most robust designs and
-the run times), OUT/map.png and OUT/paper.png.
+Writes OUT/summary.md (every number docs/robustness.md quotes from the
+study), OUT/map-mfpt.png, OUT/map.png and OUT/paper.png.
+
+    .venv/bin/python scripts/robustness_study.py results/robustness [--times "NAME=TEXT;..."]
 """
 
 from __future__ import annotations
 
 import argparse
+import tomllib
 from pathlib import Path
 
 import matplotlib
@@ -18,161 +21,419 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import pyarrow as pa  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
+from scipy import stats  # noqa: E402
+
+from robustness_stats import BOOTSTRAP, SEED, somers_d_ci, spearman_ci, tobit  # noqa: E402
 
 STABLE = ("skip", "walk", "crawl")
-# The measures correlated with the steps to fall, and how each reads.
+# The cheap measures set against the MFPT, in the order of the tables.
 MEASURES = [
-    ("floquet_max", "Floquet max |μ|"),
-    ("step_down_max", "largest step down (m)"),
-    ("gsn", "gait sensitivity norm"),
+    ("floquet_max", "Floquet max \\|μ\\|"),
+    ("gsn", "GSN"),
+    ("step_down_max", "step_down_max (m)"),
+    ("step_down_h50", "step_down_h50 (m)"),
 ]
-BOOTSTRAP = 2000
-SEED = 27
+INPUTS = [("rho", "ρ (kg/m)"), ("alpha", "α"), ("fn", "f_n (Hz)"), ("zeta", "ζ"), ("phi", "φ (rad)")]
+TOP = 10
+FIG7A = {"phi": 0.15, "fn": 3.269}
+HOW = (
+    "`./scripts/robustness_study.sh` (the scans and this page) or "
+    "`./scripts/robustness_study.sh --analyse-only` (this page from the committed scans)"
+)
 
 
-def ranks(x: np.ndarray) -> np.ndarray:
-    """Ranks with ties averaged (the censored steps to fall tie at max_steps)."""
-    order = np.argsort(x, kind="mergesort")
-    r = np.empty(len(x))
-    r[order] = np.arange(len(x), dtype=float)
-    xs = x[order]
-    i = 0
-    while i < len(xs):
-        j = i
-        while j + 1 < len(xs) and xs[j + 1] == xs[i]:
-            j += 1
-        r[order[i : j + 1]] = 0.5 * (i + j)
-        i = j + 1
-    return r
+class Scan:
+    """One scan's rows (every column as floats, `outcome` as strings) and its
+    stable gaits."""
+
+    def __init__(self, path: Path):
+        # An interrupted scan has only its finished chunks (rtw-scan run
+        # --resume finishes it): they are read as what they are, the
+        # samples done so far.
+        files = [path] if path.exists() else sorted((path.parent / ".partial").glob("chunk-*.parquet"))
+        if not files:
+            raise SystemExit(f"{path}: no scan (and no finished chunks in {path.parent / '.partial'})")
+        t = pa.concat_tables([pq.read_table(f) for f in files])
+        self.total = t.num_rows
+        self.partial = not path.exists()
+        meta = pq.read_metadata(files[0]).metadata
+        self.config = tomllib.loads(meta[b"rtw.config"].decode())
+        self.variant = meta[b"rtw.variant"].decode()
+        self.outcome = np.array(t.column("outcome").to_pylist(), dtype=object)
+        self.cols = {}
+        for c in t.column_names:
+            if c in ("outcome", "failure", "message", "start"):
+                continue
+            self.cols[c] = np.array([np.nan if v is None else float(v) for v in t.column(c).to_pylist()])
+        self.stable = np.isin(self.outcome, STABLE)
+
+    def s(self, col: str) -> np.ndarray:
+        """A column over the stable gaits."""
+        return self.cols[col][self.stable]
+
+    def labels(self) -> np.ndarray:
+        return self.outcome[self.stable]
+
+    def open_above(self) -> np.ndarray:
+        """Stable gaits whose MFPT interval is open above (mfpt_hi = ∞)."""
+        return np.isfinite(self.s("mfpt")) & np.isinf(self.s("mfpt_hi"))
+
+    def no_fall(self) -> np.ndarray:
+        """Stable gaits whose splitting saw no fall in any batch: fall_rate 0,
+        mfpt = mfpt_lo = mfpt_hi = ∞, the estimator's way of saying nothing."""
+        return np.isinf(self.s("mfpt"))
+
+    def censored_mfpt(self) -> tuple[np.ndarray, np.ndarray]:
+        """The MFPT for a censoring-aware model, and where it is censored: an
+        interval open above is right-censored at mfpt_lo; a gait with no fall
+        seen has no lower bound from the estimator and is right-censored at
+        its Monte Carlo steps_to_fall (a restricted mean, which the MFPT
+        exceeds in expectation)."""
+        m = self.s("mfpt")
+        cens = self.open_above() | self.no_fall()
+        y = np.where(self.open_above(), self.s("mfpt_lo"), m)
+        y = np.where(self.no_fall(), self.s("steps_to_fall"), y)
+        return y, cens
 
 
-def spearman(x: np.ndarray, y: np.ndarray) -> float:
-    rx, ry = ranks(x), ranks(y)
-    if rx.std() == 0 or ry.std() == 0:
-        return float("nan")
-    return float(np.corrcoef(rx, ry)[0, 1])
+def setting(scan: Scan, key: str, default: str) -> str:
+    """A robustness key as the scan ran it (its stored config), or the
+    library default when the config leaves it out."""
+    sim = scan.config.get("simulation", {})
+    table, name = key.split(".")
+    v = sim.get(table, {}).get(name)
+    return f"{v}" if v is not None else f"{default} (default)"
 
 
-def spearman_ci(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
-    """Spearman's ρ and its 95 % percentile bootstrap interval (pairs resampled)."""
-    rng = np.random.default_rng(SEED)
-    n = len(x)
-    boot = []
-    for _ in range(BOOTSTRAP):
-        i = rng.integers(0, n, n)
-        boot.append(spearman(x[i], y[i]))
-    lo, hi = np.nanpercentile(boot, [2.5, 97.5])
-    return spearman(x, y), float(lo), float(hi)
+def fmt_mfpt(m: float, lo: float, hi: float) -> str:
+    h = "∞" if np.isinf(hi) else f"{hi:.3g}"
+    return f"{m:.3g} [{lo:.3g}, {h}]"
 
 
-def stable_rows(path: Path) -> dict[str, np.ndarray]:
-    t = pq.read_table(path)
-    cols = {c: np.array(t.column(c).to_pylist(), dtype=object) for c in t.column_names}
-    keep = np.isin(cols["outcome"], STABLE)
-    return {c: v[keep] for c, v in cols.items()}
-
-
-def floats(v: np.ndarray) -> np.ndarray:
-    return np.array([np.nan if x is None else float(x) for x in v])
-
-
-def correlations(rows: dict[str, np.ndarray]) -> list[str]:
-    stf = floats(rows["steps_to_fall"])
-    out = []
-    for col, name in MEASURES:
-        if col not in rows:
-            out.append(f"| {name} | — | — | not in this build (`robustness.{col}` unknown to rtw) |")
-            continue
-        x = floats(rows[col])
-        ok = np.isfinite(x) & np.isfinite(stf)
-        r, lo, hi = spearman_ci(x[ok], stf[ok])
-        out.append(f"| {name} | {r:+.2f} | [{lo:+.2f}, {hi:+.2f}] | {ok.sum()} |")
+def undefined_table(scan: Scan) -> list[str]:
+    n = int(scan.stable.sum())
+    out = ["| measure | defined | undefined (null) |", "|---|---|---|"]
+    m = scan.s("mfpt")
+    fin, nof = np.isfinite(m), scan.no_fall()
+    out.append(
+        f"| MFPT | {fin.sum()} finite ({scan.open_above().sum()} of them with mfpt_hi = ∞, the interval open "
+        f"above); {nof.sum()} with no fall seen (fall_rate 0, mfpt = ∞) | {n - fin.sum() - nof.sum()} |"
+    )
+    for col, name in MEASURES + [("steps_to_fall", "steps_to_fall")]:
+        d = np.isfinite(scan.s(col)).sum()
+        out.append(f"| {name} | {d} | {n - d} |")
     return out
 
 
-def map_figure(path: Path, png: Path) -> None:
-    t = pq.read_table(path)
-    phi = np.array(t.column("phi").to_pylist())
-    fn = np.array(t.column("fn").to_pylist())
-    label = np.array(t.column("outcome").to_pylist())
-    stable = np.isin(label, STABLE)
-    panels = [(c, n) for c, n in MEASURES if c in t.column_names] + [
-        ("steps_to_fall", "mean steps to fall (σ = 1 cm)")
+def common(scan: Scan, finite: bool = True) -> np.ndarray:
+    """The stable gaits where every measure is defined and the MFPT is
+    finite (or, with `finite` false, also ∞: no fall seen)."""
+    ok = np.isfinite(scan.s("mfpt")) if finite else ~np.isnan(scan.s("mfpt"))
+    for col, _ in MEASURES:
+        ok &= np.isfinite(scan.s(col))
+    return ok
+
+
+def correlation_table(scan: Scan) -> list[str]:
+    ok = common(scan)
+    y = scan.s("mfpt")[ok]
+    okc = common(scan, finite=False)
+    yc, cens = (v[okc] for v in scan.censored_mfpt())
+    out = [
+        f"Spearman's ρ on the {ok.sum()} gaits where every measure is defined and the MFPT finite "
+        f"({scan.open_above()[ok].sum()} of them open above, ranked by their point estimate); Somers' D on "
+        f"those and the {scan.no_fall()[okc].sum()} with every measure defined and no fall seen "
+        f"({okc.sum()} gaits, {cens.sum()} censored):",
+        "",
+        f"| measure | Spearman ρ with MFPT [95 %] ({ok.sum()} gaits) | Somers' D, censored [95 %] ({okc.sum()} gaits) | "
+        "Spearman ρ where the measure alone is defined and the MFPT finite [95 %] (gaits) |",
+        "|---|---|---|---|",
     ]
-    fig, axes = plt.subplots(1, len(panels) + 1, figsize=(4.2 * (len(panels) + 1), 3.8))
-    names = sorted(set(label))
-    for k, name in enumerate(names):
-        m = label == name
-        axes[0].scatter(phi[m], fn[m], s=60, marker="s", label=name, color=f"C{k}")
-    axes[0].set_title("gait")
-    axes[0].legend(fontsize=7)
-    for ax, (col, name) in zip(axes[1:], panels):
-        v = floats(np.array(t.column(col).to_pylist(), dtype=object))
-        ax.scatter(phi[~stable], fn[~stable], s=60, marker="s", color="0.85")
-        sc = ax.scatter(phi[stable], fn[stable], c=v[stable], s=60, marker="s", cmap="viridis")
-        fig.colorbar(sc, ax=ax)
-        ax.set_title(name)
-    for ax in axes:
-        ax.set_xlabel("slope φ (rad)")
-        ax.set_ylabel("f_n (Hz)")
-    fig.suptitle("Robustness around Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, ζ 0.0514); grey: not a stable gait")
-    fig.tight_layout()
-    fig.savefig(png, dpi=110)
-
-
-def paper_figure(rows: dict[str, np.ndarray], png: Path) -> None:
-    panels = [(c, n) for c, n in MEASURES if c in rows]
-    fig, axes = plt.subplots(1, len(panels), figsize=(4.5 * len(panels), 3.8))
-    stf = floats(rows["steps_to_fall"])
-    for ax, (col, name) in zip(np.atleast_1d(axes), panels):
-        x = floats(rows[col])
-        for k, lab in enumerate(STABLE):
-            m = rows["outcome"] == lab
-            ax.scatter(x[m], stf[m], s=8, alpha=0.6, label=lab, color=f"C{k}")
-        if col == "step_down_max":
-            ax.set_xscale("log")
-        ax.set_xlabel(name)
-        ax.set_ylabel("mean steps to fall")
-        ax.legend(fontsize=7)
-    fig.suptitle("The paper scan's stable gaits: each measure against the Monte Carlo steps to fall")
-    fig.tight_layout()
-    fig.savefig(png, dpi=110)
-
-
-def top(rows: dict[str, np.ndarray], n: int = 5) -> list[str]:
-    stf = floats(rows["steps_to_fall"])
-    order = np.argsort(-stf, kind="mergesort")[:n]
-    out = []
-    for i in order:
+    for col, name in MEASURES + [("steps_to_fall", "steps_to_fall (Monte Carlo, censored at max_steps)")]:
+        x = scan.s(col)[ok]
+        r, lo, hi = spearman_ci(x, y)
+        d, dlo, dhi = somers_d_ci(scan.s(col)[okc], yc, cens)
+        own = np.isfinite(scan.s(col)) & np.isfinite(scan.s("mfpt"))
+        r2, lo2, hi2 = spearman_ci(scan.s(col)[own], scan.s("mfpt")[own])
         out.append(
-            "| {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.3f} | {} | {:.1f} [{:.1f}, {:.1f}]{} | {:.3f} |".format(
-                *(float(rows[c][i]) for c in ("rho", "alpha", "fn", "zeta", "phi")),
-                float(rows["floquet_max"][i]) if rows["floquet_max"][i] is not None else float("nan"),
-                rows["outcome"][i],
-                stf[i],
-                float(rows["steps_to_fall_lo"][i]),
-                float(rows["steps_to_fall_hi"][i]),
-                " (≥, censored {:.0f})".format(float(rows["steps_to_fall_censored"][i]))
-                if float(rows["steps_to_fall_censored"][i]) > 0
-                else "",
-                float(rows["step_down_max"][i]),
-            )
+            f"| {name} | {r:+.2f} [{lo:+.2f}, {hi:+.2f}] | {d:+.2f} [{dlo:+.2f}, {dhi:+.2f}] | "
+            f"{r2:+.2f} [{lo2:+.2f}, {hi2:+.2f}] ({own.sum()}) |"
         )
     return out
 
 
-def by_label(rows: dict[str, np.ndarray]) -> list[str]:
-    stf = floats(rows["steps_to_fall"])
-    out = []
-    for lab in STABLE:
-        m = rows["outcome"] == lab
-        if m.any():
-            cens = floats(rows["steps_to_fall_censored"])[m]
-            out.append(
-                f"| {lab} | {m.sum()} | {np.median(stf[m]):.1f} | {np.mean(stf[m]):.1f} | {(cens > 0).mean():.0%} |"
-            )
+def tobit_table(scan: Scan) -> list[str]:
+    """log10 MFPT on each measure alone and on all four, right-censored at
+    mfpt_lo where the interval is open above."""
+    ok = common(scan, finite=False)
+    yc, cens = (v[ok] for v in scan.censored_mfpt())
+    y = np.log10(yc)
+    out = [
+        f"{ok.sum()} gaits (as Somers' D), {cens.sum()} right-censored:",
+        "",
+        "| model | slope (decades of MFPT per SD of the measure's normal score) [95 %] | "
+        "residual SD (decades) | likelihood ratio χ² (df), p |",
+        "|---|---|---|---|",
+    ]
+    for col, name in MEASURES:
+        f = tobit([scan.s(col)[ok]], y, cens)
+        out.append(
+            f"| {name} alone | {f['beta'][0]:+.3f} [{f['lo'][0]:+.3f}, {f['hi'][0]:+.3f}] | "
+            f"{f['sigma']:.3f} | {f['lr']:.2f} (1), {f['p']:.3g} |"
+        )
+    f = tobit([scan.s(c)[ok] for c, _ in MEASURES], y, cens)
+    slopes = "; ".join(
+        f"{name} {b:+.3f} [{lo:+.3f}, {hi:+.3f}]" for (_, name), b, lo, hi in zip(MEASURES, f["beta"], f["lo"], f["hi"])
+    )
+    out.append(f"| all four | {slopes} | {f['sigma']:.3f} | {f['lr']:.2f} ({len(MEASURES)}), {f['p']:.3g} |")
+    if cens.mean() > 0.8:
+        out += [
+            "",
+            f"{cens.mean():.0%} of these gaits are censored: the likelihood hardly bounds the MFPT from above, "
+            "the slopes' intervals are wide, and in the joint model the two step-down measures (often equal) "
+            "trade off against each other up to the fit's bounds (±20 decades).",
+        ]
     return out
+
+
+def step_down_line(scan: Scan) -> list[str]:
+    """step_down_max over the stable gaits, as docs/robustness.md quotes it."""
+    v, lab = scan.s("step_down_max"), scan.labels()
+    ok = np.isfinite(v)
+    cap = 16 * float(scan.config["params"]["length"])
+    by = ", ".join(f"{g}s {np.median(v[ok & (lab == g)]):.2f} m" for g in STABLE if (ok & (lab == g)).any())
+    return [
+        f"step_down_max over these {ok.sum()} stable gaits: median {np.median(v[ok]):.2f} m ({by}), "
+        f"10th percentile {np.percentile(v[ok], 10):.2f} m; {(v[ok] >= cap - 1e-9).sum()} at the 16 L cap "
+        f"({cap:.1f} m); step_down_h50 equals step_down_max for {(scan.s('step_down_h50')[ok] == v[ok]).sum()}.",
+    ]
+
+
+def inputs_table(scan: Scan) -> list[str]:
+    """Which input moves the MFPT: Spearman over every stable gait with an MFPT."""
+    ok = np.isfinite(scan.s("mfpt"))
+    out = ["| input | Spearman ρ with MFPT [95 %] |", "|---|---|"]
+    for col, name in INPUTS:
+        if np.ptp(scan.s(col)) == 0:
+            continue
+        r, lo, hi = spearman_ci(scan.s(col)[ok], scan.s("mfpt")[ok])
+        out.append(f"| {name} | {r:+.2f} [{lo:+.2f}, {hi:+.2f}] |")
+    return out
+
+
+def by_gait(scan: Scan) -> list[str]:
+    out = [
+        "| gait | gaits | MFPT finite | median MFPT | 10–90 % | open above | no fall seen | median fall_rate |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    lab, m, fr, op = scan.labels(), scan.s("mfpt"), scan.s("fall_rate"), scan.open_above()
+    for g in STABLE:
+        k = lab == g
+        d = k & np.isfinite(m)
+        if not k.any():
+            continue
+        if d.any():
+            p10, p50, p90 = np.percentile(m[d], [10, 50, 90])
+            frm = np.nanmedian(fr[d])
+            out.append(
+                f"| {g} | {k.sum()} | {d.sum()} | {p50:.3g} | {p10:.3g}–{p90:.3g} | {op[k].sum()} | "
+                f"{scan.no_fall()[k].sum()} | {frm:.3g} |"
+            )
+        else:
+            out.append(f"| {g} | {k.sum()} | 0 | — | — | 0 | {scan.no_fall()[k].sum()} | — |")
+    return out
+
+
+def no_fall_lines(scan: Scan) -> list[str]:
+    """The gaits the splitting saw no fall for, against the Monte Carlo."""
+    nof = scan.no_fall()
+    if not nof.any():
+        return ["No gait has fall_rate 0 (no fall seen by the splitting)."]
+    stf, cen = scan.s("steps_to_fall")[nof], scan.s("steps_to_fall_censored")[nof]
+    trials = float(setting(scan, "robustness.trials", "20").split()[0])
+    fell = cen < trials
+    return [
+        f"The splitting saw no fall for {nof.sum()} stable gaits (fall_rate 0, mfpt = ∞). The Monte Carlo "
+        f"saw at least one of its trials fall for {fell.sum()} of them (median steps_to_fall "
+        f"{np.median(stf):.1f}, {np.median(trials - cen):.0f} of {trials:.0f} trials falling within "
+        f"max_steps at the median): for those the MFPT is not infinite but beyond what the estimator's "
+        "score sees coming (a fall in one unlucky step). The censored model takes them as at least their "
+        "steps_to_fall; Spearman's ρ and the ten below leave them out.",
+    ]
+
+
+def top_table(scan: Scan) -> tuple[list[str], np.ndarray]:
+    m = scan.s("mfpt")
+    order = np.argsort(-np.where(np.isfinite(m), m, -np.inf), kind="mergesort")[:TOP]
+    out = [
+        "| sample | ρ | α | f_n | ζ | φ | gait | MFPT [95 %] | fall_rate | steps_to_fall | "
+        "Floquet max \\|μ\\| | GSN | step_down_max | step_down_h50 |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for i in order:
+        v = {c: scan.s(c)[i] for c in scan.cols}
+        stf = f"{v['steps_to_fall']:.1f}" + (" (≥)" if v["steps_to_fall_censored"] > 0 else "")
+        out.append(
+            f"| {v['sample_id']:.0f} | {v['rho']:.3f} | {v['alpha']:.3f} | {v['fn']:.3f} | {v['zeta']:.4f} | "
+            f"{v['phi']:.4f} | {scan.labels()[i]} | {fmt_mfpt(v['mfpt'], v['mfpt_lo'], v['mfpt_hi'])} | "
+            f"{v['fall_rate']:.3g} | {stf} | {v['floquet_max']:.3f} | {v['gsn']:.3g} | "
+            f"{v['step_down_max']:.3f} | {v['step_down_h50']:.3f} |"
+        )
+    return out, order
+
+
+def apart_table(scan: Scan, order: np.ndarray) -> list[str]:
+    """The top designs' inputs and measures against the other stable gaits
+    with an MFPT (two-sided Mann–Whitney U)."""
+    top = np.zeros(int(scan.stable.sum()), dtype=bool)
+    top[order] = True
+    rest = ~top & np.isfinite(scan.s("mfpt"))
+    out = [
+        f"| | top {TOP}: median [min, max] | other stable gaits ({rest.sum()}): median [25–75 %] | Mann–Whitney p |",
+        "|---|---|---|---|",
+    ]
+    for col, name in INPUTS + MEASURES:
+        a, b = scan.s(col)[top], scan.s(col)[rest]
+        a, b = a[np.isfinite(a)], b[np.isfinite(b)]
+        if len(a) == 0 or len(b) == 0:
+            out.append(f"| {name} | — ({len(a)} defined) | — | — |")
+            continue
+        p = stats.mannwhitneyu(a, b, alternative="two-sided").pvalue
+        q1, q2, q3 = np.percentile(b, [25, 50, 75])
+        na = f" ({len(a)} defined)" if len(a) < TOP else ""
+        out.append(
+            f"| {name} | {np.median(a):.3g} [{a.min():.3g}, {a.max():.3g}]{na} | {q2:.3g} [{q1:.3g}–{q3:.3g}] | {p:.2g} |"
+        )
+    lab = scan.labels()
+    counts = ", ".join(f"{g} {int((lab[top] == g).sum())}" for g in STABLE)
+    rest_counts = ", ".join(f"{g} {int((lab[rest] == g).sum())}" for g in STABLE)
+    out += ["", f"Gaits: top {TOP} {counts}; the others {rest_counts}."]
+    return out
+
+
+def map_mfpt_figure(scan: Scan, png: Path) -> None:
+    phi, fn, m = scan.cols["phi"], scan.cols["fn"], scan.cols["mfpt"]
+    hi = scan.cols["mfpt_hi"]
+    ok = scan.stable & np.isfinite(m)
+    fig, ax = plt.subplots(figsize=(6.6, 6.0))
+    nof = scan.stable & np.isinf(m)
+    ax.scatter(phi[~ok & ~nof], fn[~ok & ~nof], s=260, marker="s", color="0.85", label="not a stable gait")
+    ax.scatter(phi[nof], fn[nof], s=260, marker="s", color="white", edgecolors="k",
+               label="no fall seen (fall_rate 0, mfpt = ∞)")
+    ax.scatter(phi[nof], fn[nof], s=40, marker="x", color="k")
+    sc = ax.scatter(phi[ok], fn[ok], c=np.log10(m[ok]), s=260, marker="s", cmap="viridis")
+    op = ok & np.isinf(hi)
+    ax.scatter(phi[op], fn[op], s=60, marker="^", facecolors="none", edgecolors="white", linewidths=1.2,
+               label="interval open above (mfpt_hi = ∞)")
+    ax.plot(FIG7A["phi"], FIG7A["fn"], marker="*", color="red", ms=14, ls="none", label="Fig. 7(a)")
+    fig.colorbar(sc, ax=ax, label="log10 MFPT (steps)")
+    ax.set_xlabel("slope φ (rad)")
+    ax.set_ylabel("f_n (Hz)")
+    sigma = setting(scan, "robustness.sigma", "0.01")
+    ax.set_title(f"MFPT around Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, ζ 0.0514), σ = {sigma.split()[0]} m", fontsize=9)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+
+
+def map_figure(scan: Scan, png: Path) -> None:
+    phi, fn = scan.cols["phi"], scan.cols["fn"]
+    panels = MEASURES + [("steps_to_fall", "steps_to_fall")]
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.6))
+    axes = axes.ravel()
+    for k, name in enumerate(sorted(set(scan.outcome))):
+        sel = scan.outcome == name
+        axes[0].scatter(phi[sel], fn[sel], s=60, marker="s", label=name, color=f"C{k}")
+    axes[0].set_title("gait")
+    axes[0].legend(fontsize=7)
+    for ax, (col, name) in zip(axes[1:], panels):
+        v = scan.cols[col]
+        ok = scan.stable & np.isfinite(v)
+        ax.scatter(phi[~ok], fn[~ok], s=60, marker="s", color="0.85")
+        sc = ax.scatter(phi[ok], fn[ok], c=v[ok], s=60, marker="s", cmap="viridis")
+        fig.colorbar(sc, ax=ax)
+        ax.set_title(name.replace("\\", ""))
+    for ax in axes:
+        ax.set_xlabel("slope φ (rad)")
+        ax.set_ylabel("f_n (Hz)")
+    fig.suptitle("The cheap measures around Fig. 7(a); grey: not a stable gait, or the measure undefined")
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+
+
+def paper_figure(scan: Scan, png: Path) -> None:
+    fig, axes = plt.subplots(1, len(MEASURES), figsize=(4.4 * len(MEASURES), 3.9))
+    m, lo, op = scan.s("mfpt"), scan.s("mfpt_lo"), scan.open_above()
+    lab = scan.labels()
+    for ax, (col, name) in zip(axes, MEASURES):
+        x = scan.s(col)
+        for k, g in enumerate(STABLE):
+            closed = (lab == g) & np.isfinite(x) & np.isfinite(m) & ~op
+            opened = (lab == g) & np.isfinite(x) & op
+            ax.scatter(x[closed], m[closed], s=8, alpha=0.6, color=f"C{k}", label=g)
+            ax.scatter(x[opened], lo[opened], s=14, alpha=0.6, color=f"C{k}", marker="^")
+        if col in ("step_down_max", "step_down_h50", "gsn"):
+            ax.set_xscale("symlog", linthresh=0.01)
+        ax.set_yscale("log")
+        ax.set_xlabel(name.replace("\\", ""))
+        ax.set_ylabel("MFPT (steps); ▲ open above, at mfpt_lo")
+        ax.legend(fontsize=7)
+    fig.suptitle("The paper scan's stable gaits: each cheap measure against the MFPT")
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+
+
+def section(scan: Scan, title: str, short: str, top: bool) -> list[str]:
+    n = int(scan.stable.sum())
+    ids = scan.cols["sample_id"]
+    lines = [f"## {title}: {n} stable gaits of {scan.total}", ""]
+    if scan.partial:
+        lines += [
+            f"**Interrupted scan**: these are its first {scan.total} of {scan.config['samples']} samples "
+            f"(sample_id {ids.min():.0f}–{ids.max():.0f}, the finished chunks in .partial/; the samples are "
+            "independent uniform draws, so the first ones are a random subsample of the same design space). "
+            "`rtw-scan run configs/paper.toml --out results/robustness/paper --resume` with the study's "
+            "`--set` options finishes it.",
+            "",
+        ]
+    lines += [
+        f"### {short}: where each measure is defined",
+        "",
+        "Stable gaits only; a measure is null where rtw cannot compute it.",
+        "",
+        *undefined_table(scan),
+        "",
+        f"### {short}: rank correlation with the MFPT",
+        "",
+        *correlation_table(scan),
+        "",
+        f"### {short}: censored regression of log10 MFPT (Tobit)",
+        "",
+        *tobit_table(scan),
+        "",
+        f"### {short}: by gait",
+        "",
+        *by_gait(scan),
+        "",
+        *step_down_line(scan),
+        "",
+        *no_fall_lines(scan),
+        "",
+        f"### {short}: the inputs against the MFPT (every stable gait with a finite MFPT)",
+        "",
+        *inputs_table(scan),
+    ]
+    if top:
+        rows, order = top_table(scan)
+        lines += ["", f"### {short}: the {TOP} designs with the largest MFPT", "", *rows, ""]
+        lines += [f"### {short}: what sets the {TOP} apart", ""]
+        lines += apart_table(scan, order)
+    return lines
 
 
 def main() -> None:
@@ -180,48 +441,35 @@ def main() -> None:
     ap.add_argument("out", type=Path)
     ap.add_argument("--times", default="", help="what the shell script timed, as NAME=TEXT;...")
     a = ap.parse_args()
-    mp, pp = a.out / "map" / "samples.parquet", a.out / "paper" / "samples.parquet"
-    map_rows, paper_rows = stable_rows(mp), stable_rows(pp)
+    mp, pp = Scan(a.out / "map" / "samples.parquet"), Scan(a.out / "paper" / "samples.parquet")
+    map_mfpt_figure(mp, a.out / "map-mfpt.png")
     map_figure(mp, a.out / "map.png")
-    paper_figure(paper_rows, a.out / "paper.png")
-    head = "| measure | Spearman ρ with steps to fall | 95 % bootstrap interval | gaits |\n|---|---|---|---|"
+    paper_figure(pp, a.out / "paper.png")
+    sig = setting(pp, "robustness.sigma", "0.01")
     lines = [
         "# The robustness study",
         "",
-        "Made by `./scripts/robustness_study.sh` (docs/robustness.md). Steps to fall: "
-        "`robustness.steps_to_fall` at its defaults (σ = 1 cm, 0.8 m patches, 20 trials, "
-        "censored at 100 steps). Spearman's ρ with ties averaged; the interval is the "
-        f"2.5–97.5 % percentile of {BOOTSTRAP} bootstrap resamples of the gaits (seed {SEED}).",
+        f"Every number on this page: {HOW}.",
         "",
-        f"## The (φ, f_n) map around Fig. 7(a): {len(map_rows['outcome'])} stable gaits of "
-        f"{pq.read_metadata(mp).num_rows}",
+        "The scans: `rtw-scan run configs/robustness-map.toml` and `rtw-scan run configs/paper.toml`, each with "
+        "`--set limit_cycle=true --set robustness.step_down=true --set robustness.step_down_h50=true "
+        "--set robustness.gsn=true --set robustness.steps_to_fall=true --set robustness.mfpt=true` "
+        f"(results/robustness/map/, results/robustness/paper/). Roughness σ = {sig} m "
+        f"(robustness.sigma), patches {setting(pp, 'terrain.patch', '0.8')} m, steps to fall over "
+        f"{setting(pp, 'robustness.trials', '20')} trials censored at "
+        f"{setting(pp, 'robustness.max_steps', '100')} steps. Model: `{pp.variant}`.",
         "",
-        head,
-        *correlations(map_rows),
+        "Statistics (scripts/robustness_stats.py): Spearman's ρ with ties averaged, on the MFPT's point "
+        "estimate; Somers' D = 2C − 1 from Harrell's concordance C, which treats an MFPT whose interval is "
+        "open above as right-censored at mfpt_lo; the intervals are the 2.5–97.5 % percentiles of "
+        f"{BOOTSTRAP} (ρ) or 300 (D) bootstrap resamples of the gaits (seed {SEED}). The censored regression "
+        "is a Tobit model: log10 MFPT = β₀ + Σ βᵢ zᵢ + ε, ε ~ N(0, s²), a gait open above contributing "
+        "P(log10 MFPT ≥ log10 mfpt_lo); zᵢ is the measure's van der Waerden normal score (unit SD), "
+        "slopes with 200 bootstrap resamples, the likelihood ratio against the intercept alone.",
         "",
-        f"## The paper scan's stable gaits: {len(paper_rows['outcome'])} of "
-        f"{pq.read_metadata(pp).num_rows} (all of them, no subsample)",
+        *section(pp, "The paper scan (configs/paper.toml)", "Paper", top=True),
         "",
-        head,
-        *correlations(paper_rows),
-        "",
-        "By gait (a lower bound where any trial was censored):",
-        "",
-        "| gait | gaits | median steps to fall | mean | share with a censored trial |",
-        "|---|---|---|---|---|",
-        *by_label(paper_rows),
-        "",
-        "The five paper-scan gaits that walk longest on the rough slope:",
-        "",
-        "| ρ | α | f_n | ζ | φ | Floquet max |μ| | gait | steps to fall [95 %] | step down max (m) |",
-        "|---|---|---|---|---|---|---|---|---|",
-        *top(paper_rows),
-        "",
-        "The five of the map:",
-        "",
-        "| ρ | α | f_n | ζ | φ | Floquet max |μ| | gait | steps to fall [95 %] | step down max (m) |",
-        "|---|---|---|---|---|---|---|---|---|",
-        *top(map_rows),
+        *section(mp, "The (φ, f_n) map around Fig. 7(a) (configs/robustness-map.toml)", "Map", top=False),
     ]
     if a.times:
         lines += ["", "## Run times (this machine, as the script ran)", ""]
