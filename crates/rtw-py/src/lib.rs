@@ -149,8 +149,7 @@ fn study_error(e: anyhow::Error) -> PyErr {
     value_error(e)
 }
 
-/// Calls a study's `progress(done, total)`, when given, once it has
-/// started (its total known).
+/// Calls a study's `progress(done, total)`, if any, once its total is known.
 fn report(progress: Option<&Bound<'_, PyAny>>, counter: &Counter) -> PyResult<()> {
     let total = counter.total.load(Ordering::Relaxed);
     match progress {
