@@ -255,14 +255,15 @@ fn configs_and_variants_are_read_within_a_size_limit_and_only_from_plain_files()
         &[&SIMULATE_FIG7A[..], &["--config", "/dev/zero"]].concat(),
         &["config /dev/zero", "not a regular file"],
     );
-    // A regular file larger than the limit: named, with the limit.
+    // A regular file larger than the limit (4 MB: a refinement round's
+    // config stores up to 10⁴ points): named, with the limit.
     let big = dir.path().join("big.toml");
     let mut text = paper_like(3, 1);
-    text.push_str(&"# padding\n".repeat(200_000));
+    text.push_str(&"# padding\n".repeat(500_000));
     std::fs::write(&big, text).unwrap();
     run_err(
         &["run", s(&big), "--out", s(&out)],
-        &["big.toml", "1.0 MB", "at most"],
+        &["big.toml", "4.0 MB", "at most"],
     );
     assert!(t0.elapsed() < Duration::from_secs(20));
     assert!(!out.exists());
