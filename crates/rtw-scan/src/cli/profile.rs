@@ -2,7 +2,7 @@
 //! by bisection (the library's `profile`; this only turns flags into its
 //! settings and prints what it returns).
 
-use super::progress::{ProgressMode, StderrProgress};
+use super::progress::StderrProgress;
 use super::signal::STOP;
 use super::simulate::{DesignArgs, OptionArgs};
 use crate::profile::{self, Names, Settings, files};
@@ -59,11 +59,7 @@ pub(super) fn cmd_profile(a: ProfileArgs) -> Result<ExitCode> {
         &Names::CLI,
     )?;
     let options = a.options.resolve()?;
-    let progress = StderrProgress::new(if a.quiet {
-        ProgressMode::Quiet
-    } else {
-        ProgressMode::Auto
-    });
+    let progress = StderrProgress::unless(a.quiet);
     let p = match &a.out {
         Some(out) => files::run_to_files(&settings, &options, out, a.force, &progress, &STOP)?,
         None => profile::run(&settings, &options, &progress, &STOP)?,

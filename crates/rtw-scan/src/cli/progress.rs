@@ -96,14 +96,20 @@ impl StderrProgress {
         self.counts.iter().any(|c| c.load(Ordering::Relaxed) > 0)
     }
 
-    /// A study's progress on stderr (nothing with `quiet`), its units named
-    /// by `stage` ("basin: grid points").
-    pub(crate) fn study(quiet: bool, stage: &str) -> Self {
-        let p = Self::new(if quiet {
+    /// Progress as a command's `--quiet` flag asks: none, or a bar on a
+    /// terminal and plain lines elsewhere.
+    pub(crate) fn unless(quiet: bool) -> Self {
+        Self::new(if quiet {
             ProgressMode::Quiet
         } else {
             ProgressMode::Auto
-        });
+        })
+    }
+
+    /// A study's progress on stderr (nothing with `quiet`), its units named
+    /// by `stage` ("basin: grid points").
+    pub(crate) fn study(quiet: bool, stage: &str) -> Self {
+        let p = Self::unless(quiet);
         p.stage(stage);
         p
     }

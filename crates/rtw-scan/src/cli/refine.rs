@@ -1,6 +1,6 @@
 //! `refine`: samples added to a finished scan where its labels change.
 
-use super::progress::{ProgressMode, StderrProgress};
+use super::progress::StderrProgress;
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::refine::{self, Refine, RefineStatus, check_budget};
 use crate::scan::run::{DEFAULT_CHUNK_SIZE, RunSettings, RunStatus};
@@ -78,11 +78,7 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
         },
     };
     GRACEFUL.store(true, Ordering::SeqCst);
-    let progress = StderrProgress::new(if a.quiet {
-        ProgressMode::Quiet
-    } else {
-        ProgressMode::Auto
-    });
+    let progress = StderrProgress::unless(a.quiet);
     #[cfg(feature = "fake-sim")]
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);

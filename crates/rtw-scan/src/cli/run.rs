@@ -1,6 +1,6 @@
 //! `run` and `merge`: a scan, whole or in shards, and its summary.
 
-use super::progress::{ProgressMode, StderrProgress};
+use super::progress::StderrProgress;
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use crate::analysis::report;
 use crate::config::ScanConfig;
@@ -125,11 +125,7 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
         shard: a.shard,
         force: a.force,
     };
-    let progress = StderrProgress::new(if a.quiet {
-        ProgressMode::Quiet
-    } else {
-        ProgressMode::Auto
-    });
+    let progress = StderrProgress::unless(a.quiet);
     #[cfg(feature = "fake-sim")]
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
