@@ -121,6 +121,17 @@ fn batch_failures(batch: &RecordBatch, labels: &[Label]) -> Result<Vec<Failure>>
         .collect())
 }
 
+/// Whether a scan's rows (its metadata's `keys` and its stored config) are
+/// a refinement's: a refine's combined file (`rtw.refine`) or one of its
+/// rounds (whose config stores the points chosen near the label changes).
+/// Their shares are not the box's, and they are not draws for Sobol indices.
+pub(crate) fn holds_refined_rows<'a>(
+    mut keys: impl Iterator<Item = &'a String>,
+    config: &ScanConfig,
+) -> bool {
+    keys.any(|k| k == META_REFINE) || config.points.is_some()
+}
+
 /// Opens a scan's Parquet file and parses the config stored in it.
 pub(crate) fn open_scan(path: &Path) -> Result<(parquet::ParquetInput, ScanConfig)> {
     let input = parquet::open(path, READ_BATCH_ROWS)?;
@@ -138,9 +149,7 @@ pub(crate) fn open_scan(path: &Path) -> Result<(parquet::ParquetInput, ScanConfi
 /// Reads a scan's Parquet file: stored config, label counts, failures.
 pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
     let (input, config) = open_scan(path)?;
-    // A refine's combined file, or one of its rounds (whose config stores
-    // the points chosen near the label changes).
-    let refined = input.metadata.contains_key(META_REFINE) || config.points.is_some();
+    let refined = holds_refined_rows(input.metadata.keys(), &config);
     let mut data = ScanData {
         path: path.to_path_buf(),
         failures: FailureSample::new(CLUSTER_MAX_POINTS, config.seed),

@@ -5,13 +5,13 @@
 //! indices computed, and their file written with whose indices they are.
 
 use super::{Columns, Index, Method, columns, indices, to_batch};
-use crate::analysis::report::open_scan;
+use crate::analysis::report::{holds_refined_rows, open_scan};
 use crate::config::count::count;
 use crate::config::{self, ScanConfig};
 use crate::files;
 use crate::io::content_hash::ContentHash;
 use crate::io::metadata::{
-    FileKind, META_CONFIG, META_CONTENT_HASH, META_REFINE, META_SENSITIVITY, VERSION, kv,
+    FileKind, META_CONFIG, META_CONTENT_HASH, META_SENSITIVITY, VERSION, kv,
 };
 use crate::io::{destination, parquet, scan_files};
 use crate::scan::progress::Progress;
@@ -132,7 +132,7 @@ pub fn analyse_file(
         .and_then(Path::parent)
         .map(|d| d.join("samples.parquet"));
     refuse_refined(
-        input.metadata.contains_key(META_REFINE) || cfg.points.is_some(),
+        holds_refined_rows(input.metadata.keys(), &cfg),
         &scan.display().to_string(),
         own,
     )?;
@@ -168,11 +168,7 @@ pub fn analyse_table(
         )
     })?;
     let cfg = config::parse(text).context("the config stored in the table")?;
-    refuse_refined(
-        metadata.contains_key(META_REFINE) || cfg.points.is_some(),
-        "the table",
-        None,
-    )?;
+    refuse_refined(holds_refined_rows(metadata.keys(), &cfg), "the table", None)?;
     let expected = metadata.get(META_CONTENT_HASH);
     if let Some(want) = expected {
         let mut hash = ContentHash::new(batches.first().map_or(0, RecordBatch::num_columns));
