@@ -56,6 +56,7 @@ LAYERS = {
         {"scan"},
         {"analysis", "bifurcation", "continuation", "refine", "studies"},
         {"basin", "profile"},
+        {"search"},
         {"dictionary", "fake"},
         {"cli"},
     ],

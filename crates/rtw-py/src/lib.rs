@@ -11,6 +11,7 @@
 
 mod design;
 mod options;
+mod studies;
 mod types;
 
 use anyhow::anyhow;
@@ -24,11 +25,9 @@ use pyo3::types::{PyBool, PyDict, PyInt, PyTuple};
 use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
-use rtw_scan::basin::{Settings as BasinSettings, slice_table};
 use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
-use rtw_scan::profile::{Names as ProfileNames, Settings as ProfileSettings, run as run_profile};
 use rtw_scan::scan::progress::Counter;
 use rtw_scan::scan::scan_batch;
 use rtw_scan::scan::single::{simulate_row, simulate_traced};
@@ -38,7 +37,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::Duration;
-use types::{LimitCycle, Modes, Outcome, Profile};
+use types::{DesignSearch, LimitCycle, Modes, Outcome, Profile};
 
 /// How often a running scan looks for a signal (Ctrl-C) in Python.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
@@ -299,88 +298,6 @@ fn limit_cycle(
     Ok(LimitCycle::new(&lc, lc.label(&options.labels).as_str()))
 }
 
-/// A slice of the gait's basin of attraction (`rtw-scan basin`): a
-/// `pyarrow.Table` with one row per grid point, the columns of the CLI's
-/// Parquet file, made by the same library function from the settings as
-/// given (checked there, as the CLI's flags are). Runs as `scan` does:
-/// Ctrl-C stops it after the points in flight and raises KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (values, config, variant, options, x, y, steps, tol, threads, progress=None))]
-#[allow(clippy::too_many_arguments)] // the design's layers and the slice's settings, as `rtw-scan basin`
-fn basin<'py>(
-    py: Python<'py>,
-    values: [f64; 6],
-    config: Option<PathBuf>,
-    variant: Option<PathBuf>,
-    options: Option<Bound<'_, PyDict>>,
-    x: &str,
-    y: &str,
-    steps: Bound<'py, PyAny>,
-    tol: f64,
-    threads: Option<Bound<'py, PyAny>>,
-    progress: Option<Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let threads = threads.as_ref().map(digits).transpose()?;
-    let settings = BasinSettings::parse(x, y, &digits(&steps)?, tol, threads.as_deref(), "")
-        .map_err(value_error)?;
-    let (params, options) = inputs(values, config, variant, options.as_ref())?;
-    let counter = Counter::default();
-    let batch = interruptible(
-        py,
-        |cancel| slice_table(&params, &options, &settings, cancel, &counter),
-        || report(progress.as_ref(), &counter),
-    )?
-    .map_err(study_error)?;
-    report(progress.as_ref(), &counter)?;
-    to_table(py, batch)
-}
-
-/// The slope profile of one design (`rtw-scan profile`): its gait along φ
-/// over [`phi_from`, `phi_to`], each change of label located to `tol` by
-/// bisection from a grid at most `grid` apart. The settings and the design
-/// are checked by the library's `profile::Settings::parse`, as the CLI's
-/// flags are (named as Python's keywords). Ctrl-C stops it and raises
-/// KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (design, config, variant, options, phi_from, phi_to, tol, grid, threads))]
-#[allow(clippy::too_many_arguments)] // the design's layers and the profile's settings, as `rtw-scan profile`
-fn profile<'py>(
-    py: Python<'py>,
-    design: [f64; 5],
-    config: Option<PathBuf>,
-    variant: Option<PathBuf>,
-    options: Option<Bound<'_, PyDict>>,
-    phi_from: f64,
-    phi_to: f64,
-    tol: f64,
-    grid: f64,
-    threads: Option<Bound<'py, PyAny>>,
-) -> PyResult<Profile> {
-    let threads = threads.as_ref().map(digits).transpose()?;
-    let settings = ProfileSettings::parse(
-        design,
-        phi_from,
-        phi_to,
-        tol,
-        grid,
-        threads.as_deref(),
-        &ProfileNames::PYTHON,
-    )
-    .map_err(value_error)?;
-    let overrides = PyOverrides::new(options.as_ref())?;
-    let options = simulation_options(config.as_deref(), variant.as_deref(), overrides.layer())
-        .map_err(value_error)?;
-    let done = AtomicU64::new(0);
-    let p = interruptible(
-        py,
-        |cancel| run_profile(&settings, &options, &done, cancel),
-        || Ok(()),
-    )?
-    .map_err(study_error)?;
-    let table = to_table(py, p.table())?.unbind();
-    Ok(Profile::new(&p, table))
-}
-
 /// The eigen-frequencies of rtw-model's `modal`: S18's f_n, the approximate
 /// 3-rotor model's modes and the free 9-DOF star's.
 #[pyfunction]
@@ -572,8 +489,9 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scan, m)?)?;
     m.add_function(wrap_pyfunction!(limit_cycle, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
-    m.add_function(wrap_pyfunction!(basin, m)?)?;
-    m.add_function(wrap_pyfunction!(profile, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::basin, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::profile, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::design_search, m)?)?;
     m.add_function(wrap_pyfunction!(sobol_points, m)?)?;
     m.add_function(wrap_pyfunction!(sensitivity, m)?)?;
     m.add_function(wrap_pyfunction!(label, m)?)?;
@@ -585,6 +503,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;
     m.add_class::<Profile>()?;
+    m.add_class::<DesignSearch>()?;
     m.add("LABELS", PyTuple::new(m.py(), label_names(|_| true))?)?;
     m.add(
         "STABLE_LABELS",

@@ -436,3 +436,40 @@ impl Profile {
         }
     }
 }
+
+fields_class! {
+/// A design search (``rtw-scan design``): every evaluated design and the
+/// reported ones.
+///
+/// Attributes:
+///     summary: the search's summary (``search.md``), Markdown.
+///     runs: the simulations spent.
+///     evaluations: every evaluated design as a ``pyarrow.Table``, in order
+///         (the columns of ``search.parquet``, docs/design.md).
+///     designs: the reported designs (the Pareto front, or the best), each
+///         profiled again on the fine grid, as a ``pyarrow.Table`` (the
+///         columns of ``designs.parquet``): ``phi_lo`` and ``phi_hi`` are
+///         the widest stable interval of that profile.
+    DesignSearch {
+        summary: String,
+        runs: u64,
+        evaluations: TableField,
+        designs: TableField,
+    }
+}
+
+impl DesignSearch {
+    pub(crate) fn new(
+        summary: String,
+        runs: u64,
+        evaluations: Py<PyAny>,
+        designs: Py<PyAny>,
+    ) -> Self {
+        Self {
+            summary,
+            runs,
+            evaluations: TableField(evaluations),
+            designs: TableField(designs),
+        }
+    }
+}

@@ -73,6 +73,16 @@ pub(crate) fn outputs() -> Vec<ParquetOutput> {
             row: "one grid point of a basin slice",
             schema: crate::basin::files::schema(),
         },
+        ParquetOutput {
+            files: "`DIR/search.parquet` (`design CONFIG --out DIR`)",
+            row: "one evaluated design of a design search, in the order of evaluation",
+            schema: crate::search::files::search_schema(),
+        },
+        ParquetOutput {
+            files: "`DIR/designs.parquet` (`design CONFIG --out DIR`)",
+            row: "one reported design, profiled again on the fine grid",
+            schema: crate::search::files::designs_schema(),
+        },
     ]
 }
 

@@ -20,6 +20,7 @@
 //! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
 //! | `basin` | a slice of a gait's basin of attraction: its grid points in parallel, its Parquet file |
 //! | [`profile`] | a design's slope profile: its gait along φ, each change of label located by bisection, its stable intervals |
+//! | [`search`] | design search: the design of a box that walks on the widest range of slopes, the shallowest slope or fastest, by CMA-ES over slope profiles with falls a learned constraint; a Pareto front of two objectives |
 //! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
 //! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
 //! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands; the progress bar and the signal handler (the `cli` feature only) |
@@ -72,6 +73,7 @@ pub mod profile;
 pub(crate) mod refine;
 pub mod sampling;
 pub mod scan;
+pub mod search;
 pub(crate) mod sizes;
 /// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
 pub use analysis::sensitivity;

@@ -306,3 +306,168 @@ fn the_mfpt_along_phi_is_in_the_file_as_simulate_gives_it() {
     let plain = args("0.27", "0.29", &["--quiet", "--out", out_s]);
     run_err(&plain, &["its columns are not those of this one"]);
 }
+
+// The design search (`rtw-scan design`), which judges each design by its
+// slope profile.
+
+/// A small search: the paper's box, slopes [0.05, 0.3] on a 0.05 grid.
+fn design_config(dir: &std::path::Path, name: &str, extra: &str) -> String {
+    write(
+        dir,
+        &format!("{name}.toml"),
+        &format!(
+            "name = \"{name}\"\nseed = 4\nbudget = 400\nbatch = 4\nobjectives = [\"slope_range\"]\n\
+             {extra}\n[box]\nrho = [1.0, 5.0]\nalpha = [0.0, 0.4]\nfn = [1.5, 5.0]\nzeta = [0.05, 0.1]\n\
+             [slopes]\nfrom = 0.05\nto = 0.3\ngrid = 0.05\ntol = 0.01\nverify_grid = 0.025\n"
+        ),
+    )
+}
+
+/// Stops the search (its cancel flag) once `at` simulations are done.
+struct StopAfter<'a> {
+    done: std::sync::atomic::AtomicU64,
+    at: u64,
+    cancel: &'a std::sync::atomic::AtomicBool,
+}
+
+impl rtw_scan::scan::Progress for StopAfter<'_> {
+    fn computed(&self, _: rtw_model::Label) {}
+    fn advanced(&self) {
+        use std::sync::atomic::Ordering;
+        if self.done.fetch_add(1, Ordering::SeqCst) + 1 >= self.at {
+            self.cancel.store(true, Ordering::SeqCst);
+        }
+    }
+}
+
+#[test]
+fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() {
+    use rtw_scan::search::{SearchSettings, files};
+    use std::sync::atomic::AtomicBool;
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = design_config(dir.path(), "resume", "");
+    let settings = SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
+    let options = rtw_model::Options::default();
+    let quiet = rtw_scan::scan::progress::Silent;
+    let never = AtomicBool::new(false);
+    let whole = dir.path().join("whole");
+    let (full, reported) =
+        files::run_to_files(&settings, &options, None, &whole, false, &quiet, &never).unwrap();
+    assert!(full.evaluations.len() > 8, "{}", full.evaluations.len());
+
+    let part = dir.path().join("part");
+    let cancel = AtomicBool::new(false);
+    let stop = StopAfter {
+        done: 0.into(),
+        at: 150,
+        cancel: &cancel,
+    };
+    let e = files::run_to_files(&settings, &options, None, &part, false, &stop, &cancel)
+        .expect_err("stopped");
+    assert!(format!("{e:#}").contains("stopped"), "{e:#}");
+    let kept = files::stored(&part, &settings, &options, false).unwrap();
+    assert!(
+        !kept.is_empty() && kept.len() < full.evaluations.len(),
+        "{} of {}",
+        kept.len(),
+        full.evaluations.len()
+    );
+    // Every kept design is the uninterrupted search's, as it was evaluated there.
+    for k in &kept {
+        assert_eq!(Some(k), full.evaluations.get(k.index as usize));
+    }
+    let (resumed, reported2) =
+        files::run_to_files(&settings, &options, None, &part, false, &quiet, &never).unwrap();
+    assert_eq!(resumed.evaluations, full.evaluations);
+    assert_eq!(
+        reported2.iter().map(|r| &r.verified).collect::<Vec<_>>(),
+        reported.iter().map(|r| &r.verified).collect::<Vec<_>>()
+    );
+    assert_eq!(
+        rows(&files::designs_path(&part)),
+        rows(&files::designs_path(&whole))
+    );
+}
+
+#[test]
+fn the_reported_designs_intervals_hold_under_direct_simulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = design_config(dir.path(), "widest", "report = 3");
+    let out = dir.path().join("out");
+    run_ok(&["design", &cfg, "--out", s(&out), "--quiet"]);
+    let designs = rows(&out.join("designs.parquet"));
+    assert!(!designs.is_empty());
+    for d in &designs {
+        let (lo, hi): (f64, f64) = (
+            field(d, "phi_lo").parse().unwrap(),
+            field(d, "phi_hi").parse().unwrap(),
+        );
+        assert!(hi >= lo && lo >= 0.05 && hi <= 0.3, "{d:?}");
+        // Five slopes inside the verified interval, each simulated directly.
+        for i in 0..5 {
+            let phi = format!("{}", lo + (hi - lo) * i as f64 / 4.0);
+            let mut a = vec!["simulate", "--length", "0.8"];
+            for k in ["rho", "alpha", "fn", "zeta"] {
+                a.extend([["--", k].concat().leak() as &str, field(d, k)]);
+            }
+            a.extend(["--phi", &phi, "--json"]);
+            let v: Value = serde_json::from_str(&stdout(&run_ok(&a))).unwrap();
+            let label = v["outcome"].as_str().unwrap();
+            assert!(
+                ["walk", "skip", "crawl"].contains(&label),
+                "design {d:?} at φ = {phi}: {label}"
+            );
+        }
+    }
+    let summary = std::fs::read_to_string(out.join("search.md")).unwrap();
+    assert!(summary.starts_with("# Design search widest"), "{summary}");
+}
+
+#[test]
+fn the_learned_fall_constraint_draws_fewer_designs_that_fall_than_sobol_designs() {
+    // Walking at φ = 0.15 is the constraint: about a third of the paper's box
+    // walks (docs/model.md §8), so a design drawn blindly mostly falls.
+    let dir = tempfile::tempdir().unwrap();
+    let extra = "gait = \"walk\"\nobjectives = [\"speed\"]\nspeed_phi = 0.15\nbatch = 8";
+    let share = |method: &str| -> f64 {
+        let text = std::fs::read_to_string(design_config(dir.path(), method, extra))
+            .unwrap()
+            .replace("objectives = [\"slope_range\"]\n", "")
+            .replace(
+                "budget = 400\nbatch = 4",
+                &format!("budget = 1500\nmethod = \"{method}\""),
+            );
+        let cfg = write(dir.path(), &format!("{method}.toml"), &text);
+        let out = dir.path().join(method);
+        run_ok(&["design", &cfg, "--out", s(&out), "--quiet"]);
+        let r = rows(&out.join("search.parquet"));
+        r.iter()
+            .filter(|row| field(row, "feasible") == "false")
+            .count() as f64
+            / r.len() as f64
+    };
+    let (cmaes, sobol) = (share("cmaes"), share("sobol"));
+    assert!(sobol > 0.3, "Sobol designs that fall: {sobol}");
+    assert!(cmaes < 0.5 * sobol, "CMA-ES {cmaes} against Sobol {sobol}");
+}
+
+#[test]
+fn a_search_refuses_another_searchs_folder_and_names_bad_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let a = design_config(dir.path(), "a", "budget = 100");
+    run_err(&["design", &a, "--out", s(&out)], &["duplicate key"]);
+    let a = design_config(dir.path(), "a", "report = 1");
+    run_ok(&["design", &a, "--out", s(&out), "--quiet"]);
+    let b = design_config(dir.path(), "b", "report = 1");
+    run_err(
+        &["design", &b, "--out", s(&out), "--quiet"],
+        &["holds the search \"a\" of other settings", "--force"],
+    );
+    run_ok(&["design", &b, "--out", s(&out), "--quiet", "--force"]);
+    let bad = design_config(dir.path(), "c", "avoid = 2");
+    run_err(
+        &["design", &bad, "--out", s(&out), "--quiet"],
+        &["avoid: 2 is invalid: must be in [0.5, 1]"],
+    );
+}

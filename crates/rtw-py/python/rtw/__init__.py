@@ -38,7 +38,7 @@ from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
 
 from . import _rtw
-from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, LimitCycle, Modes, Outcome, Profile
+from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, DesignSearch, LimitCycle, Modes, Outcome, Profile
 from .report import report
 from .sensitivity import sensitivity
 
@@ -52,12 +52,14 @@ __all__ = [
     "LABELS",
     "STABLE_LABELS",
     "Design",
+    "DesignSearch",
     "LimitCycle",
     "Modes",
     "Outcome",
     "Profile",
     "animate",
     "basin",
+    "design",
     "label",
     "limit_cycle",
     "modal",
@@ -646,3 +648,50 @@ def read_scan(path: str | os.PathLike[str]) -> pyarrow.Table:
             altered, an incomplete shard set); the message names the file.
     """
     return _rtw.read_scan(path)[0]
+
+
+def design(
+    config: Config,
+    out: Config | None = None,
+    threads: int | None = None,
+    force: bool = False,
+    progress: bool | Callable[[int, int], object] = True,
+    variant: Config | None = None,
+    options: Mapping[str, Any] | None = None,
+) -> DesignSearch:
+    """A design search, as ``rtw-scan design CONFIG`` runs it.
+
+    ``rtw.design("configs/design/widest.toml", out="runs/design/widest")``:
+    searches the config's box of designs for those that maximise its
+    objectives (``slope_range``, ``phi_min``, ``speed``), each candidate
+    judged by its slope profile, falls learned as a constraint
+    (docs/design.md).
+
+    Args:
+        config: the search's config (a TOML file, configs/design/*.toml).
+        out: the search's folder: its files are written there as the CLI
+            writes them, and an interrupted search of the same config resumes
+            from them. Without it the search runs in memory.
+        threads: worker threads (default: one per core; at most 4 per core);
+            the search does not depend on it.
+        force: write over files in ``out`` that are not this search's.
+        progress: as for :func:`scan`, counting simulations (then the
+            reported designs' verification).
+        variant, options: the model, as for :func:`simulate`.
+
+    Returns:
+        A :class:`DesignSearch`: ``summary`` (Markdown), ``runs``,
+        ``evaluations`` and ``designs`` (``pyarrow.Table``).
+
+    Raises:
+        ValueError: a config key, option or setting is invalid (named with
+            its range, in the words of ``rtw-scan design``), or ``out`` holds
+            files that are not this search's.
+        KeyboardInterrupt: interrupted (Ctrl-C stops the runs in flight;
+            with ``out``, every finished design is kept).
+    """
+    report = _reporter(progress, "rtw.design", "runs")
+    return _rtw.design(
+        os.fspath(config), _path(out), _path(variant), _options(options, {}), threads, bool(force), report
+    )
+

@@ -108,6 +108,13 @@ class Profile:
     table: pyarrow.Table
     def to_dict(self) -> dict[str, Any]: ...
 
+class DesignSearch:
+    summary: str
+    runs: int
+    evaluations: pyarrow.Table
+    designs: pyarrow.Table
+    def to_dict(self) -> dict[str, Any]: ...
+
 def simulate(
     values: list[float],
     config: str | None,
@@ -162,6 +169,15 @@ def profile(
     grid: float,
     threads: int | None,
 ) -> Profile: ...
+def design(
+    path: str,
+    out: str | None,
+    variant: str | None,
+    options: Mapping[str, Any] | None,
+    threads: int | None,
+    force: bool,
+    progress: Callable[[int, int], object] | None = None,
+) -> DesignSearch: ...
 def modes(
     values: list[float],
     config: str | None,

@@ -10,6 +10,7 @@ mod analysis;
 mod basin;
 mod bifurcation;
 mod continuation;
+mod design;
 mod profile;
 mod progress;
 mod refine;
@@ -25,6 +26,7 @@ use basin::BasinArgs;
 use bifurcation::BifurcationArgs;
 use clap::{Parser, Subcommand};
 use continuation::ContinuationArgs;
+use design::DesignArgs;
 use profile::ProfileArgs;
 use refine::RefineArgs;
 use run::{MergeArgs, RunArgs};
@@ -194,6 +196,20 @@ enum Command {
         after_help = EXIT_CODES
     )]
     Profile(ProfileArgs),
+    /// Search a box of designs for the one that walks on the widest range of slopes, the shallowest, or fastest.
+    #[command(
+        long_about = "Search the box of designs (ρ, α, f_n, ζ) of CONFIG for those that maximise its objectives \
+        (docs/design.md): slope_range (the widest interval of stable slopes, of one gait if `gait` is set), \
+        phi_min (the shallowest stable slope, minimised) or speed (at speed_phi). Each candidate is judged by its \
+        slope profile (as `profile`); a design with no stable slope falls, and the search learns where designs \
+        fall and draws again there rather than scoring a fall. Candidates come from CMA-ES (method = \"cmaes\") \
+        or, as the baseline, a Sobol sequence (method = \"sobol\"); two objectives give a Pareto front. Writes \
+        OUT/search.parquet (every evaluation, after each generation: an interrupted search resumes with the same \
+        command), OUT/designs.parquet (the reported designs, each profiled again on the fine grid, phi_lo and \
+        phi_hi their widest stable interval) and OUT/search.md. Options as `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Design(DesignArgs),
 }
 
 /// Parses the command line, runs it, and turns errors into a message and
@@ -216,6 +232,7 @@ pub fn main() -> ExitCode {
         Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),
         Command::Refine(a) => refine::cmd_refine(a),
         Command::Profile(a) => profile::cmd_profile(a),
+        Command::Design(a) => design::cmd_design(a),
     };
     result.unwrap_or_else(|e| {
         eprintln!("error: {e:#}");

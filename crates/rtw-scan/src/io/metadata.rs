@@ -74,6 +74,9 @@ pub(crate) const META_BASIN: &str = "rtw.basin";
 /// Metadata key of a slope profile (`profile`): its settings, changes and
 /// intervals, as JSON (what `profile --json` prints).
 pub(crate) const META_PROFILE: &str = "rtw.profile";
+/// Metadata key: a design search's settings and every evaluation as JSON
+/// (`rtw-scan design`), from which an interrupted search resumes.
+pub(crate) const META_DESIGN: &str = "rtw.design";
 
 /// Every key rtw-scan wrote before [`META_METADATA_HASH`] existed (the
 /// committed results are such files), and the Arrow schema the parquet crate
@@ -184,12 +187,16 @@ pub(crate) enum FileKind {
     Basin,
     /// A slope profile (`rtw.profile`).
     Profile,
+    /// A design search's evaluations or reported designs (`rtw.design`).
+    Design,
 }
 
 impl FileKind {
     /// The kind of a file with metadata `meta`, if rtw-scan wrote it.
     pub(crate) fn of(meta: &BTreeMap<String, String>) -> Option<Self> {
-        if meta.contains_key(META_PROFILE) {
+        if meta.contains_key(META_DESIGN) {
+            Some(Self::Design)
+        } else if meta.contains_key(META_PROFILE) {
             Some(Self::Profile)
         } else if meta.contains_key(META_SENSITIVITY) {
             Some(Self::Sensitivity)
@@ -220,6 +227,7 @@ impl FileKind {
             Self::Sensitivity => "sensitivity indices (`sensitivity`)",
             Self::Basin => "a basin slice (`basin`)",
             Self::Profile => "a slope profile (`profile`)",
+            Self::Design => "a design search (`design`)",
         }
     }
 }

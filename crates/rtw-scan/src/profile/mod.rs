@@ -326,6 +326,23 @@ pub fn run(
     cancel: &AtomicBool,
 ) -> Result<Profile> {
     let pool = worker_pool(settings.threads)?;
+    progress.start(settings.coarse().len() as u64);
+    let profile = pool
+        .install(|| profile_here(settings, options, progress, cancel))
+        .ok_or_else(|| anyhow!(Stopped))?;
+    progress.finish(true);
+    Ok(profile)
+}
+
+/// The profile of [`run`] on the pool the caller installed (a design
+/// search profiles its designs in parallel on its own pool); `None` when
+/// stopped.
+pub(crate) fn profile_here(
+    settings: &Settings,
+    options: &Options,
+    progress: &dyn Progress,
+    cancel: &AtomicBool,
+) -> Option<Profile> {
     let eval = |phi: f64| -> Option<Row> {
         let params = Params {
             phi,
@@ -337,16 +354,12 @@ pub fn run(
         Some(row)
     };
     let coarse = settings.coarse();
-    progress.start(coarse.len() as u64);
-    let located = pool
-        .install(|| locate::locate(&coarse, settings.tol, &eval, Row::label, progress))
-        .ok_or_else(|| anyhow!(Stopped))?;
-    progress.finish(true);
+    let located = locate::locate(&coarse, settings.tol, &eval, Row::label, progress)?;
     let mut rows: Vec<Row> = located.points.into_iter().map(|(_, r)| r).collect();
     for (i, r) in rows.iter_mut().enumerate() {
         r.sample_id = i as u64;
     }
-    Ok(Profile {
+    Some(Profile {
         settings: *settings,
         options: *options,
         rows,

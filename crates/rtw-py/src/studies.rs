@@ -1,0 +1,167 @@
+//! The studies over one design or a box of designs: a basin slice, a slope
+//! profile and a design search. Each turns Python's arguments into the
+//! library's checked settings and runs the library's entry point with the
+//! GIL released, as `rtw-scan basin`, `profile` and `design` do.
+
+use crate::options::PyOverrides;
+use crate::types::{DesignSearch, Profile};
+use crate::{digits, inputs, interruptible, report, study_error, to_table, value_error};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rtw_scan::basin::{Settings as BasinSettings, slice_table};
+use rtw_scan::config::layers::simulation_options;
+use rtw_scan::profile::{Names as ProfileNames, Settings as ProfileSettings, run as run_profile};
+use rtw_scan::scan::progress::Counter;
+use rtw_scan::scan::workers::parse_threads;
+use rtw_scan::search::{self, SearchSettings};
+use std::path::PathBuf;
+use std::sync::atomic::AtomicU64;
+
+/// A slice of the gait's basin of attraction (`rtw-scan basin`): a
+/// `pyarrow.Table` with one row per grid point, the columns of the CLI's
+/// Parquet file, made by the same library function from the settings as
+/// given (checked there, as the CLI's flags are). Runs as `scan` does:
+/// Ctrl-C stops it after the points in flight and raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (values, config, variant, options, x, y, steps, tol, threads, progress=None))]
+#[allow(clippy::too_many_arguments)] // the design's layers and the slice's settings, as `rtw-scan basin`
+pub(crate) fn basin<'py>(
+    py: Python<'py>,
+    values: [f64; 6],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    options: Option<Bound<'_, PyDict>>,
+    x: &str,
+    y: &str,
+    steps: Bound<'py, PyAny>,
+    tol: f64,
+    threads: Option<Bound<'py, PyAny>>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let threads = threads.as_ref().map(digits).transpose()?;
+    let settings = BasinSettings::parse(x, y, &digits(&steps)?, tol, threads.as_deref(), "")
+        .map_err(value_error)?;
+    let (params, options) = inputs(values, config, variant, options.as_ref())?;
+    let counter = Counter::default();
+    let batch = interruptible(
+        py,
+        |cancel| slice_table(&params, &options, &settings, cancel, &counter),
+        || report(progress.as_ref(), &counter),
+    )?
+    .map_err(study_error)?;
+    report(progress.as_ref(), &counter)?;
+    to_table(py, batch)
+}
+
+/// The slope profile of one design (`rtw-scan profile`): its gait along φ
+/// over [`phi_from`, `phi_to`], each change of label located to `tol` by
+/// bisection from a grid at most `grid` apart. The settings and the design
+/// are checked by the library's `profile::Settings::parse`, as the CLI's
+/// flags are (named as Python's keywords). Ctrl-C stops it and raises
+/// KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (design, config, variant, options, phi_from, phi_to, tol, grid, threads))]
+#[allow(clippy::too_many_arguments)] // the design's layers and the profile's settings, as `rtw-scan profile`
+pub(crate) fn profile<'py>(
+    py: Python<'py>,
+    design: [f64; 5],
+    config: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    options: Option<Bound<'_, PyDict>>,
+    phi_from: f64,
+    phi_to: f64,
+    tol: f64,
+    grid: f64,
+    threads: Option<Bound<'py, PyAny>>,
+) -> PyResult<Profile> {
+    let threads = threads.as_ref().map(digits).transpose()?;
+    let settings = ProfileSettings::parse(
+        design,
+        phi_from,
+        phi_to,
+        tol,
+        grid,
+        threads.as_deref(),
+        &ProfileNames::PYTHON,
+    )
+    .map_err(value_error)?;
+    let overrides = PyOverrides::new(options.as_ref())?;
+    let options = simulation_options(config.as_deref(), variant.as_deref(), overrides.layer())
+        .map_err(value_error)?;
+    let done = AtomicU64::new(0);
+    let p = interruptible(
+        py,
+        |cancel| run_profile(&settings, &options, &done, cancel),
+        || Ok(()),
+    )?
+    .map_err(study_error)?;
+    let table = to_table(py, p.table())?.unbind();
+    Ok(Profile::new(&p, table))
+}
+
+/// A design search (`rtw-scan design CONFIG`): the config read and checked
+/// by the library's `SearchSettings::read`, run by the same library
+/// functions: into the folder `out` (resumed there, files written as the
+/// CLI writes them) or, without `out`, in memory. Ctrl-C stops it and
+/// raises KeyboardInterrupt; with `out`, every finished design is kept.
+#[pyfunction]
+#[pyo3(name = "design", signature = (path, out, variant, options, threads, force, progress=None))]
+#[allow(clippy::too_many_arguments)] // the search's config, folder and model layers, as `rtw-scan design`
+pub(crate) fn design_search<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    out: Option<PathBuf>,
+    variant: Option<PathBuf>,
+    options: Option<Bound<'_, PyDict>>,
+    threads: Option<Bound<'py, PyAny>>,
+    force: bool,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<DesignSearch> {
+    let settings = SearchSettings::read(&path).map_err(value_error)?;
+    let threads = threads
+        .as_ref()
+        .map(digits)
+        .transpose()?
+        .map(|t| parse_threads(&t, "threads"))
+        .transpose()
+        .map_err(value_error)?;
+    let overrides = PyOverrides::new(options.as_ref())?;
+    let options =
+        simulation_options(None, variant.as_deref(), overrides.layer()).map_err(value_error)?;
+    let counter = Counter::default();
+    let (found, reported) = interruptible(
+        py,
+        |cancel| match &out {
+            Some(dir) => search::files::run_to_files(
+                &settings, &options, threads, dir, force, &counter, cancel,
+            ),
+            None => search::run(
+                &settings,
+                &options,
+                threads,
+                &[],
+                &counter,
+                cancel,
+                &mut |_| Ok(()),
+            )
+            .and_then(|s| {
+                let r = search::report(&s, &options, threads, &counter, cancel)?;
+                Ok((s, r))
+            }),
+        },
+        || report(progress.as_ref(), &counter),
+    )?
+    .map_err(study_error)?;
+    report(progress.as_ref(), &counter)?;
+    let evaluations = to_table(
+        py,
+        search::files::search_batch(&settings, &found.evaluations),
+    )?;
+    let designs = to_table(py, search::files::reported_batch(&settings, &reported))?;
+    Ok(DesignSearch::new(
+        search::files::markdown(&found, &reported),
+        found.runs(),
+        evaluations.unbind(),
+        designs.unbind(),
+    ))
+}

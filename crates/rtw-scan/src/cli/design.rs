@@ -1,0 +1,57 @@
+//! `design`: the design search (the library's `search`; this only turns
+//! flags into its settings and prints what it returns).
+
+use super::progress::StderrProgress;
+use super::signal::STOP;
+use super::simulate::OptionArgs;
+use crate::scan::workers::parse_threads;
+use crate::search::{SearchSettings, files};
+use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Args, Debug)]
+pub(super) struct DesignArgs {
+    /// The search's config (configs/design/*.toml; docs/design.md lists its keys).
+    config: PathBuf,
+    /// The search's folder [default: runs/design/NAME].
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    #[command(flatten)]
+    options: OptionArgs,
+    /// Worker threads [default: one per core; at most 4 per core]. The search does not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    threads: Option<String>,
+    /// Write even over files that are not this search's.
+    #[arg(long)]
+    force: bool,
+    /// Show no progress.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
+    let settings = SearchSettings::read(&a.config)?;
+    let options = a.options.resolve()?;
+    let threads = a
+        .threads
+        .as_deref()
+        .map(|t| parse_threads(t, "--threads"))
+        .transpose()?;
+    let out = a
+        .out
+        .unwrap_or_else(|| PathBuf::from("runs/design").join(&settings.name));
+    let progress = StderrProgress::unless(a.quiet);
+    let (search, reported) = files::run_to_files(
+        &settings, &options, threads, &out, a.force, &progress, &STOP,
+    )?;
+    print!("{}", files::markdown(&search, &reported));
+    eprintln!(
+        "rtw-scan: {} designs ({} simulations) written to {}",
+        search.evaluations.len(),
+        search.runs(),
+        out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}

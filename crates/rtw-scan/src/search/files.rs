@@ -1,0 +1,540 @@
+//! A design search's files in its folder `OUT/`:
+//! - `search.parquet`: one row per evaluated design, in order, with the
+//!   settings, the options and every evaluation as JSON in its metadata
+//!   ([`META_DESIGN`]); written again, atomically, after each generation,
+//!   so a stopped search keeps every finished design and resumes from them;
+//! - `designs.parquet`: the reported designs (the front, or the best), each
+//!   with the widest stable interval of its profile made again on the fine
+//!   grid (`phi_lo`, `phi_hi`), beside what the search found;
+//! - `search.md`: the summary.
+//!
+//! The three appear together at the end; an earlier `search.parquet` of
+//! other settings is refused unless `force`.
+
+use super::{Evaluation, Method, Reported, Search, SearchSettings};
+use crate::config::variant::ModelChoices;
+use crate::files::FileSet;
+use crate::io::destination::{self, Output};
+use crate::io::metadata::{
+    FileKind, META_DESIGN, META_OPTIONS, META_VARIANT, META_VERSION, META_WALL_TIME, kv,
+};
+use crate::io::parquet;
+use crate::io::table::{self, Column, Get, column};
+use crate::scan::progress::Progress;
+use anyhow::{Context, Result, bail};
+use arrow_array::RecordBatch;
+use rtw_model::Options;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+/// The first words of a search's summary.
+const HEADING: &str = "# Design search ";
+
+/// The evaluations file in `out`.
+pub fn search_path(out: &Path) -> PathBuf {
+    out.join("search.parquet")
+}
+
+/// The reported designs' file in `out`.
+pub fn designs_path(out: &Path) -> PathBuf {
+    out.join("designs.parquet")
+}
+
+/// A row of either file: an evaluation, the rod length, and (reported
+/// designs) what the search had found.
+struct Line {
+    e: Evaluation,
+    length: f64,
+    found: Option<Evaluation>,
+}
+
+fn width(e: &Evaluation) -> Option<f64> {
+    Some(e.phi_hi? - e.phi_lo?)
+}
+
+fn design_columns() -> Vec<Column<Line>> {
+    vec![
+        column(
+            "index",
+            false,
+            "1",
+            "the design's place in the order of evaluation",
+            Get::I64(|r| Some(r.e.index as i64)),
+        ),
+        column(
+            "length",
+            false,
+            "m",
+            "rod length L (fixed)",
+            Get::F64(|r| Some(r.length)),
+        ),
+        column(
+            "rho",
+            false,
+            "kg/m",
+            "mass per length ρ of a rod",
+            Get::F64(|r| Some(r.e.design[0])),
+        ),
+        column(
+            "alpha",
+            false,
+            "1",
+            "connection ratio α",
+            Get::F64(|r| Some(r.e.design[1])),
+        ),
+        column(
+            "fn",
+            false,
+            "Hz",
+            "design eigen-frequency f_n",
+            Get::F64(|r| Some(r.e.design[2])),
+        ),
+        column(
+            "zeta",
+            false,
+            "1",
+            "damping ratio ζ",
+            Get::F64(|r| Some(r.e.design[3])),
+        ),
+        column(
+            "feasible",
+            false,
+            "-",
+            "whether every objective is defined (it does not fall)",
+            Get::Bool(|r| Some(r.e.feasible())),
+        ),
+        column(
+            "infeasible",
+            true,
+            "-",
+            "why not: no stable slope (of the gait) in the range, or not that gait at speed_phi",
+            Get::Str(|r| r.e.infeasible.as_deref()),
+        ),
+        column(
+            "phi_lo",
+            true,
+            "rad",
+            "the widest interval of stable slopes (of the gait, if the config names one): its lowest simulated slope",
+            Get::F64(|r| r.e.phi_lo),
+        ),
+        column(
+            "phi_hi",
+            true,
+            "rad",
+            "its highest simulated slope",
+            Get::F64(|r| r.e.phi_hi),
+        ),
+        column(
+            "slope_range",
+            true,
+            "rad",
+            "phi_hi − phi_lo",
+            Get::F64(|r| width(&r.e)),
+        ),
+        column(
+            "phi_min",
+            true,
+            "rad",
+            "the shallowest stable slope (of the gait)",
+            Get::F64(|r| r.e.phi_min),
+        ),
+        column(
+            "label_at_speed_phi",
+            true,
+            "-",
+            "the gait at speed_phi (objective speed)",
+            Get::Str(|r| r.e.label_at_speed_phi.map(|l| l.as_str())),
+        ),
+        column(
+            "speed",
+            true,
+            "m/s",
+            "mean downhill speed at speed_phi",
+            Get::F64(|r| r.e.speed),
+        ),
+        column(
+            "runs",
+            false,
+            "1",
+            "simulations spent on the design",
+            Get::I64(|r| Some(r.e.runs as i64)),
+        ),
+    ]
+}
+
+fn search_columns() -> Vec<Column<Line>> {
+    let mut c = design_columns();
+    c.splice(
+        1..1,
+        [
+            column(
+                "round",
+                false,
+                "1",
+                "the sub-search (weight) of a two-objective search",
+                Get::I64(|r: &Line| Some(r.e.round as i64)),
+            ),
+            column(
+                "generation",
+                false,
+                "1",
+                "the generation within its sub-search",
+                Get::I64(|r: &Line| Some(r.e.generation as i64)),
+            ),
+        ],
+    );
+    c.push(column(
+        "p_fall",
+        true,
+        "1",
+        "the learned probability that the design falls, when it was drawn (cmaes)",
+        Get::F64(|r| r.e.p_fall),
+    ));
+    c.push(column("score", true, "1", "the value its sub-search maximised (normalised objective, or the weighted Chebyshev scalarisation)", Get::F64(|r| r.e.score)));
+    c
+}
+
+fn reported_columns() -> Vec<Column<Line>> {
+    let mut c = design_columns();
+    c.extend([
+        column(
+            "found_phi_lo",
+            true,
+            "rad",
+            "phi_lo of the search's own (coarser) profile",
+            Get::F64(|r: &Line| r.found.as_ref()?.phi_lo),
+        ),
+        column(
+            "found_phi_hi",
+            true,
+            "rad",
+            "phi_hi of the search's own profile",
+            Get::F64(|r: &Line| r.found.as_ref()?.phi_hi),
+        ),
+        column(
+            "found_slope_range",
+            true,
+            "rad",
+            "slope_range of the search's own profile",
+            Get::F64(|r: &Line| width(r.found.as_ref()?)),
+        ),
+    ]);
+    c
+}
+
+/// `search.parquet`'s schema.
+pub(crate) fn search_schema() -> arrow_schema::SchemaRef {
+    table::schema(&search_columns())
+}
+
+/// `designs.parquet`'s schema.
+pub(crate) fn designs_schema() -> arrow_schema::SchemaRef {
+    table::schema(&reported_columns())
+}
+
+/// Every evaluation as a table: the columns of `search.parquet`
+/// (docs/results-on-disk.md).
+pub fn search_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
+    let rows: Vec<Line> = evals
+        .iter()
+        .map(|e| Line {
+            e: e.clone(),
+            length: s.length,
+            found: None,
+        })
+        .collect();
+    let cols = search_columns();
+    table::batch(&cols, table::schema(&cols), &rows)
+}
+
+/// The reported designs as a table: the columns of `designs.parquet`.
+pub fn reported_batch(s: &SearchSettings, reported: &[Reported]) -> RecordBatch {
+    let rows: Vec<Line> = reported
+        .iter()
+        .map(|r| Line {
+            e: r.verified.clone(),
+            length: s.length,
+            found: Some(r.found.clone()),
+        })
+        .collect();
+    let cols = reported_columns();
+    table::batch(&cols, table::schema(&cols), &rows)
+}
+
+/// The search's identity as JSON ([`META_DESIGN`]): its settings and options.
+fn identity(s: &SearchSettings, options: &Options) -> Result<String> {
+    Ok(serde_json::json!({
+        "settings": s,
+        "options": toml::to_string(options)?,
+    })
+    .to_string())
+}
+
+fn metadata(
+    s: &SearchSettings,
+    options: &Options,
+    wall: f64,
+) -> Result<Vec<::parquet::file::metadata::KeyValue>> {
+    Ok(vec![
+        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_DESIGN, identity(s, options)?),
+        kv(META_OPTIONS, toml::to_string(options)?),
+        kv(META_VARIANT, ModelChoices::of(options).to_string()),
+        kv(META_WALL_TIME, format!("{wall:.3}")),
+    ])
+}
+
+/// The evaluations stored in `out` by an earlier run of the same settings
+/// and options (none when there is no `search.parquet`), read back from its
+/// columns, bit for bit. A search of other settings is refused unless
+/// `force` (then it is replaced).
+pub fn stored(
+    out: &Path,
+    s: &SearchSettings,
+    options: &Options,
+    force: bool,
+) -> Result<Vec<Evaluation>> {
+    let path = search_path(out);
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let input = parquet::open(&path, 8192)?;
+    let Some(json) = input.metadata.get(META_DESIGN).cloned() else {
+        // Not a search: check_outputs refuses it (or --force replaces it).
+        return Ok(Vec::new());
+    };
+    // The identity is compared as written: JSON text of the same settings
+    // and options is the same text.
+    if json != identity(s, options)? {
+        if force {
+            return Ok(Vec::new());
+        }
+        let name = serde_json::from_str::<serde_json::Value>(&json)
+            .ok()
+            .and_then(|v| v["settings"]["name"].as_str().map(str::to_string))
+            .unwrap_or_default();
+        bail!(
+            "--out {}: holds the search {name:?} of other settings or options: it would be \
+             replaced; choose another folder, or pass --force",
+            out.display(),
+        );
+    }
+    let mut evals = Vec::new();
+    for batch in input.reader {
+        evals.extend(evaluations_of(s, &batch?).with_context(|| format!("{}", path.display()))?);
+    }
+    Ok(evals)
+}
+
+/// The evaluations of a batch of `search.parquet`'s rows.
+fn evaluations_of(s: &SearchSettings, b: &RecordBatch) -> Result<Vec<Evaluation>> {
+    use arrow_array::Array;
+    use arrow_array::cast::AsArray;
+    use arrow_array::types::{Float64Type, Int64Type};
+    let col = |name: &str| {
+        b.column_by_name(name)
+            .with_context(|| format!("no column {name}"))
+    };
+    let f = |name: &str| -> Result<Vec<Option<f64>>> {
+        Ok(col(name)?.as_primitive::<Float64Type>().iter().collect())
+    };
+    let i = |name: &str| -> Result<Vec<u64>> {
+        Ok(col(name)?
+            .as_primitive::<Int64Type>()
+            .values()
+            .iter()
+            .map(|&v| v as u64)
+            .collect())
+    };
+    let text = |name: &str| -> Result<Vec<Option<String>>> {
+        let c = col(name)?.as_string::<i32>();
+        Ok((0..c.len())
+            .map(|k| c.is_valid(k).then(|| c.value(k).to_string()))
+            .collect())
+    };
+    let (index, round, generation, runs) = (i("index")?, i("round")?, i("generation")?, i("runs")?);
+    let [rho, alpha, f_n, zeta] = ["rho", "alpha", "fn", "zeta"].map(&f);
+    let (rho, alpha, f_n, zeta) = (rho?, alpha?, f_n?, zeta?);
+    let (phi_lo, phi_hi, phi_min, speed) = (f("phi_lo")?, f("phi_hi")?, f("phi_min")?, f("speed")?);
+    let (p_fall, score) = (f("p_fall")?, f("score")?);
+    let (infeasible, labels) = (text("infeasible")?, text("label_at_speed_phi")?);
+    (0..b.num_rows())
+        .map(|k| {
+            let label = labels[k]
+                .as_deref()
+                .map(|l| l.parse().map_err(|e| anyhow::anyhow!("{e}")))
+                .transpose()?;
+            let mut e = Evaluation {
+                index: index[k],
+                round: round[k],
+                generation: generation[k],
+                design: [rho[k], alpha[k], f_n[k], zeta[k]].map(Option::unwrap_or_default),
+                p_fall: p_fall[k],
+                runs: runs[k],
+                phi_lo: phi_lo[k],
+                phi_hi: phi_hi[k],
+                phi_min: phi_min[k],
+                label_at_speed_phi: label,
+                speed: speed[k],
+                infeasible: infeasible[k].clone(),
+                values: Vec::new(),
+                score: score[k],
+            };
+            if e.feasible() {
+                e.values =
+                    super::values_of(s, &e).context("a feasible design without its objectives")?;
+            }
+            Ok(e)
+        })
+        .collect()
+}
+
+/// Refuses, unless `force`, to write a search's files in `out` over files
+/// that are not a search's; removes stray temporary files.
+pub fn check_outputs(out: &Path, force: bool) -> Result<()> {
+    let main = search_path(out);
+    let outputs = [
+        Output {
+            path: main.clone(),
+            flag: "--out",
+            schema: table::schema(&search_columns()),
+        },
+        Output {
+            path: designs_path(out),
+            flag: "--out",
+            schema: table::schema(&reported_columns()),
+        },
+    ];
+    destination::check_outputs(
+        &main,
+        &outputs,
+        FileKind::Design,
+        "a design search",
+        |l| l.starts_with(HEADING),
+        force,
+    )
+}
+
+/// The search of `s` into `out` ([`super::run`], then [`super::report`]):
+/// the outputs checked first, an earlier run of the same settings resumed,
+/// the evaluations written after each generation, and the three files
+/// together at the end.
+pub fn run_to_files(
+    s: &SearchSettings,
+    options: &Options,
+    threads: Option<std::num::NonZeroUsize>,
+    out: &Path,
+    force: bool,
+    progress: &dyn Progress,
+    cancel: &AtomicBool,
+) -> Result<(Search, Vec<Reported>)> {
+    check_outputs(out, force)?;
+    let earlier = stored(out, s, options, force)?;
+    if !earlier.is_empty() {
+        progress.note(&format!(
+            "resuming: {} designs kept from {}",
+            earlier.len(),
+            search_path(out).display()
+        ));
+    }
+    std::fs::create_dir_all(out)?;
+    let t0 = Instant::now();
+    let main = search_path(out);
+    let mut write = |evals: &[Evaluation]| -> Result<()> {
+        parquet::write_file(
+            &main,
+            &search_batch(s, evals),
+            metadata(s, options, t0.elapsed().as_secs_f64())?,
+        )
+    };
+    let search = super::run(s, options, threads, &earlier, progress, cancel, &mut write)?;
+    let reported = super::report(&search, options, threads, progress, cancel)?;
+    let wall = t0.elapsed().as_secs_f64();
+    let mut set = FileSet::default();
+    parquet::add_file(
+        &mut set,
+        &main,
+        &search_batch(s, &search.evaluations),
+        metadata(s, options, wall)?,
+    )?;
+    parquet::add_file(
+        &mut set,
+        &designs_path(out),
+        &reported_batch(s, &reported),
+        metadata(s, options, wall)?,
+    )?;
+    set.add_bytes(
+        &destination::summary_path(&main),
+        markdown(&search, &reported).as_bytes(),
+    )?;
+    set.commit()?;
+    Ok((search, reported))
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{v:.4}"))
+}
+
+/// The search's summary: its settings, its cost, how often it drew a design
+/// that fell, and the reported designs with their verified intervals.
+pub fn markdown(search: &Search, reported: &[Reported]) -> String {
+    let s = &search.settings;
+    let mut m = String::new();
+    let objectives: Vec<&str> = s.objectives.iter().map(|o| o.as_str()).collect();
+    let _ = writeln!(m, "{HEADING}{}\n", s.name);
+    let method = match s.method {
+        Method::Cmaes => "CMA-ES with the learned fall constraint",
+        Method::Sobol => "Sobol designs (baseline)",
+    };
+    let _ = writeln!(
+        m,
+        "- objectives: {} (gait: {}); method: {method}; seed {}",
+        objectives.join(", "),
+        s.gait.map_or("any stable", |g| g.as_str()),
+        s.seed
+    );
+    let _ = writeln!(
+        m,
+        "- slopes [{}, {}] rad, grid {}, tol {}; reported designs verified on grid {}",
+        s.from, s.to, s.grid, s.tol, s.verify_grid
+    );
+    let falls = search.evaluations.iter().filter(|e| !e.feasible()).count();
+    let _ = writeln!(
+        m,
+        "- {} designs evaluated in {} simulations (budget {}); {} infeasible ({:.1} %)\n",
+        search.evaluations.len(),
+        search.runs(),
+        s.budget,
+        falls,
+        100.0 * falls as f64 / search.evaluations.len().max(1) as f64
+    );
+    let _ = writeln!(
+        m,
+        "| index | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | speed | search's slope range |"
+    );
+    let _ = writeln!(
+        m,
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for r in reported {
+        let e = &r.verified;
+        let _ = writeln!(
+            m,
+            "| {} | {:.3} | {:.4} | {:.3} | {:.4} | {} | {} | {} | {} | {} | {} |",
+            e.index,
+            e.design[0],
+            e.design[1],
+            e.design[2],
+            e.design[3],
+            opt(e.phi_lo),
+            opt(e.phi_hi),
+            opt(width(e)),
+            opt(e.phi_min),
+            opt(e.speed),
+            opt(width(&r.found))
+        );
+    }
+    m
+}

@@ -1,0 +1,628 @@
+//! Design search (`rtw-scan design`, Python's `rtw.design`): the design
+//! (ρ, α, f_n, ζ) in a box that walks on the widest range of slopes, on the
+//! shallowest slope, or fastest at a slope; with two objectives, the Pareto
+//! front between them.
+//!
+//! Each candidate is judged by its slope profile ([`crate::profile`]): the
+//! gait along φ with every change of label located by bisection. A design
+//! with no stable slope (or none of the gait asked for) is infeasible: it
+//! falls. The search does not score a fall with a made-up bad value. Its
+//! candidates come from CMA-ES ([`cmaes`]), which recombines only feasible
+//! designs, and a learned model of where designs fall ([`fall_model`])
+//! sends a candidate back to be drawn again when the designs near it mostly
+//! fell. The baseline, `method = "sobol"`, profiles the designs of a
+//! scrambled Sobol sequence in the same box at the same cost.
+//!
+//! Two objectives are searched as `weights` sub-searches, each maximising
+//! an augmented Chebyshev scalarisation of the two with its own weight (as
+//! MOEA/D and ParEGO decompose a front); the front is the non-dominated set
+//! of every feasible design evaluated.
+//!
+//! A generation's candidates are drawn in order from the seed's stream and
+//! profiled in parallel on the worker pool; every draw depends on the seed
+//! and the earlier evaluations only, so a search resumed from its stored
+//! evaluations replays them and goes on exactly as the uninterrupted one.
+
+mod cmaes;
+mod fall_model;
+pub mod files;
+mod settings;
+
+pub use settings::{INPUTS, Method, Objective, SearchSettings};
+
+use crate::config::params::checked_params;
+use crate::profile::{self, Profile, Settings as ProfileSettings};
+use crate::sampling::Sobol;
+use crate::scan::one::run_one;
+use crate::scan::progress::Progress;
+use crate::scan::workers::{Stopped, worker_pool};
+use anyhow::{Result, anyhow, bail};
+use cmaes::Cmaes;
+use fall_model::FallModel;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use rtw_model::{Label, Options, Params};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::num::NonZeroUsize;
+use std::sync::atomic::AtomicBool;
+
+/// Standard gravity (m/s²): speeds are scaled by sqrt(g L) to be weighed
+/// against slope widths.
+const G: f64 = 9.81;
+/// The start's step size in the unit box.
+const SIGMA0: f64 = 0.3;
+/// Below this step size a sub-search has converged and restarts from a
+/// random mean (its budget is not yet spent).
+const SIGMA_RESTART: f64 = 1e-4;
+/// Draws for one candidate before the least likely to fall is taken.
+const TRIES: usize = 64;
+/// Weight of the sum in the augmented Chebyshev scalarisation.
+const AUGMENT: f64 = 0.05;
+
+/// One evaluated design.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    /// Its place in the order of evaluation.
+    pub index: u64,
+    /// Its sub-search (weight) of a two-objective search; 0 otherwise.
+    pub round: u64,
+    /// Its generation within the sub-search.
+    pub generation: u64,
+    /// `[ρ, α, f_n, ζ]`.
+    pub design: [f64; 4],
+    /// The learned fall probability when it was drawn (CMA-ES only).
+    pub p_fall: Option<f64>,
+    /// Simulations spent on it.
+    pub runs: u64,
+    /// The widest stable interval (of the gait, if one is asked for).
+    pub phi_lo: Option<f64>,
+    /// Its upper end.
+    pub phi_hi: Option<f64>,
+    /// The shallowest stable slope (of the gait, if one is asked for).
+    pub phi_min: Option<f64>,
+    /// The label at `speed_phi` (objective `speed`).
+    pub label_at_speed_phi: Option<Label>,
+    /// The speed there (m/s).
+    pub speed: Option<f64>,
+    /// Why it is infeasible (`None`: feasible).
+    pub infeasible: Option<String>,
+    /// The objectives' values, in the config's order (empty when infeasible).
+    pub values: Vec<f64>,
+    /// The value its sub-search maximised (`None` when infeasible).
+    pub score: Option<f64>,
+}
+
+impl Evaluation {
+    /// Whether it is feasible.
+    pub fn feasible(&self) -> bool {
+        self.infeasible.is_none()
+    }
+}
+
+/// A finished (or stopped) search: every evaluation, in order.
+#[derive(Clone, Debug)]
+pub struct Search {
+    /// The settings.
+    pub settings: SearchSettings,
+    /// Every evaluation, in order.
+    pub evaluations: Vec<Evaluation>,
+}
+
+impl Search {
+    /// Simulations spent.
+    pub fn runs(&self) -> u64 {
+        self.evaluations.iter().map(|e| e.runs).sum()
+    }
+
+    /// The feasible designs that no other feasible design dominates (at
+    /// least as good in every objective, better in one), best first in the
+    /// first objective; with one objective, the best design.
+    pub fn front(&self) -> Vec<&Evaluation> {
+        let s = &self.settings;
+        let feasible: Vec<&Evaluation> = self.evaluations.iter().filter(|e| e.feasible()).collect();
+        let better = |a: &Evaluation| -> Vec<f64> { oriented(s, &a.values) };
+        let mut front: Vec<&Evaluation> = feasible
+            .iter()
+            .copied()
+            .filter(|a| {
+                let fa = better(a);
+                !feasible.iter().any(|b| {
+                    let fb = better(b);
+                    fb.iter().zip(&fa).all(|(x, y)| x >= y)
+                        && fb.iter().zip(&fa).any(|(x, y)| x > y)
+                })
+            })
+            .collect();
+        front.sort_by(|a, b| {
+            better(b)[0]
+                .total_cmp(&better(a)[0])
+                .then(a.index.cmp(&b.index))
+        });
+        // Equal values (the same design found twice): the first found.
+        front.dedup_by(|a, b| a.values == b.values);
+        front
+    }
+
+    /// The best design's evaluation of objective `k` (the largest value, the
+    /// smallest for `phi_min`).
+    pub fn best(&self, k: usize) -> Option<&Evaluation> {
+        self.evaluations
+            .iter()
+            .filter(|e| e.feasible())
+            .max_by(|a, b| {
+                oriented(&self.settings, &a.values)[k]
+                    .total_cmp(&oriented(&self.settings, &b.values)[k])
+                    .then(b.index.cmp(&a.index))
+            })
+    }
+}
+
+/// The objectives' values turned so that larger is better.
+fn oriented(s: &SearchSettings, values: &[f64]) -> Vec<f64> {
+    s.objectives
+        .iter()
+        .zip(values)
+        .map(|(o, v)| if *o == Objective::PhiMin { -v } else { *v })
+        .collect()
+}
+
+/// The objectives on a common scale, larger better: slope widths and
+/// slopes over the range's span, speeds over sqrt(g L).
+fn normalised(s: &SearchSettings, values: &[f64]) -> Vec<f64> {
+    let span = s.to - s.from;
+    s.objectives
+        .iter()
+        .zip(values)
+        .map(|(o, v)| match o {
+            Objective::SlopeRange => v / span,
+            Objective::PhiMin => (s.to - v) / span,
+            Objective::Speed => v / (G * s.length).sqrt(),
+        })
+        .collect()
+}
+
+/// The value sub-search `round` maximises: the normalised objective, or
+/// with two the augmented Chebyshev scalarisation at weight
+/// `(round + ½) / weights`.
+fn score(s: &SearchSettings, round: u64, values: &[f64]) -> f64 {
+    let f = normalised(s, values);
+    if f.len() == 1 {
+        return f[0];
+    }
+    let w = (round as f64 + 0.5) / s.weights as f64;
+    let (a, b) = (w * f[0], (1.0 - w) * f[1]);
+    a.min(b) + AUGMENT * (a + b)
+}
+
+/// Counts a profile's runs as units of the search's progress.
+struct Runs<'a>(&'a dyn Progress);
+
+impl Progress for Runs<'_> {
+    fn computed(&self, _: Label) {
+        self.0.advanced();
+    }
+}
+
+/// The profile settings of design `x` over the search's slopes at `grid`.
+fn profile_settings(s: &SearchSettings, x: &[f64; 4], grid: f64) -> Result<ProfileSettings> {
+    let [rho, alpha, f_n, zeta] = *x;
+    Ok(ProfileSettings {
+        design: checked_params([s.length, rho, alpha, f_n, zeta, s.from], "")?,
+        from: s.from,
+        to: s.to,
+        tol: s.tol.min(grid),
+        grid,
+        threads: None,
+    })
+}
+
+/// The intervals the objectives read: the gait's, or every stable one.
+fn intervals(s: &SearchSettings, p: &Profile) -> Vec<(f64, f64)> {
+    match s.gait {
+        Some(g) => p.intervals(g),
+        None => p.stable_intervals(),
+    }
+}
+
+/// The objectives' values of an evaluation, in the config's order, from
+/// what its profile gave: `None` when one is undefined (the design falls).
+pub(crate) fn values_of(s: &SearchSettings, e: &Evaluation) -> Option<Vec<f64>> {
+    s.objectives
+        .iter()
+        .map(|o| match o {
+            Objective::SlopeRange => Some(e.phi_hi? - e.phi_lo?),
+            Objective::PhiMin => e.phi_min,
+            Objective::Speed => e
+                .label_at_speed_phi
+                .filter(|l| l.is_stable() && s.gait.is_none_or(|g| g == *l))
+                .and(e.speed),
+        })
+        .collect()
+}
+
+/// What a profile (and the run at `speed_phi`, its label and speed) gives
+/// design `x`.
+fn judge(
+    s: &SearchSettings,
+    x: [f64; 4],
+    p: &Profile,
+    at_speed: Option<(Label, Option<f64>)>,
+) -> Evaluation {
+    let iv = intervals(s, p);
+    let widest = iv
+        .iter()
+        .copied()
+        .fold(None, |best: Option<(f64, f64)>, i| match best {
+            Some(b) if b.1 - b.0 >= i.1 - i.0 => Some(b),
+            _ => Some(i),
+        });
+    let mut e = Evaluation {
+        index: 0,
+        round: 0,
+        generation: 0,
+        design: x,
+        p_fall: None,
+        runs: p.runs() as u64 + at_speed.is_some() as u64,
+        phi_lo: widest.map(|w| w.0),
+        phi_hi: widest.map(|w| w.1),
+        phi_min: iv.first().map(|i| i.0),
+        label_at_speed_phi: at_speed.map(|a| a.0),
+        speed: at_speed.and_then(|a| a.1),
+        infeasible: None,
+        values: Vec::new(),
+        score: None,
+    };
+    match values_of(s, &e) {
+        Some(v) => e.values = v,
+        None => {
+            let which = s.gait.map_or("stable", |g| g.as_str());
+            e.infeasible = Some(if e.phi_lo.is_none() {
+                format!("no {which} slope in [{}, {}]", s.from, s.to)
+            } else {
+                format!(
+                    "not {which} at speed_phi ({})",
+                    e.label_at_speed_phi.map_or("-", |l| l.as_str())
+                )
+            });
+        }
+    }
+    e
+}
+
+/// Design `x` evaluated: its profile on `grid` (and the run at
+/// `speed_phi`), on the pool the caller installed; `None` when stopped.
+fn evaluate(
+    s: &SearchSettings,
+    options: &Options,
+    x: [f64; 4],
+    grid: f64,
+    progress: &dyn Progress,
+    cancel: &AtomicBool,
+) -> Option<(Evaluation, Profile)> {
+    let ps = profile_settings(s, &x, grid).expect("the box's designs are valid");
+    let p = profile::profile_here(&ps, options, &Runs(progress), cancel)?;
+    let at_speed = match s.speed_phi {
+        Some(phi) => {
+            let params = Params { phi, ..ps.design };
+            let row = rtw_model::cancellable(cancel, || {
+                run_one(0, params, options, rtw_model::simulate)
+            })?;
+            progress.advanced();
+            Some((row.label(), row.outcome.map(|o| o.speed)))
+        }
+        None => None,
+    };
+    Some((judge(s, x, &p, at_speed), p))
+}
+
+/// The search's proposals for one generation.
+enum Proposer {
+    Cmaes {
+        es: Box<Cmaes>,
+        rng: Box<ChaCha8Rng>,
+        model: FallModel,
+    },
+    Sobol(Sobol, u64, usize),
+}
+
+impl Proposer {
+    fn new(s: &SearchSettings, round: u64) -> Self {
+        let n = s.free().len();
+        match s.method {
+            Method::Cmaes => {
+                let mut rng = ChaCha8Rng::seed_from_u64(s.seed);
+                rng.set_stream(round);
+                Proposer::Cmaes {
+                    rng: Box::new(rng),
+                    es: Box::new(Cmaes::new(vec![0.5; n], SIGMA0, s.batch as usize)),
+                    model: FallModel::default(),
+                }
+            }
+            Method::Sobol => Proposer::Sobol(Sobol::scrambled(n, s.seed), 0, n),
+        }
+    }
+
+    /// One candidate in the unit box and its learned fall probability.
+    fn propose(&mut self, avoid: f64) -> (Vec<f64>, Option<f64>) {
+        match self {
+            Proposer::Sobol(sobol, i, n) => {
+                let mut u = vec![0.0; *n];
+                sobol.point(*i, &mut u);
+                *i += 1;
+                (u, None)
+            }
+            Proposer::Cmaes { es, rng, model } => {
+                let mut least: Option<(Vec<f64>, f64)> = None;
+                let mut last = Vec::new();
+                for _ in 0..TRIES {
+                    let u = es.sample(rng);
+                    if u.iter().any(|v| !(0.0..=1.0).contains(v)) {
+                        last = u;
+                        continue;
+                    }
+                    let p = model.p_infeasible(&u);
+                    if p <= avoid {
+                        return (u, Some(p));
+                    }
+                    if least.as_ref().is_none_or(|l| p < l.1) {
+                        least = Some((u, p));
+                    }
+                }
+                match least {
+                    Some((u, p)) => (u, Some(p)),
+                    None => {
+                        let u: Vec<f64> = last.iter().map(|v| v.clamp(0.0, 1.0)).collect();
+                        let p = model.p_infeasible(&u);
+                        (u, Some(p))
+                    }
+                }
+            }
+        }
+    }
+
+    /// Learns a generation's evaluations (their unit-box places `us`).
+    fn tell(&mut self, us: &[Vec<f64>], evals: &[Evaluation]) {
+        if let Proposer::Cmaes { es, rng, model } = self {
+            for (u, e) in us.iter().zip(evals) {
+                model.add(u.clone(), !e.feasible());
+            }
+            let mut ranked: Vec<(f64, &Vec<f64>)> = us
+                .iter()
+                .zip(evals)
+                .filter_map(|(u, e)| e.score.map(|sc| (sc, u)))
+                .collect();
+            ranked.sort_by(|a, b| b.0.total_cmp(&a.0));
+            es.tell(
+                &ranked
+                    .into_iter()
+                    .map(|(_, u)| u.clone())
+                    .collect::<Vec<_>>(),
+            );
+            if es.sigma() < SIGMA_RESTART {
+                let n = us.first().map_or(0, Vec::len);
+                let mean: Vec<f64> = (0..n).map(|_| rng.random::<f64>()).collect();
+                **es = Cmaes::new(mean, SIGMA0, es.lambda);
+            }
+        }
+    }
+}
+
+/// Runs the search of `s` under `options` (checked), every generation's
+/// designs profiled in parallel on `threads` workers, each run counted in
+/// `progress` (its total the budget). `earlier` are evaluations stored by
+/// an interrupted run of the same settings: they are taken as they are, not
+/// run again. After each generation `stored` gets every evaluation so far.
+/// Setting `cancel` stops it within moments with the error [`Stopped`],
+/// after `stored` got every finished evaluation.
+pub fn run(
+    s: &SearchSettings,
+    options: &Options,
+    threads: Option<NonZeroUsize>,
+    earlier: &[Evaluation],
+    progress: &dyn Progress,
+    cancel: &AtomicBool,
+    stored: &mut dyn FnMut(&[Evaluation]) -> Result<()>,
+) -> Result<Search> {
+    let pool = worker_pool(threads)?;
+    let earlier: BTreeMap<u64, &Evaluation> = earlier.iter().map(|e| (e.index, e)).collect();
+    progress.start(s.budget);
+    for e in earlier.values() {
+        for _ in 0..e.runs.min(s.budget) {
+            progress.advanced();
+        }
+    }
+    let rounds = if s.method == Method::Cmaes {
+        s.weights
+    } else {
+        1
+    };
+    let mut evaluations: Vec<Evaluation> = Vec::new();
+    let mut spent = 0u64;
+    for round in 0..rounds {
+        let until = s.budget * (round + 1) / rounds;
+        let mut proposer = Proposer::new(s, round);
+        let mut generation = 0;
+        while spent < until {
+            let drawn: Vec<(Vec<f64>, Option<f64>)> =
+                (0..s.batch).map(|_| proposer.propose(s.avoid)).collect();
+            let first = evaluations.len() as u64;
+            let results: Vec<Option<Evaluation>> = pool.install(|| {
+                drawn
+                    .par_iter()
+                    .enumerate()
+                    .map(|(k, (u, p))| {
+                        let index = first + k as u64;
+                        let x = s.design_at(u);
+                        if let Some(e) = earlier.get(&index) {
+                            return Some((*e).clone());
+                        }
+                        let (mut e, _) = evaluate(s, options, x, s.grid, progress, cancel)?;
+                        e.index = index;
+                        e.round = round;
+                        e.generation = generation;
+                        e.p_fall = *p;
+                        e.score = e.feasible().then(|| score(s, round, &e.values));
+                        Some(e)
+                    })
+                    .collect()
+            });
+            let stopped = results.iter().any(Option::is_none);
+            for (k, e) in results.iter().enumerate() {
+                if let Some(e) = e {
+                    let x = s.design_at(&drawn[k].0);
+                    if e.design != x || e.index != first + k as u64 {
+                        bail!(
+                            "the stored evaluation {} is of design {:?}, this search draws {:?} \
+                             there: the stored evaluations are not this config's",
+                            e.index,
+                            e.design,
+                            x
+                        );
+                    }
+                }
+            }
+            if stopped {
+                evaluations.extend(results.into_iter().flatten());
+                stored(&evaluations)?;
+                return Err(anyhow!(Stopped));
+            }
+            let evals: Vec<Evaluation> = results.into_iter().flatten().collect();
+            spent += evals.iter().map(|e| e.runs).sum::<u64>();
+            let us: Vec<Vec<f64>> = drawn.into_iter().map(|d| d.0).collect();
+            proposer.tell(&us, &evals);
+            evaluations.extend(evals);
+            stored(&evaluations)?;
+            generation += 1;
+        }
+    }
+    progress.finish(true);
+    Ok(Search {
+        settings: s.clone(),
+        evaluations,
+    })
+}
+
+/// A reported design: its search evaluation and its profile made again on
+/// the finer `verify_grid`, whose widest interval is the one reported.
+#[derive(Clone, Debug)]
+pub struct Reported {
+    /// The search's evaluation.
+    pub found: Evaluation,
+    /// The same design judged on the fine profile.
+    pub verified: Evaluation,
+}
+
+/// The designs a search reports: its front (the best design with one
+/// objective), at most `report` of them spread along the first objective,
+/// each profiled again on `verify_grid` on the worker pool.
+pub fn report(
+    search: &Search,
+    options: &Options,
+    threads: Option<NonZeroUsize>,
+    progress: &dyn Progress,
+    cancel: &AtomicBool,
+) -> Result<Vec<Reported>> {
+    let s = &search.settings;
+    let front = search.front();
+    let k = (s.report as usize).min(front.len());
+    let chosen: Vec<&Evaluation> = if k == front.len() {
+        front
+    } else {
+        (0..k)
+            .map(|i| front[i * (front.len() - 1) / (k - 1).max(1)])
+            .collect()
+    };
+    let pool = worker_pool(threads)?;
+    progress.stage("verifying the reported designs on the fine grid");
+    progress.start(chosen.len() as u64);
+    let out: Option<Vec<Reported>> = pool.install(|| {
+        chosen
+            .par_iter()
+            .map(|e| {
+                let quiet = crate::scan::progress::Silent;
+                let (mut v, _) = evaluate(s, options, e.design, s.verify_grid, &quiet, cancel)?;
+                progress.advanced();
+                v.index = e.index;
+                v.round = e.round;
+                v.generation = e.generation;
+                v.score = v.feasible().then(|| score(s, e.round, &v.values));
+                Some(Reported {
+                    found: (*e).clone(),
+                    verified: v,
+                })
+            })
+            .collect()
+    });
+    progress.finish(true);
+    out.ok_or_else(|| anyhow!(Stopped))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settings(objectives: &str, extra: &str) -> SearchSettings {
+        SearchSettings::parse(&format!(
+            "name = \"t\"\nseed = 3\nbudget = 100\nobjectives = {objectives}\n{extra}\n\
+             [box]\nrho = [1.0, 5.0]\nalpha = [0.0, 0.4]\nfn = [1.5, 5.0]\nzeta = [0.05, 0.1]\n\
+             [slopes]\nfrom = 0.0\nto = 0.4\n"
+        ))
+        .unwrap()
+    }
+
+    fn eval(index: u64, values: Vec<f64>) -> Evaluation {
+        Evaluation {
+            index,
+            round: 0,
+            generation: 0,
+            design: [1.0; 4],
+            p_fall: None,
+            runs: 1,
+            phi_lo: None,
+            phi_hi: None,
+            phi_min: None,
+            label_at_speed_phi: None,
+            speed: None,
+            infeasible: values.is_empty().then(|| "falls".into()),
+            values,
+            score: None,
+        }
+    }
+
+    #[test]
+    fn the_front_keeps_the_non_dominated_feasible_designs_with_phi_min_minimised() {
+        let s = settings("[\"phi_min\", \"slope_range\"]", "");
+        let search = Search {
+            settings: s,
+            evaluations: vec![
+                eval(0, vec![0.05, 0.10]),
+                eval(1, vec![0.02, 0.05]),
+                eval(2, vec![0.06, 0.10]), // dominated by 0: steeper, no wider
+                eval(3, vec![]),           // falls
+                eval(4, vec![0.10, 0.30]),
+                eval(5, vec![0.05, 0.10]), // the same as 0, found later
+            ],
+        };
+        let front: Vec<u64> = search.front().iter().map(|e| e.index).collect();
+        // Best first in phi_min (the smallest).
+        assert_eq!(front, [1, 0, 4]);
+        assert_eq!(search.best(0).unwrap().index, 1);
+        assert_eq!(search.best(1).unwrap().index, 4);
+    }
+
+    #[test]
+    fn the_chebyshev_score_weighs_each_objective_by_its_round() {
+        let s = settings(
+            "[\"slope_range\", \"speed\"]",
+            "speed_phi = 0.1\nweights = 2",
+        );
+        let v = [0.2, 0.5 * (G * 0.8).sqrt()]; // normalised 0.5 and 0.5
+        // round 0: w = 1/4: min(0.125, 0.375) + 0.05 × 0.5.
+        assert!((score(&s, 0, &v) - (0.125 + 0.025)).abs() < 1e-15);
+        assert!((score(&s, 1, &v) - (0.125 + 0.025)).abs() < 1e-15);
+        let v = [0.4, 0.0];
+        assert!((score(&s, 0, &v) - AUGMENT * 0.25).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,188 @@
+"""The design atlas (docs/design.md), from the searches in OUT/search/:
+
+- the winners: the widest stable slope range (`widest`), the widest walk
+  (`widest-walk`), the shallowest stable slope (`shallowest`) and the
+  Pareto front of slope range against speed at φ = 0.15 (`front`), each as
+  its search reported it (profiled again on the fine grid);
+- the article's Fig. 7(a) design on the same axes, by `rtw-scan profile`
+  and `rtw-scan simulate` with the same slopes;
+- each winner's fine profile (`rtw-scan profile --out`, grid 0.002, tol
+  1e-4) and its figure (scripts/profile_figure.py), and an animation of its
+  gait (`python -m rtw animate`);
+- OUT/designs.parquet: every reported design with `role`, `length`, `rho`,
+  `alpha`, `fn`, `zeta`, `phi_lo`, `phi_hi` (its widest stable interval, of
+  the walk for `widest-walk`), `slope_range`, `phi_min` and the speed and
+  gait at φ = 0.15 (by direct simulation);
+- OUT/atlas.png and OUT/atlas.md: the front with Fig. 7(a), the winners'
+  designs in the box, and the rank correlations of each input with the
+  slope range and the shallowest slope over the Sobol designs of the widest
+  config (`search/widest-sobol`, a sample of the box that no search biased).
+
+Usage: .venv/bin/python scripts/design_atlas.py OUT
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pyarrow as pa  # noqa: E402
+import pyarrow.parquet as pq  # noqa: E402
+from scipy.stats import spearmanr  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+BIN = ROOT / "target/release/rtw-scan"
+FIG7A = {"rho": 2.5, "alpha": 0.125, "fn": 3.269, "zeta": 0.0514}
+INPUTS = ["rho", "alpha", "fn", "zeta"]
+BOX = {"rho": (1.0, 5.0), "alpha": (0.0, 0.4), "fn": (1.5, 5.0), "zeta": (0.05, 0.1)}
+SPEED_PHI = 0.15
+FROM, TO = 0.01, 0.8
+
+
+def flags(d: dict) -> list[str]:
+    out = ["--length", "0.8"]
+    for k in INPUTS:
+        out += [f"--{k}", repr(float(d[k]))]
+    return out
+
+
+def rtw(*args: str) -> str:
+    return subprocess.run([str(BIN), *args], check=True, capture_output=True, text=True).stdout
+
+
+def at_speed_phi(d: dict) -> tuple[str, float | None]:
+    v = json.loads(rtw("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json"))
+    return v["outcome"], v.get("speed")
+
+
+def profile(d: dict, out: Path | None = None) -> dict:
+    args = ["profile", *flags(d), "--from", str(FROM), "--to", str(TO), "--grid", "0.002", "--tol", "1e-4",
+            "--json", "--quiet"]
+    if out is not None:
+        args += ["--out", str(out), "--force"]
+    return json.loads(rtw(*args))
+
+
+def main() -> None:
+    out = Path(sys.argv[1])
+    search = out / "search"
+    roles = {"widest": "widest stable slope range", "widest-walk": "widest walking slope range",
+             "shallowest": "shallowest stable slope", "front": "Pareto front: slope range vs speed at 0.15"}
+    rows = []
+    for name in roles:
+        t = pq.read_table(search / name / "designs.parquet").to_pylist()
+        for i, r in enumerate(t):
+            label, speed = at_speed_phi(r)
+            rows.append({"role": name if name != "front" else f"front-{i + 1}", "length": r["length"],
+                         **{k: r[k] for k in INPUTS}, "phi_lo": r["phi_lo"], "phi_hi": r["phi_hi"],
+                         "slope_range": r["slope_range"], "phi_min": r["phi_min"],
+                         "label_at_0.15": label, "speed_at_0.15": speed})
+    # Fig. 7(a) on the same axes: its profile on the fine grid over the same slopes.
+    p7 = profile(FIG7A)
+    label7, speed7 = at_speed_phi(FIG7A)
+    fig7a = {"role": "Fig. 7(a)", "length": 0.8, **FIG7A, "phi_lo": p7["phi_lo"], "phi_hi": p7["phi_hi"],
+             "slope_range": p7["phi_hi"] - p7["phi_lo"], "phi_min": p7["phi_min"],
+             "label_at_0.15": label7, "speed_at_0.15": speed7}
+    pq.write_table(pa.Table.from_pylist(rows), out / "designs.parquet")
+
+    # The winners' fine profiles, figures and animations.
+    for name in ["widest", "widest-walk", "shallowest"]:
+        r = next(x for x in rows if x["role"] == name)
+        path = out / f"profile-{name}.parquet"
+        profile(r, path)
+        subprocess.run([sys.executable, str(ROOT / "scripts/profile_figure.py"), str(path)], check=True)
+        phi = 0.5 * (r["phi_lo"] + r["phi_hi"]) if name != "shallowest" else r["phi_min"] + 0.002
+        trace = ROOT / f"runs/design/trace-{name}.parquet"
+        rtw("simulate", *flags(r), "--phi", f"{phi:.4f}", "--set", "trace_dt=0.01", "--set", "t_max=8.0",
+            "--trace", str(trace))
+        subprocess.run([sys.executable, "-m", "rtw", "animate", str(trace), str(out / f"{name}.gif"),
+                        "--start", "4", "--duration", "4", "--fps", "15", "--width", "320"], check=True)
+
+    # What sets them apart: rank correlations over the unbiased Sobol designs.
+    sob = pq.read_table(search / "widest-sobol" / "search.parquet").to_pydict()
+    corr = []
+    for k in INPUTS:
+        x = np.array(sob[k])
+        rng = np.array([np.nan if v is None else v for v in sob["slope_range"]], dtype=float)
+        pm = np.array([np.nan if v is None else v for v in sob["phi_min"]], dtype=float)
+        ok = ~np.isnan(rng)
+        r1 = spearmanr(x[ok], rng[ok])
+        r2 = spearmanr(x[ok], pm[ok])
+        corr.append((k, r1.statistic, r1.pvalue, r2.statistic, r2.pvalue, int(ok.sum())))
+
+    # The figure: the front's search with Fig. 7(a); the winners in the box.
+    ev = pq.read_table(search / "front" / "search.parquet").to_pydict()
+    feas = np.array(ev["feasible"])
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.8))
+    sr = np.array([np.nan if v is None else v for v in ev["slope_range"]], dtype=float)
+    sp = np.array([np.nan if v is None else v for v in ev["speed"]], dtype=float)
+    a.scatter(sr[feas], sp[feas], s=8, c="0.75", label="designs evaluated (feasible)")
+    front = [x for x in rows if x["role"].startswith("front")]
+    fx = [x["slope_range"] for x in front]
+    fy = [x["speed_at_0.15"] for x in front]
+    a.plot(fx, fy, "o-", c="tab:blue", label="Pareto front (verified on the fine grid)")
+    a.scatter([fig7a["slope_range"]], [speed7], marker="*", s=220, c="tab:red", label="Fig. 7(a) design", zorder=5)
+    for name, m in [("widest", "s"), ("shallowest", "v"), ("widest-walk", "D")]:
+        r = next(x for x in rows if x["role"] == name)
+        if r["speed_at_0.15"] is not None:
+            a.scatter([r["slope_range"]], [r["speed_at_0.15"]], marker=m, s=70, c="k", label=name, zorder=4)
+    a.set_xlabel("widest stable slope range phi_hi − phi_lo [rad]")
+    a.set_ylabel(f"speed at φ = {SPEED_PHI} [m/s]")
+    a.set_title("Slope range against speed (default model, L = 0.8 m)")
+    a.legend(fontsize=8)
+    shown = [("widest", "k", "s"), ("widest-walk", "tab:green", "D"), ("shallowest", "tab:purple", "v")]
+    xs = np.arange(len(INPUTS))
+    for x in front:
+        b.plot(xs, [(x[k] - BOX[k][0]) / (BOX[k][1] - BOX[k][0]) for k in INPUTS], c="tab:blue", alpha=0.4)
+    for name, c, m in shown:
+        r = next(x for x in rows if x["role"] == name)
+        b.plot(xs, [(r[k] - BOX[k][0]) / (BOX[k][1] - BOX[k][0]) for k in INPUTS], marker=m, c=c, label=name)
+    b.plot(xs, [(FIG7A[k] - BOX[k][0]) / (BOX[k][1] - BOX[k][0]) for k in INPUTS], marker="*", ms=12,
+           c="tab:red", label="Fig. 7(a)")
+    b.set_xticks(xs, [f"{k}\n[{BOX[k][0]}, {BOX[k][1]}]" for k in INPUTS])
+    b.set_ylabel("place in the article's box (0 = low end)")
+    b.set_title("The winners' designs (front in blue)")
+    b.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "atlas.png", dpi=110)
+
+    def f(v, d=4):
+        return "–" if v is None else f"{v:.{d}f}"
+
+    md = ["# Design atlas (default model, L = 0.8 m)\n",
+          "`./scripts/design_atlas.sh`: the searches of `configs/design/` (budget and seed in each config), "
+          "each reported design profiled again on a five times finer grid; the speed and gait at φ = 0.15 by "
+          "`rtw-scan simulate`. The Fig. 7(a) design's profile over the same slopes, grid 0.002.\n",
+          "## Winners\n",
+          "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | gait at 0.15 | speed at 0.15 |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|"]
+    for r in [x for x in rows if not x["role"].startswith("front")] + [fig7a]:
+        md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
+                  f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['phi_min'])} | "
+                  f"{r['label_at_0.15']} | {f(r['speed_at_0.15'], 3)} |")
+    md += ["\n## Pareto front: slope range against speed at φ = 0.15\n",
+           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | speed at 0.15 |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in front:
+        md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
+                  f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['speed_at_0.15'], 3)} |")
+    md += ["\n## What sets them apart\n",
+           f"Spearman rank correlation of each input with the widest stable slope range and with the "
+           f"shallowest stable slope, over the {corr[0][5]} Sobol designs of the widest config "
+           "(`search/widest-sobol`).\n",
+           "| input | ρ_s with slope range | p | ρ_s with phi_min | p |", "|---|---:|---:|---:|---:|"]
+    for k, r1, p1, r2, p2, _ in corr:
+        md.append(f"| {k} | {r1:+.2f} | {p1:.1e} | {r2:+.2f} | {p2:.1e} |")
+    (out / "atlas.md").write_text("\n".join(md) + "\n")
+    print("\n".join(md))
+
+
+if __name__ == "__main__":
+    main()

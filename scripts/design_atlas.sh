@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# The design atlas (docs/design.md): the searches of configs/design/ into
+# results/design/search/NAME/ (search.parquet, designs.parquet, search.md),
+# the Sobol designs of the widest config (what sets the winners apart), then
+# scripts/design_atlas.py: every winner's fine profile and figure, the
+# Fig. 7(a) design on the same axes, results/design/designs.parquet (the
+# reported designs: rho, alpha, fn, zeta, phi_lo, phi_hi), atlas.png,
+# atlas.md and the animations.
+#   ./scripts/design_atlas.sh [--analyse-only]     # ~3 min on two idle cores
+set -euo pipefail
+cd "$(dirname "$0")/.."
+OUT=results/design
+B=target/release/rtw-scan
+if [[ "${1:-}" != "--analyse-only" ]]; then
+  cargo build --release --workspace --all-targets --quiet
+  mkdir -p runs/design
+  sed -e 's/^seed = 1/seed = 1\nmethod = "sobol"/' -e 's/^name = "widest"/name = "widest-sobol"/' \
+    configs/design/widest.toml > runs/design/widest-sobol.toml
+  for c in configs/design/widest configs/design/widest-walk configs/design/shallowest configs/design/front \
+           runs/design/widest-sobol; do
+    $B design "$c.toml" --out "$OUT/search/$(basename "$c")" --quiet --force > /dev/null
+    echo "design_atlas: $(basename "$c") done" >&2
+  done
+fi
+.venv/bin/python scripts/design_atlas.py "$OUT"
