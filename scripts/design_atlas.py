@@ -1,4 +1,5 @@
-"""The design atlas (docs/design.md), from the searches in OUT/search/:
+"""The design atlas (docs/design.md), from the searches in SEARCH/NAME/
+(`rtw-scan design configs/design/NAME.toml --out SEARCH/NAME`):
 
 - the winners: the widest stable slope range (`widest`), the widest walk
   (`widest-walk`), the shallowest stable slope (`shallowest`) and the
@@ -10,15 +11,19 @@
   1e-4) and its figure (scripts/profile_figure.py), and an animation of its
   gait (`python -m rtw animate`);
 - OUT/designs.parquet: every reported design with `role`, `length`, `rho`,
-  `alpha`, `fn`, `zeta`, `phi_lo`, `phi_hi` (its widest stable interval, of
-  the walk for `widest-walk`), `slope_range`, `phi_min` and the speed and
-  gait at φ = 0.15 (by direct simulation);
+  `alpha`, `fn`, `zeta`, `phi_lo`, `phi_hi`, `slope_range`, `phi_min` and
+  the speed and gait at φ = 0.15 (by direct simulation). `phi_lo`, `phi_hi`:
+  the search's fine profile's widest stable interval (`profile_phi_lo`,
+  `profile_phi_hi`; of the walk for `widest-walk`), checked by direct
+  simulation at 201 slopes across it and every multiple of 0.005 inside,
+  and cut to the widest run of checked slopes with no failure
+  (`checked_slopes`, `checked_failures`);
 - OUT/atlas.png and OUT/atlas.md: the front with Fig. 7(a), the winners'
   designs in the box, and the rank correlations of each input with the
   slope range and the shallowest slope over the Sobol designs of the widest
-  config (`search/widest-sobol`, a sample of the box that no search biased).
+  config (`widest-sobol`, a sample of the box that no search biased).
 
-Usage: .venv/bin/python scripts/design_atlas.py OUT
+Usage: .venv/bin/python scripts/design_atlas.py SEARCH OUT
 """
 
 from __future__ import annotations
@@ -35,6 +40,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pyarrow as pa  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
+import rtw  # noqa: E402
 from scipy.stats import spearmanr  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -53,26 +59,29 @@ def flags(d: dict) -> list[str]:
     return out
 
 
-def rtw(*args: str) -> str:
+def cli(*args: str) -> str:
     return subprocess.run([str(BIN), *args], check=True, capture_output=True, text=True).stdout
 
 
 def at_speed_phi(d: dict) -> tuple[str, float | None]:
-    v = json.loads(rtw("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json"))
-    return v["outcome"], v.get("speed")
+    """The gait at φ = 0.15 and its speed (none unless the gait is stable)."""
+    v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json"))
+    stable = v["outcome"] in ("walk", "skip", "crawl")
+    return v["outcome"], v.get("speed") if stable else None
 
 
-def profile(d: dict, out: Path | None = None) -> dict:
-    args = ["profile", *flags(d), "--from", str(FROM), "--to", str(TO), "--grid", "0.002", "--tol", "1e-4",
+def profile(d: dict, out: Path | None = None, span: tuple[float, float, float, float] | None = None) -> dict:
+    """The design's profile over (from, to, grid, tol): by default the searches' slopes on their fine grid."""
+    lo, hi, grid, tol = span or (FROM, TO, 0.002, 1e-4)
+    args = ["profile", *flags(d), "--from", str(lo), "--to", str(hi), "--grid", str(grid), "--tol", str(tol),
             "--json", "--quiet"]
     if out is not None:
         args += ["--out", str(out), "--force"]
-    return json.loads(rtw(*args))
+    return json.loads(cli(*args))
 
 
 def main() -> None:
-    out = Path(sys.argv[1])
-    search = out / "search"
+    search, out = Path(sys.argv[1]), Path(sys.argv[2])
     roles = {"widest": "widest stable slope range", "widest-walk": "widest walking slope range",
              "shallowest": "shallowest stable slope", "front": "Pareto front: slope range vs speed at 0.15"}
     rows = []
@@ -80,7 +89,7 @@ def main() -> None:
         t = pq.read_table(search / name / "designs.parquet").to_pylist()
         for i, r in enumerate(t):
             label, speed = at_speed_phi(r)
-            rows.append({"role": name if name != "front" else f"front-{i + 1}", "length": r["length"],
+            rows.append({"role": f"{name}-{i + 1}", "search": name, "length": r["length"],
                          **{k: r[k] for k in INPUTS}, "phi_lo": r["phi_lo"], "phi_hi": r["phi_hi"],
                          "slope_range": r["slope_range"], "phi_min": r["phi_min"],
                          "label_at_0.15": label, "speed_at_0.15": speed})
@@ -90,20 +99,57 @@ def main() -> None:
     fig7a = {"role": "Fig. 7(a)", "length": 0.8, **FIG7A, "phi_lo": p7["phi_lo"], "phi_hi": p7["phi_hi"],
              "slope_range": p7["phi_hi"] - p7["phi_lo"], "phi_min": p7["phi_min"],
              "label_at_0.15": label7, "speed_at_0.15": speed7}
+    # Each reported interval checked by direct simulation (rtw.simulate, the
+    # library's run) at 201 slopes across it and at every multiple of 0.005
+    # inside it. Some designs fail at isolated slopes that no profile grid
+    # resolves (a failing window 1e-7 wide, or a single φ whose neighbours
+    # 1e-12 away are stable): the reported interval is then the widest run
+    # of consecutive checked slopes with no failure, and `checked_failures`
+    # counts the failures found inside the profile's interval.
+    for r in rows + [fig7a]:
+        lo, hi = r["phi_lo"], r["phi_hi"]
+        grid = np.arange(np.ceil(lo / 0.005) * 0.005, hi, 0.005)
+        phis = sorted(set(np.linspace(lo, hi, 201).tolist()) | set(np.round(grid, 6).tolist()))
+        phis = [p for p in phis if lo <= p <= hi]
+        design = {k: r[k] for k in INPUTS}
+        ok = [rtw.simulate(length=r["length"], **design, phi=p).outcome in rtw.STABLE_LABELS for p in phis]
+        best, start = (0, 0), None
+        for i, good in enumerate(ok + [False]):
+            if good and start is None:
+                start = i
+            if not good and start is not None:
+                if phis[i - 1] - phis[start] > phis[best[1]] - phis[best[0]] or not ok[best[0]]:
+                    best = (start, i - 1)
+                start = None
+        r["profile_phi_lo"], r["profile_phi_hi"] = lo, hi
+        r["phi_lo"], r["phi_hi"] = phis[best[0]], phis[best[1]]
+        r["slope_range"] = r["phi_hi"] - r["phi_lo"]
+        r["checked_slopes"] = len(phis)
+        r["checked_failures"] = len(ok) - sum(ok)
     pq.write_table(pa.Table.from_pylist(rows), out / "designs.parquet")
 
+    # The winners: of each single-objective search's reported designs, the
+    # widest checked interval (the shallowest phi_min for `shallowest`).
+    def winner(name: str) -> dict:
+        mine = [x for x in rows if x["search"] == name]
+        if name == "shallowest":
+            return min(mine, key=lambda x: x["phi_min"])
+        return max(mine, key=lambda x: x["slope_range"])
+
+    winners = {name: winner(name) for name in ["widest", "widest-walk", "shallowest"]}
+
     # The winners' fine profiles, figures and animations.
-    for name in ["widest", "widest-walk", "shallowest"]:
-        r = next(x for x in rows if x["role"] == name)
+    for name, r in winners.items():
         path = out / f"profile-{name}.parquet"
-        profile(r, path)
+        # The shallowest from φ = 0, as its search profiled it, on a finer grid.
+        profile(r, path, (0.0, 0.1, 0.0005, 1e-5) if name == "shallowest" else None)
         subprocess.run([sys.executable, str(ROOT / "scripts/profile_figure.py"), str(path)], check=True)
         phi = 0.5 * (r["phi_lo"] + r["phi_hi"]) if name != "shallowest" else r["phi_min"] + 0.002
         trace = ROOT / f"runs/design/trace-{name}.parquet"
-        rtw("simulate", *flags(r), "--phi", f"{phi:.4f}", "--set", "trace_dt=0.01", "--set", "t_max=8.0",
+        cli("simulate", *flags(r), "--phi", f"{phi:.4f}", "--set", "trace_dt=0.01", "--set", "t_max=8.0",
             "--trace", str(trace))
         subprocess.run([sys.executable, "-m", "rtw", "animate", str(trace), str(out / f"{name}.gif"),
-                        "--start", "4", "--duration", "4", "--fps", "15", "--width", "320"], check=True)
+                        "--start", "4", "--duration", "3.5", "--fps", "15", "--width", "320"], check=True)
 
     # What sets them apart: rank correlations over the unbiased Sobol designs.
     sob = pq.read_table(search / "widest-sobol" / "search.parquet").to_pydict()
@@ -124,13 +170,13 @@ def main() -> None:
     sr = np.array([np.nan if v is None else v for v in ev["slope_range"]], dtype=float)
     sp = np.array([np.nan if v is None else v for v in ev["speed"]], dtype=float)
     a.scatter(sr[feas], sp[feas], s=8, c="0.75", label="designs evaluated (feasible)")
-    front = [x for x in rows if x["role"].startswith("front")]
-    fx = [x["slope_range"] for x in front]
-    fy = [x["speed_at_0.15"] for x in front]
-    a.plot(fx, fy, "o-", c="tab:blue", label="Pareto front (verified on the fine grid)")
+    front = [x for x in rows if x["search"] == "front"]
+    pts = sorted((x["slope_range"], x["speed_at_0.15"]) for x in front if x["speed_at_0.15"] is not None)
+    a.plot([p[0] for p in pts], [p[1] for p in pts], "o", c="tab:blue",
+           label="front's reported designs (interval checked)")
     a.scatter([fig7a["slope_range"]], [speed7], marker="*", s=220, c="tab:red", label="Fig. 7(a) design", zorder=5)
     for name, m in [("widest", "s"), ("shallowest", "v"), ("widest-walk", "D")]:
-        r = next(x for x in rows if x["role"] == name)
+        r = winners[name]
         if r["speed_at_0.15"] is not None:
             a.scatter([r["slope_range"]], [r["speed_at_0.15"]], marker=m, s=70, c="k", label=name, zorder=4)
     a.set_xlabel("widest stable slope range phi_hi − phi_lo [rad]")
@@ -142,7 +188,7 @@ def main() -> None:
     for x in front:
         b.plot(xs, [(x[k] - BOX[k][0]) / (BOX[k][1] - BOX[k][0]) for k in INPUTS], c="tab:blue", alpha=0.4)
     for name, c, m in shown:
-        r = next(x for x in rows if x["role"] == name)
+        r = winners[name]
         b.plot(xs, [(r[k] - BOX[k][0]) / (BOX[k][1] - BOX[k][0]) for k in INPUTS], marker=m, c=c, label=name)
     b.plot(xs, [(FIG7A[k] - BOX[k][0]) / (BOX[k][1] - BOX[k][0]) for k in INPUTS], marker="*", ms=12,
            c="tab:red", label="Fig. 7(a)")
@@ -161,22 +207,28 @@ def main() -> None:
           "each reported design profiled again on a five times finer grid; the speed and gait at φ = 0.15 by "
           "`rtw-scan simulate`. The Fig. 7(a) design's profile over the same slopes, grid 0.002.\n",
           "## Winners\n",
-          "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | gait at 0.15 | speed at 0.15 |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|"]
-    for r in [x for x in rows if not x["role"].startswith("front")] + [fig7a]:
+          "Of each single-objective search's reported designs (its best 20 by the search's own profile), the "
+          "one with the widest checked interval (`widest`, `widest-walk`; the shallowest `phi_min` for "
+          "`shallowest`); the role names its rank in the search.\n",
+          "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | gait at 0.15 | speed at 0.15 | "
+          "failures in the profile's interval |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
+    for r in list(winners.values()) + [fig7a]:
         md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
                   f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['phi_min'])} | "
-                  f"{r['label_at_0.15']} | {f(r['speed_at_0.15'], 3)} |")
+                  f"{r['label_at_0.15']} | {f(r['speed_at_0.15'], 3)} | "
+                  f"{r['checked_failures']} of {r['checked_slopes']} |")
     md += ["\n## Pareto front: slope range against speed at φ = 0.15\n",
-           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | speed at 0.15 |",
-           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | speed at 0.15 | failures in the profile's interval |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in front:
         md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
-                  f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['speed_at_0.15'], 3)} |")
+                  f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['speed_at_0.15'], 3)} | "
+                  f"{r['checked_failures']} of {r['checked_slopes']} |")
     md += ["\n## What sets them apart\n",
            f"Spearman rank correlation of each input with the widest stable slope range and with the "
            f"shallowest stable slope, over the {corr[0][5]} Sobol designs of the widest config "
-           "(`search/widest-sobol`).\n",
+           "(`runs/design/search/widest-sobol`).\n",
            "| input | ρ_s with slope range | p | ρ_s with phi_min | p |", "|---|---:|---:|---:|---:|"]
     for k, r1, p1, r2, p2, _ in corr:
         md.append(f"| {k} | {r1:+.2f} | {p1:.1e} | {r2:+.2f} | {p2:.1e} |")

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The design atlas (docs/design.md): the searches of configs/design/ into
-# results/design/search/NAME/ (search.parquet, designs.parquet, search.md),
+# runs/design/search/NAME/ (search.parquet, designs.parquet, search.md),
 # the Sobol designs of the widest config (what sets the winners apart), then
 # scripts/design_atlas.py: every winner's fine profile and figure, the
 # Fig. 7(a) design on the same axes, results/design/designs.parquet (the
@@ -18,8 +18,8 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
     configs/design/widest.toml > runs/design/widest-sobol.toml
   for c in configs/design/widest configs/design/widest-walk configs/design/shallowest configs/design/front \
            runs/design/widest-sobol; do
-    $B design "$c.toml" --out "$OUT/search/$(basename "$c")" --quiet --force > /dev/null
+    $B design "$c.toml" --out "runs/design/search/$(basename "$c")" --quiet --force > /dev/null
     echo "design_atlas: $(basename "$c") done" >&2
   done
 fi
-.venv/bin/python scripts/design_atlas.py "$OUT"
+.venv/bin/python scripts/design_atlas.py runs/design/search "$OUT"

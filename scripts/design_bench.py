@@ -73,7 +73,7 @@ def main() -> None:
         "own profile, grid 0.01 or 0.002); *verified*: the reported best design profiled again on the "
         "five times finer grid. Difference: CMA-ES − Sobol (Sobol − CMA-ES for phi_min, the smaller "
         "the better), positive when the search is better; 95 % percentile bootstrap interval over "
-        "the seeds.\n",
+        "the seeds. Slopes in rad.\n",
         "| config | objective | budget | CMA-ES found | Sobol found | difference [95 % CI] | CMA-ES better | "
         "CMA-ES verified | Sobol verified | verified difference [95 % CI] | infeasible CMA-ES / Sobol |",
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
@@ -96,9 +96,9 @@ def main() -> None:
         lo, hi = bootstrap(d_found)
         vlo, vhi = bootstrap(d_ver)
         md.append(
-            f"| {c} | {objective} | {budget} | {a[:, 0].mean():.4f} | {b[:, 0].mean():.4f} | "
-            f"{d_found.mean():+.4f} [{lo:+.4f}, {hi:+.4f}] | {int((d_found > 0).sum())} of {len(seeds)} | "
-            f"{a[:, 1].mean():.4f} | {b[:, 1].mean():.4f} | {d_ver.mean():+.4f} [{vlo:+.4f}, {vhi:+.4f}] | "
+            f"| {c} | {objective} | {budget} | {a[:, 0].mean():.4g} | {b[:, 0].mean():.4g} | "
+            f"{d_found.mean():+.3g} [{lo:+.3g}, {hi:+.3g}] | {int((d_found > 0).sum())} of {len(seeds)} | "
+            f"{a[:, 1].mean():.4g} | {b[:, 1].mean():.4g} | {d_ver.mean():+.3g} [{vlo:+.3g}, {vhi:+.3g}] | "
             f"{100 * a[:, 2].mean():.1f} % / {100 * b[:, 2].mean():.1f} % |"
         )
     (out / "bench.md").write_text("\n".join(md) + "\n")

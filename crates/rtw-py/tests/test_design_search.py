@@ -75,3 +75,22 @@ def test_design_refuses_what_the_cli_refuses_in_its_words(tmp_path) -> None:
         rtw.design(other, out=out, progress=False)
     with pytest.raises(ValueError, match="threads: 0 is invalid"):
         rtw.design(cfg, threads=0, progress=False)
+
+
+def test_the_committed_atlas_designs_are_stable_inside_their_reported_intervals() -> None:
+    # results/design/designs.parquet (scripts/design_atlas.sh): each reported
+    # design simulated directly at seven slopes inside [phi_lo, phi_hi],
+    # drawn from a fixed seed so that they fall between the atlas's own checks.
+    import random
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[3] / "results/design/designs.parquet"
+    rows = pq.read_table(path).to_pylist()
+    assert len(rows) >= 4
+    rng = random.Random(41)
+    for r in rows:
+        assert r["phi_hi"] >= r["phi_lo"]
+        for _ in range(7):
+            phi = rng.uniform(r["phi_lo"], r["phi_hi"])
+            out = rtw.simulate(length=r["length"], rho=r["rho"], alpha=r["alpha"], fn=r["fn"], zeta=r["zeta"], phi=phi)
+            assert out.outcome in rtw.STABLE_LABELS, (r["role"], phi, out.outcome)

@@ -145,6 +145,25 @@ impl Search {
         front
     }
 
+    /// The feasible designs best first in the first objective (ties: the
+    /// first found), each design once.
+    pub fn ranked(&self) -> Vec<&Evaluation> {
+        let s = &self.settings;
+        let mut all: Vec<&Evaluation> = self.evaluations.iter().filter(|e| e.feasible()).collect();
+        all.sort_by(|a, b| {
+            oriented(s, &b.values)[0]
+                .total_cmp(&oriented(s, &a.values)[0])
+                .then(a.index.cmp(&b.index))
+        });
+        let mut seen: Vec<[f64; 4]> = Vec::new();
+        all.retain(|e| {
+            let new = !seen.contains(&e.design);
+            seen.push(e.design);
+            new
+        });
+        all
+    }
+
     /// The best design's evaluation of objective `k` (the largest value, the
     /// smallest for `phi_min`).
     pub fn best(&self, k: usize) -> Option<&Evaluation> {
@@ -514,9 +533,11 @@ pub struct Reported {
     pub verified: Evaluation,
 }
 
-/// The designs a search reports: its front (the best design with one
-/// objective), at most `report` of them spread along the first objective,
-/// each profiled again on `verify_grid` on the worker pool.
+/// The designs a search reports, each profiled again on `verify_grid` on
+/// the worker pool: with two objectives its front, at most `report` of them
+/// spread along the first objective; with one, its `report` best designs,
+/// best first (the finer profile may cut the best one's interval, and a
+/// designer wants the runners-up beside it).
 pub fn report(
     search: &Search,
     options: &Options,
@@ -525,9 +546,15 @@ pub fn report(
     cancel: &AtomicBool,
 ) -> Result<Vec<Reported>> {
     let s = &search.settings;
-    let front = search.front();
+    let front = if s.objectives.len() == 1 {
+        search.ranked()
+    } else {
+        search.front()
+    };
     let k = (s.report as usize).min(front.len());
-    let chosen: Vec<&Evaluation> = if k == front.len() {
+    let chosen: Vec<&Evaluation> = if s.objectives.len() == 1 {
+        front.into_iter().take(k).collect()
+    } else if k == front.len() {
         front
     } else {
         (0..k)
@@ -577,7 +604,7 @@ mod tests {
             index,
             round: 0,
             generation: 0,
-            design: [1.0; 4],
+            design: [1.0 + index as f64, 1.0, 1.0, 1.0],
             p_fall: None,
             runs: 1,
             phi_lo: None,
@@ -602,12 +629,18 @@ mod tests {
                 eval(2, vec![0.06, 0.10]), // dominated by 0: steeper, no wider
                 eval(3, vec![]),           // falls
                 eval(4, vec![0.10, 0.30]),
-                eval(5, vec![0.05, 0.10]), // the same as 0, found later
+                Evaluation {
+                    design: [1.0; 4], // design 0, found again
+                    ..eval(5, vec![0.05, 0.10])
+                },
             ],
         };
         let front: Vec<u64> = search.front().iter().map(|e| e.index).collect();
         // Best first in phi_min (the smallest).
         assert_eq!(front, [1, 0, 4]);
+        // Ranked by phi_min alone: the design found twice (0 and 5) once.
+        let ranked: Vec<u64> = search.ranked().iter().map(|e| e.index).collect();
+        assert_eq!(ranked, [1, 0, 2, 4]);
         assert_eq!(search.best(0).unwrap().index, 1);
         assert_eq!(search.best(1).unwrap().index, 4);
     }
