@@ -2,7 +2,8 @@
 (`rtw-scan design configs/design/NAME.toml --out SEARCH/NAME`):
 
 - the winners: the widest stable slope range (`widest`), the widest walk
-  (`widest-walk`), the shallowest stable slope (`shallowest`) and the
+  (`widest-walk`), the shallowest stable slope (`shallowest`), the largest
+  mean first-passage time at φ = 0.15 on a 5 cm rough slope (`robust`) and the
   Pareto front of slope range against speed at φ = 0.15 (`front`), each as
   its search reported it (profiled again on the fine grid);
 - the article's Fig. 7(a) design on the same axes, by `rtw-scan profile`
@@ -70,6 +71,13 @@ def at_speed_phi(d: dict) -> tuple[str, float | None]:
     return v["outcome"], v.get("speed") if stable else None
 
 
+def mfpt_at_speed_phi(d: dict) -> float | None:
+    """The MFPT at φ = 0.15 on a rough slope of σ = 5 cm (none unless stable there)."""
+    v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json", "--set", "robustness.mfpt=true",
+                       "--set", "robustness.sigma=0.05"))
+    return v.get("mfpt") if v["outcome"] in ("walk", "skip", "crawl") else None
+
+
 def profile(d: dict, out: Path | None = None, span: tuple[float, float, float, float] | None = None) -> dict:
     """The design's profile over (from, to, grid, tol): by default the searches' slopes on their fine grid."""
     lo, hi, grid, tol = span or (FROM, TO, 0.002, 1e-4)
@@ -83,7 +91,8 @@ def profile(d: dict, out: Path | None = None, span: tuple[float, float, float, f
 def main() -> None:
     search, out = Path(sys.argv[1]), Path(sys.argv[2])
     roles = {"widest": "widest stable slope range", "widest-walk": "widest walking slope range",
-             "shallowest": "shallowest stable slope", "front": "Pareto front: slope range vs speed at 0.15"}
+             "shallowest": "shallowest stable slope", "robust": "largest MFPT at 0.15, σ = 5 cm",
+             "front": "Pareto front: slope range vs speed at 0.15"}
     rows = []
     for name in roles:
         t = pq.read_table(search / name / "designs.parquet").to_pylist()
@@ -96,7 +105,7 @@ def main() -> None:
     # Fig. 7(a) on the same axes: its profile on the fine grid over the same slopes.
     p7 = profile(FIG7A)
     label7, speed7 = at_speed_phi(FIG7A)
-    fig7a = {"role": "Fig. 7(a)", "length": 0.8, **FIG7A, "phi_lo": p7["phi_lo"], "phi_hi": p7["phi_hi"],
+    fig7a = {"role": "Fig. 7(a)", "search": "widest", "length": 0.8, **FIG7A, "phi_lo": p7["phi_lo"], "phi_hi": p7["phi_hi"],
              "slope_range": p7["phi_hi"] - p7["phi_lo"], "phi_min": p7["phi_min"],
              "label_at_0.15": label7, "speed_at_0.15": speed7}
     # Each reported interval checked by direct simulation (rtw.simulate, the
@@ -134,9 +143,14 @@ def main() -> None:
         mine = [x for x in rows if x["search"] == name]
         if name == "shallowest":
             return min(mine, key=lambda x: x["phi_min"])
+        if name == "robust":
+            return max(mine, key=lambda x: x["mfpt_at_0.15"] or 0.0)
         return max(mine, key=lambda x: x["slope_range"])
 
-    winners = {name: winner(name) for name in ["widest", "widest-walk", "shallowest"]}
+    for r in rows + [fig7a]:
+        r["mfpt_at_0.15"] = mfpt_at_speed_phi(r) if r["search"] in ("widest", "widest-walk", "shallowest", "robust") \
+            else None
+    winners = {name: winner(name) for name in ["widest", "widest-walk", "shallowest", "robust"]}
 
     # The winners' fine profiles, figures and animations.
     for name, r in winners.items():
@@ -144,7 +158,7 @@ def main() -> None:
         # The shallowest from φ = 0, as its search profiled it, on a finer grid.
         profile(r, path, (0.0, 0.1, 0.0005, 1e-5) if name == "shallowest" else None)
         subprocess.run([sys.executable, str(ROOT / "scripts/profile_figure.py"), str(path)], check=True)
-        phi = 0.5 * (r["phi_lo"] + r["phi_hi"]) if name != "shallowest" else r["phi_min"] + 0.002
+        phi = {"shallowest": r["phi_min"] + 0.002, "robust": SPEED_PHI}.get(name, 0.5 * (r["phi_lo"] + r["phi_hi"]))
         trace = ROOT / f"runs/design/trace-{name}.parquet"
         cli("simulate", *flags(r), "--phi", f"{phi:.4f}", "--set", "trace_dt=0.01", "--set", "t_max=8.0",
             "--trace", str(trace))
@@ -209,14 +223,15 @@ def main() -> None:
           "## Winners\n",
           "Of each single-objective search's reported designs (its best 20 by the search's own profile), the "
           "one with the widest checked interval (`widest`, `widest-walk`; the shallowest `phi_min` for "
-          "`shallowest`); the role names its rank in the search.\n",
+          "`shallowest`, the largest MFPT for `robust`); the role names its rank in the search. The MFPT by "
+          "`rtw-scan simulate --phi 0.15 --set robustness.mfpt=true --set robustness.sigma=0.05`.\n",
           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | gait at 0.15 | speed at 0.15 | "
-          "failures in the profile's interval |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
+          "MFPT at 0.15, σ 5 cm | failures in the profile's interval |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|"]
     for r in list(winners.values()) + [fig7a]:
         md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
                   f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['phi_min'])} | "
-                  f"{r['label_at_0.15']} | {f(r['speed_at_0.15'], 3)} | "
+                  f"{r['label_at_0.15']} | {f(r['speed_at_0.15'], 3)} | {f(r['mfpt_at_0.15'], 0)} | "
                   f"{r['checked_failures']} of {r['checked_slopes']} |")
     md += ["\n## Pareto front: slope range against speed at φ = 0.15\n",
            "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | speed at 0.15 | failures in the profile's interval |",

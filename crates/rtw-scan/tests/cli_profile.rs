@@ -471,3 +471,45 @@ fn a_search_refuses_another_searchs_folder_and_names_bad_keys() {
         &["avoid: 2 is invalid: must be in [0.5, 1]"],
     );
 }
+
+#[test]
+fn the_mfpt_objective_is_the_mfpt_simulate_gives_at_its_slope() {
+    // One generation of four designs (the budget is spent by the first),
+    // their MFPT on a rough slope of σ = 5 cm at φ = 0.15.
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(design_config(dir.path(), "m", ""))
+        .unwrap()
+        .replace("budget = 400", "budget = 1")
+        .replace("[\"slope_range\"]", "[\"mfpt\"]\nmfpt_phi = 0.15");
+    let cfg = write(dir.path(), "mfpt.toml", &text);
+    let out = dir.path().join("out");
+    let sigma = ["--set", "robustness.sigma=0.05"];
+    run_ok(&[&["design", &cfg, "--out", s(&out), "--quiet"], &sigma[..]].concat());
+    let rows = rows(&out.join("search.parquet"));
+    assert_eq!(rows.len(), 4);
+    let mut stable = 0;
+    for r in &rows {
+        let mut a = vec!["simulate", "--length", "0.8", "--phi", "0.15", "--json"];
+        for k in ["rho", "alpha", "fn", "zeta"] {
+            a.extend([["--", k].concat().leak() as &str, field(r, k)]);
+        }
+        a.extend(["--set", "robustness.mfpt=true"]);
+        a.extend(sigma);
+        let v: Value = serde_json::from_str(&stdout(&run_ok(&a))).unwrap();
+        let label = v["outcome"].as_str().unwrap();
+        assert_eq!(field(r, "label_at_mfpt_phi"), label);
+        if ["walk", "skip", "crawl"].contains(&label) {
+            stable += 1;
+            assert_eq!(field(r, "mfpt").parse::<f64>().unwrap(), f(&v["mfpt"]));
+            assert_eq!(field(r, "feasible"), "true");
+        } else {
+            assert_eq!(field(r, "mfpt"), "null");
+            assert_eq!(field(r, "feasible"), "false");
+            assert!(
+                field(r, "infeasible").starts_with("not stable at mfpt_phi"),
+                "{r:?}"
+            );
+        }
+    }
+    assert!(stable > 0, "no stable design among {rows:?}");
+}

@@ -155,6 +155,21 @@ fn design_columns() -> Vec<Column<Line>> {
             Get::F64(|r| r.e.speed),
         ),
         column(
+            "label_at_mfpt_phi",
+            true,
+            "-",
+            "the gait at mfpt_phi (objective mfpt)",
+            Get::Str(|r| r.e.label_at_mfpt_phi.map(|l| l.as_str())),
+        ),
+        column(
+            "mfpt",
+            true,
+            "1",
+            "mean first-passage time (expected steps to fall) at mfpt_phi on a rough slope of \
+             robustness.sigma (docs/robustness.md)",
+            Get::F64(|r| r.e.mfpt),
+        ),
+        column(
             "runs",
             false,
             "1",
@@ -358,14 +373,18 @@ fn evaluations_of(s: &SearchSettings, b: &RecordBatch) -> Result<Vec<Evaluation>
     let [rho, alpha, f_n, zeta] = ["rho", "alpha", "fn", "zeta"].map(&f);
     let (rho, alpha, f_n, zeta) = (rho?, alpha?, f_n?, zeta?);
     let (phi_lo, phi_hi, phi_min, speed) = (f("phi_lo")?, f("phi_hi")?, f("phi_min")?, f("speed")?);
+    let mfpt = f("mfpt")?;
     let (p_fall, score) = (f("p_fall")?, f("score")?);
     let (infeasible, labels) = (text("infeasible")?, text("label_at_speed_phi")?);
+    let mfpt_labels = text("label_at_mfpt_phi")?;
+    let parse = |l: &Option<String>| -> Result<Option<rtw_model::Label>> {
+        l.as_deref()
+            .map(|l| l.parse().map_err(|e| anyhow::anyhow!("{e}")))
+            .transpose()
+    };
     (0..b.num_rows())
         .map(|k| {
-            let label = labels[k]
-                .as_deref()
-                .map(|l| l.parse().map_err(|e| anyhow::anyhow!("{e}")))
-                .transpose()?;
+            let label = parse(&labels[k])?;
             let mut e = Evaluation {
                 index: index[k],
                 round: round[k],
@@ -378,6 +397,8 @@ fn evaluations_of(s: &SearchSettings, b: &RecordBatch) -> Result<Vec<Evaluation>
                 phi_min: phi_min[k],
                 label_at_speed_phi: label,
                 speed: speed[k],
+                label_at_mfpt_phi: parse(&mfpt_labels[k])?,
+                mfpt: mfpt[k],
                 infeasible: infeasible[k].clone(),
                 values: Vec::new(),
                 score: score[k],
@@ -512,17 +533,17 @@ pub fn markdown(search: &Search, reported: &[Reported]) -> String {
     );
     let _ = writeln!(
         m,
-        "| index | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | speed | search's slope range |"
+        "| index | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | speed | mfpt | search's slope range |"
     );
     let _ = writeln!(
         m,
-        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for r in reported {
         let e = &r.verified;
         let _ = writeln!(
             m,
-            "| {} | {:.3} | {:.4} | {:.3} | {:.4} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {:.3} | {:.4} | {:.3} | {:.4} | {} | {} | {} | {} | {} | {} | {} |",
             e.index,
             e.design[0],
             e.design[1],
@@ -533,6 +554,7 @@ pub fn markdown(search: &Search, reported: &[Reported]) -> String {
             opt(width(e)),
             opt(e.phi_min),
             opt(e.speed),
+            e.mfpt.map_or("–".into(), |v| format!("{v:.1}")),
             opt(width(&r.found))
         );
     }

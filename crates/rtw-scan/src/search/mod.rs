@@ -86,6 +86,10 @@ pub struct Evaluation {
     pub label_at_speed_phi: Option<Label>,
     /// The speed there (m/s).
     pub speed: Option<f64>,
+    /// The label at `mfpt_phi` (objective `mfpt`).
+    pub label_at_mfpt_phi: Option<Label>,
+    /// The mean first-passage time there (steps), when the gait is stable.
+    pub mfpt: Option<f64>,
     /// Why it is infeasible (`None`: feasible).
     pub infeasible: Option<String>,
     /// The objectives' values, in the config's order (empty when infeasible).
@@ -198,6 +202,9 @@ fn normalised(s: &SearchSettings, values: &[f64]) -> Vec<f64> {
             Objective::SlopeRange => v / span,
             Objective::PhiMin => (s.to - v) / span,
             Objective::Speed => v / (G * s.length).sqrt(),
+            // Expected steps to fall span decades: their logarithm, a
+            // million steps counting as 1.
+            Objective::Mfpt => (1.0 + v).log10() / 6.0,
         })
         .collect()
 }
@@ -248,17 +255,18 @@ fn intervals(s: &SearchSettings, p: &Profile) -> Vec<(f64, f64)> {
 /// The objectives' values of an evaluation, in the config's order, from
 /// what its profile gave: `None` when one is undefined (the design falls).
 pub(crate) fn values_of(s: &SearchSettings, e: &Evaluation) -> Option<Vec<f64>> {
-    s.objectives
-        .iter()
-        .map(|o| match o {
-            Objective::SlopeRange => Some(e.phi_hi? - e.phi_lo?),
-            Objective::PhiMin => e.phi_min,
-            Objective::Speed => e
-                .label_at_speed_phi
-                .filter(|l| l.is_stable() && s.gait.is_none_or(|g| g == *l))
-                .and(e.speed),
-        })
-        .collect()
+    s.objectives.iter().map(|o| value_of(s, e, *o)).collect()
+}
+
+/// One objective's value of an evaluation (`None`: undefined).
+fn value_of(s: &SearchSettings, e: &Evaluation, o: Objective) -> Option<f64> {
+    let gait_at = |l: Option<Label>| l.filter(|l| l.is_stable() && s.gait.is_none_or(|g| g == *l));
+    match o {
+        Objective::SlopeRange => Some(e.phi_hi? - e.phi_lo?),
+        Objective::PhiMin => e.phi_min,
+        Objective::Speed => gait_at(e.label_at_speed_phi).and(e.speed),
+        Objective::Mfpt => gait_at(e.label_at_mfpt_phi).and(e.mfpt),
+    }
 }
 
 /// What a profile (and the run at `speed_phi`, its label and speed) gives
@@ -268,6 +276,7 @@ fn judge(
     x: [f64; 4],
     p: &Profile,
     at_speed: Option<(Label, Option<f64>)>,
+    at_mfpt: Option<(Label, Option<f64>)>,
 ) -> Evaluation {
     let iv = intervals(s, p);
     let widest = iv
@@ -283,12 +292,14 @@ fn judge(
         generation: 0,
         design: x,
         p_fall: None,
-        runs: p.runs() as u64 + at_speed.is_some() as u64,
+        runs: p.runs() as u64 + at_speed.is_some() as u64 + at_mfpt.is_some() as u64,
         phi_lo: widest.map(|w| w.0),
         phi_hi: widest.map(|w| w.1),
         phi_min: iv.first().map(|i| i.0),
         label_at_speed_phi: at_speed.map(|a| a.0),
         speed: at_speed.and_then(|a| a.1),
+        label_at_mfpt_phi: at_mfpt.map(|a| a.0),
+        mfpt: at_mfpt.and_then(|a| a.1),
         infeasible: None,
         values: Vec::new(),
         score: None,
@@ -297,21 +308,51 @@ fn judge(
         Some(v) => e.values = v,
         None => {
             let which = s.gait.map_or("stable", |g| g.as_str());
-            e.infeasible = Some(if e.phi_lo.is_none() {
-                format!("no {which} slope in [{}, {}]", s.from, s.to)
-            } else {
-                format!(
-                    "not {which} at speed_phi ({})",
-                    e.label_at_speed_phi.map_or("-", |l| l.as_str())
-                )
+            let at = |key: &str, l: Option<Label>| {
+                format!("not {which} at {key} ({})", l.map_or("-", |l| l.as_str()))
+            };
+            let first = s.objectives.iter().find(|o| value_of(s, &e, **o).is_none());
+            e.infeasible = Some(match first {
+                Some(Objective::Speed) => at("speed_phi", e.label_at_speed_phi),
+                Some(Objective::Mfpt) => at("mfpt_phi", e.label_at_mfpt_phi),
+                _ => format!("no {which} slope in [{}, {}]", s.from, s.to),
             });
         }
     }
     e
 }
 
-/// Design `x` evaluated: its profile on `grid` (and the run at
-/// `speed_phi`), on the pool the caller installed; `None` when stopped.
+/// The options of a design's profile and its run at `speed_phi`: the
+/// config's model without the robustness measures, which cost seconds a
+/// run and only the `mfpt` objective's run needs.
+fn without_measures(options: &Options) -> Options {
+    let mut o = *options;
+    o.robustness.step_down = false;
+    o.robustness.gsn = false;
+    o.robustness.steps_to_fall = false;
+    o.robustness.mfpt = false;
+    o
+}
+
+/// The label and `value` of design `params` run at `phi` under `options`;
+/// `None` when stopped.
+fn run_at(
+    params: Params,
+    phi: f64,
+    options: &Options,
+    value: impl Fn(&rtw_model::Outcome) -> Option<f64>,
+    progress: &dyn Progress,
+    cancel: &AtomicBool,
+) -> Option<(Label, Option<f64>)> {
+    let params = Params { phi, ..params };
+    let row = rtw_model::cancellable(cancel, || run_one(0, params, options, rtw_model::simulate))?;
+    progress.advanced();
+    Some((row.label(), row.outcome.as_ref().and_then(value)))
+}
+
+/// Design `x` evaluated: its profile on `grid`, the run at `speed_phi` and
+/// the MFPT at `mfpt_phi` (those asked for), on the pool the caller
+/// installed; `None` when stopped.
 fn evaluate(
     s: &SearchSettings,
     options: &Options,
@@ -320,20 +361,30 @@ fn evaluate(
     progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Option<(Evaluation, Profile)> {
+    let plain = without_measures(options);
     let ps = profile_settings(s, &x, grid).expect("the box's designs are valid");
-    let p = profile::profile_here(&ps, options, &Runs(progress), cancel)?;
+    let p = profile::profile_here(&ps, &plain, &Runs(progress), cancel)?;
     let at_speed = match s.speed_phi {
+        Some(phi) => Some(run_at(
+            ps.design,
+            phi,
+            &plain,
+            |o| Some(o.speed),
+            progress,
+            cancel,
+        )?),
+        None => None,
+    };
+    let at_mfpt = match s.mfpt_phi {
         Some(phi) => {
-            let params = Params { phi, ..ps.design };
-            let row = rtw_model::cancellable(cancel, || {
-                run_one(0, params, options, rtw_model::simulate)
-            })?;
-            progress.advanced();
-            Some((row.label(), row.outcome.map(|o| o.speed)))
+            let mut o = plain;
+            o.robustness.mfpt = true;
+            let mfpt = |out: &rtw_model::Outcome| Some(out.robustness?.mfpt?.mfpt);
+            Some(run_at(ps.design, phi, &o, mfpt, progress, cancel)?)
         }
         None => None,
     };
-    Some((judge(s, x, &p, at_speed), p))
+    Some((judge(s, x, &p, at_speed, at_mfpt), p))
 }
 
 /// The search's proposals for one generation.
@@ -612,6 +663,8 @@ mod tests {
             phi_min: None,
             label_at_speed_phi: None,
             speed: None,
+            label_at_mfpt_phi: None,
+            mfpt: None,
             infeasible: values.is_empty().then(|| "falls".into()),
             values,
             score: None,

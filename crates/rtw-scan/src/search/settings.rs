@@ -29,11 +29,20 @@ pub enum Objective {
     /// The mean downhill speed at `speed_phi` (m/s), the gait there stable
     /// (and `gait`, if set): maximised.
     Speed,
+    /// The mean first-passage time (expected steps to fall) at `mfpt_phi`
+    /// on a rough slope of `robustness.sigma` (docs/robustness.md), the gait
+    /// there stable (and `gait`, if set): maximised.
+    Mfpt,
 }
 
 impl Objective {
     /// Every objective, as spelled in a config.
-    pub const ALL: [Objective; 3] = [Objective::SlopeRange, Objective::PhiMin, Objective::Speed];
+    pub const ALL: [Objective; 4] = [
+        Objective::SlopeRange,
+        Objective::PhiMin,
+        Objective::Speed,
+        Objective::Mfpt,
+    ];
 
     /// The name in a config and in the files' columns.
     pub fn as_str(self) -> &'static str {
@@ -41,6 +50,7 @@ impl Objective {
             Objective::SlopeRange => "slope_range",
             Objective::PhiMin => "phi_min",
             Objective::Speed => "speed",
+            Objective::Mfpt => "mfpt",
         }
     }
 }
@@ -78,6 +88,8 @@ pub struct SearchSettings {
     pub gait: Option<Label>,
     /// The slope of `speed` (rad).
     pub speed_phi: Option<f64>,
+    /// The slope of `mfpt` (rad).
+    pub mfpt_phi: Option<f64>,
     /// Sub-searches of a two-objective search, one per weight.
     pub weights: u64,
     /// A candidate whose learned fall probability is above this is drawn again.
@@ -115,6 +127,8 @@ struct Raw {
     gait: Option<String>,
     #[serde(default)]
     speed_phi: Option<f64>,
+    #[serde(default)]
+    mfpt_phi: Option<f64>,
     #[serde(default)]
     weights: Option<u64>,
     #[serde(default)]
@@ -197,7 +211,7 @@ impl SearchSettings {
             bail!(invalid(
                 "objectives",
                 format!("{:?}", raw.objectives),
-                "one or two of \"slope_range\", \"phi_min\", \"speed\""
+                "one or two of \"slope_range\", \"phi_min\", \"speed\", \"mfpt\""
             ));
         }
         let mut objectives = Vec::new();
@@ -206,7 +220,7 @@ impl SearchSettings {
                 bail!(invalid(
                     &format!("objectives[{i}]"),
                     format!("{o:?}"),
-                    "one of \"slope_range\", \"phi_min\", \"speed\""
+                    "one of \"slope_range\", \"phi_min\", \"speed\", \"mfpt\""
                 ));
             };
             if objectives.contains(&obj) {
@@ -237,15 +251,21 @@ impl SearchSettings {
                 Err(invalid(key, Num(v), slope_range))
             }
         };
-        let wants_speed = objectives.contains(&Objective::Speed);
-        let speed_phi = match (raw.speed_phi, wants_speed) {
-            (Some(p), true) => Some(slope("speed_phi", p)?),
-            (None, true) => bail!(
-                "speed_phi: missing: the objective \"speed\" needs the slope of its speed, {slope_range}"
-            ),
-            (Some(_), false) => bail!("speed_phi: only with the objective \"speed\""),
-            (None, false) => None,
+        // The slope of an objective measured at one slope: given exactly
+        // when the objective is asked for.
+        let at = |obj: Objective, key: &str, given: Option<f64>| -> Result<Option<f64>> {
+            match (given, objectives.contains(&obj)) {
+                (Some(p), true) => Ok(Some(slope(key, p)?)),
+                (None, true) => bail!(
+                    "{key}: missing: the objective \"{}\" needs the slope it is measured at, {slope_range}",
+                    obj.as_str()
+                ),
+                (Some(_), false) => bail!("{key}: only with the objective \"{}\"", obj.as_str()),
+                (None, false) => Ok(None),
+            }
         };
+        let speed_phi = at(Objective::Speed, "speed_phi", raw.speed_phi)?;
+        let mfpt_phi = at(Objective::Mfpt, "mfpt_phi", raw.mfpt_phi)?;
         let weights = match (raw.weights, objectives.len()) {
             (Some(w), 2) => count("weights", w, 2, MAX_WEIGHTS)?,
             (None, 2) => 5,
@@ -335,6 +355,7 @@ impl SearchSettings {
             objectives,
             gait,
             speed_phi,
+            mfpt_phi,
             weights,
             avoid,
             length,
