@@ -21,7 +21,10 @@
 //! Confidence: `Z₀.₉₇₅ × ` the standard deviation (ddof 1) of the index over
 //! bootstrap resamples (of base rows, or of rows), drawn from a seed.
 
+mod binned;
 mod study;
+
+pub use binned::binned;
 
 pub use study::{
     Analysis, RESAMPLES, Settings, analyse_file, analyse_table, check_out, scan_file, write,
@@ -40,7 +43,6 @@ use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rayon::prelude::*;
 use rtw_model::Param;
 use rtw_model::outcome::Label;
 use std::sync::Arc;
@@ -240,142 +242,6 @@ pub fn saltelli(
     )
 }
 
-/// The number of equal-frequency bins for `n` rows (SALib delta's rule).
-fn bins(n: usize) -> usize {
-    let n = n as f64;
-    let exp = 2.0 / (7.0 + ((1500.0 - n) / 500.0).tanh());
-    (n.powf(exp).ceil().min(48.0)).round() as usize
-}
-
-/// The binned first-order index of `y` to `x` over the rows `rows`: the
-/// variance of the means of `y` in equal-frequency bins of `x`'s ranks
-/// (ties in the rows' order) over `y`'s variance, as SALib's
-/// `delta.sobol_first`.
-fn binned_once(ranks: &Ranks, y: &[f64], rows: &[usize], scratch: &mut Scratch) -> f64 {
-    let n = rows.len();
-    let yr = rows.iter().map(|&i| y[i]);
-    let (lo, hi) = yr
-        .clone()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-            (l.min(v), h.max(v))
-        });
-    if hi - lo == 0.0 {
-        return 0.0;
-    }
-    let (mean, var) = mean_var(yr);
-    ranks.order(rows, scratch);
-    let order = &scratch.order;
-    let m = bins(n);
-    let edge = |j: usize| j as f64 * n as f64 / m as f64;
-    let mut vi = 0.0;
-    let mut rank = 0usize;
-    for j in 0..m {
-        let (mut s, mut c) = (0.0, 0usize);
-        // Ranks are 1-based: bin j holds ranks in (edge j, edge j+1].
-        while rank < n && (rank + 1) as f64 <= edge(j + 1) {
-            s += y[rows[order[rank]]];
-            c += 1;
-            rank += 1;
-        }
-        if c > 0 {
-            vi += c as f64 / n as f64 * (s / c as f64 - mean).powi(2);
-        }
-    }
-    vi / var
-}
-
-/// The rows of `x` ranked once, so that each resample is put in the order
-/// of its `x` by counting (O(n)) rather than by sorting (O(n log n)).
-struct Ranks {
-    /// The dense rank of each row's `x` among `x`'s distinct values.
-    group: Vec<usize>,
-    /// Number of distinct values.
-    groups: usize,
-}
-
-/// A resample's working memory, kept from one resample to the next.
-#[derive(Default)]
-struct Scratch {
-    /// Rows per distinct value, then where each value's rows go.
-    counts: Vec<usize>,
-    /// The resample's positions in the order of their `x`.
-    order: Vec<usize>,
-}
-
-impl Ranks {
-    fn of(x: &[f64]) -> Self {
-        let mut by_x: Vec<usize> = (0..x.len()).collect();
-        by_x.sort_by(|&p, &q| x[p].total_cmp(&x[q]));
-        let mut group = vec![0; x.len()];
-        let mut g = 0;
-        for k in 1..by_x.len() {
-            if x[by_x[k]].total_cmp(&x[by_x[k - 1]]).is_ne() {
-                g += 1;
-            }
-            group[by_x[k]] = g;
-        }
-        let groups = if x.is_empty() { 0 } else { g + 1 };
-        Self { group, groups }
-    }
-
-    /// The positions `0 … n − 1` of `rows` in the order of their `x`, ties
-    /// in position order: exactly what a stable sort by `x` gives (a
-    /// counting sort by the value's rank, which keeps the positions' order).
-    fn order(&self, rows: &[usize], scratch: &mut Scratch) {
-        let Scratch { counts, order } = scratch;
-        counts.clear();
-        counts.resize(self.groups + 1, 0);
-        for &r in rows {
-            counts[self.group[r] + 1] += 1;
-        }
-        for g in 1..counts.len() {
-            counts[g] += counts[g - 1];
-        }
-        order.clear();
-        order.resize(rows.len(), 0);
-        for (p, &r) in rows.iter().enumerate() {
-            let at = &mut counts[self.group[r]];
-            order[*at] = p;
-            *at += 1;
-        }
-    }
-}
-
-/// S1 and S1_conf of `y` to `x` from given data, with `resamples`
-/// bootstrap resamples of the rows drawn from `seed`. Setting `cancel` ends
-/// it between two resamples, with `None`.
-pub fn binned(
-    x: &[f64],
-    y: &[f64],
-    resamples: usize,
-    seed: u64,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
-) -> Option<[f64; 2]> {
-    let n = y.len();
-    let all: Vec<usize> = (0..n).collect();
-    let ranks = Ranks::of(x);
-    let mut scratch = Scratch::default();
-    let mut rows = Vec::with_capacity(n);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let boot: Vec<f64> = (0..resamples)
-        .map(|_| {
-            if cancel.load(Ordering::Relaxed) {
-                return None;
-            }
-            rows.clear();
-            rows.extend((0..n).map(|_| rng.random_range(0..n)));
-            let once = binned_once(&ranks, y, &rows, &mut scratch);
-            progress.advanced();
-            Some(once)
-        })
-        .collect::<Option<_>>()?;
-    Some([
-        binned_once(&ranks, y, &all, &mut scratch),
-        Z95 * std1(&boot),
-    ])
-}
-
 /// The indices of every output to every uniform input of a complete scan,
 /// with `resamples` (in [`RESAMPLES`]) bootstrap resamples drawn from
 /// `seed`, `progress` counting the resamples (of each output, and of each
@@ -419,22 +285,29 @@ pub fn indices(
         Method::Binned => resamples * d,
     };
     progress.start((per_output * cols.outputs.len()) as u64);
-    let mut out = Vec::new();
-    for (name, y) in &cols.outputs {
-        let rows = match method {
-            Method::Saltelli => saltelli(y, d, resamples, seed, cancel, progress),
-            // Each input's resamples are drawn alike from `seed` and share
-            // nothing: the inputs run in parallel, the same on any thread count.
-            Method::Binned => cols
-                .inputs
-                .par_iter()
-                .map(|(_, x)| {
-                    let [s1, c] = binned(x, y, resamples, seed, cancel, progress)?;
-                    Some([s1, c, f64::NAN, f64::NAN])
-                })
-                .collect(),
+    // Every output to every input at once: they share each resample's rows.
+    let given_data = match method {
+        Method::Saltelli => None,
+        Method::Binned => {
+            let x: Vec<&[f64]> = cols.inputs.iter().map(|(_, x)| x.as_slice()).collect();
+            let y: Vec<&[f64]> = cols.outputs.iter().map(|(_, y)| y.as_slice()).collect();
+            Some(
+                binned(&x, &y, resamples, seed, cancel, progress)
+                    .ok_or_else(|| anyhow!(Stopped))?,
+            )
         }
-        .ok_or_else(|| anyhow!(Stopped))?;
+    };
+    let mut out = Vec::new();
+    for (o, (name, y)) in cols.outputs.iter().enumerate() {
+        let rows = match &given_data {
+            None => {
+                saltelli(y, d, resamples, seed, cancel, progress).ok_or_else(|| anyhow!(Stopped))?
+            }
+            Some(s1) => s1[o]
+                .iter()
+                .map(|&[s1, c]| [s1, c, f64::NAN, f64::NAN])
+                .collect(),
+        };
         for ((parameter, _), [s1, s1_conf, st, st_conf]) in cols.inputs.iter().zip(rows) {
             out.push(Index {
                 output: name.clone(),
@@ -486,28 +359,6 @@ mod tests {
     use super::*;
     use crate::scan::progress::Silent;
 
-    /// Counting a resample into the order of its `x` gives exactly the
-    /// stable sort's order (ties, repeated rows and all), so the binned
-    /// index is what it was when each resample was sorted.
-    #[test]
-    fn a_resample_counted_into_order_is_the_stable_sort_of_its_x() {
-        let mut rng = ChaCha8Rng::seed_from_u64(3);
-        for levels in [3, 50, 1_000_000] {
-            let x: Vec<f64> = (0..500)
-                .map(|_| rng.random_range(0..levels) as f64 / levels as f64)
-                .collect();
-            let ranks = Ranks::of(&x);
-            let mut scratch = Scratch::default();
-            for _ in 0..20 {
-                let rows: Vec<usize> = (0..500).map(|_| rng.random_range(0..500)).collect();
-                let mut sorted: Vec<usize> = (0..500).collect();
-                sorted.sort_by(|&p, &q| x[rows[p]].total_cmp(&x[rows[q]]));
-                ranks.order(&rows, &mut scratch);
-                assert_eq!(scratch.order, sorted, "{levels} levels");
-            }
-        }
-    }
-
     /// The Ishigami function, whose indices are known in closed form.
     fn ishigami(x: [f64; 3]) -> f64 {
         let [a, b, c] = x.map(|u| -std::f64::consts::PI + 2.0 * std::f64::consts::PI * u);
@@ -542,21 +393,5 @@ mod tests {
         );
         // A set cancel flag ends it.
         assert!(saltelli(&y, 3, 100, 1, &AtomicBool::new(true), &Silent).is_none());
-    }
-
-    #[test]
-    fn binned_first_order_sees_the_input_that_matters() {
-        let mut rng = ChaCha8Rng::seed_from_u64(4);
-        let n = 4000;
-        let x0: Vec<f64> = (0..n).map(|_| rng.random()).collect();
-        let x1: Vec<f64> = (0..n).map(|_| rng.random()).collect();
-        let y: Vec<f64> = x0.iter().map(|v| f64::from(u8::from(*v > 0.5))).collect();
-        let go = AtomicBool::new(false);
-        let [s0, c0] = binned(&x0, &y, 50, 1, &go, &Silent).unwrap();
-        let [s1, _] = binned(&x1, &y, 50, 1, &go, &Silent).unwrap();
-        assert!(binned(&x0, &y, 50, 1, &AtomicBool::new(true), &Silent).is_none());
-        assert!(s0 > 0.9 && c0 < 0.05, "{s0} ± {c0}");
-        assert!(s1 < 0.05, "{s1}");
-        assert_eq!((bins(256), bins(1000), bins(28672)), (5, 6, 31));
     }
 }
