@@ -22,6 +22,9 @@
 //! bootstrap resamples (of base rows, or of rows), drawn from a seed.
 
 mod study;
+mod summary;
+
+pub use summary::{WIDE, markdown, wide_warning};
 
 pub use study::{
     Analysis, RESAMPLES, Settings, analyse_file, analyse_table, check_out, scan_file, write,
