@@ -404,11 +404,10 @@ fn sobol_points(dims: usize, n: u64, seed: Option<u64>) -> PyResult<Vec<Vec<f64>
 
 /// Sobol indices of a scan's outputs (`rtw-scan sensitivity`): a
 /// `pyarrow.Table` of output, parameter, S1, S1_conf, ST, ST_conf. `scan`
-/// is a scan file's path (or its directory), read through the library's
-/// verified reader, or a table carrying its config in the schema's
-/// `rtw.config` metadata (as `scan` returns it), checked as a file's rows
-/// are. `resamples` and `seed` are checked by the library, as the CLI's
-/// flags. Runs as `scan` does: Ctrl-C stops it and raises KeyboardInterrupt.
+/// is a scan file's path (or its directory), read through the library's verified
+/// reader, or a table carrying its config in the schema's `rtw.config` metadata
+/// (as `scan` returns it), checked as a file's rows are. `resamples` and `seed`
+/// are checked as the CLI's flags. Ctrl-C raises KeyboardInterrupt; warns as the CLI.
 #[pyfunction]
 #[pyo3(signature = (scan, resamples, seed, progress=None))]
 fn sensitivity<'py>(
@@ -446,6 +445,7 @@ fn sensitivity<'py>(
     }
     .map_err(study_error)?;
     report(progress.as_ref(), &counter)?;
+    types::warn(py, sa::wide_warning(&analysis.indices))?;
     to_table(py, sa::to_batch(&analysis.indices))
 }
 

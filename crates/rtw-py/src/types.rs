@@ -473,3 +473,15 @@ impl DesignSearch {
         }
     }
 }
+
+/// A library warning as Python's `UserWarning`, pointing at the caller of
+/// the `rtw` wrapper that called in (stacklevel 2); nothing when `None`.
+pub(crate) fn warn(py: Python<'_>, warning: Option<String>) -> PyResult<()> {
+    let Some(warning) = warning else {
+        return Ok(());
+    };
+    let message = std::ffi::CString::new(warning)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    PyErr::warn(py, category.as_any(), &message, 2)
+}

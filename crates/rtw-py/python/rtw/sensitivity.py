@@ -48,6 +48,10 @@ def sensitivity(
         A ``pyarrow.Table`` with columns output, parameter, S1, S1_conf, ST,
         ST_conf (S1_conf, ST_conf: half-widths of 95 % bootstrap intervals).
 
+    Warns:
+        UserWarning: any 95 % half-width is above 0.1 (the words of
+            ``rtw-scan sensitivity``'s warning).
+
     Raises:
         ValueError: the table or file is not a complete scan of uniform axes
             without a grid, is refused as corrupt or refined, or an argument

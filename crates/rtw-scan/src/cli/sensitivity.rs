@@ -57,7 +57,13 @@ pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
         let all: Vec<_> = analysis.indices.iter().map(json).collect();
         println!("{}", serde_json::to_string_pretty(&all)?);
     } else {
-        print!("{}", table(analysis.method.name(), &analysis.indices));
+        print!(
+            "{}",
+            sensitivity::markdown(analysis.method.name(), &analysis.indices)
+        );
+    }
+    if let Some(warning) = sensitivity::wide_warning(&analysis.indices) {
+        eprintln!("warning: {warning}");
     }
     eprintln!("wrote {}", out.display());
     Ok(ExitCode::SUCCESS)
@@ -69,23 +75,4 @@ fn json(r: &Index) -> serde_json::Value {
         "output": r.output, "parameter": r.parameter,
         "S1": num(r.s1), "S1_conf": num(r.s1_conf), "ST": num(r.st), "ST_conf": num(r.st_conf),
     })
-}
-
-/// The indices as a Markdown table, ± the 95 % half-widths.
-fn table(method: &str, rows: &[Index]) -> String {
-    let mut s = format!(
-        "Sobol indices ({method}), ± 95 % bootstrap half-width\n\n| output | parameter | S1 | ST |\n|---|---|---:|---:|\n"
-    );
-    for r in rows {
-        let st = if r.st.is_nan() {
-            "–".to_string()
-        } else {
-            format!("{:.3} ± {:.3}", r.st, r.st_conf)
-        };
-        s.push_str(&format!(
-            "| {} | {} | {:.3} ± {:.3} | {st} |\n",
-            r.output, r.parameter, r.s1, r.s1_conf
-        ));
-    }
-    s
 }

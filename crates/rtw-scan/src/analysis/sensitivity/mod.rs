@@ -23,6 +23,9 @@
 
 mod binned;
 mod study;
+mod summary;
+
+pub use summary::{WIDE, markdown, wide_warning};
 
 pub use binned::binned;
 
