@@ -114,3 +114,25 @@ def test_bad_tables_and_arguments_raise() -> None:
         rtw.sensitivity(pa.table({"x": [1.0]}))
     with pytest.raises(ValueError, match="resamples: 1 is invalid"):
         rtw.sensitivity(pa.table({"x": [1.0]}), resamples=1)
+
+
+def test_wide_half_widths_warn_in_python_as_on_the_cli(tmp_path) -> None:
+    # configs/sensitivity-saltelli-small.toml: 256 base rows, whose rare
+    # classes' half-widths are far above 0.1. The library makes the warning;
+    # the CLI prints it, Python raises it as a UserWarning, word for word.
+    import subprocess
+
+    from test_same_checks import BINARY
+
+    root = Path(__file__).resolve().parents[3]
+    scan = tmp_path / "small"
+    subprocess.run([str(BINARY), "run", str(root / "configs/sensitivity-saltelli-small.toml"), "--out", str(scan),
+                    "--quiet"], check=True, capture_output=True)
+    cli = subprocess.run([str(BINARY), "sensitivity", str(scan), "--quiet", "--out", str(tmp_path / "i.parquet")],
+                         check=True, capture_output=True, text=True)
+    line = next(l for l in cli.stderr.splitlines() if l.startswith("warning: "))
+    with pytest.warns(UserWarning) as caught:
+        rtw.sensitivity(str(scan), progress=False)
+    messages = [str(w.message) for w in caught]
+    assert line.removeprefix("warning: ") in messages, (line, messages)
+    assert "half-widths are above 0.1" in line
