@@ -1,7 +1,7 @@
 //! A design search's files in its folder `OUT/`:
 //! - `search.parquet`: one row per evaluated design, in order, with the
 //!   settings, the options and every evaluation as JSON in its metadata
-//!   ([`META_DESIGN`]); written again, atomically, after each generation,
+//!   (`rtw.design`); written again, atomically, after each generation,
 //!   so a stopped search keeps every finished design and resumes from them;
 //! - `designs.parquet`: the reported designs (the front, or the best), each
 //!   with the widest stable interval of its profile made again on the fine

@@ -7,8 +7,8 @@
 //! gait along φ with every change of label located by bisection. A design
 //! with no stable slope (or none of the gait asked for) is infeasible: it
 //! falls. The search does not score a fall with a made-up bad value. Its
-//! candidates come from CMA-ES ([`cmaes`]), which recombines only feasible
-//! designs, and a learned model of where designs fall ([`fall_model`])
+//! candidates come from CMA-ES (`cmaes.rs`), which recombines only feasible
+//! designs, and a learned model of where designs fall (`fall_model.rs`)
 //! sends a candidate back to be drawn again when the designs near it mostly
 //! fell. The baseline, `method = "sobol"`, profiles the designs of a
 //! scrambled Sobol sequence in the same box at the same cost.
