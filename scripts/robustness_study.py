@@ -325,8 +325,9 @@ def map_mfpt_figure(scan: Scan, png: Path) -> None:
     ax.scatter(phi[nof], fn[nof], s=40, marker="x", color="k")
     sc = ax.scatter(phi[ok], fn[ok], c=np.log10(m[ok]), s=260, marker="s", cmap="viridis")
     op = ok & np.isinf(hi)
-    ax.scatter(phi[op], fn[op], s=60, marker="^", facecolors="none", edgecolors="white", linewidths=1.2,
-               label="interval open above (mfpt_hi = ∞)")
+    # White on the colour map; the legend, on white, shows it in black.
+    ax.scatter(phi[op], fn[op], s=60, marker="^", facecolors="none", edgecolors="white", linewidths=1.2)
+    ax.plot([], [], marker="^", ms=8, mfc="none", mec="k", ls="none", label="interval open above (mfpt_hi = ∞)")
     ax.plot(FIG7A["phi"], FIG7A["fn"], marker="*", color="red", ms=14, ls="none", label="Fig. 7(a)")
     fig.colorbar(sc, ax=ax, label="log10 MFPT (steps)")
     ax.set_xlabel("slope φ (rad)")
