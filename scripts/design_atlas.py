@@ -6,19 +6,16 @@
   mean first-passage time at φ = 0.15 on a 5 cm rough slope (`robust`) and the
   Pareto front of slope range against speed at φ = 0.15 (`front`), each as
   its search reported it (profiled again on the fine grid);
-- the article's Fig. 7(a) design on the same axes, by `rtw-scan profile`
-  and `rtw-scan simulate` with the same slopes;
+- the article's Fig. 7(a) design on the same axes, judged by the same
+  search code (configs/design/fig7a.toml, a box of one point);
 - each winner's fine profile (`rtw-scan profile --out`, grid 0.002, tol
   1e-4) and its figure (scripts/profile_figure.py), and an animation of its
   gait (`python -m rtw animate`);
-- OUT/designs.parquet: every reported design with `role`, `length`, `rho`,
-  `alpha`, `fn`, `zeta`, `phi_lo`, `phi_hi`, `slope_range`, `phi_min` and
-  the speed and gait at φ = 0.15 (by direct simulation). `phi_lo`, `phi_hi`:
-  the search's fine profile's widest stable interval (`profile_phi_lo`,
-  `profile_phi_hi`; of the walk for `widest-walk`), checked by direct
-  simulation at 201 slopes across it and every multiple of 0.005 inside,
-  and cut to the widest run of checked slopes with no failure
-  (`checked_slopes`, `checked_failures`);
+- OUT/designs-NAME.parquet: each search's reported designs as rtw-scan
+  wrote them (`rho`, `alpha`, `fn`, `zeta`, `phi_lo`, `phi_hi`: the fine
+  profile's widest interval, checked by direct simulation and cut to its
+  widest run of checked slopes with no failure, docs/design.md), the
+  Fig. 7(a) design's too (`designs-fig7a.parquet`, configs/design/fig7a.toml);
 - OUT/atlas.png and OUT/atlas.md: the front with Fig. 7(a), the winners'
   designs in the box, and the rank correlations of each input with the
   slope range and the shallowest slope over the Sobol designs of the widest
@@ -30,6 +27,7 @@ Usage: .venv/bin/python scripts/design_atlas.py SEARCH OUT
 from __future__ import annotations
 
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -39,9 +37,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-import pyarrow as pa  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
-import rtw  # noqa: E402
 from scipy.stats import spearmanr  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -94,48 +90,20 @@ def main() -> None:
              "shallowest": "shallowest stable slope", "robust": "largest MFPT at 0.15, σ = 5 cm",
              "front": "Pareto front: slope range vs speed at 0.15"}
     rows = []
-    for name in roles:
+    for name in list(roles) + ["fig7a"]:
         t = pq.read_table(search / name / "designs.parquet").to_pylist()
         for i, r in enumerate(t):
             label, speed = at_speed_phi(r)
-            rows.append({"role": f"{name}-{i + 1}", "search": name, "length": r["length"],
-                         **{k: r[k] for k in INPUTS}, "phi_lo": r["phi_lo"], "phi_hi": r["phi_hi"],
-                         "slope_range": r["slope_range"], "phi_min": r["phi_min"],
+            rows.append({"role": f"{name}-{i + 1}" if name != "fig7a" else "Fig. 7(a)", "search": name,
+                         "length": r["length"], **{k: r[k] for k in INPUTS}, "phi_lo": r["phi_lo"],
+                         "phi_hi": r["phi_hi"], "slope_range": r["slope_range"], "phi_min": r["phi_min"],
+                         "checked_slopes": r["checked_slopes"], "checked_failures": r["checked_failures"],
                          "label_at_0.15": label, "speed_at_0.15": speed})
-    # Fig. 7(a) on the same axes: its profile on the fine grid over the same slopes.
-    p7 = profile(FIG7A)
-    label7, speed7 = at_speed_phi(FIG7A)
-    fig7a = {"role": "Fig. 7(a)", "search": "widest", "length": 0.8, **FIG7A, "phi_lo": p7["phi_lo"], "phi_hi": p7["phi_hi"],
-             "slope_range": p7["phi_hi"] - p7["phi_lo"], "phi_min": p7["phi_min"],
-             "label_at_0.15": label7, "speed_at_0.15": speed7}
-    # Each reported interval checked by direct simulation (rtw.simulate, the
-    # library's run) at 201 slopes across it and at every multiple of 0.005
-    # inside it. Some designs fail at isolated slopes that no profile grid
-    # resolves (a failing window 1e-7 wide, or a single φ whose neighbours
-    # 1e-12 away are stable): the reported interval is then the widest run
-    # of consecutive checked slopes with no failure, and `checked_failures`
-    # counts the failures found inside the profile's interval.
-    for r in rows + [fig7a]:
-        lo, hi = r["phi_lo"], r["phi_hi"]
-        grid = np.arange(np.ceil(lo / 0.005) * 0.005, hi, 0.005)
-        phis = sorted(set(np.linspace(lo, hi, 201).tolist()) | set(np.round(grid, 6).tolist()))
-        phis = [p for p in phis if lo <= p <= hi]
-        design = {k: r[k] for k in INPUTS}
-        ok = [rtw.simulate(length=r["length"], **design, phi=p).outcome in rtw.STABLE_LABELS for p in phis]
-        best, start = (0, 0), None
-        for i, good in enumerate(ok + [False]):
-            if good and start is None:
-                start = i
-            if not good and start is not None:
-                if phis[i - 1] - phis[start] > phis[best[1]] - phis[best[0]] or not ok[best[0]]:
-                    best = (start, i - 1)
-                start = None
-        r["profile_phi_lo"], r["profile_phi_hi"] = lo, hi
-        r["phi_lo"], r["phi_hi"] = phis[best[0]], phis[best[1]]
-        r["slope_range"] = r["phi_hi"] - r["phi_lo"]
-        r["checked_slopes"] = len(phis)
-        r["checked_failures"] = len(ok) - sum(ok)
-    pq.write_table(pa.Table.from_pylist(rows), out / "designs.parquet")
+        # The reported designs as rtw-scan wrote them (each interval checked
+        # by direct simulation in the library, search::check).
+        shutil.copyfile(search / name / "designs.parquet", out / f"designs-{name}.parquet")
+    fig7a = rows.pop()
+    speed7 = fig7a["speed_at_0.15"]
 
     # The winners: of each single-objective search's reported designs, the
     # widest checked interval (the shallowest phi_min for `shallowest`).
@@ -148,7 +116,7 @@ def main() -> None:
         return max(mine, key=lambda x: x["slope_range"])
 
     for r in rows + [fig7a]:
-        r["mfpt_at_0.15"] = mfpt_at_speed_phi(r) if r["search"] in ("widest", "widest-walk", "shallowest", "robust") \
+        r["mfpt_at_0.15"] = mfpt_at_speed_phi(r) if r["search"] in ("widest", "widest-walk", "shallowest", "robust", "fig7a") \
             else None
     winners = {name: winner(name) for name in ["widest", "widest-walk", "shallowest", "robust"]}
 
@@ -218,8 +186,9 @@ def main() -> None:
 
     md = ["# Design atlas (default model, L = 0.8 m)\n",
           "`./scripts/design_atlas.sh`: the searches of `configs/design/` (budget and seed in each config), "
-          "each reported design profiled again on a five times finer grid; the speed and gait at φ = 0.15 by "
-          "`rtw-scan simulate`. The Fig. 7(a) design's profile over the same slopes, grid 0.002.\n",
+          "each reported design profiled again on a five times finer grid and its interval checked by direct "
+          "simulation (`results/design/designs-NAME.parquet`); the speed and gait at φ = 0.15 by "
+          "`rtw-scan simulate`. The Fig. 7(a) design judged as the searches judge theirs (`configs/design/fig7a.toml`).\n",
           "## Winners\n",
           "Of each single-objective search's reported designs (its best 20 by the search's own profile), the "
           "one with the widest checked interval (`widest`, `widest-walk`; the shallowest `phi_min` for "

@@ -3,9 +3,10 @@
 # runs/design/search/NAME/ (search.parquet, designs.parquet, search.md),
 # the Sobol designs of the widest config (what sets the winners apart), then
 # scripts/design_atlas.py: every winner's fine profile and figure, the
-# Fig. 7(a) design on the same axes, results/design/designs.parquet (the
-# reported designs: rho, alpha, fn, zeta, phi_lo, phi_hi), atlas.png,
-# atlas.md and the animations.
+# Fig. 7(a) design on the same axes, results/design/designs-NAME.parquet
+# (each search's reported designs: rho, alpha, fn, zeta, phi_lo, phi_hi,
+# each interval checked by direct simulation), atlas.png, atlas.md and the
+# animations.
 #   ./scripts/design_atlas.sh [--analyse-only]     # ~5 min on two idle cores
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,7 +18,7 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
   sed -e 's/^seed = 1/seed = 1\nmethod = "sobol"/' -e 's/^name = "widest"/name = "widest-sobol"/' \
     configs/design/widest.toml > runs/design/widest-sobol.toml
   for c in configs/design/widest configs/design/widest-walk configs/design/shallowest configs/design/front \
-           runs/design/widest-sobol; do
+           configs/design/fig7a runs/design/widest-sobol; do
     $B design "$c.toml" --out "runs/design/search/$(basename "$c")" --quiet --force > /dev/null
     echo "design_atlas: $(basename "$c") done" >&2
   done

@@ -449,7 +449,8 @@ fields_class! {
 ///     designs: the reported designs (the Pareto front, or the best), each
 ///         profiled again on the fine grid, as a ``pyarrow.Table`` (the
 ///         columns of ``designs.parquet``): ``phi_lo`` and ``phi_hi`` are
-///         the widest stable interval of that profile.
+///         that profile's widest stable interval, checked by direct
+///         simulation and cut to its widest run of stable checked slopes.
     DesignSearch {
         summary: String,
         runs: u64,

@@ -48,6 +48,7 @@ struct Line {
     e: Evaluation,
     length: f64,
     found: Option<Evaluation>,
+    checked: Option<super::check::Checked>,
 }
 
 fn width(e: &Evaluation) -> Option<f64> {
@@ -116,7 +117,9 @@ fn design_columns() -> Vec<Column<Line>> {
             "phi_lo",
             true,
             "rad",
-            "the widest interval of stable slopes (of the gait, if the config names one): its lowest simulated slope",
+            "the widest interval of stable slopes (of the gait, if the config names one): its lowest \
+             simulated slope; in designs.parquet, the widest run of directly checked slopes with no \
+             failure in the fine profile's interval",
             Get::F64(|r| r.e.phi_lo),
         ),
         column(
@@ -235,6 +238,35 @@ fn reported_columns() -> Vec<Column<Line>> {
             "slope_range of the search's own profile",
             Get::F64(|r: &Line| width(r.found.as_ref()?)),
         ),
+        column(
+            "profile_phi_lo",
+            true,
+            "rad",
+            "the fine profile's widest interval (of the gait), before the direct check",
+            Get::F64(|r: &Line| Some(r.checked?.profile.0)),
+        ),
+        column(
+            "profile_phi_hi",
+            true,
+            "rad",
+            "its upper end",
+            Get::F64(|r: &Line| Some(r.checked?.profile.1)),
+        ),
+        column(
+            "checked_slopes",
+            true,
+            "1",
+            "slopes of the fine profile's interval simulated directly (201 across it and every \
+             multiple of 0.005 inside it)",
+            Get::I64(|r: &Line| Some(r.checked?.slopes as i64)),
+        ),
+        column(
+            "checked_failures",
+            true,
+            "1",
+            "of them, not stable: isolated failing slopes the profile's grid did not resolve",
+            Get::I64(|r: &Line| Some(r.checked?.failures as i64)),
+        ),
     ]);
     c
 }
@@ -258,6 +290,7 @@ pub fn search_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
             e: e.clone(),
             length: s.length,
             found: None,
+            checked: None,
         })
         .collect();
     let cols = search_columns();
@@ -272,6 +305,7 @@ pub fn reported_batch(s: &SearchSettings, reported: &[Reported]) -> RecordBatch 
             e: r.verified.clone(),
             length: s.length,
             found: Some(r.found.clone()),
+            checked: r.checked,
         })
         .collect();
     let cols = reported_columns();

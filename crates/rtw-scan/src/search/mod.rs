@@ -23,6 +23,7 @@
 //! and the earlier evaluations only, so a search resumed from its stored
 //! evaluations replays them and goes on exactly as the uninterrupted one.
 
+pub mod check;
 mod cmaes;
 mod fall_model;
 pub mod files;
@@ -478,8 +479,12 @@ pub fn run(
 pub struct Reported {
     /// The search's evaluation.
     pub found: Evaluation,
-    /// The same design judged on the fine profile.
+    /// The same design judged on the fine profile, its widest interval
+    /// (`phi_lo`, `phi_hi`) that of `checked`.
     pub verified: Evaluation,
+    /// The fine profile's widest interval checked by direct simulation
+    /// ([`check`]); `None` when it has none.
+    pub checked: Option<check::Checked>,
 }
 
 /// The designs a search reports, each profiled again on `verify_grid` on
@@ -519,6 +524,26 @@ pub fn report(
             .map(|e| {
                 let quiet = crate::scan::progress::Silent;
                 let (mut v, _) = evaluate(s, options, e.design, s.verify_grid, &quiet, cancel)?;
+                let checked = match (v.phi_lo, v.phi_hi) {
+                    (Some(lo), Some(hi)) => {
+                        let params = profile_settings(s, &e.design, s.verify_grid)
+                            .expect("the box's designs are valid")
+                            .design;
+                        let c = check::check(params, (lo, hi), &without_measures(options), cancel)?;
+                        // The interval reported is the checked one.
+                        v.phi_lo = Some(c.lo).filter(|x| x.is_finite());
+                        v.phi_hi = Some(c.hi).filter(|x| x.is_finite());
+                        match values_of(s, &v) {
+                            Some(values) => v.values = values,
+                            None => {
+                                v.values.clear();
+                                v.infeasible = Some("no checked stable slope".into());
+                            }
+                        }
+                        Some(c)
+                    }
+                    _ => None,
+                };
                 progress.advanced();
                 v.index = e.index;
                 v.round = e.round;
@@ -527,6 +552,7 @@ pub fn report(
                 Some(Reported {
                     found: (*e).clone(),
                     verified: v,
+                    checked,
                 })
             })
             .collect()
