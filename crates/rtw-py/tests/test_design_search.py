@@ -77,22 +77,34 @@ def test_design_refuses_what_the_cli_refuses_in_its_words(tmp_path) -> None:
         rtw.design(cfg, threads=0, progress=False)
 
 
-def test_the_committed_atlas_designs_are_stable_inside_their_reported_intervals() -> None:
-    # results/design/designs-*.parquet (scripts/design_atlas.sh): each
-    # reported design simulated directly at seven slopes inside [phi_lo,
-    # phi_hi], drawn from a fixed seed so that they fall between the
-    # library's own checks (search::check).
+def test_the_committed_atlas_designs_fail_inside_their_intervals_no_more_often_than_their_check_found() -> None:
+    # results/design/designs-*.parquet (scripts/design_atlas.sh). The library
+    # checked each reported interval by direct simulation (search::check) and
+    # found isolated failing slopes at a small rate (`checked_failures` of
+    # `checked_slopes`): a failing window can be narrower than 1e-6 rad
+    # (docs/design.md), so no finite check makes an interval stable at every
+    # φ. Seven more slopes per design, drawn from a fixed seed between the
+    # check's own, must fail no more often than that rate allows: a binomial
+    # tail probability above 1e-3 (scipy.stats.binom).
     import random
     from pathlib import Path
+
+    from scipy.stats import binom
 
     files = sorted((Path(__file__).resolve().parents[3] / "results/design").glob("designs-*.parquet"))
     assert len(files) >= 5, files
     rng = random.Random(41)
+    tries = fails = checked = checked_fails = 0
     for path in files:
         for r in pq.read_table(path).to_pylist():
             assert r["phi_hi"] >= r["phi_lo"] and r["checked_slopes"] > 200
+            checked += r["checked_slopes"]
+            checked_fails += r["checked_failures"]
             for _ in range(7):
                 phi = rng.uniform(r["phi_lo"], r["phi_hi"])
                 out = rtw.simulate(length=r["length"], rho=r["rho"], alpha=r["alpha"], fn=r["fn"], zeta=r["zeta"],
                                    phi=phi)
-                assert out.outcome in rtw.STABLE_LABELS, (path.name, r["index"], phi, out.outcome)
+                tries += 1
+                fails += out.outcome not in rtw.STABLE_LABELS
+    rate = max(checked_fails, 1) / checked
+    assert binom.sf(fails - 1, tries, rate) > 1e-3, (fails, tries, checked_fails, checked)
