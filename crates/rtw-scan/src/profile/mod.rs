@@ -249,12 +249,7 @@ impl Profile {
     /// The widest interval of stable slopes (`phi_lo`, `phi_hi`); of equal
     /// ones, the shallowest.
     pub fn widest(&self) -> Option<(f64, f64)> {
-        self.stable_intervals()
-            .into_iter()
-            .fold(None, |best: Option<(f64, f64)>, i| match best {
-                Some(b) if b.1 - b.0 >= i.1 - i.0 => Some(b),
-                _ => Some(i),
-            })
+        widest(self.stable_intervals())
     }
 
     /// Runs made in all (the coarse grid and the bisections).
@@ -313,6 +308,28 @@ impl Profile {
     }
 }
 
+/// The widest of `intervals` (`(lo, hi)`); of equal ones, the first.
+pub(crate) fn widest(intervals: impl IntoIterator<Item = (f64, f64)>) -> Option<(f64, f64)> {
+    intervals
+        .into_iter()
+        .fold(None, |best: Option<(f64, f64)>, i| match best {
+            Some(b) if b.1 - b.0 >= i.1 - i.0 => Some(b),
+            _ => Some(i),
+        })
+}
+
+/// `design` run at slope `phi` under `options`, as `rtw-scan simulate` runs
+/// it; `None` when `cancel` stopped it.
+pub(crate) fn run_at_slope(
+    design: Params,
+    phi: f64,
+    options: &Options,
+    cancel: &AtomicBool,
+) -> Option<Row> {
+    let params = Params { phi, ..design };
+    rtw_model::cancellable(cancel, || run_one(0, params, options, rtw_model::simulate))
+}
+
 /// The slope profile of `settings` under `options` (both checked): each φ
 /// run as `rtw-scan simulate` runs it, the runs of a round in parallel on
 /// the scans' worker pool, each counted in `progress`. Setting `cancel`
@@ -344,12 +361,7 @@ pub(crate) fn profile_here(
     cancel: &AtomicBool,
 ) -> Option<Profile> {
     let eval = |phi: f64| -> Option<Row> {
-        let params = Params {
-            phi,
-            ..settings.design
-        };
-        let row =
-            rtw_model::cancellable(cancel, || run_one(0, params, options, rtw_model::simulate))?;
+        let row = run_at_slope(settings.design, phi, options, cancel)?;
         progress.computed(row.label());
         Some(row)
     };

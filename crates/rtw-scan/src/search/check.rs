@@ -8,7 +8,7 @@
 //! inside it (the slopes a reader is likely to try), and the interval
 //! reported is the widest run of checked slopes with no failure.
 
-use crate::scan::one::run_one;
+use crate::profile::run_at_slope;
 use rayon::prelude::*;
 use rtw_model::{Options, Params};
 use std::sync::atomic::AtomicBool;
@@ -90,10 +90,11 @@ pub(crate) fn check(
     let stable: Option<Vec<bool>> = phis
         .par_iter()
         .map(|&phi| {
-            let p = Params { phi, ..params };
-            let row =
-                rtw_model::cancellable(cancel, || run_one(0, p, options, rtw_model::simulate))?;
-            Some(row.label().is_stable())
+            Some(
+                run_at_slope(params, phi, options, cancel)?
+                    .label()
+                    .is_stable(),
+            )
         })
         .collect();
     let stable = stable?;

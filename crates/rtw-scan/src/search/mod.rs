@@ -34,7 +34,6 @@ pub use settings::{INPUTS, Method, Objective, SearchSettings};
 
 use crate::config::params::checked_params;
 use crate::profile::{self, Profile, Settings as ProfileSettings};
-use crate::scan::one::run_one;
 use crate::scan::progress::Progress;
 use crate::scan::workers::{Stopped, worker_pool};
 use anyhow::{Result, anyhow, bail};
@@ -270,13 +269,7 @@ fn judge(
     at_mfpt: Option<(Label, Option<f64>)>,
 ) -> Evaluation {
     let iv = intervals(s, p);
-    let widest = iv
-        .iter()
-        .copied()
-        .fold(None, |best: Option<(f64, f64)>, i| match best {
-            Some(b) if b.1 - b.0 >= i.1 - i.0 => Some(b),
-            _ => Some(i),
-        });
+    let widest = profile::widest(iv.iter().copied());
     let mut e = Evaluation {
         index: 0,
         round: 0,
@@ -335,8 +328,7 @@ fn run_at(
     progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Option<(Label, Option<f64>)> {
-    let params = Params { phi, ..params };
-    let row = rtw_model::cancellable(cancel, || run_one(0, params, options, rtw_model::simulate))?;
+    let row = profile::run_at_slope(params, phi, options, cancel)?;
     progress.advanced();
     Some((row.label(), row.outcome.as_ref().and_then(value)))
 }
@@ -523,12 +515,10 @@ pub fn report(
             .par_iter()
             .map(|e| {
                 let quiet = crate::scan::progress::Silent;
-                let (mut v, _) = evaluate(s, options, e.design, s.verify_grid, &quiet, cancel)?;
+                let (mut v, fine) = evaluate(s, options, e.design, s.verify_grid, &quiet, cancel)?;
                 let checked = match (v.phi_lo, v.phi_hi) {
                     (Some(lo), Some(hi)) => {
-                        let params = profile_settings(s, &e.design, s.verify_grid)
-                            .expect("the box's designs are valid")
-                            .design;
+                        let params = fine.settings.design;
                         let c = check::check(params, (lo, hi), &without_measures(options), cancel)?;
                         // The interval reported is the checked one.
                         v.phi_lo = Some(c.lo).filter(|x| x.is_finite());
