@@ -499,6 +499,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(failure_clusters, m)?)?;
     m.add_function(wrap_pyfunction!(read_scan, m)?)?;
     m.add_function(wrap_pyfunction!(read_indices, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::read_design, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;

@@ -6,6 +6,7 @@
 use crate::options::PyOverrides;
 use crate::types::{DesignSearch, Profile};
 use crate::{digits, inputs, interruptible, report, study_error, to_table, value_error};
+use arrow_pyarrow::IntoPyArrow;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rtw_scan::basin::{Settings as BasinSettings, slice_table};
@@ -164,4 +165,27 @@ pub(crate) fn design_search<'py>(
         evaluations.unbind(),
         designs.unbind(),
     ))
+}
+
+/// The design files in `path` (a search's folder, an atlas such as
+/// `results/design/`, or one file), each read whole through rtw-scan's
+/// verified reader: `(file, role, table)` with role `evaluations`,
+/// `reported` or `profile` and the file's metadata in the table's schema.
+#[pyfunction]
+pub(crate) fn read_design<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+) -> PyResult<Vec<(PathBuf, &'static str, Bound<'py, PyAny>)>> {
+    let files = py
+        .detach(|| search::read::read_folder(&path))
+        .map_err(value_error)?;
+    files
+        .into_iter()
+        .map(|f| {
+            let table = arrow_pyarrow::Table::try_new(f.batches, f.schema)
+                .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?
+                .into_pyarrow(py)?;
+            Ok((f.path, f.role.name(), table))
+        })
+        .collect()
 }

@@ -1,5 +1,6 @@
 """`python -m rtw animate TRACE.parquet OUT.gif`: watch a gait (docs/animation.md).
-`python -m rtw report DIR --out FILE.html`: a scan as one HTML page (docs/report.md).
+`python -m rtw report DIR --out FILE.html`: a scan (docs/report.md), or a design
+search or atlas (docs/design.md), as one HTML page.
 
 Make the trace with `rtw-scan simulate … --set trace_dt=0.01 --trace TRACE.parquet`
 (or rtw.trace); the design (L, α, φ, strings) is read from the file's metadata.
@@ -26,12 +27,16 @@ def main(argv: list[str] | None = None) -> int:
     an.add_argument("--start", default=None, help="first simulated time shown [s] (default: the trace's start)")
     an.add_argument("--duration", default=None, help="simulated seconds shown (default: to the trace's end)")
     an.add_argument("--width", default=480, help="width in pixels, in [160, 1920] (default 480)")
-    rp = sub.add_parser("report", help="a scan as one self-contained HTML page",
+    rp = sub.add_parser("report", help="a scan, or a design search, as one self-contained HTML page",
                         description="Write one HTML file that opens offline: the scan's header and summary, "
                                     "parallel coordinates with brushing, parallel categories, the failure "
                                     "clusters, sensitivity indices when present, and the gaits of "
-                                    "representative samples, animated (docs/report.md).")
-    rp.add_argument("dir", help="scan directory (samples.parquet or part-*.parquet) or a scan Parquet file")
+                                    "representative samples, animated (docs/report.md). A design search's "
+                                    "folder (rtw-scan design --out DIR) or an atlas (results/design) gives "
+                                    "the design page: the search, its designs' checked slope intervals, "
+                                    "their profiles and animations (docs/design.md).")
+    rp.add_argument("dir", help="scan directory (samples.parquet or part-*.parquet), a scan Parquet file, "
+                                "or a design search's folder or atlas")
     rp.add_argument("--out", default=None, help="the HTML file (default DIR/report.html)")
     rp.add_argument("--outputs", default=None,
                     help="comma-separated output columns beside the inputs (default speed,f_w,mu_required)")
@@ -40,6 +45,7 @@ def main(argv: list[str] | None = None) -> int:
     rp.add_argument("--sample", type=int, action="append", default=[],
                     help="also compute this sample_id's gait (repeatable)")
     rp.add_argument("--force", action="store_true", help="write over a file that is not an rtw report")
+    rp.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     a = ap.parse_args(argv)
     if a.command == "report":
         return _report(a)
@@ -68,7 +74,8 @@ def _report(a: argparse.Namespace) -> int:
     outputs = None if a.outputs is None else [c.strip() for c in a.outputs.split(",") if c.strip()]
     t0 = time.monotonic()
     try:
-        out = report(a.dir, a.out, outputs=outputs, per_outcome=a.per_outcome, samples=a.sample, force=a.force)
+        out = report(a.dir, a.out, outputs=outputs, per_outcome=a.per_outcome, samples=a.sample, force=a.force,
+                     progress=not a.quiet)
     except (ValueError, FileNotFoundError, ImportError) as e:
         print(f"python -m rtw report: error: {e}", file=sys.stderr)
         return 2

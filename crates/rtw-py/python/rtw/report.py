@@ -39,7 +39,7 @@ import tempfile
 import tomllib
 from collections import Counter
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any, Callable, Iterable, Sequence
 
 from . import _rtw
 from ._rtw import FAILURE_LABELS, LABELS, failure_clusters
@@ -349,8 +349,10 @@ def _header(meta: dict[str, str], summary: dict | None, n: int, counts: Counter,
 
 def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *,
            outputs: Sequence[str] | None = None, per_outcome: int = PER_OUTCOME,
-           samples: Iterable[int] = (), force: bool = False) -> Path:
-    """Writes one self-contained HTML report of a scan; returns its path.
+           samples: Iterable[int] = (), force: bool = False,
+           progress: bool | Callable[[int, int], object] = True) -> Path:
+    """Writes one self-contained HTML report of a scan, or of a design
+    search's folder or atlas (the design page, docs/design.md); returns its path.
 
     Args:
         directory: a scan directory (``samples.parquet``, or the
@@ -362,6 +364,8 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         per_outcome: representative samples with a gait per outcome, in [0, 10].
         samples: sample ids whose gait is computed too.
         force: write over a file that is not an rtw report.
+        progress: as for :func:`rtw.scan`, counting the gaits computed
+            (the slow part: each is a run of its sample).
 
     Raises:
         FileNotFoundError: no such directory or file.
@@ -375,7 +379,7 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         ImportError: numpy is missing (``pip install 'rtw[report]'``), or
             rtw's Plotly.js bundle is missing or changed.
     """
-    from . import __version__
+    from . import __version__, _reporter
 
     directory = Path(directory)
     if not directory.exists():
@@ -386,23 +390,27 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         raise ReportError(f"per_outcome: {per_outcome!r} is invalid: must be an integer in [0, 10]")
     samples = _sample_ids(samples)
     outputs = list(DEFAULT_OUTPUTS) if outputs is None else _column_names(outputs)
-    if out.is_symlink() or (out.exists() and not out.is_file()):
-        raise ReportError(f"out: {out} is a symlink or not a regular file: choose another file")
-    if out.exists() and not force:
-        with open(out, encoding="utf-8", errors="replace") as fh:
-            if GENERATOR not in fh.read(4096):
-                raise ReportError(f"out: {out} exists and is not an rtw report: choose another file "
-                                  "or pass --force (force=True)")
-    if not out.parent.is_dir():
-        raise FileNotFoundError(f"out: the folder {out.parent} does not exist")
+    check_out(out, force)
     plotly_js = _plotly_bundle()
+    tell = _reporter(progress, "rtw.report", "gaits")
 
     # rtw-scan's verified reader: the files' hashes, the rows' values, the
     # ids once each in order, every shard of an unmerged set; errors name the file.
     try:
         table, files = _rtw.read_scan(directory)
     except ValueError as e:
-        raise ReportError(f"DIR: {e}") from None
+        # Not a scan: a design search's folder or an atlas is reported as one
+        # (the design page), read by rtw-scan's verified design reader.
+        try:
+            designs = _rtw.read_design(directory)
+        except ValueError as d:
+            if "not a design folder" in str(d):
+                raise ReportError(f"DIR: {e}") from None
+            raise ReportError(f"DIR: {d}") from None
+        from .design_report import design_page
+
+        write_page(out, design_page(directory, designs, plotly_js))
+        return out
     meta = _meta(table.schema.metadata)
     n = table.num_rows
     if n == 0:
@@ -480,31 +488,64 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     with tempfile.TemporaryDirectory(prefix="rtw-report-") as tmp:
         cfg = Path(tmp) / "config.toml"
         cfg.write_text(config_text, encoding="utf-8")
-        for i, why in picks:
+        for k, (i, why) in enumerate(picks):
+            if tell:
+                tell(k, len(picks))
             row = {c: rows[c][i] for c in table.column_names}
             g = _gait(row, str(cfg), options)
             g["why"] = why
             if not detail:
                 g["row"] = _clean(row)
             gaits.append(g)
+    if tell:
+        tell(len(picks), len(picks))
     data["gaits"] = gaits
     data["sensitivity"] = _sensitivity(base, meta, n)
     data["images"] = _images(base)
 
-    page = (ASSETS / "report.html").read_text(encoding="utf-8")
-    script = (ASSETS / "report.js").read_text(encoding="utf-8")
+    page, shared = page_assets("report")
     parts = {
+        **shared,
         "GENERATOR": GENERATOR,
         "TITLE": html.escape(f"rtw report: {config.get('name', '?')}"),
         "HEADER": _header(meta, summary, n, counts, files, __version__),
         "PLOTLY": _b64gz(plotly_js),
         "DATA": _b64gz(json.dumps(_clean(data), separators=(",", ":"), allow_nan=False)),
-        "SCRIPT": script,
     }
-    # One pass over the page's own placeholders: what is put in (a scan's
-    # name, its config) is never read again for them.
-    text = re.sub(r"\{\{(" + "|".join(parts) + r")\}\}", lambda m: parts[m.group(1)], page)
-    # Atomic: a complete file or none (a temporary file beside it, renamed).
+    write_page(out, fill(page, parts))
+    return out
+
+
+def page_assets(name: str) -> tuple[str, dict[str, str]]:
+    """The template NAME.html, and its STYLE and SCRIPT: the style and the
+    loader both pages share (page.css, boot.js), the script its own (NAME.js)."""
+    read = lambda f: (ASSETS / f).read_text(encoding="utf-8")  # noqa: E731
+    return read(f"{name}.html"), {"STYLE": read("page.css"), "SCRIPT": read("boot.js") + read(f"{name}.js")}
+
+
+def fill(page: str, parts: dict[str, str]) -> str:
+    """The page template with its {{NAME}} placeholders filled in one pass:
+    what is put in (a scan's name, its config) is never read again for them."""
+    return re.sub(r"\{\{(" + "|".join(parts) + r")\}\}", lambda m: parts[m.group(1)], page)
+
+
+def check_out(out: Path, force: bool) -> None:
+    """Refuses an output that is not a regular file, a file that is not an
+    rtw report (unless `force`), and a folder that does not exist."""
+    if out.is_symlink() or (out.exists() and not out.is_file()):
+        raise ReportError(f"out: {out} is a symlink or not a regular file: choose another file")
+    if out.exists() and not force:
+        with open(out, encoding="utf-8", errors="replace") as fh:
+            if GENERATOR not in fh.read(4096):
+                raise ReportError(f"out: {out} exists and is not an rtw report: choose another file "
+                                  "or pass --force (force=True)")
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"out: the folder {out.parent} does not exist")
+
+
+def write_page(out: Path, text: str) -> None:
+    """Writes the page atomically: a complete file or none (a temporary file
+    beside it, renamed)."""
     fd, tmp_name = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
@@ -516,4 +557,3 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     except BaseException:
         Path(tmp_name).unlink(missing_ok=True)
         raise
-    return out

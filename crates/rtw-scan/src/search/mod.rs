@@ -28,6 +28,7 @@ mod cmaes;
 mod fall_model;
 pub mod files;
 mod propose;
+pub mod read;
 mod settings;
 
 pub use settings::{INPUTS, Method, Objective, SearchSettings};

@@ -86,7 +86,7 @@ pub struct SearchSettings {
     pub objectives: Vec<Objective>,
     /// The gait the objectives are of (`None`: any stable gait).
     pub gait: Option<Label>,
-    /// The slope of `speed` (rad).
+    /// The slope of `speed` (rad), an objective or only measured.
     pub speed_phi: Option<f64>,
     /// The slope of `mfpt` (rad).
     pub mfpt_phi: Option<f64>,
@@ -251,11 +251,14 @@ impl SearchSettings {
                 Err(invalid(key, Num(v), slope_range))
             }
         };
-        // The slope of an objective measured at one slope: given exactly
-        // when the objective is asked for.
+        // The slope of an objective measured at one slope: needed when the
+        // objective is asked for. The speed may also be measured alone, to
+        // place a design on the axes of a front of speed (one run per
+        // design); the MFPT is too dear to measure unasked.
         let at = |obj: Objective, key: &str, given: Option<f64>| -> Result<Option<f64>> {
             match (given, objectives.contains(&obj)) {
                 (Some(p), true) => Ok(Some(slope(key, p)?)),
+                (Some(p), false) if obj == Objective::Speed => Ok(Some(slope(key, p)?)),
                 (None, true) => bail!(
                     "{key}: missing: the objective \"{}\" needs the slope it is measured at, {slope_range}",
                     obj.as_str()
@@ -485,5 +488,24 @@ to = 0.4
             let msg = format!("{e:#}");
             assert!(msg.contains(expected), "{to}: {msg}");
         }
+    }
+
+    #[test]
+    fn a_speed_slope_without_the_speed_objective_is_measured_not_searched() {
+        // A design placed on a front's axes (the Fig. 7(a) design beside the
+        // front of slope range against speed) needs its speed at the front's
+        // slope without being searched for it.
+        let s =
+            SearchSettings::parse(&GOOD.replace("seed = 1", "seed = 1\nspeed_phi = 0.15")).unwrap();
+        assert_eq!(
+            (s.speed_phi, s.objectives.as_slice()),
+            (Some(0.15), [Objective::SlopeRange].as_slice())
+        );
+        let e = SearchSettings::parse(&GOOD.replace("seed = 1", "seed = 1\nmfpt_phi = 0.15"))
+            .unwrap_err();
+        assert!(
+            format!("{e:#}").contains("mfpt_phi: only with the objective \"mfpt\""),
+            "{e:#}"
+        );
     }
 }

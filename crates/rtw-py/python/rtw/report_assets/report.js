@@ -1,27 +1,7 @@
-"use strict";
-// The page of `python -m rtw report` (crates/rtw-py/python/rtw/report.py).
-// Plotly.js and the data are inlined gzipped (base64) and inflated here with
-// the browser's DecompressionStream. Everything about the robot (rods,
-// strings, feet, ground, view) arrives as world-frame coordinates computed in
-// Python by rtw.draw: this script only draws segments and points.
-window.rtwReport = { ready: false, selected: null, frame: null, timings: {} };
-// Each step is a Performance API mark "rtw:NAME" (scripts/report_timing.py reads them).
-const mark = (name) => { window.rtwReport.timings[name] = Math.round(performance.mark(`rtw:${name}`).startTime); };
-
-async function inflate(id) {
-  const b64 = document.getElementById(id).textContent.trim();
-  let bytes;
-  if (Uint8Array.fromBase64) {
-    bytes = Uint8Array.fromBase64(b64);  // Chromium >= 140, Firefox >= 133, Safari >= 18.2
-  } else {
-    const bin = atob(b64);
-    bytes = new Uint8Array(bin.length);
-    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
-  }
-  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
-  return await new Response(stream).text();
-}
-
+// The scan report of `python -m rtw report` (crates/rtw-py/python/rtw/report.py),
+// after boot.js. Everything about the robot (rods, strings, feet, ground,
+// view) arrives as world-frame coordinates computed in Python by rtw.draw:
+// this script only draws segments and points.
 const LABEL = {
   length: "L [m]", rho: "ρ [kg/m]", alpha: "α", fn: "f_n [Hz]", zeta: "ζ", phi: "φ [rad]",
   speed: "speed [m/s]", f_w: "f_w [Hz]", mu_required: "μ required", outcome: "outcome",
@@ -347,35 +327,7 @@ async function main(D) {
         { title: { text: `output: ${out}` }, barmode: "group", margin: { t: 40, r: 10 } }, cfg);
     });
   }
-  if (D.images.length) {
-    document.getElementById("images-section").hidden = false;
-    const box = document.getElementById("images");
-    D.images.forEach((im) => {
-      const f = document.createElement("figure");
-      const img = document.createElement("img"); img.src = im.src; img.style.maxWidth = "700px";
-      const cap = document.createElement("figcaption"); cap.textContent = im.name;
-      f.append(img, cap); box.appendChild(f);
-    });
-  }
-
+  showImages(D.images, 700);
 }
 
-(async () => {
-  const status = document.getElementById("status");
-  try {
-    const [lib, text] = await Promise.all([inflate("plotly-gz"), inflate("data-gz")]);
-    mark("inflated");
-    const el = document.createElement("script");
-    el.textContent = lib;
-    document.head.appendChild(el);
-    mark("plotly");
-    await main(JSON.parse(text));
-    status.textContent = "";
-    mark("ready");
-    window.rtwReport.readyMs = performance.now();
-    window.rtwReport.ready = true;
-  } catch (e) {
-    status.textContent = `The report could not be drawn: ${e}`;
-    console.error(e);
-  }
-})();
+boot(main);
