@@ -127,8 +127,8 @@ pub(crate) fn design_search<'py>(
         .transpose()
         .map_err(value_error)?;
     let overrides = PyOverrides::new(options.as_ref())?;
-    let options =
-        simulation_options(None, variant.as_deref(), overrides.layer()).map_err(value_error)?;
+    let options = simulation_options(Some(&path), variant.as_deref(), overrides.layer())
+        .map_err(value_error)?;
     let counter = Counter::default();
     let (found, reported) = interruptible(
         py,

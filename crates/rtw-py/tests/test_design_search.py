@@ -108,3 +108,16 @@ def test_the_committed_atlas_designs_fail_inside_their_intervals_no_more_often_t
                 fails += out.outcome not in rtw.STABLE_LABELS
     rate = max(checked_fails, 1) / checked
     assert binom.sf(fails - 1, tries, rate) > 1e-3, (fails, tries, checked_fails, checked)
+
+
+def test_design_takes_the_configs_simulation_table_as_the_cli_does(tmp_path) -> None:
+    # The model of a search is in its config's [simulation] table, for both faces.
+    cfg = _config(tmp_path, CONFIG + "[simulation.contact]\nmu = 0.3\n")
+    cli = tmp_path / "cli"
+    subprocess.run([str(BINARY), "design", cfg, "--out", str(cli), "--quiet"], check=True, capture_output=True)
+    d = rtw.design(cfg, progress=False)
+    assert _rows(d.evaluations) == _rows(pq.read_table(cli / "search.parquet"))
+    assert b"mu=0.3" in pq.read_metadata(cli / "search.parquet").metadata[b"rtw.variant"]
+    (tmp_path / "plain").mkdir()
+    plain = rtw.design(_config(tmp_path / "plain"), progress=False)
+    assert _rows(plain.evaluations) != _rows(d.evaluations), "mu = 0.3 changed no design's profile"

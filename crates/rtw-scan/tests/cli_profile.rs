@@ -513,3 +513,68 @@ fn the_mfpt_objective_is_the_mfpt_simulate_gives_at_its_slope() {
     }
     assert!(stable > 0, "no stable design among {rows:?}");
 }
+
+#[test]
+fn a_search_configs_simulation_table_is_its_model_as_set_gives_it() {
+    // The model of a search belongs in its config, as a scan's does: the
+    // `[simulation]` table is the options' first layer, under `--variant`
+    // and `--set`, and the search it makes is the one `--set` makes.
+    let dir = tempfile::tempdir().unwrap();
+    let plain = design_config(dir.path(), "mu", "report = 1");
+    let text = std::fs::read_to_string(&plain).unwrap() + "[simulation.contact]\nmu = 0.3\n";
+    let in_config = write(dir.path(), "mu-in-config.toml", &text);
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    run_ok(&["design", &in_config, "--out", s(&a), "--quiet"]);
+    run_ok(&[
+        "design",
+        &plain,
+        "--out",
+        s(&b),
+        "--quiet",
+        "--set",
+        "contact.mu=0.3",
+    ]);
+    assert_eq!(
+        rows(&a.join("search.parquet")),
+        rows(&b.join("search.parquet"))
+    );
+    let meta = |p: &std::path::Path| {
+        let r = parquet::file::reader::SerializedFileReader::new(std::fs::File::open(p).unwrap())
+            .unwrap();
+        use parquet::file::reader::FileReader;
+        let kv = r
+            .metadata()
+            .file_metadata()
+            .key_value_metadata()
+            .unwrap()
+            .clone();
+        let get = |k: &str| {
+            kv.iter()
+                .find(|e| e.key == k)
+                .and_then(|e| e.value.clone())
+                .unwrap()
+        };
+        (get("rtw.design"), get("rtw.variant"))
+    };
+    let (ma, mb) = (
+        meta(&a.join("search.parquet")),
+        meta(&b.join("search.parquet")),
+    );
+    assert_eq!(ma, mb);
+    assert!(ma.1.contains("mu=0.3"), "{}", ma.1);
+    // `--config` would be a second place for the same table: refused by name.
+    run_err(
+        &["design", &in_config, "--out", s(&a), "--config", &plain],
+        &["--config", "the search's config"],
+    );
+    // A bad key in it is named with its path.
+    let bad = write(
+        dir.path(),
+        "bad.toml",
+        &(std::fs::read_to_string(&plain).unwrap() + "[simulation.contact]\nmu = -1\n"),
+    );
+    run_err(
+        &["design", &bad, "--out", s(&a), "--quiet"],
+        &["contact.mu"],
+    );
+}

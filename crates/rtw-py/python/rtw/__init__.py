@@ -677,7 +677,8 @@ def design(
         force: write over files in ``out`` that are not this search's.
         progress: as for :func:`scan`, counting simulations (then the
             reported designs' verification).
-        variant, options: the model, as for :func:`simulate`.
+        variant, options: the model over the config's own [simulation] table,
+            as for :func:`simulate` over its ``config``.
 
     Returns:
         A :class:`DesignSearch`: ``summary`` (Markdown), ``runs``,

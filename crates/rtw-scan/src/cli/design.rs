@@ -13,7 +13,10 @@ use std::process::ExitCode;
 
 #[derive(Args, Debug)]
 pub(super) struct DesignArgs {
-    /// The search's config (configs/design/*.toml; docs/design.md lists its keys).
+    /// The search's config (configs/design/*.toml; docs/cli.md lists its keys), with the
+    /// model's options in its [simulation] table.
+    // Its own id: `--config` (the options' flag) is another argument.
+    #[arg(id = "search_config", value_name = "CONFIG")]
     config: PathBuf,
     /// The search's folder [default: runs/design/NAME].
     #[arg(long, value_name = "DIR")]
@@ -33,7 +36,7 @@ pub(super) struct DesignArgs {
 
 pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
     let settings = SearchSettings::read(&a.config)?;
-    let options = a.options.resolve()?;
+    let options = a.options.resolve_under(&a.config)?;
     let threads = a
         .threads
         .as_deref()

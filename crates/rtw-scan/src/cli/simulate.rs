@@ -63,6 +63,21 @@ impl OptionArgs {
     pub(super) fn resolve(&self) -> Result<Options> {
         simulation_options(self.config.as_deref(), self.variant.as_deref(), &self.set)
     }
+
+    /// The options of a study whose own config file holds its
+    /// `[simulation]` table (`design`): that table, then `--variant` and
+    /// `--set`; a `--config` would be a second place for it.
+    pub(super) fn resolve_under(&self, config: &std::path::Path) -> Result<Options> {
+        if let Some(other) = &self.config {
+            anyhow::bail!(
+                "--config {}: the search's config ({}) holds its [simulation] table: put the \
+                 options there, or use --variant and --set",
+                other.display(),
+                config.display()
+            );
+        }
+        simulation_options(Some(config), self.variant.as_deref(), &self.set)
+    }
 }
 
 #[derive(Args, Debug)]

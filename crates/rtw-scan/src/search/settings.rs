@@ -187,7 +187,15 @@ impl SearchSettings {
 
     /// The settings of a config's text, every key checked.
     pub fn parse(text: &str) -> Result<Self> {
-        let table = crate::config::raw::parse_table(text)?;
+        let mut table = crate::config::raw::parse_table(text)?;
+        // The model's options (`[simulation]`) are the options' first layer
+        // (`config::layers::simulation_options` reads them), not settings.
+        match table.remove("simulation") {
+            None | Some(toml::Value::Table(_)) => {}
+            Some(_) => {
+                bail!("simulation: is not a table: must be [simulation] with the model's keys")
+            }
+        }
         let raw: Raw = crate::config::raw::from_value(toml::Value::Table(table), "")?;
         if raw.name.trim().is_empty() || raw.name.len() > 100 {
             bail!(invalid(
