@@ -329,3 +329,34 @@ pub(crate) fn write_out(dir: &Path, md: &str, m: &Measured) -> Result<()> {
     eprintln!("wrote {} and {}", md_path.display(), svg_path.display());
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The report names a model from its options, whatever the run's
+    /// integrator settings: the default's and the literal model's by name,
+    /// any other (such as the default before its strings were fitted) not.
+    #[test]
+    fn model_of_names_the_model_the_options_are_at() {
+        let reference = |o: Options| REFERENCE.apply(&o);
+        let (name, line) = model_of(&reference(Options::default()));
+        assert_eq!(name, "default model");
+        assert!(line.contains("method=dop853 rtol=1e-13"), "{line}");
+        assert!(line.starts_with(&format!(
+            "rest_length_ratio={} ",
+            Options::default().strings.rest_length_ratio
+        )));
+        assert_eq!(
+            model_of(&case_options("default")).0,
+            "default model",
+            "20 s without a cap or an early stop is a run setting, not a model"
+        );
+        assert_eq!(model_of(&reference(Options::literal())).0, "literal model");
+        let mut old = Options::default();
+        old.strings.rest_length_ratio = 0.85;
+        let (name, line) = model_of(&old);
+        assert_eq!(name, "model");
+        assert!(line.starts_with("rest_length_ratio=0.85 "), "{line}");
+    }
+}
