@@ -27,8 +27,12 @@ default* by
   * a PNG of the same directory and stem (`phi-fig7a.png`, `phi-fig7a.plane.png`)
     whose Title text chunk (scripts/continuation.py and bifurcation.py write
     the figure's title there) says "default model".
-Each such file's model must be the default's; the script lists every one that
-is not, with where it is called default, and exits 1.
+Each such file's model must be the default's. A result without a Parquet
+file states its model in its own Markdown instead: "default model, `LINE`"
+(or "default model (`LINE`)"), where LINE is the `rtw.variant` line it ran
+with (results/bench/work-precision.md, written by rtw-bench, says so of each
+case and of its scan); LINE's model must be the default's too. The script
+lists every one that is not, with where it is called default, and exits 1.
 """
 
 from __future__ import annotations
@@ -44,6 +48,8 @@ from PIL import Image
 
 ROOT = Path(__file__).resolve().parent.parent
 CLAIM = re.compile(r"default model|model:? default", re.I)
+# A claim followed by the `rtw.variant` line the result was made with.
+STATED = re.compile(r"default model[,:]?\s*\(?`(rest_length_ratio=[^`]+)`", re.I)
 # Companion suffixes of one result (rtw-scan continuation, bifurcation) and
 # of its figures (scripts/continuation.py plane).
 COMPANIONS = (".special", ".curve", ".steps", ".plane", ".segments")
@@ -137,6 +143,17 @@ def claims(results: list[Result], docs: list[Path]) -> dict[Path, list[str]]:
     return found
 
 
+def stated(docs: list[Path]) -> list[tuple[str, str]]:
+    """Every model line a Markdown file calls the default model's: (where, line)."""
+    out = []
+    for doc in docs:
+        text = (ROOT / doc).read_text()
+        for m in STATED.finditer(text):
+            line_no = text.count("\n", 0, m.start()) + 1
+            out.append((f"{doc}:{line_no}", " ".join(m.group(1).split())))
+    return out
+
+
 def main() -> None:
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -155,10 +172,17 @@ def main() -> None:
         r = next(r for r in results if r.path == path)
         if r.model != default:
             bad.append(f"{path}: model {r.model}\n  called default in\n    " + "\n    ".join(where))
+    lines = stated(docs)
+    for where, line in lines:
+        if model(line) != default:
+            bad.append(f"{where}: model {model(line)}\n  called default there")
     if bad:
         print(f"check_default_model: the default model is {default}", file=sys.stderr)
         sys.exit("\n".join(bad))
-    print(f"check_default_model: every result called default is at the default model ({default})")
+    print(
+        f"check_default_model: every result called default is at the default model ({default}), "
+        f"and so are the {len(lines)} model lines Markdown files call the default's"
+    )
 
 
 if __name__ == "__main__":

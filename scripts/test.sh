@@ -67,6 +67,8 @@ echo "== every command README.md and docs/*.md document, run as written in a tem
 .venv/bin/python scripts/check_doc_commands.py
 echo "== every Markdown table row in README.md, docs/ and results/ has its header's cells (scripts/check_markdown_tables.py)"
 .venv/bin/python scripts/check_markdown_tables.py
+echo "== every number the docs' prose quotes from a results file is the file's (scripts/check_doc_numbers.py)"
+.venv/bin/python scripts/check_doc_numbers.py
 echo "== no file over 600 lines outside its tests, no import cycle (scripts/check_structure.py)"
 .venv/bin/python scripts/check_structure.py
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"

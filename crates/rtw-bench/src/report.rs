@@ -2,6 +2,32 @@
 //! default chosen by measurement) and the work–precision SVG.
 
 use super::*;
+use rtw_scan::config::variant_line;
+
+/// The model of `o`, from its `rtw.variant` line (`rtw_scan::config::variant_line`):
+/// its name where its model (the line before ` method=`) is the default's or
+/// the literal model's, and the line itself. The report states the model each
+/// part ran at from the options it used, so that nothing it calls the default
+/// model is another (scripts/check_default_model.py holds a "default model"
+/// followed by its line to the default's).
+pub(crate) fn model_of(o: &Options) -> (&'static str, String) {
+    let line = variant_line(o);
+    let model = |l: &str| l.split(" method=").next().unwrap_or_default().to_string();
+    let name = if model(&line) == model(&variant_line(&Options::default())) {
+        "default model"
+    } else if model(&line) == model(&variant_line(&Options::literal())) {
+        "literal model"
+    } else {
+        "model"
+    };
+    (name, line)
+}
+
+/// A case's options at the reference setting, which every row changes only
+/// in its method, tolerances and step cap.
+fn case_reference_options(case: &Case) -> Options {
+    REFERENCE.apply(&case_options(case.variant))
+}
 
 /// The Markdown report of what [`measure`] found.
 pub(crate) fn report(m: &Measured) -> String {
@@ -40,10 +66,16 @@ fn report_cases(md: &mut String, m: &Measured) {
     );
     for (case, result) in m.cases.iter().zip(&m.case_results) {
         let p = case.params;
+        let (name, line) = model_of(&case_reference_options(case));
         let _ = writeln!(
             md,
-            "### {} (ρ {:.4}, α {:.4}, f_n {:.4}, ζ {:.4}, φ {:.4}; model {})\n",
-            case.name, p.rho, p.alpha, p.f_n, p.zeta, p.phi, case.variant
+            "### {} (ρ {:.4}, α {:.4}, f_n {:.4}, ζ {:.4}, φ {:.4}; {name})\n",
+            case.name, p.rho, p.alpha, p.f_n, p.zeta, p.phi
+        );
+        let _ = writeln!(
+            md,
+            "Model: {name}, `{line}` (the reference's settings; each row changes the method, \
+             its tolerances and the step cap only).\n"
         );
         let r = &result.reference.out;
         let _ = writeln!(
@@ -93,13 +125,12 @@ fn report_cases(md: &mut String, m: &Measured) {
 /// The scan's section.
 fn report_scan(md: &mut String, m: &Measured) {
     let n_scan = m.scan.len();
+    let (name, line) = model_of(&REFERENCE.apply(&m.scan_options));
+    let _ = writeln!(md, "## Scan: {n_scan} samples of the paper's box, {name}\n");
     let _ = writeln!(
         md,
-        "## Scan: {n_scan} samples of the paper's box, s = 0.85 r, static start\n"
-    );
-    let _ = writeln!(
-        md,
-        "`configs/bench/scan200.toml` (docs/model.md §8's box at L = 0.8: the first 200 samples of `configs/paper.toml`, with the model the benchmark was first measured with: strings' natural length s = 0.85 r and a static start, not today's default). \
+        "`configs/bench/scan200.toml` (docs/model.md §8's box at L = 0.8: the inputs of the first {n_scan} samples of `configs/paper.toml`). \
+         Model: {name}, `{line}` (the reference's settings; each row changes the method, its tolerances and the step cap only). \
          CPU s: the sum of the per-sample times; wall s: the whole scan on the worker threads. \
          Outcome % per label, largest |Δ| against the reference (pp), labels that differ \
          (flips), median relative f_w error over samples stable in both with the same label.\n"
@@ -263,7 +294,11 @@ pub(crate) fn write_out(dir: &Path, md: &str, m: &Measured) -> Result<()> {
     let mut panels = vec![];
     for ci in [0, 3] {
         panels.push(Panel {
-            title: format!("{} ({})", cases[ci].name, cases[ci].variant),
+            title: format!(
+                "{} ({})",
+                cases[ci].name,
+                model_of(&case_reference_options(&cases[ci])).0
+            ),
             x_label: format!("state error over the first {FIRST_EVENTS} events"),
             y_label: "median wall time per 20 s run (ms)".into(),
             x_log: true,
@@ -273,8 +308,9 @@ pub(crate) fn write_out(dir: &Path, md: &str, m: &Measured) -> Result<()> {
     }
     panels.push(Panel {
         title: format!(
-            "scan of {} samples, s = 0.85 r, static start",
-            scans.first().map_or(0, |s| s.1.points.len())
+            "scan of {} samples ({})",
+            scans.first().map_or(0, |s| s.1.points.len()),
+            model_of(&REFERENCE.apply(&m.scan_options)).0
         ),
         x_label: "largest outcome-fraction error (pp)".into(),
         y_label: "CPU time of the scan (s)".into(),
@@ -292,4 +328,35 @@ pub(crate) fn write_out(dir: &Path, md: &str, m: &Measured) -> Result<()> {
     std::fs::write(&svg_path, svg).with_context(|| format!("writing {}", svg_path.display()))?;
     eprintln!("wrote {} and {}", md_path.display(), svg_path.display());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The report names a model from its options, whatever the run's
+    /// integrator settings: the default's and the literal model's by name,
+    /// any other (such as the default before its strings were fitted) not.
+    #[test]
+    fn model_of_names_the_model_the_options_are_at() {
+        let reference = |o: Options| REFERENCE.apply(&o);
+        let (name, line) = model_of(&reference(Options::default()));
+        assert_eq!(name, "default model");
+        assert!(line.contains("method=dop853 rtol=1e-13"), "{line}");
+        assert!(line.starts_with(&format!(
+            "rest_length_ratio={} ",
+            Options::default().strings.rest_length_ratio
+        )));
+        assert_eq!(
+            model_of(&case_options("default")).0,
+            "default model",
+            "20 s without a cap or an early stop is a run setting, not a model"
+        );
+        assert_eq!(model_of(&reference(Options::literal())).0, "literal model");
+        let mut old = Options::default();
+        old.strings.rest_length_ratio = 0.85;
+        let (name, line) = model_of(&old);
+        assert_eq!(name, "model");
+        assert!(line.starts_with("rest_length_ratio=0.85 "), "{line}");
+    }
 }

@@ -212,6 +212,15 @@ pub(crate) const CLUSTER_MAX_POINTS: usize = 20_000;
 /// k-means of up to [`CLUSTER_MAX_POINTS`] points.
 pub(crate) const MAX_RESTARTS: i64 = 1000;
 
+/// The one-line model variant of `options` that every file rtw-scan writes
+/// records as `rtw.variant`: every open choice of docs/model.md §9, then the
+/// run's integrator settings from ` method=` on. rtw-bench states the model
+/// of each of its cases with it, so that scripts/check_default_model.py can
+/// compare a benchmark called the default model's with the default.
+pub fn variant_line(options: &Options) -> String {
+    variant::ModelChoices::of(options).to_string()
+}
+
 /// Options → validated, the error naming `prefix.key`, the value and the
 /// valid range (`simulation.contact.mu: 2 is invalid: must be in [0, 1] or inf`).
 pub fn validate_options(options: &Options, prefix: &str) -> Result<()> {

@@ -1,0 +1,422 @@
+"""Fails when a number that the prose of a docs page quotes from a results
+file is no longer the number in that file, so that no page can go on quoting
+a result after it was remade. (Whole tables are copied by
+scripts/readme_tables.py instead; this is for numbers inside sentences.)
+
+    python3 scripts/check_doc_numbers.py
+
+Each pin names a phrase of a page, as a regular expression whose groups are
+the numbers it quotes (the page is read with its line breaks as spaces, so a
+phrase may wrap anywhere), and where each number comes from, in order: the
+groups of a regular expression's one match in a results file (`Rx`), a cell
+of a Markdown table in a section of one (`Cell`: picked by its column and the
+row's other cells, or the min, max, sum or count over rows), or the min or
+max of a Parquet column (`Col`). The phrase must match exactly once (a page
+that rewords it must update its pin), and each quoted number must be the
+result's to the precision the page prints it with (`4.00` pins 4.0000 to
+±0.005; `0.2119` pins 0.21185; thin or plain spaces between thousands are
+ignored; a cell such as `(0.14662` or `1.10×` gives its leading number). A
+quote that is not a number must equal its source as text. Every pin is also
+checked to fail on a copy of its page whose first quoted number moved by one
+in its last digit, so that no pin passes whatever the page says.
+
+Run by the test command (scripts/test.sh). Only numbers that come from a
+results file are pinned; measured times, constants and config inputs are not.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+# Where a pattern below says `N`, any number the page may print.
+N = r"([−-]?\d[\d  ]*(?:\.\d+)?(?:e[−-]?\d+)?)"
+
+
+@dataclass
+class Rx:
+    """The groups of `pattern`'s one match in `source` (in its `section`, the
+    text from the heading that starts with it to the next heading of its
+    level or above, if given)."""
+
+    source: str
+    pattern: str
+    section: str = ""
+
+    def values(self) -> tuple[str, ...] | str:
+        text = section_text(self.source, self.section)
+        m = only(self.pattern, text, self.source)
+        return m if isinstance(m, str) else m.groups()
+
+
+@dataclass
+class Cell:
+    """One cell of the Markdown tables in `source`'s `section`: the column
+    `column` of the `nth` row whose cells match `where` (shell patterns:
+    `*` for any text); `part` picks a piece of a range cell (`a – b`,
+    `a → b`, `a–b, c–d`); `agg` (min, max, sum, count) takes all such rows
+    instead of one."""
+
+    source: str
+    section: str
+    column: str
+    where: dict[str, str]
+    nth: int = 0
+    part: int | None = None
+    agg: str = ""
+
+    def values(self) -> tuple[str, ...] | str:
+        rows = [r for r in table_rows(section_text(self.source, self.section)) if matches(r, self.where)]
+        if self.agg == "count":
+            return (str(len(rows)),)
+        cells = [pieces(r[self.column])[self.part] if self.part is not None else r[self.column] for r in rows
+                 if self.column in r]
+        if self.agg:
+            nums = [value(c) for c in cells]
+            if not nums or None in nums:
+                return f"{self.source}: no numbers in column {self.column!r} where {self.where}"
+            return (repr({"min": min, "max": max, "sum": sum}[self.agg](nums)),)
+        if len(cells) <= self.nth:
+            return f"{self.source}: no row {self.nth} where {self.where} in {self.section!r}"
+        return (cells[self.nth],)
+
+
+@dataclass
+class Col:
+    """`agg` of a Parquet column over the rows whose `key` is `equals`."""
+
+    source: str
+    column: str
+    key: str
+    equals: object
+    agg: str
+
+    def values(self) -> tuple[str, ...]:
+        import pyarrow.parquet as pq
+
+        t = pq.read_table(ROOT / self.source, columns=[self.key, self.column]).to_pylist()
+        xs = [r[self.column] for r in t if r[self.key] == self.equals and r[self.column] is not None]
+        return (repr({"min": min, "max": max}[self.agg](xs)),)
+
+
+@dataclass
+class Pin:
+    """A phrase of a page (groups: the numbers it quotes) and where each
+    number comes from, in order."""
+
+    doc: str
+    phrase: str
+    sources: list[Rx | Cell | Col]
+
+
+def section_text(source: str, heading: str) -> str:
+    text = (ROOT / source).read_text()
+    if not heading:
+        return text
+    m = re.search(rf"^(#+) {re.escape(heading)}.*?$", text, re.M)
+    if not m:
+        return ""
+    level = len(m.group(1))
+    end = re.search(rf"^#{{1,{level}}} ", text[m.end() :], re.M)
+    return text[m.start() : m.end() + end.start() if end else len(text)]
+
+
+def split_cells(line: str) -> list[str]:
+    return [c.strip() for c in re.split(r"(?<!\\)\|", line.strip())[1:-1]]
+
+
+def table_rows(text: str) -> list[dict[str, str]]:
+    """Every row of every table in `text`, keyed by its table's header."""
+    rows, header = [], None
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        if not line.startswith("|"):
+            header = None
+            continue
+        if header is None:
+            header = split_cells(line)
+        elif not re.fullmatch(r"\|[\s:|-]+\|", line.strip()):
+            rows.append(dict(zip(header, split_cells(line), strict=False)))
+    return rows
+
+
+def matches(row: dict[str, str], where: dict[str, str]) -> bool:
+    return all(k in row and fnmatch.fnmatchcase(row[k], v) for k, v in where.items())
+
+
+def pieces(cell: str) -> list[str]:
+    return [p.strip() for p in re.split(r"\s*(?:–|→|,)\s*", cell) if p.strip()]
+
+
+def value(text: str) -> float | None:
+    """The number a cell or a quote starts with (`(0.14662`, `1.10×`,
+    `-1.0000+0.0000i`: its real part), or None."""
+    m = re.match(r"\(?([−-]?\d[\d  ]*(?:\.\d+)?(?:e[−-]?\d+)?)", text.strip())
+    if not m:
+        return None
+    return float(m.group(1).replace(" ", "").replace(" ", "").replace("−", "-"))
+
+
+def decimals(text: str) -> int:
+    mantissa = text.lower().split("e")[0]
+    return len(mantissa.split(".")[1]) if "." in mantissa else 0
+
+
+def agrees(quoted: str, result: str) -> bool:
+    q, r = value(quoted), value(result)
+    if q is None or r is None:
+        return quoted.strip() == result.strip()
+    if "e" in quoted.lower():
+        exp = int(quoted.lower().split("e")[1].replace("−", "-"))
+        return abs(q - r) <= 0.5 * 10.0 ** (exp - decimals(quoted)) * (1 + 1e-9)
+    return abs(q - r) <= 0.5 * 10.0 ** -decimals(quoted) * (1 + 1e-9)
+
+
+def only(pattern: str, text: str, where: str) -> re.Match | str:
+    found = list(re.finditer(pattern, text, re.M))
+    if len(found) != 1:
+        return f"{where}: {len(found)} matches of {pattern.replace(N, 'N')!r} (need exactly 1)"
+    return found[0]
+
+
+def page(doc: str) -> str:
+    """A page with its lines read as one: a phrase may wrap anywhere."""
+    return re.sub(r"\s+", " ", (ROOT / doc).read_text())
+
+
+BENCH = "results/bench/work-precision.md"
+BIF = "results/bifurcation/summary.md"
+CONT = "results/continuation/summary.md"
+SEG = "results/continuation/segments.md"
+PLANE = "results/continuation/plane/summary.md"
+PERF = "docs/performance.md"
+LC = "docs/limit-cycles.md"
+# Sections of the results files.
+B1 = "Default model"
+B0 = "s = 0:"
+WALK = "The Fig. 7(a) walk in φ at the default model"
+TAG = "The s = 0 skip on the touch-and-go section"
+PLANE_CHECK = "Its period-doubling curve in (φ, f_n)"
+
+
+def scan_row(setting: str, cells: int) -> Rx:
+    """The first `cells` numeric cells of the benchmark scan table's row of `setting`."""
+    return Rx(BENCH, rf"^\| {re.escape(setting)} \| " + r" \| ".join([N] * cells), "Scan")
+
+
+def early(scan: str, column: str, part: int | None = None) -> Cell:
+    """A cell of the benchmark's early-stop table."""
+    return Cell(BENCH, "Early stop", column, {"scan": f"`{scan}`"}, part=part)
+
+
+def bif(section: str, column: str, nth: int = 0, part: int | None = None, **where: str) -> Cell:
+    """A cell of a bifurcation sweep's table of gait bands."""
+    return Cell(BIF, section, column, where, nth, part)
+
+
+def bif_line(section: str, change: str, mult: str = N) -> Rx:
+    """A change line of a sweep: groups (its leading multiplier's parts, then
+    the φ it is taken at); `mult` matches the multiplier."""
+    return Rx(BIF, rf"^- {re.escape(change)} between phi = [^;]+; leading multiplier at (?=[\d.]+: {mult}){N}:", section)
+
+
+def walk(column: str, part: int | None = None, nth: int = 0, **where: str) -> Cell:
+    """A cell of the continued Fig. 7(a) walk's tables."""
+    return Cell(CONT, WALK, column, where, nth, part)
+
+
+def tag(column: str, part: int | None = None, nth: int = 0, **where: str) -> Cell:
+    """A cell of the touch-and-go skip's tables."""
+    return Cell(CONT, TAG, column, where, nth, part)
+
+
+def seg(length: str, column: str, nth: int = 0, part: int | None = None, agg: str = "", **where: str) -> Cell:
+    """A cell of a length's segments table in results/continuation/segments.md."""
+    return Cell(SEG, f"L = {length}", column, where, nth, part, agg)
+
+
+PD = {"bifurcation": "period doubling"}
+NS = {"bifurcation": "neimark sacker"}
+P2 = "up, branch 2 (period 2)*"
+
+PINS: list[Pin] = [
+    # docs/performance.md: the work-precision benchmark.
+    Pin(PERF, rf"the Fig\. 7\(a\) walk's reference f_w is {N} Hz",
+        [Rx(BENCH, rf"^Reference: \*\*walk\*\*, f_w {N} Hz", "Fig. 7(a) walk")]),
+    Pin(PERF, rf"hence skip ≈ {N} % and walk ≈ {N} %",
+        [Cell(BENCH, "Scan", "skip %", {"setting": "**dop853 1e-13 (reference)**"}),
+         Cell(BENCH, "Scan", "walk %", {"setting": "**dop853 1e-13 (reference)**"})]),
+    Pin(PERF, r"the rule picks \*\*(\S+ \S+)\*\* \(" + rf"{N} RHS evaluations, max Δ {N} pp",
+        [Rx(BENCH, r"errs by less than 1 %: \*\*(\S+ \S+)\*\* \(" + rf"{N} RHS evaluations, [^;]*; [^;]*; max Δ {N} pp")]),
+    Pin(PERF, rf"DP5\(4\) at 1e-4 does {N} with max Δ {N} pp and {N} flips",
+        [Cell(BENCH, "Scan", c, {"setting": "dp54 1e-4"}) for c in ("RHS evals", "max Δ (pp)", "flips")]),
+    Pin(PERF, r"the early stop at \*\*(\S+ \S+)\*\*", [Rx(BENCH, r"^## Early stop \(`stop_when_settled`\) at (\S+ \S+)$")]),
+    Pin(PERF, rf"ratio is {N}× on the 200 samples and {N}× on `configs/paper\.toml`",
+        [early("configs/bench/scan200.toml", "work ratio"), early("configs/paper.toml", "work ratio")]),
+    Pin(PERF, rf"at most {N} pp of any outcome on the 200 samples \({N} labels\) and {N} pp on the paper scan \({N} of its",
+        [early("configs/bench/scan200.toml", "max Δ (pp)"), early("configs/bench/scan200.toml", "flips"),
+         early("configs/paper.toml", "max Δ (pp)"), early("configs/paper.toml", "flips")]),
+    # docs/limit-cycles.md: the step map's walk at Fig. 7(a).
+    Pin(LC, rf"\(\|μ\| = {N}\), then", [Rx(CONT, rf"from the period-1 gait at phi = 0\.15 \(max\|μ\| {N}\)")]),
+    # The attractor sweeps (results/bifurcation/summary.md).
+    Pin(LC, rf"slopes\*\*: φ = {N} to {N} \({N} of 121 values\), max \|μ\| {N}–{N} \({N} near φ = 0\.15\)",
+        [bif(B1, c, label="walk", period="1") for c in ("phi from", "phi to", "values")]
+        + [bif(B1, r"max \|μ\| range", part=i, label="walk", period="1") for i in (0, 1)]
+        + [Rx(CONT, rf"from the period-1 gait at phi = 0\.15 \(max\|μ\| {N}\)")]),
+    Pin(LC, rf"down to φ ≈ {N}, the robot walks", [bif(B1, "phi from", label="walk", period="none")]),
+    Pin(LC, rf"period-4 and period-5 walks at φ = {N} and {N}\)",
+        [bif(B1, "phi from", label="walk", period="4"), bif(B1, "phi from", label="walk", period="5")]),
+    Pin(LC, rf"for φ ≤ {N} no new foot lands", [bif(B1, "phi to", label="failure")]),
+    Pin(LC, rf"Past φ = {N} the sweep's robot walks with period 2\*\* \({N}–{N}, stable\)",
+        [bif(B1, "phi to", label="walk", period="1"), bif(B1, "phi from", label="walk", period="2"),
+         bif(B1, "phi to", label="walk", period="2")]),
+    Pin(LC, rf"leading multiplier is still {N} at {N}: the two walks coexist", [bif_line(B1, "period 1 → 2", rf"{N}\+")]),
+    Pin(LC, rf"period doubling is at φ = {N}, with the period-2 walk stable from {N}:",
+        [walk("value", **PD), walk("stable on", 0, period="2")]),
+    Pin(LC, rf"gains flight at φ ≈ {N} \(a period-2 skip to {N}\), doubles again through {N} at {N} \(period 4 to {N}\), "
+        rf"returns to period 2 up to {N};",
+        [bif(B1, "phi from", label="skip", period="2"), bif(B1, "phi to", label="skip", period="2"),
+         bif_line(B1, "period 2 → 4", rf"{N}\+"), bif(B1, "phi to", label="skip", period="4"),
+         bif(B1, "phi to", 2, label="skip", period="2")]),
+    Pin(LC, rf"a period-1 skip at {N}–{N} loses its period with a complex pair near the unit circle \({N} ± {N}i at {N}:",
+        [bif(B1, "phi from", label="skip", period="1"), bif(B1, "phi to", label="skip", period="1"),
+         bif_line(B1, "period 1 → none", rf"{N}\+{N}i \(\|μ\| = [\d.]+, complex pair")]),
+    Pin(LC, rf"period-1 skips again at {N}–{N} and {N}–0\.35, with a period doubling between \({N} at {N}\)",
+        [bif(B1, "phi from", 1, label="skip", period="1"), bif(B1, "phi to", 1, label="skip", period="1"),
+         bif(B1, "phi from", 3, label="skip", period="1"),
+         bif_line(B1, "period 1 → none", rf"{N}\+0\.000i")]),
+    Pin(LC, rf"gets going only from φ ≈ {N}", [bif(B0, "phi from", label="skip", period="none")]),
+    Pin(LC, rf"and up to {N} the skip has no period", [bif(B0, "phi to", label="skip", period="none")]),
+    Pin(LC, rf"barely stable \(max \|μ\| {N}–{N}\): {N}–{N}, ending in a period doubling \({N} at {N}\), and {N}–{N}, "
+        rf"ending in a Neimark–Sacker bifurcation \({N} ± {N}i at {N}\)",
+        [bif(B0, r"max \|μ\| range", 1, 0, label="skip", period="1", stable="yes"),
+         bif(B0, r"max \|μ\| range", 0, 1, label="skip", period="1", stable="yes"),
+         bif(B0, "phi from", label="skip", period="1"), bif(B0, "phi to", label="skip", period="1"),
+         bif_line(B0, "period 1 → none", rf"{N}\+0\.000i"),
+         bif(B0, "phi from", 1, label="skip", period="1", stable="yes"),
+         bif(B0, "phi to", 1, label="skip", period="1", stable="yes"),
+         bif_line(B0, "period 1 → none", rf"{N}\+{N}i \(\|μ\| = [\d.]+, complex pair")]),
+    Pin(LC, rf"For φ ≥ {N} at s = 0 this sweep's map stops", [bif(B0, "phi from", 1, label="failure")]),
+    # Continuation of the Fig. 7(a) walk (results/continuation/summary.md).
+    Pin(LC, rf"the s = 0 skip's {N} s of wall time",
+        [Rx(CONT, rf"from the period-1 gait at phi = 0\.34 \(max\|μ\| [^)]*\);[^\n]*; {N} s$")]),
+    Pin(LC, rf"--curve-to 3\.9`: 3 min 55 s of CPU, {N} s of wall time",
+        [Rx(CONT, rf"from the period-1 gait at phi = 0\.15 \(max\|μ\| [^)]*\);[^\n]*; {N} s$")]),
+    Pin(LC, rf"stable from φ ≈ {N} up to its \*\*period doubling at φ = {N}\*\* \(multiplier {N}\)",
+        [walk("stable on", 0, branch="1"), walk("value", **PD),
+         Rx(CONT, rf"^\| 0 \| period doubling \| [\d.]+ \| {N}\+0\.0000i \|", WALK)]),
+    Pin(LC, rf"where the attractor sweep above goes from period 1 to period 2 between φ = {N} and {N}\.",
+        [Rx(BIF, rf"^- period 1 → 2 between phi = {N} and {N};", B1)]),
+    Pin(LC, rf"\(max \|μ\| up to {N}\) to φ = {N}\.",
+        [Col("results/continuation/phi-fig7a.parquet", "floquet_max", "branch", 0, "max"),
+         walk("values", 1, branch="0")]),
+    Pin(LC, rf"turns near φ = {N} \(flagged a fold, but with its critical multiplier at {N}:",
+        [walk("value", bifurcation="fold"), walk("critical multiplier", bifurcation="fold")]),
+    Pin(LC, rf"is stable from {N} to its end at {N}\. The period doubling",
+        [walk("stable on", 0, period="2"), walk("stable on", 1, period="2")]),
+    Pin(LC, rf"between {N} and {N} the period-1 and the period-2 walk are both stable",
+        [walk("stable on", 0, period="2"), walk("value", **PD)]),
+    Pin(LC, rf"jumps to period 2 at {N} instead of passing", [bif(B1, "phi from", label="walk", period="2")]),
+    Pin(LC, rf"The branches end \({N}, {N} and {N}, \"no continuation\"\)",
+        [walk("values", 1, branch="1"), walk("values", 1, branch="0"), walk("values", 1, branch="2")]),
+    # Through the changes of mode sequence (results/continuation/segments.md).
+    Pin(LC, rf"step frequency within {N} relative; the table there\)",
+        [Cell(SEG, "L = 0.8 against", "max rel. Δ step frequency", {}, agg="max")]),
+    Pin(LC, rf"past the corner at φ = {N} where the sweep is stable \(its {N} values from φ = 0\.19875 to 0\.207, "
+        rf"the step frequency within {N} relative\)",
+        [seg("0.8", "at", way=P2, segment="0"),
+         Cell(SEG, "L = 0.8 against", "sweep values compared", {"way": P2}, agg="sum"),
+         Cell(SEG, "L = 0.8 against", "max rel. Δ step frequency", {"way": P2}, agg="max")]),
+    Pin(LC, rf"turns back at φ = {N}, its multiplier at {N}\)",
+        [seg("0.8", "at", end="fold"), seg("0.8", "max\\|μ\\| before → after", part=0, end="fold")]),
+    Pin(LC, rf"L = 0\.8 going down at φ = {N}, where", [seg("0.8", "at", way="down", end="gait lost")]),
+    Pin(LC, rf"winds back and forth over φ = {N}–{N} through its {N} segments",
+        [seg("0.7", "at", agg="min", way=P2), seg("0.7", "at", agg="max", way=P2),
+         seg("0.7", "segment", agg="count", way=P2)]),
+    # The period-doubling curve in (φ, f_n) and its brute-force check.
+    Pin(LC, rf"from \({N}, {N} Hz\), where its continuation stops",
+        [walk("last point", 0, curve="1"), walk("last point", 1, curve="1")]),
+    Pin(LC, rf"diagram's doubling to \({N}, {N} Hz\)\.", [walk("last point", 0, curve="0"), walk("last point", 1, curve="0")]),
+    Pin(LC, rf"limit cycle solved \({N} s of wall time\)", [Rx(PLANE, rf"^- wall time: {N} s")]),
+    Pin(LC, rf"unresolved within a column \(f_n = {N} here\)",
+        [Cell(CONT, PLANE_CHECK, "fn", {"curve crosses at phi": "* (open)"})]),
+    Pin(LC, rf"\(f_n = {N} has two at φ = {N} and {N}, well before the band\)",
+        [Cell(CONT, PLANE_CHECK, "fn", {"agrees": "yes (2 period-2*"}),
+         Cell(CONT, PLANE_CHECK, "scan: stable period-2 walk", {"agrees": "yes (2 period-2*"}, part=0),
+         Cell(CONT, PLANE_CHECK, "scan: stable period-2 walk", {"agrees": "yes (2 period-2*"}, part=1)]),
+    Pin(LC, rf"where that band is known \({N}–{N}\)", [walk("stable on", 0, period="2"), walk("value", **PD)]),
+    # The s = 0 skip on the touch-and-go section.
+    Pin(LC, rf"stable only in two narrow windows, {N}–{N} and {N}–{N}, between a period doubling at {N} and "
+        rf"Neimark–Sacker points at {N}, {N}–{N}, {N} and {N} \(and one at {N} on the unstable branch\)",
+        [tag("stable on", 0, branch="1"), tag("stable on", 1, branch="1"),
+         tag("stable on", 0, branch="0"), tag("stable on", 1, branch="0"),
+         tag("value", branch="1", **PD),
+         tag("value", nth=1, branch="1", **NS), tag("value", nth=0, branch="1", **NS),
+         tag("value", nth=0, branch="0", **NS), tag("value", nth=1, branch="0", **NS),
+         tag("value", nth=2, branch="0", **NS), tag("value", nth=2, branch="1", **NS)]),
+]
+
+
+
+def check(pin: Pin, doc_text: str) -> str | None:
+    """None if the pin holds, else what is wrong."""
+    q = only(pin.phrase, doc_text, pin.doc)
+    if isinstance(q, str):
+        return q
+    results: list[str] = []
+    for src in pin.sources:
+        got = src.values()
+        if isinstance(got, str):
+            return got
+        results += got
+    if len(results) != len(q.groups()):
+        return f"{pin.doc}: “{q.group(0)}” quotes {len(q.groups())} numbers, its sources give {len(results)}"
+    bad = [(a, b) for a, b in zip(q.groups(), results, strict=True) if not agrees(a, b)]
+    if bad:
+        said = ", ".join(f"{a} (the result: {b})" for a, b in bad)
+        files = ", ".join(sorted({src.source for src in pin.sources}))
+        return f"{pin.doc}: {said} in “{q.group(0)}”, from {files}"
+    return None
+
+
+def drifted(pin: Pin, doc_text: str) -> str:
+    """The page with the pin's first quoted number moved by one in its last
+    digit (or its text changed): what a page that went stale looks like."""
+    m = only(pin.phrase, doc_text, pin.doc)
+    assert not isinstance(m, str), m
+    quoted = m.group(1)
+    digits = [i for i, c in enumerate(quoted) if c.isdigit()]
+    if value(quoted) is None or not digits:
+        moved = quoted + "x"
+    else:
+        i = digits[-1] if "e" not in quoted.lower() else [d for d in digits if d < quoted.lower().index("e")][-1]
+        moved = quoted[:i] + str((int(quoted[i]) + 1) % 10) + quoted[i + 1 :]
+    return doc_text[: m.start(1)] + moved + doc_text[m.end(1) :]
+
+
+def main() -> None:
+    if len(sys.argv) != 1:
+        sys.exit(__doc__)
+    texts = {p.doc: page(p.doc) for p in PINS}
+    bad = [e for e in (check(p, texts[p.doc]) for p in PINS) if e is not None]
+    # Each pin must see a drift: a page with its first number moved fails it.
+    bad += [
+        f"{p.doc}: the pin of {p.phrase.replace(N, 'N')!r} does not fail when its number drifts"
+        for p in PINS
+        if not bad and check(p, drifted(p, texts[p.doc])) is None
+    ]
+    if bad:
+        sys.exit("check_doc_numbers: quoted numbers that are not the results' now:\n  " + "\n  ".join(bad))
+    quoted = sum(re.compile(p.phrase).groups for p in PINS)
+    print(
+        f"check_doc_numbers: {quoted} numbers in {len(PINS)} phrases of "
+        f"{', '.join(sorted(texts))} agree with their results files"
+    )
+
+
+if __name__ == "__main__":
+    main()
