@@ -66,7 +66,7 @@ FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
 # rtw's default model as a variant file (configs/variants/): the one the gallery's walk is run
 # with, and the one the variant study's selection rule picks (results/variants/summary.json
 # "chosen"; it writes this name as "default" beside it, and
-# crates/rtw-scan/tests/default_variant.rs fails unless the two agree and the file gives
+# crates/rtw-scan/tests/it/default_variant.rs fails unless the two agree and the file gives
 # rtw-model's Options::default()).
 DEFAULT_VARIANT = "prestress-0.8875-settled-mu0.8-slack-steps"
 # Trace sampling for the gait gallery (events are recorded as well).

@@ -1,5 +1,4 @@
 //! Helpers shared by the CLI tests: running the binary, reading rows back.
-#![allow(dead_code)]
 
 use arrow::array::RecordBatch;
 use arrow::util::display::{ArrayFormatter, FormatOptions};

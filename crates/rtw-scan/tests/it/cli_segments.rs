@@ -1,9 +1,8 @@
 //! `rtw-scan continuation --through N`: the walk's branch continued through
 //! the changes of its mode sequence, each change named, through the binary.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use serde_json::Value;
 use std::path::Path;
 

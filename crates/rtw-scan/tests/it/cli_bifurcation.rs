@@ -1,9 +1,8 @@
 //! `rtw-scan bifurcation` through the binary, with the real step map: a tiny
 //! φ sweep at the Fig. 7(a) point, its two Parquet files, and bad flags.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 
 /// Columns of the per-value and per-step files (`bifurcation::POINT_COLUMNS`,
 /// `STEP_COLUMNS`), spelled out so a renamed column fails here.

@@ -1,9 +1,8 @@
 //! Sampling designs through the binary (shards, merge, resume) and the
 //! `sensitivity` command, with the fake simulator.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 
 fn designed(sampling: &str, samples: u64) -> String {
     paper_like(samples, 3).replace(

@@ -5,9 +5,8 @@
 //! SIGTERM and SIGHUP like Ctrl-C, `summary --json`, exit codes in `--help`.
 //! Each test failed before its fix.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use std::path::Path;
 use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};

@@ -2,9 +2,8 @@
 //! (`robustness.step_down`, `robustness.gsn`; docs/robustness.md), with the
 //! real simulator.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 
 const FIG7A: [&str; 13] = [
     "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta",

@@ -6,9 +6,8 @@
 //! Parquet file and its summary; the same profile on any thread count; bad
 //! input named with its range.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use serde_json::Value;
 
 const DESIGN: [&str; 10] = [

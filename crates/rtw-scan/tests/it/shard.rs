@@ -4,10 +4,9 @@
 //! or shard counts, overlapping or missing ids) are refused by `merge` with a
 //! message naming the shard, before anything is written.
 
-mod common;
 
 use arrow::array::{Array, ArrayRef, Int64Array, RecordBatch};
-use common::*;
+use crate::common::*;
 use rtw_scan::io as output;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

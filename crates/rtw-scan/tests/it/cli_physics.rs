@@ -3,11 +3,10 @@
 //! scan, a trace file), not what the physics says. The scan machinery itself
 //! is tested with the fake simulator in `tests/cli.rs`.
 
-mod common;
 
 use arrow::array::AsArray;
 use arrow::datatypes::Float64Type;
-use common::*;
+use crate::common::*;
 
 const FIG7A: [&str; 13] = [
     "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta",

@@ -3,9 +3,8 @@
 //! bad input, the `simulate`, `cluster` and `summary` commands. They need no
 //! physics; `tests/cli_physics.rs` runs the real simulator.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use std::path::Path;
 use std::time::{Duration, Instant};
 

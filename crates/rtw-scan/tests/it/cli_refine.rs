@@ -1,10 +1,9 @@
 //! `rtw-scan refine` through the binary, with the fake simulator: rounds,
 //! determinism, resume, shards, and where the new samples fall.
 
-mod common;
 
 use arrow::array::{Array, Float64Array, Int64Array};
-use common::*;
+use crate::common::*;
 use std::path::Path;
 
 /// A slice in (alpha, phi) where the fake simulator's labels are: stall for

@@ -5,9 +5,8 @@
 //! files with a stated size limit; and a scan that cannot fit on its disk is
 //! refused before it starts. Each test failed before its fix.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
