@@ -1,8 +1,7 @@
 //! End-to-end tests of the scan machinery through the binary, with the fake
 //! simulator (hidden `--fake-sim MS`): determinism, interruption and resume,
 //! bad input, the `simulate`, `cluster` and `summary` commands. They need no
-//! physics; `tests/cli_physics.rs` runs the real simulator.
-
+//! physics; `cli_physics.rs` runs the real simulator.
 
 use crate::common::*;
 use std::path::Path;

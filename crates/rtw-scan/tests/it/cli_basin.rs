@@ -4,7 +4,6 @@
 //! columns, the same rows on any thread count, bad axes named with their
 //! range, and the refusal to write over a file it did not make.
 
-
 use crate::common::*;
 
 /// The slice file's columns, spelled out so a renamed column fails here.

@@ -1,7 +1,6 @@
 //! `rtw-scan bifurcation` through the binary, with the real step map: a tiny
 //! φ sweep at the Fig. 7(a) point, its two Parquet files, and bad flags.
 
-
 use crate::common::*;
 
 /// Columns of the per-value and per-step files (`bifurcation::POINT_COLUMNS`,

@@ -3,10 +3,9 @@
 //! scan, a trace file), not what the physics says. The scan machinery itself
 //! is tested with the fake simulator in `tests/cli.rs`.
 
-
+use crate::common::*;
 use arrow::array::AsArray;
 use arrow::datatypes::Float64Type;
-use crate::common::*;
 
 const FIG7A: [&str; 13] = [
     "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta",

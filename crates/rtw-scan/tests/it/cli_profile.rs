@@ -6,7 +6,6 @@
 //! Parquet file and its summary; the same profile on any thread count; bad
 //! input named with its range.
 
-
 use crate::common::*;
 use serde_json::Value;
 

@@ -1,9 +1,8 @@
 //! `rtw-scan refine` through the binary, with the fake simulator: rounds,
 //! determinism, resume, shards, and where the new samples fall.
 
-
-use arrow::array::{Array, Float64Array, Int64Array};
 use crate::common::*;
+use arrow::array::{Array, Float64Array, Int64Array};
 use std::path::Path;
 
 /// A slice in (alpha, phi) where the fake simulator's labels are: stall for

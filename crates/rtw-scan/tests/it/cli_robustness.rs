@@ -2,7 +2,6 @@
 //! (`robustness.step_down`, `robustness.gsn`; docs/robustness.md), with the
 //! real simulator.
 
-
 use crate::common::*;
 
 const FIG7A: [&str; 13] = [

@@ -1,7 +1,6 @@
 //! `rtw-scan simulate` on a rough slope and with the Monte Carlo steps to
 //! fall (docs/robustness.md), with the real simulator.
 
-
 use crate::common::*;
 
 const FIG7A: [&str; 13] = SIMULATE_FIG7A;

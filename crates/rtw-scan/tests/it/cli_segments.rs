@@ -1,7 +1,6 @@
 //! `rtw-scan continuation --through N`: the walk's branch continued through
 //! the changes of its mode sequence, each change named, through the binary.
 
-
 use crate::common::*;
 use serde_json::Value;
 use std::path::Path;

@@ -1,7 +1,6 @@
 //! Sampling designs through the binary (shards, merge, resume) and the
 //! `sensitivity` command, with the fake simulator.
 
-
 use crate::common::*;
 
 fn designed(sampling: &str, samples: u64) -> String {

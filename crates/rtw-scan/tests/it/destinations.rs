@@ -5,7 +5,6 @@
 //! files with a stated size limit; and a scan that cannot fit on its disk is
 //! refused before it starts. Each test failed before its fix.
 
-
 use crate::common::*;
 use std::path::Path;
 use std::time::{Duration, Instant};

@@ -5,7 +5,6 @@
 //! SIGTERM and SIGHUP like Ctrl-C, `summary --json`, exit codes in `--help`.
 //! Each test failed before its fix.
 
-
 use crate::common::*;
 use std::path::Path;
 use std::process::{Child, Stdio};

@@ -4,9 +4,8 @@
 //! or shard counts, overlapping or missing ids) are refused by `merge` with a
 //! message naming the shard, before anything is written.
 
-
-use arrow::array::{Array, ArrayRef, Int64Array, RecordBatch};
 use crate::common::*;
+use arrow::array::{Array, ArrayRef, Int64Array, RecordBatch};
 use rtw_scan::io as output;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
