@@ -14,18 +14,19 @@ mod options;
 mod studies;
 mod types;
 
-use anyhow::anyhow;
 use arrow_array::RecordBatch;
 use arrow_pyarrow::{IntoPyArrow, Table};
 use design::DesignKeys;
-use options::PyOverrides;
+use options::{PyConfig, PyOverrides};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt, PyTuple};
 use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
-use rtw_scan::config::layers::{load_layered, parse_layered, simulation_options};
+use rtw_scan::config::layers::{
+    load_layered, parse_layered, simulation_options, simulation_options_of,
+};
 use rtw_scan::config::params::checked_params;
 use rtw_scan::io::{TraceNames, parse_size};
 use rtw_scan::scan::progress::Counter;
@@ -64,15 +65,29 @@ fn value_error(e: anyhow::Error) -> PyErr {
 /// the `options` dict), checked as `rtw-scan simulate` checks them.
 fn inputs(
     values: [f64; 6],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(Params, Options)> {
     let params = checked_params(values, "").map_err(value_error)?;
+    Ok((params, model(config.as_ref(), variant, options)?))
+}
+
+/// The model's options: a config's `[simulation]` table (a path, TOML text
+/// or a dict: [`PyConfig`]), then a variant file, then `options`.
+fn model(
+    config: Option<&Bound<'_, PyAny>>,
+    variant: Option<PathBuf>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Options> {
+    let config = PyConfig::new(config)?;
     let overrides = PyOverrides::new(options)?;
-    let options = simulation_options(config.as_deref(), variant.as_deref(), overrides.layer())
-        .map_err(value_error)?;
-    Ok((params, options))
+    simulation_options_of(
+        config.as_ref().map(PyConfig::source),
+        variant.as_deref(),
+        overrides.layer(),
+    )
+    .map_err(value_error)
 }
 
 /// A batch as a `pyarrow.Table`, through the C data interface.
@@ -165,7 +180,7 @@ fn report(progress: Option<&Bound<'_, PyAny>>, counter: &Counter) -> PyResult<()
 fn simulate(
     py: Python<'_>,
     values: [f64; 6],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<Outcome> {
@@ -182,7 +197,7 @@ fn simulate(
 fn trace<'py>(
     py: Python<'py>,
     values: [f64; 6],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'py, PyDict>>,
     limit: String,
@@ -204,12 +219,11 @@ fn trace<'py>(
 /// or one raised by `progress`) stops the scan, waits for the samples in
 /// flight, and raises it. `progress` is called a last time once every row is in.
 #[pyfunction]
-#[pyo3(signature = (path, text, variant, options, threads, progress=None, sampling=None, samples=None, seed=None))]
+#[pyo3(signature = (config, variant, options, threads, progress=None, sampling=None, samples=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 fn scan<'py>(
     py: Python<'py>,
-    path: Option<PathBuf>,
-    text: Option<String>,
+    config: Bound<'py, PyAny>,
     variant: Option<PathBuf>,
     options: Option<Bound<'py, PyDict>>,
     threads: Option<Bound<'py, PyAny>>,
@@ -234,10 +248,9 @@ fn scan<'py>(
         samples,
         seed,
     };
-    let cfg = match (path, text) {
-        (Some(p), None) => load_layered(&p, variant.as_deref(), overrides.layer()),
-        (None, Some(t)) => parse_layered(&t, variant.as_deref(), overrides.layer()),
-        _ => Err(anyhow!("give a config path or TOML text")),
+    let cfg = match PyConfig::new(Some(&config))?.expect("given") {
+        PyConfig::File(p) => load_layered(&p, variant.as_deref(), overrides.layer()),
+        PyConfig::Text(t) => parse_layered(&t, variant.as_deref(), overrides.layer()),
     }
     .and_then(|cfg| design.apply(cfg))
     .map_err(value_error)?;
@@ -277,7 +290,7 @@ fn scan<'py>(
 fn limit_cycle(
     py: Python<'_>,
     values: [f64; 6],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'_, PyDict>>,
     settle_steps: usize,
@@ -304,7 +317,7 @@ fn limit_cycle(
 #[pyo3(signature = (values, config, variant, options))]
 fn modes(
     values: [f64; 6],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<Modes> {

@@ -5,7 +5,7 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use rtw_scan::config::layers::Overrides;
+use rtw_scan::config::layers::{ConfigSource, Overrides};
 
 /// The options of one call: dotted keys (`{"contact.mu": 0.8}`) and nested
 /// dicts (`{"contact": {"mu": 0.8}}`) alike, flattened to their dotted leaf
@@ -99,4 +99,51 @@ fn to_toml(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         "{key}: {} is invalid: must be a bool, int, float, str, list or dict (an option's value)",
         v.repr()?
     )))
+}
+
+/// A config as Python gives it (`rtw.Config`): a path (`str` or
+/// `os.PathLike`), TOML text (a `str` holding a newline or `=`, which no
+/// file name a user writes does), or a dict of its tables, read as the TOML
+/// text of those tables, so a dict and the file holding it give the same
+/// config.
+pub(crate) enum PyConfig {
+    File(std::path::PathBuf),
+    Text(String),
+}
+
+impl PyConfig {
+    pub(crate) fn new(config: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Self>> {
+        let Some(c) = config else {
+            return Ok(None);
+        };
+        if c.cast::<PyDict>().is_ok() {
+            let toml::Value::Table(table) = to_toml("config", c)? else {
+                unreachable!("a dict is a table");
+            };
+            let text = toml::to_string(&table)
+                .map_err(|e| PyValueError::new_err(format!("config: {e}")))?;
+            return Ok(Some(Self::Text(text)));
+        }
+        if let Ok(s) = c.cast::<PyString>() {
+            let s = s.to_str()?;
+            if s.contains('\n') || s.contains('=') {
+                return Ok(Some(Self::Text(s.to_string())));
+            }
+        }
+        match c.extract::<std::path::PathBuf>() {
+            Ok(path) => Ok(Some(Self::File(path))),
+            Err(_) => Err(PyValueError::new_err(format!(
+                "config: {} is invalid: must be a path, TOML text or a dict of the config's tables",
+                c.repr()?
+            ))),
+        }
+    }
+
+    /// The source the config layer reads.
+    pub(crate) fn source(&self) -> ConfigSource<'_> {
+        match self {
+            Self::File(p) => ConfigSource::File(p),
+            Self::Text(t) => ConfigSource::Text(t),
+        }
+    }
 }

@@ -5,7 +5,7 @@
 
 use crate::options::PyOverrides;
 use crate::types::{DesignSearch, Profile};
-use crate::{digits, inputs, interruptible, report, study_error, to_table, value_error};
+use crate::{digits, inputs, interruptible, model, report, study_error, to_table, value_error};
 use arrow_pyarrow::IntoPyArrow;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -29,7 +29,7 @@ use std::sync::atomic::AtomicU64;
 pub(crate) fn basin<'py>(
     py: Python<'py>,
     values: [f64; 6],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'_, PyDict>>,
     x: &str,
@@ -66,7 +66,7 @@ pub(crate) fn basin<'py>(
 pub(crate) fn profile<'py>(
     py: Python<'py>,
     design: [f64; 5],
-    config: Option<PathBuf>,
+    config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'_, PyDict>>,
     phi_from: f64,
@@ -86,9 +86,7 @@ pub(crate) fn profile<'py>(
         &ProfileNames::PYTHON,
     )
     .map_err(value_error)?;
-    let overrides = PyOverrides::new(options.as_ref())?;
-    let options = simulation_options(config.as_deref(), variant.as_deref(), overrides.layer())
-        .map_err(value_error)?;
+    let options = model(config.as_ref(), variant, options.as_ref())?;
     let done = AtomicU64::new(0);
     let p = interruptible(
         py,

@@ -73,8 +73,10 @@ __all__ = [
     "wilson",
 ]
 
-Config = str | os.PathLike[str]
-"""A config: a path (``str`` or ``os.PathLike``); for :func:`scan`, also TOML text."""
+Config = str | os.PathLike[str] | Mapping[str, Any]
+"""A config: a path (``str`` or ``os.PathLike``), TOML text (a ``str``
+holding a newline or ``=``), or a dict of its tables (``{"simulation":
+{"contact": {"mu": 0.8}}}``), as a file would hold them. A variant is a path."""
 
 
 def __getattr__(name: str) -> Any:
@@ -179,7 +181,8 @@ def simulate(
         design: a :class:`Design`; or give its six inputs ``length``,
             ``rho``, ``alpha``, ``fn``, ``zeta``, ``phi`` as keyword
             arguments (or, in that order, by position).
-        config: take the ``[simulation]`` options of this config file.
+        config: take the ``[simulation]`` options of this config: a file,
+            TOML text, or a dict of its tables (:data:`Config`).
         variant: then layer this variant file's (configs/variants/*.toml).
         options: then these options (docs/model.md §9), by dotted key
             (``{"contact.mu": 0.8}``) or nested (``{"contact": {"mu": 0.8}}``);
@@ -198,7 +201,7 @@ def simulate(
         TypeError: an input is missing or given twice.
     """
     values = _design("simulate", design, more)
-    return _rtw.simulate(values, _path(config), _path(variant), _options(options, more))
+    return _rtw.simulate(values, config, _path(variant), _options(options, more))
 
 
 def trace(
@@ -240,7 +243,7 @@ def trace(
     values = _design("trace", design, more)
     if dt is not None:
         more["trace_dt"] = dt
-    return _rtw.trace(values, _path(config), _path(variant), _options(options, more), str(limit))
+    return _rtw.trace(values, config, _path(variant), _options(options, more), str(limit))
 
 
 class _Bar:
@@ -360,8 +363,9 @@ def scan(
     the samples in flight and raises; nothing is kept.
 
     Args:
-        config: a config file path, or TOML text (a ``str`` holding a newline
-            or ``=``), as ``rtw-scan run`` reads.
+        config: a config file path, TOML text (a ``str`` holding a newline
+            or ``=``), or a dict of its tables (:data:`Config`), as
+            ``rtw-scan run`` reads.
         variant: layer this variant file's ``[simulation]`` keys over the config's.
         options: then these options (``{"contact.mu": 0.8}``), as ``--set``
             and as for :func:`simulate`.
@@ -395,12 +399,6 @@ def scan(
         MemoryError: the rows do not fit in memory.
         KeyboardInterrupt: interrupted.
     """
-    path: str | None = None
-    text: str | None = None
-    if isinstance(config, str) and ("\n" in config or "=" in config):
-        text = config
-    else:
-        path = os.fspath(config)
     report = _reporter(progress, "rtw.scan", "samples")
     if set is not None:
         warnings.warn(
@@ -415,7 +413,7 @@ def scan(
         if value is not None and (isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**63):
             low = 1 if key == "samples" else 0
             raise ValueError(f"{key}: {value!r} is invalid: must be an integer >= {low} and below 2^63")
-    return _rtw.scan(path, text, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
+    return _rtw.scan(config, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
 
 
 def limit_cycle(
@@ -448,7 +446,7 @@ def limit_cycle(
     if isinstance(settle_steps, bool) or not isinstance(settle_steps, int) or settle_steps < 1:
         raise ValueError(f"settle_steps: {settle_steps!r} is invalid: must be an integer >= 1")
     return _rtw.limit_cycle(
-        values, _path(config), _path(variant), _options(options, more), settle_steps
+        values, config, _path(variant), _options(options, more), settle_steps
     )
 
 
@@ -497,7 +495,7 @@ def basin(
     values = _design("basin", design, more)
     report = _reporter(progress, "rtw.basin", "points")
     return _rtw.basin(
-        values, _path(config), _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
+        values, config, _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
     )
 
 
@@ -554,7 +552,7 @@ def profile(
     more.pop("phi", None)
     return _rtw.profile(
         values[:5],
-        _path(config),
+        config,
         _path(variant),
         _options(options, more),
         float(phi_from),
@@ -584,7 +582,7 @@ def modal(
         ValueError: an input or option is invalid.
     """
     values = _design("modal", design, more)
-    return _rtw.modes(values, _path(config), _path(variant), _options(options, more))
+    return _rtw.modes(values, config, _path(variant), _options(options, more))
 
 
 def label(

@@ -16,6 +16,9 @@ from typing import Any, Callable, Mapping
 
 import pyarrow
 
+# A config: a path, TOML text (a str holding a newline or "="), or a dict of its tables.
+ConfigArg = str | os.PathLike[str] | Mapping[str, Any] | None
+
 __version__: str
 LABELS: tuple[str, ...]
 STABLE_LABELS: tuple[str, ...]
@@ -117,20 +120,19 @@ class DesignSearch:
 
 def simulate(
     values: list[float],
-    config: str | None,
+    config: ConfigArg,
     variant: str | None,
     options: Mapping[str, Any] | None,
 ) -> Outcome: ...
 def trace(
     values: list[float],
-    config: str | None,
+    config: ConfigArg,
     variant: str | None,
     options: Mapping[str, Any] | None,
     limit: str,
 ) -> pyarrow.Table: ...
 def scan(
-    path: str | None,
-    text: str | None,
+    config: str | os.PathLike[str] | Mapping[str, Any],
     variant: str | None,
     options: Mapping[str, Any] | None,
     threads: int | None,
@@ -141,14 +143,14 @@ def scan(
 ) -> pyarrow.Table: ...
 def limit_cycle(
     values: list[float],
-    config: str | None,
+    config: ConfigArg,
     variant: str | None,
     options: Mapping[str, Any] | None,
     settle_steps: int,
 ) -> LimitCycle: ...
 def basin(
     values: list[float],
-    config: str | None,
+    config: ConfigArg,
     variant: str | None,
     options: Mapping[str, Any] | None,
     x: str,
@@ -160,7 +162,7 @@ def basin(
 ) -> pyarrow.Table: ...
 def profile(
     design: list[float],
-    config: str | None,
+    config: ConfigArg,
     variant: str | None,
     options: Mapping[str, Any] | None,
     phi_from: float,
@@ -180,7 +182,7 @@ def design(
 ) -> DesignSearch: ...
 def modes(
     values: list[float],
-    config: str | None,
+    config: ConfigArg,
     variant: str | None,
     options: Mapping[str, Any] | None,
 ) -> Modes: ...

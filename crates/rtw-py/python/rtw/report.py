@@ -195,7 +195,7 @@ def _representatives(rows: dict[str, list], clusters: dict[int, int] | None, cen
     return chosen
 
 
-def _gait(row: dict[str, Any], config_path: str, options: dict) -> dict[str, Any]:
+def _gait(row: dict[str, Any], config_text: str, options: dict) -> dict[str, Any]:
     """One sample's gait as the page draws it: per frame, world-frame segments
     of the rods and strings, the feet on the ground with their contact mode,
     the contact state and the view's centre, from rtw.trace and rtw.draw."""
@@ -205,7 +205,7 @@ def _gait(row: dict[str, Any], config_path: str, options: dict) -> dict[str, Any
     from .draw import SPOKES, STATE_NAMES, Geometry, Trace, check_geometry, rod_points, slope_axes, stance_tips
 
     inputs = [row[c] for c in ("length", "rho", "alpha", "fn", "zeta", "phi")]
-    table = run_trace(*inputs, config=config_path, dt=FRAME_DT)
+    table = run_trace(*inputs, config=config_text, dt=FRAME_DT)
     ran = json.loads(table.schema.metadata[b"rtw.outcome"])
     note = None
     if ran["outcome"] != row["outcome"]:
@@ -485,18 +485,16 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     picks = _representatives(rows, assign, centres, per_outcome, samples)
     gaits = []
     options = config.get("simulation", {})
-    with tempfile.TemporaryDirectory(prefix="rtw-report-") as tmp:
-        cfg = Path(tmp) / "config.toml"
-        cfg.write_text(config_text, encoding="utf-8")
-        for k, (i, why) in enumerate(picks):
-            if tell:
-                tell(k, len(picks))
-            row = {c: rows[c][i] for c in table.column_names}
-            g = _gait(row, str(cfg), options)
-            g["why"] = why
-            if not detail:
-                g["row"] = _clean(row)
-            gaits.append(g)
+    # Each gait under the scan's own stored config (its text, as rtw.trace takes it).
+    for k, (i, why) in enumerate(picks):
+        if tell:
+            tell(k, len(picks))
+        row = {c: rows[c][i] for c in table.column_names}
+        g = _gait(row, config_text, options)
+        g["why"] = why
+        if not detail:
+            g["row"] = _clean(row)
+        gaits.append(g)
     if tell:
         tell(len(picks), len(picks))
     data["gaits"] = gaits

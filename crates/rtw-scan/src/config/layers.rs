@@ -151,8 +151,34 @@ pub fn simulation_options(
     variant: Option<&Path>,
     sets: Overrides<'_>,
 ) -> Result<Options> {
-    let mut table = match config_file {
-        Some(path) => read_split(path)?.1,
+    simulation_options_of(config_file.map(ConfigSource::File), variant, sets)
+}
+
+/// Where a config comes from: a file, or its TOML text (Python's `rtw`
+/// takes a config's text, or a dict of its tables, where the command line
+/// takes a file).
+#[derive(Clone, Copy, Debug)]
+pub enum ConfigSource<'a> {
+    /// A config file.
+    File(&'a Path),
+    /// A config's TOML text.
+    Text(&'a str),
+}
+
+/// [`simulation_options`] of a config given as a file or as text. Errors
+/// name the file (or "config text") and the key.
+pub fn simulation_options_of(
+    config: Option<ConfigSource<'_>>,
+    variant: Option<&Path>,
+    sets: Overrides<'_>,
+) -> Result<Options> {
+    let mut table = match config {
+        Some(ConfigSource::File(path)) => read_split(path)?.1,
+        Some(ConfigSource::Text(text)) => {
+            split_simulation(parse_table(text).context("config text")?)
+                .context("config text")?
+                .1
+        }
         None => toml::Table::new(),
     };
     layer_variant_and_sets(&mut table, variant, sets)?;
