@@ -276,9 +276,14 @@ mod tests {
                 !a.is_hide_set() && !["help", "version"].contains(&a.get_id().as_str())
             });
             for arg in shown {
+                // A positional as the help shows it: its value name (an id
+                // may differ from it, to keep clear of a flag's).
                 let name = match arg.get_long() {
                     Some(long) => format!("`--{long}"),
-                    None => format!("`{}", arg.get_id().as_str().to_uppercase()),
+                    None => match arg.get_value_names().and_then(|v| v.first()) {
+                        Some(value) => format!("`{value}"),
+                        None => format!("`{}", arg.get_id().as_str().to_uppercase()),
+                    },
                 };
                 if !section.contains(&name) {
                     missing.push(format!("{}: {name}`", sub.get_name()));
