@@ -11,7 +11,7 @@ phrase may wrap anywhere), and where each number comes from, in order: the
 groups of a regular expression's one match in a results file (`Rx`), a cell
 of a Markdown table in a section of one (`Cell`: picked by its column and the
 row's other cells, or the min, max, sum or count over rows), or the min or
-max (or median) of a Parquet column (`Col`). The phrase must match exactly once (a page
+max, median or count of a Parquet column (`Col`). The phrase must match exactly once (a page
 that rewords it must update its pin), and each quoted number must be the
 result's to the precision the page prints it with (`4.00` pins 4.0000 to
 ±0.005; `0.2119` pins 0.21185; thin or plain spaces between thousands are
@@ -30,7 +30,7 @@ import fnmatch
 import re
 import statistics
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -88,20 +88,25 @@ class Cell:
 
 @dataclass
 class Col:
-    """`agg` (min, max, median) of a Parquet column over the rows whose `key`
-    is `equals`."""
+    """`agg` (min, max, median, count) of a Parquet column over the rows whose
+    `key` is `equals` (and each column of `also` its value)."""
 
     source: str
     column: str
     key: str
     equals: object
     agg: str
+    also: dict[str, object] = field(default_factory=dict)
 
     def values(self) -> tuple[str, ...]:
         import pyarrow.parquet as pq
 
-        t = pq.read_table(ROOT / self.source, columns=[self.key, self.column]).to_pylist()
-        xs = [r[self.column] for r in t if r[self.key] == self.equals and r[self.column] is not None]
+        names = list(dict.fromkeys([self.key, self.column, *self.also]))
+        t = pq.read_table(ROOT / self.source, columns=names).to_pylist()
+        where = {self.key: self.equals, **self.also}
+        xs = [r[self.column] for r in t if all(r[k] == v for k, v in where.items()) and r[self.column] is not None]
+        if self.agg == "count":
+            return (str(len(xs)),)
         return (repr({"min": min, "max": max, "median": statistics.median}[self.agg](xs)),)
 
 
@@ -448,10 +453,11 @@ PINS: list[Pin] = [
     Pin(ROB, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[85, 1174\]",
         [Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "Fig. 7(a)"})]),
     # The MFPT over the map (results/robustness/map/samples.parquet and the summary).
-    Pin(ROB, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and 25 steps, closed intervals, the Monte Carlo's {N} and 25 "
+    Pin(ROB, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and {N} steps, closed intervals, the Monte Carlo's {N} and {N} "
         rf"beside them\)\. {N} of the {N} stable gaits have no fall seen, 13 of them walks at f_n 3\.75–4\.25 Hz, above "
         rf"Fig\. 7\(a\)'s 3\.27 Hz; only {N} have a closed interval",
-        [Col(MAPS, "mfpt", "phi", 0.08, "min"), Col(MAPS, "steps_to_fall", "phi", 0.08, "min"),
+        [Col(MAPS, "mfpt", "phi", 0.08, "min"), Col(MAPS, "mfpt", "phi", 0.08, "min", {"fn": 4.25}),
+         Col(MAPS, "steps_to_fall", "phi", 0.08, "min"), Col(MAPS, "steps_to_fall", "phi", 0.08, "min", {"fn": 4.25}),
          Rx(RS, rf"^The splitting saw no fall for {N} stable gaits", MAP),
          Rx(RS, rf"^## The \(φ, f_n\) map [^:]*: {N} stable"),
          Rx(MCOST, rf"interval closed {N},")]),
@@ -477,7 +483,10 @@ PINS: list[Pin] = [
          Rx(BASIN, rf"points: returns {N}, survives 0, fails {N}, infeasible {N}$")]),
     Pin(ROB, rf"come back within 1e-3 in 23 to {N} steps \(median {N}; the fixed point itself in {N}\)",
         [Col(BASIN_ROWS, "steps", "outcome", "returns", agg) for agg in ("max", "median", "min")]),
+    Pin(ROB, rf"Every failure is a `collapse` \(`rod_down`\) in the first step \({N}\) or the second \({N}\)",
+        [Col(BASIN_ROWS, "steps", "outcome", "fails", "count", {"steps": k, "failure": "rod_down"}) for k in (0, 1)]),
     Pin(ROB, rf"its largest multiplier, {N}, predicts", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
+    Pin(ROB, rf"Fig\. 7\(a\) \(a period-1 walk, largest Floquet multiplier {N}\)", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
     Pin(ROB, rf"\(41 × 41 = {N} points, ≤ 60 steps\) took {N} s on the 2 worker threads of this shared machine \(load "
         rf"average about 19 at the time; {N} ms of wall-clock per point",
         [Rx(BASIN, rf"^{N} points:"), Rx(BASIN, rf"^{N} s \({N} ms per point")]),
