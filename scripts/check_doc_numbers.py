@@ -11,7 +11,7 @@ phrase may wrap anywhere), and where each number comes from, in order: the
 groups of a regular expression's one match in a results file (`Rx`), a cell
 of a Markdown table in a section of one (`Cell`: picked by its column and the
 row's other cells, or the min, max, sum or count over rows), or the min or
-max of a Parquet column (`Col`). The phrase must match exactly once (a page
+max, median or count of a Parquet column (`Col`). The phrase must match exactly once (a page
 that rewords it must update its pin), and each quoted number must be the
 result's to the precision the page prints it with (`4.00` pins 4.0000 to
 ±0.005; `0.2119` pins 0.21185; thin or plain spaces between thousands are
@@ -28,8 +28,9 @@ from __future__ import annotations
 
 import fnmatch
 import re
+import statistics
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -87,20 +88,26 @@ class Cell:
 
 @dataclass
 class Col:
-    """`agg` of a Parquet column over the rows whose `key` is `equals`."""
+    """`agg` (min, max, median, count) of a Parquet column over the rows whose
+    `key` is `equals` (and each column of `also` its value)."""
 
     source: str
     column: str
     key: str
     equals: object
     agg: str
+    also: dict[str, object] = field(default_factory=dict)
 
     def values(self) -> tuple[str, ...]:
         import pyarrow.parquet as pq
 
-        t = pq.read_table(ROOT / self.source, columns=[self.key, self.column]).to_pylist()
-        xs = [r[self.column] for r in t if r[self.key] == self.equals and r[self.column] is not None]
-        return (repr({"min": min, "max": max}[self.agg](xs)),)
+        names = list(dict.fromkeys([self.key, self.column, *self.also]))
+        t = pq.read_table(ROOT / self.source, columns=names).to_pylist()
+        where = {self.key: self.equals, **self.also}
+        xs = [r[self.column] for r in t if all(r[k] == v for k, v in where.items()) and r[self.column] is not None]
+        if self.agg == "count":
+            return (str(len(xs)),)
+        return (repr({"min": min, "max": max, "median": statistics.median}[self.agg](xs)),)
 
 
 @dataclass
@@ -195,12 +202,31 @@ SEG = "results/continuation/segments.md"
 PLANE = "results/continuation/plane/summary.md"
 PERF = "docs/performance.md"
 LC = "docs/limit-cycles.md"
+ROB = "docs/robustness.md"
+REF = "docs/refine.md"
+README = "README.md"
+RS = "results/robustness/summary.md"
+MCOST = "results/robustness/mfpt_cost-robustness-map.txt"
+BASIN = "results/robustness/basin_fig7a.txt"
+ATLAS = "results/design/atlas.md"
+RB = "results/refine/summary.md"
+MAPS = "results/robustness/map/samples.parquet"
+BASIN_ROWS = "results/robustness/basin_fig7a.parquet"
 # Sections of the results files.
 B1 = "Default model"
 B0 = "s = 0:"
 WALK = "The Fig. 7(a) walk in φ at the default model"
 TAG = "The s = 0 skip on the touch-and-go section"
 PLANE_CHECK = "Its period-doubling curve in (φ, f_n)"
+PAPER = "The paper scan"
+MAP = "The (φ, f_n) map"
+PW = "Paper: where each measure is defined"
+PRC = "Paper: rank correlation with the MFPT"
+MRC = "Map: rank correlation with the MFPT"
+PT = "Paper: censored regression of log10 MFPT (Tobit)"
+PTEN = "Paper: what sets the 10 apart"
+# Where a results file prints a correlation or slope with its sign (`+0.06`).
+P = r"\+?" + N
 
 
 def scan_row(setting: str, cells: int) -> Rx:
@@ -237,6 +263,21 @@ def tag(column: str, part: int | None = None, nth: int = 0, **where: str) -> Cel
 def seg(length: str, column: str, nth: int = 0, part: int | None = None, agg: str = "", **where: str) -> Cell:
     """A cell of a length's segments table in results/continuation/segments.md."""
     return Cell(SEG, f"L = {length}", column, where, nth, part, agg)
+
+
+def paper_row(measure: str, section: str = PRC) -> Rx:
+    """A measure's row of a paper-scan table: groups (its first cell's value and interval)."""
+    return Rx(RS, rf"^\| {re.escape(measure)} \| {P} \[{P}, {P}\] \|", section)
+
+
+def alone(measure: str) -> Rx:
+    """The last column of a rank-correlation row: groups (ρ where the measure alone is defined, its gaits)."""
+    return Rx(RS, rf"^\| {re.escape(measure)} \|.*\| {P} \[[^]]*\] \({N}\) \|$", PRC)
+
+
+def tobit(measure: str) -> Rx:
+    """A measure's Tobit row alone: groups (its slope, the likelihood ratio's p)."""
+    return Rx(RS, rf"^\| {re.escape(measure)} alone \| {P} \[[^|]*\| [^|]*\| [^|]*, {N} \|$", PT)
 
 
 PD = {"bifurcation": "period doubling"}
@@ -358,6 +399,109 @@ PINS: list[Pin] = [
          tag("value", nth=1, branch="1", **NS), tag("value", nth=0, branch="1", **NS),
          tag("value", nth=0, branch="0", **NS), tag("value", nth=1, branch="0", **NS),
          tag("value", nth=2, branch="0", **NS), tag("value", nth=2, branch="1", **NS)]),
+    # docs/robustness.md: the robustness study (results/robustness/summary.md) and its run times.
+    Pin(ROB, rf"over its {N} stable gaits, median {N} m \(skips {N} m, walks {N} m, crawls {N} m\), 10th percentile "
+        rf"{N} m; {N} reach the 16 L cap \({N} m\); `step_down_h50` equals `step_down_max` for {N} of them",
+        [Rx(RS, rf"^step_down_max over these {N} stable gaits: median {N} m \(skips {N} m, walks {N} m, crawls {N} m\), "
+            rf"10th percentile {N} m; {N} at the 16 L cap \({N} m\); step_down_h50 equals step_down_max for {N}\.$",
+            PAPER)]),
+    Pin(ROB, rf"its first {N} samples in {N} minutes \(load average {N}–{N} on 2 cores\), then `--resume` for the "
+        rf"other {N} in {N} minutes \(load average about {N}\)",
+        [Rx(RS, rf"its first {N} of 1000 samples in {N} min \(load average {N} to {N} on 2 cores[^)]*\), then --resume "
+            rf"for the other {N} in {N} min \([\d.]+ s, load average about {N}\)", "Run times")]),
+    Pin(ROB, rf"took {N} s for the map \(load average about {N} on 2 cores\)",
+        [Rx(RS, rf"^- map scan \(all measures\): {N} s \(load average about {N} on 2 cores\)", "Run times")]),
+    Pin(ROB, rf"Spearman {N} \[{N}, {N}\] on the {N} with a finite MFPT, Somers' D {N} \[{N}, {N}\] on the {N} with "
+        rf"the censored ones, and in the Tobit model {N} decades less MFPT per standard deviation of its rank "
+        rf"\(likelihood ratio p = {N}\)",
+        [paper_row("GSN"), Rx(RS, rf"^Spearman's ρ on the {N} gaits", PRC),
+         Rx(RS, rf"^\| GSN \| [^|]* \| {P} \[{P}, {P}\] \|", PRC),
+         Rx(RS, rf"no fall seen \({N} gaits, \d+ censored\)", PRC),
+         Rx(RS, rf"^\| GSN alone \| -([\d.]+) \[[^|]*\| [^|]*\| [^|]*, {N} \|$", PT)]),
+    Pin(ROB, rf"max \|μ\| does not predict it \(Spearman \+{N} \[{N}, \+{N}\]; Tobit slope \+{N}, likelihood ratio "
+        rf"p = {N}\)", [paper_row(r"Floquet max \|μ\|"), tobit(r"Floquet max \|μ\|")]),
+    Pin(ROB, rf"predict nothing on the common gaits\*\* \(\+{N} and \+{N}, intervals across 0\), though over all {N} "
+        rf"gaits with a finite MFPT they correlate \+{N} and \+{N}",
+        [Rx(RS, rf"^\| step_down_max \(m\) \| {P} \[", PRC), Rx(RS, rf"^\| step_down_h50 \(m\) \| {P} \[", PRC),
+         Rx(RS, rf"^\| MFPT \| {N} finite", PW), Rx(RS, rf"^\| step_down_max \(m\) \|.*\| {P} \[[^]]*\] \(\d+\) \|$", PRC),
+         Rx(RS, rf"^\| step_down_h50 \(m\) \|.*\| {P} \[[^]]*\] \(\d+\) \|$", PRC)]),
+    Pin(ROB, rf"On the map \({N} common gaits, {N} with the censored ones\) no interval excludes 0",
+        [Rx(RS, rf"^Spearman's ρ on the {N} gaits", MRC), Rx(RS, rf"no fall seen \({N} gaits, \d+ censored\)", MRC)]),
+    Pin(ROB, rf"ranks the gaits as the MFPT does \(\+{N} \[\+{N}, \+{N}\] on the common gaits, \+{N} over the {N}\)",
+        [paper_row("steps_to_fall (Monte Carlo, censored at max_steps)"),
+         alone("steps_to_fall (Monte Carlo, censored at max_steps)")]),
+    Pin(ROB, rf"\(φ: \+{N} over the {N} gaits; f_n \+{N};",
+        [Rx(RS, rf"^\| φ \(rad\) \| {P} \[", "Paper: the inputs"), Rx(RS, rf"^\| MFPT \| {N} finite", PW),
+         Rx(RS, rf"^\| f_n \(Hz\) \| {P} \[", "Paper: the inputs")]),
+    Pin(ROB, rf"\(φ median {N} against {N}, Mann–Whitney p = {N}\), with a larger α \({N} against {N}, p = {N}\)",
+        [Rx(RS, rf"^\| {x} \| {N} \[[^]]*\] \| {N} \[[^]]*\] \| {N} \|$", PTEN) for x in (r"φ \(rad\)", "α")]),
+    Pin(ROB, rf"the crawls have the smallest MFPTs, median {N} steps",
+        [Cell(RS, "Paper: by gait", "median MFPT", {"gait": "crawl"})]),
+    Pin(ROB, rf"defined for {N} of the ten and the GSN for {N}; their step downs span the whole range, from {N} m to "
+        rf"the {N} m cap",
+        [Rx(RS, rf"^\| Floquet max \\\|μ\\\| \| [^|(]*\({N} defined\)", PTEN),
+         Rx(RS, rf"^\| GSN \| [^|(]*\({N} defined\)", PTEN),
+         Rx(RS, rf"^\| step_down_max \(m\) \| [\d.]+ \[{N},", PTEN),
+         Rx(RS, rf"^\| step_down_h50 \(m\) \| [\d.]+ \[[\d.]+, {N}\]", PTEN)]),
+    Pin(ROB, rf"Of the paper scan's {N} stable gaits, {N} have an interval open above and {N} no fall seen at all "
+        rf"\(`fall_rate` 0\); \d+ have a closed interval\. For {N} of the {N} the Monte Carlo",
+        [Rx(RS, rf"^## The paper scan \(configs/paper\.toml\): {N} stable gaits"),
+         Rx(RS, rf"^\| MFPT \| \d+ finite \({N} of them with mfpt_hi = ∞, the interval open above\); {N} with no fall", PW),
+         Rx(RS, rf"trials fall for {N} of them", PAPER), Rx(RS, rf"^The splitting saw no fall for {N} stable gaits", PAPER)]),
+    Pin(ROB, rf"\(ρ with `steps_to_fall` \+{N}\)",
+        [Rx(RS, rf"^\| steps_to_fall [^|]*\|.*\| {P} \[[^]]*\] \(\d+\) \|$", PRC)]),
+    Pin(ROB, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[85, 1174\]",
+        [Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "Fig. 7(a)"})]),
+    # The MFPT over the map (results/robustness/map/samples.parquet and the summary).
+    Pin(ROB, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and {N} steps, closed intervals, the Monte Carlo's {N} and {N} "
+        rf"beside them\)\. {N} of the {N} stable gaits have no fall seen, 13 of them walks at f_n 3\.75–4\.25 Hz, above "
+        rf"Fig\. 7\(a\)'s 3\.27 Hz; only {N} have a closed interval",
+        [Col(MAPS, "mfpt", "phi", 0.08, "min"), Col(MAPS, "mfpt", "phi", 0.08, "min", {"fn": 4.25}),
+         Col(MAPS, "steps_to_fall", "phi", 0.08, "min"), Col(MAPS, "steps_to_fall", "phi", 0.08, "min", {"fn": 4.25}),
+         Rx(RS, rf"^The splitting saw no fall for {N} stable gaits", MAP),
+         Rx(RS, rf"^## The \(φ, f_n\) map [^:]*: {N} stable"),
+         Rx(MCOST, rf"interval closed {N},")]),
+    # The cost of the MFPT on the map (results/robustness/mfpt_cost-robustness-map.txt).
+    Pin(ROB, rf"{N} s for the map's {N} designs \({N} stable gaits\) on 2 threads; per stable gait a median of {N} s "
+        rf"and a mean of {N} s of one thread \(90 % below {N} s, the slowest {N} s\)",
+        [Rx(MCOST, rf"^wall times: [^;]*; median {N} s"), Rx(MCOST, rf"^stable gaits: \d+ of {N};"),
+         Rx(MCOST, rf"^stable gaits: {N} of"), Rx(MCOST, rf"median {N} s, mean {N} s, 90 % {N} s, max {N} s;")]),
+    Pin(ROB, rf"Over the {N} gaits with a finite MFPT, a gait's time grows by \*\*\+{N} s per decade of MFPT\*\* "
+        rf"\(intercept {N} s; log–log slope \+{N}, time ∝ MFPT\^{N}; Spearman \+{N}\)",
+        [Rx(MCOST, rf"^time against log10 MFPT over the {N} finite MFPTs: {P} s per decade of MFPT \(intercept {N} s\); "
+            rf"log-log slope {P} \(time ~ MFPT\^{N}\); Spearman {P}$")]),
+    Pin(ROB, rf"median {N} s for MFPT 10–100 \({N} gaits\), {N} s for 100–10³ \({N}\), {N} s for 10³–10⁴ \({N}\), "
+        rf"{N} s for 10⁴–10⁵ \({N}\) and {N} s for the one at 10⁵–10⁶\.",
+        [Rx(MCOST, rf"^median time per gait by MFPT: 10–100: {N} s \({N}\); 100–1000: {N} s \({N}\); 1000–10000: {N} s "
+            rf"\({N}\); 10000–100000: {N} s \({N}\); 100000–1e\+06: {N} s \(1\);")]),
+    Pin(ROB, rf"the {N} gaits with no fall seen are the cheapest \({N} s:",
+        [Rx(MCOST, rf"no fall seen: [\d.]+ s \({N}\)$"), Rx(MCOST, rf"no fall seen: {N} s \(\d+\)$")]),
+    # The basin of the Fig. 7(a) walk (results/robustness/basin_fig7a.{txt,parquet}).
+    Pin(ROB, rf"the walk's own ω_a = {N} rad/s, θ_b = {N} rad\): {N} points return, {N} fail and {N} start with a tip in "
+        rf"the ground; none survives",
+        [Rx(BASIN, rf"omega_a = {N}, theta_b = {N}$"),
+         Rx(BASIN, rf"points: returns {N}, survives 0, fails {N}, infeasible {N}$")]),
+    Pin(ROB, rf"come back within 1e-3 in 23 to {N} steps \(median {N}; the fixed point itself in {N}\)",
+        [Col(BASIN_ROWS, "steps", "outcome", "returns", agg) for agg in ("max", "median", "min")]),
+    Pin(ROB, rf"Every failure is a `collapse` \(`rod_down`\) in the first step \({N}\) or the second \({N}\)",
+        [Col(BASIN_ROWS, "steps", "outcome", "fails", "count", {"steps": k, "failure": "rod_down"}) for k in (0, 1)]),
+    Pin(ROB, rf"its largest multiplier, {N}, predicts", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
+    Pin(ROB, rf"Fig\. 7\(a\) \(a period-1 walk, largest Floquet multiplier {N}\)", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
+    Pin(ROB, rf"\(41 × 41 = {N} points, ≤ 60 steps\) took {N} s on the 2 worker threads of this shared machine \(load "
+        rf"average about 19 at the time; {N} ms of wall-clock per point",
+        [Rx(BASIN, rf"^{N} points:"), Rx(BASIN, rf"^{N} s \({N} ms per point")]),
+    # docs/refine.md: the refinement benchmark (results/refine/summary.md).
+    Pin(REF, rf"reference: `configs/refine/reference\.toml`, {N} uniform samples",
+        [Rx(RB, rf"^Reference: `results/refine/reference`, {N} uniform samples")]),
+    Pin(REF, rf"\({N} samples, ~2\.5 min on two cores", [Rx(RB, rf"^Reference: `results/refine/reference`, {N} uniform")]),
+    Pin(REF, rf"for each seed S of 1 … {N}, a uniform start of {N} samples of the slice \(seed S\), then `rtw-scan refine "
+        rf"--budget {N} --rounds {N} --seed S`",
+        [Rx(RB, rf"Seeds (?:\d+, )*{N};"),
+         Rx(RB, rf"a uniform start of {N} samples, then `rtw-scan refine --budget {N} --rounds {N}`")]),
+    Pin(REF, rf"{N} refined seeds, {N} rounds of 25; the uniform arm over {N} seeds",
+        [Rx(RB, rf"resamples of the {N} refined"), Rx(RB, rf"--rounds {N}`"), Rx(RB, rf"refined and {N} uniform seeds")]),
+    # README.md: the Python example's Fig. 7(a) walk, recorded by the design atlas.
+    Pin(README, rf"# walk {N}… \(Fig\. 7\(a\)\)", [Cell(ATLAS, "Winners", "speed at 0.15", {"role": "Fig. 7(a)"})]),
 ]
 
 
