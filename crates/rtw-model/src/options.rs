@@ -225,13 +225,16 @@ pub struct Options {
     /// Simulated time (s).
     pub t_max: f64,
     /// Integration method. The default, DP5(4) at rtol 1e-4, was chosen by
-    /// the work–precision benchmark (`cargo run --release -p rtw-bench`,
-    /// results/bench/work-precision.md): the cheapest setting whose scan
-    /// outcome fractions stay within 1 pp of DOP853 at rtol 1e-13 and whose
-    /// f_w errs by < 1 %, with no step cap: the tolerance alone sets the step
-    /// (a cap of 0.01 s cost 23 % more right-hand-side evaluations and gained
-    /// no accuracy). DOP853 is the benchmark's reference; RK4 takes fixed
-    /// steps `rk4_step`.
+    /// the work–precision benchmark (`cargo run --release -p rtw-bench`)
+    /// when the strings' natural length was s = 0.85: the cheapest setting
+    /// whose scan outcome fractions stayed within 1 pp of DOP853 at rtol
+    /// 1e-13 and whose f_w erred by < 1 %, with no step cap (a cap of 0.01 s
+    /// cost 23 % more right-hand-side evaluations and gained no accuracy).
+    /// At today's default model the same rule picks DOP853 at 1e-6, and
+    /// DP5(4) at 1e-4 is 2.0 pp off (results/bench/work-precision.md): the
+    /// choice is open (docs/performance.md), and changing it changes every
+    /// committed result. DOP853 is the benchmark's reference; RK4 takes
+    /// fixed steps `rk4_step`.
     pub method: Method,
     /// Relative tolerance of the adaptive methods.
     pub rtol: f64,
@@ -265,10 +268,10 @@ pub struct Options {
     /// 36 (`SETTLE_RETURNS`) touchdown returns
     /// repeat with a period (the test of `period`). Its statistics are then
     /// taken over a whole number of periods ending there instead of over the
-    /// last `analysis_window` of `t_max`. On by default: on the 200-sample
-    /// bench scan and on `configs/bench/paper-s085.toml` it changes no label
-    /// and saves 5–7 % of the RHS evaluations (most of a scan's work is in
-    /// chaotic gaits; `cargo run --release -p rtw-bench`).
+    /// last `analysis_window` of `t_max`. On by default: it saves about
+    /// 9 % of the RHS evaluations (most of a scan's work is in chaotic
+    /// gaits) and, at the benchmark's setting, moves the paper scan's shares
+    /// by at most 0.7 pp (results/bench/work-precision.md, "Early stop").
     /// A chaotic gait never settles and runs to `t_max`.
     pub stop_when_settled: bool,
     /// After a stable run, find its gait's limit cycle on the step map

@@ -3,7 +3,7 @@
 
 use super::progress::StderrProgress;
 use super::signal::STOP;
-use super::simulate::OptionArgs;
+use super::simulate::ModelArgs;
 use crate::scan::workers::parse_threads;
 use crate::search::{SearchSettings, files};
 use anyhow::Result;
@@ -15,14 +15,12 @@ use std::process::ExitCode;
 pub(super) struct DesignArgs {
     /// The search's config (configs/design/*.toml; docs/cli.md lists its keys), with the
     /// model's options in its [simulation] table.
-    // Its own id: `--config` (the options' flag) is another argument.
-    #[arg(id = "search_config", value_name = "CONFIG")]
     config: PathBuf,
     /// The search's folder [default: runs/design/NAME].
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     #[command(flatten)]
-    options: OptionArgs,
+    options: ModelArgs,
     /// Worker threads [default: one per core; at most 4 per core]. The search does not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     threads: Option<String>,
@@ -36,7 +34,7 @@ pub(super) struct DesignArgs {
 
 pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
     let settings = SearchSettings::read(&a.config)?;
-    let options = a.options.resolve_under(&a.config)?;
+    let options = a.options.resolve_over(Some(&a.config))?;
     let threads = a
         .threads
         .as_deref()

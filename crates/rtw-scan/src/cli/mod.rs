@@ -206,7 +206,7 @@ enum Command {
         or, as the baseline, a Sobol sequence (method = \"sobol\"); two objectives give a Pareto front. Writes \
         OUT/search.parquet (every evaluation, after each generation: an interrupted search resumes with the same \
         command), OUT/designs.parquet (the reported designs, each profiled again on the fine grid, phi_lo and \
-        phi_hi their widest stable interval) and OUT/search.md. Options as `simulate` (--config, --variant, --set).",
+        phi_hi their widest stable interval) and OUT/search.md. The model: the config's [simulation] table, then --variant and --set.",
         after_help = EXIT_CODES
     )]
     Design(DesignArgs),

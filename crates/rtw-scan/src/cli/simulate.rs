@@ -50,6 +50,22 @@ pub(super) struct OptionArgs {
     /// Take the [simulation] options of this config file.
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
+    #[command(flatten)]
+    model: ModelArgs,
+}
+
+impl OptionArgs {
+    /// The options, layered and validated.
+    pub(super) fn resolve(&self) -> Result<Options> {
+        self.model.resolve_over(self.config.as_deref())
+    }
+}
+
+/// A model variant and `--set` overrides, over the `[simulation]` table of
+/// a config: `--config`'s, or (`design`) the study's own config's, which
+/// then is the table's one place.
+#[derive(Args, Debug)]
+pub(super) struct ModelArgs {
     /// Layer a model variant file (configs/variants/*.toml) over them, as `run --variant` does.
     #[arg(long, value_name = "FILE")]
     variant: Option<PathBuf>,
@@ -58,25 +74,10 @@ pub(super) struct OptionArgs {
     set: Vec<String>,
 }
 
-impl OptionArgs {
-    /// The options, layered and validated.
-    pub(super) fn resolve(&self) -> Result<Options> {
-        simulation_options(self.config.as_deref(), self.variant.as_deref(), &self.set)
-    }
-
-    /// The options of a study whose own config file holds its
-    /// `[simulation]` table (`design`): that table, then `--variant` and
-    /// `--set`; a `--config` would be a second place for it.
-    pub(super) fn resolve_under(&self, config: &std::path::Path) -> Result<Options> {
-        if let Some(other) = &self.config {
-            anyhow::bail!(
-                "--config {}: the search's config ({}) holds its [simulation] table: put the \
-                 options there, or use --variant and --set",
-                other.display(),
-                config.display()
-            );
-        }
-        simulation_options(Some(config), self.variant.as_deref(), &self.set)
+impl ModelArgs {
+    /// The options over `config`'s `[simulation]` table, layered and validated.
+    pub(super) fn resolve_over(&self, config: Option<&std::path::Path>) -> Result<Options> {
+        simulation_options(config, self.variant.as_deref(), &self.set)
     }
 }
 

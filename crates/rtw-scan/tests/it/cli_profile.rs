@@ -560,10 +560,10 @@ fn a_search_configs_simulation_table_is_its_model_as_set_gives_it() {
     );
     assert_eq!(ma, mb);
     assert!(ma.1.contains("mu=0.3"), "{}", ma.1);
-    // `--config` would be a second place for the same table: refused by name.
+    // There is no `--config`: the search's config is the table's one place.
     run_err(
         &["design", &in_config, "--out", s(&a), "--config", &plain],
-        &["--config", "the search's config"],
+        &["unexpected argument '--config'"],
     );
     // A bad key in it is named with its path.
     let bad = write(
