@@ -93,7 +93,17 @@ fn model(
 /// A batch as a `pyarrow.Table`, through the C data interface.
 fn to_table(py: Python<'_>, batch: RecordBatch) -> PyResult<Bound<'_, PyAny>> {
     let schema = batch.schema();
-    Table::try_new(vec![batch], schema)
+    tables(py, vec![batch], schema)
+}
+
+/// Batches of one schema (its metadata kept) as a `pyarrow.Table`, through
+/// the C data interface.
+fn tables(
+    py: Python<'_>,
+    batches: Vec<RecordBatch>,
+    schema: arrow_schema::SchemaRef,
+) -> PyResult<Bound<'_, PyAny>> {
+    Table::try_new(batches, schema)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
         .into_pyarrow(py)
 }
@@ -471,10 +481,7 @@ fn read_scan<'py>(py: Python<'py>, path: PathBuf) -> PyResult<(Bound<'py, PyAny>
     let scan = py
         .detach(|| rtw_scan::read_scan_table(&path))
         .map_err(value_error)?;
-    let table = Table::try_new(scan.batches, scan.schema)
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
-        .into_pyarrow(py)?;
-    Ok((table, scan.files))
+    Ok((tables(py, scan.batches, scan.schema)?, scan.files))
 }
 
 /// The sensitivity indices at `path` as a `pyarrow.Table`, refused unless
@@ -489,9 +496,7 @@ fn read_indices<'py>(
     let (batches, schema) = py
         .detach(|| rtw_scan::read_indices(&path, &scan, rows))
         .map_err(value_error)?;
-    Table::try_new(batches, schema)
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
-        .into_pyarrow(py)
+    tables(py, batches, schema)
 }
 
 /// The module `rtw._rtw`.

@@ -5,8 +5,9 @@
 
 use crate::options::PyOverrides;
 use crate::types::{DesignSearch, Profile};
-use crate::{digits, inputs, interruptible, model, report, study_error, to_table, value_error};
-use arrow_pyarrow::IntoPyArrow;
+use crate::{
+    digits, inputs, interruptible, model, report, study_error, tables, to_table, value_error,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rtw_scan::basin::{Settings as BasinSettings, slice_table};
@@ -165,25 +166,28 @@ pub(crate) fn design_search<'py>(
     ))
 }
 
+/// A design file as Python gets it: its path, its role, its table.
+type DesignTable<'py> = (PathBuf, &'static str, Bound<'py, PyAny>);
+
 /// The design files in `path` (a search's folder, an atlas such as
 /// `results/design/`, or one file), each read whole through rtw-scan's
 /// verified reader: `(file, role, table)` with role `evaluations`,
-/// `reported` or `profile` and the file's metadata in the table's schema.
+/// `reported` or `profile` and the file's metadata in the table's schema;
+/// `None` when `path` holds no search's files.
 #[pyfunction]
 pub(crate) fn read_design<'py>(
     py: Python<'py>,
     path: PathBuf,
-) -> PyResult<Vec<(PathBuf, &'static str, Bound<'py, PyAny>)>> {
-    let files = py
+) -> PyResult<Option<Vec<DesignTable<'py>>>> {
+    let Some(files) = py
         .detach(|| search::read::read_folder(&path))
-        .map_err(value_error)?;
+        .map_err(value_error)?
+    else {
+        return Ok(None);
+    };
     files
         .into_iter()
-        .map(|f| {
-            let table = arrow_pyarrow::Table::try_new(f.batches, f.schema)
-                .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?
-                .into_pyarrow(py)?;
-            Ok((f.path, f.role.name(), table))
-        })
-        .collect()
+        .map(|f| Ok((f.path, f.role.name(), tables(py, f.batches, f.schema)?)))
+        .collect::<PyResult<_>>()
+        .map(Some)
 }

@@ -24,7 +24,6 @@ Nothing here simulates: the numbers are the files'.
 
 from __future__ import annotations
 
-import base64
 import html
 import json
 import math
@@ -32,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from .report import GENERATOR, _b64gz, _clean, _meta, _style, fill, page_assets
+from .report import images as report_images
 
 # Figures and animations inlined up to this size each (the atlas's GIFs are
 # about 0.3 MB); a larger one is named on the page, not carried.
@@ -73,21 +73,6 @@ def _searches(files: list[tuple[Path, str, Any]]) -> tuple[list[dict], list[dict
         s["files"].append(f"{path.name} ({role}, {table.num_rows} rows)")
         s[role] = _columns(table)
     return list(searches.values()), profiles
-
-
-def _images(directory: Path) -> tuple[list[dict[str, str]], list[str]]:
-    """The folder's PNG figures and GIF animations, inlined; the names of
-    those too large to carry."""
-    if not directory.is_dir():
-        return [], []
-    shown, skipped = [], []
-    for f in sorted([*directory.glob("*.png"), *directory.glob("*.gif")]):
-        if f.stat().st_size > IMAGE_BYTES:
-            skipped.append(f.name)
-            continue
-        kind = "gif" if f.suffix == ".gif" else "png"
-        shown.append({"name": f.name, "src": f"data:image/{kind};base64," + base64.b64encode(f.read_bytes()).decode()})
-    return shown, skipped
 
 
 def _num(v: Any, digits: int = 4) -> str:
@@ -139,7 +124,8 @@ def design_page(directory: Path, files: list[tuple[Path, str, Any]], plotly_js: 
     from . import __version__
 
     searches, profiles = _searches(files)
-    images, skipped = _images(directory if directory.is_dir() else directory.parent)
+    images, skipped = report_images(directory if directory.is_dir() else directory.parent, ("png", "gif"),
+                                    IMAGE_BYTES)
     e = html.escape
     names = ", ".join(s["name"] for s in searches)
     title = f"rtw design report: {names}"

@@ -284,15 +284,19 @@ def _sensitivity(directory: Path, meta: dict[str, str], rows: int) -> dict | Non
     return None
 
 
-def _images(directory: Path) -> list[dict[str, str]]:
-    """The PNG maps in DIR (robustness maps, figures), inlined, up to 2 MB each."""
+def images(directory: Path, kinds: Sequence[str], max_bytes: int) -> tuple[list[dict[str, str]], list[str]]:
+    """The images of `kinds` (``"png"``, ``"gif"``) in DIR, inlined as data
+    URLs, in name order; and the names of those over `max_bytes`, left out."""
     if not directory.is_dir():
-        return []
-    out = []
-    for f in sorted(directory.glob("*.png")):
-        if f.stat().st_size <= 2_000_000:
-            out.append({"name": f.name, "src": "data:image/png;base64," + base64.b64encode(f.read_bytes()).decode()})
-    return out
+        return [], []
+    shown, skipped = [], []
+    for f in sorted(f for kind in kinds for f in directory.glob(f"*.{kind}")):
+        if f.stat().st_size > max_bytes:
+            skipped.append(f.name)
+            continue
+        src = f"data:image/{f.suffix[1:]};base64," + base64.b64encode(f.read_bytes()).decode()
+        shown.append({"name": f.name, "src": src})
+    return shown, skipped
 
 
 def _clean(v):
@@ -404,9 +408,9 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         try:
             designs = _rtw.read_design(directory)
         except ValueError as d:
-            if "not a design folder" in str(d):
-                raise ReportError(f"DIR: {e}") from None
             raise ReportError(f"DIR: {d}") from None
+        if designs is None:
+            raise ReportError(f"DIR: {e}") from None
         from .design_report import design_page
 
         write_page(out, design_page(directory, designs, plotly_js))
@@ -499,7 +503,8 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         tell(len(picks), len(picks))
     data["gaits"] = gaits
     data["sensitivity"] = _sensitivity(base, meta, n)
-    data["images"] = _images(base)
+    # The maps in DIR (robustness maps, figures), up to 2 MB each.
+    data["images"] = images(base, ("png",), 2_000_000)[0]
 
     page, shared = page_assets("report")
     parts = {

@@ -16,8 +16,8 @@ use crate::io::scan_files::{check_ids, check_scan_values};
 use crate::scan::shard::{Shard, complete_parts, part_index};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
-use arrow_schema::{Schema, SchemaRef};
-use std::collections::{BTreeMap, HashMap};
+use arrow_schema::SchemaRef;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -144,13 +144,8 @@ fn read_files(files: &[PathBuf], set_total: Option<u64>) -> Result<ScanTable> {
         let hash = hash.as_ref().map(ContentHash::value).unwrap_or_default();
         metadata.insert(META_CONTENT_HASH.into(), hash);
     }
-    let schema = schema.expect("at least one file");
-    let meta: HashMap<String, String> = metadata.into_iter().collect();
-    let schema = Arc::new(Schema::new(schema.fields().clone()).with_metadata(meta));
-    let batches = batches
-        .into_iter()
-        .map(|b| b.with_schema(Arc::clone(&schema)))
-        .collect::<Result<_, _>>()?;
+    let fields = schema.expect("at least one file").fields().clone();
+    let (batches, schema) = parquet::with_metadata(batches, fields, metadata)?;
     Ok(ScanTable {
         batches,
         schema,

@@ -162,6 +162,29 @@ impl ParquetFile {
     }
 }
 
+/// `batches` under one schema of `fields` that carries `metadata`, the
+/// file's key-value metadata: a table read back keeps what its file said
+/// of it (`rtw.config`, `rtw.design`, …), as pyarrow shows it in
+/// `schema.metadata`.
+pub(crate) fn with_metadata(
+    batches: Vec<RecordBatch>,
+    fields: arrow_schema::Fields,
+    metadata: BTreeMap<String, String>,
+) -> Result<(Vec<RecordBatch>, SchemaRef)> {
+    let schema = Arc::new(
+        Schema::new(fields).with_metadata(
+            metadata
+                .into_iter()
+                .collect::<std::collections::HashMap<_, _>>(),
+        ),
+    );
+    let batches = batches
+        .into_iter()
+        .map(|b| b.with_schema(Arc::clone(&schema)))
+        .collect::<Result<_, _>>()?;
+    Ok((batches, schema))
+}
+
 /// Writes `batch` as one complete Parquet file at `dest` (atomically).
 pub fn write_file(dest: &Path, batch: &RecordBatch, metadata: Vec<KeyValue>) -> Result<()> {
     let mut set = crate::files::FileSet::default();

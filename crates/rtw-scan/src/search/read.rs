@@ -12,10 +12,8 @@ use crate::io::metadata::{FileKind, META_DESIGN};
 use crate::io::parquet;
 use anyhow::{Context, Result, bail};
 use arrow_array::RecordBatch;
-use arrow_schema::{Schema, SchemaRef};
-use std::collections::BTreeMap;
+use arrow_schema::SchemaRef;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// What a design file holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,9 +43,8 @@ pub struct DesignFile {
     pub path: PathBuf,
     /// What it holds.
     pub role: Role,
-    /// Its key-value metadata (`rtw.design` or `rtw.profile`, `rtw.variant`, …).
-    pub metadata: BTreeMap<String, String>,
-    /// Its schema, with the metadata.
+    /// Its schema, with the file's key-value metadata (`rtw.design` or
+    /// `rtw.profile`, `rtw.variant`, …).
     pub schema: SchemaRef,
     /// Its rows.
     pub batches: Vec<RecordBatch>,
@@ -57,9 +54,10 @@ pub struct DesignFile {
 /// `dir` names, in name order, each read whole and verified. Parquet files
 /// that are neither a search's nor a profile are left out (a folder may hold
 /// other things); one of ours that fails its checks is an error naming it,
-/// and so is a folder with no search files, or a search folder whose
-/// `designs.parquet` is of other settings than its `search.parquet`.
-pub fn read_folder(dir: &Path) -> Result<Vec<DesignFile>> {
+/// and so is a search folder whose `designs.parquet` is of other settings
+/// than its `search.parquet`. `None`: `dir` holds no search's files (the
+/// caller says what else it might have been).
+pub fn read_folder(dir: &Path) -> Result<Option<Vec<DesignFile>>> {
     let paths: Vec<PathBuf> = if dir.is_dir() {
         let mut p: Vec<PathBuf> = std::fs::read_dir(dir)
             .with_context(|| format!("cannot read directory {}", dir.display()))?
@@ -102,37 +100,24 @@ pub fn read_folder(dir: &Path) -> Result<Vec<DesignFile>> {
             }
             _ => continue,
         };
-        let metadata = input.metadata;
-        let schema = Arc::new(
-            Schema::new(input.reader.schema().fields().clone()).with_metadata(
-                metadata
-                    .clone()
-                    .into_iter()
-                    .collect::<std::collections::HashMap<_, _>>(),
-            ),
-        );
+        let fields = input.reader.schema().fields().clone();
         let batches = input
             .reader
-            .map(|b| b.and_then(|b| Ok(b.with_schema(Arc::clone(&schema))?)))
             .collect::<Result<Vec<_>>>()
             .with_context(|| format!("reading {}", path.display()))?;
+        let (batches, schema) = parquet::with_metadata(batches, fields, input.metadata)?;
         files.push(DesignFile {
             path,
             role,
-            metadata,
             schema,
             batches,
         });
     }
     if !files.iter().any(|f| f.role != Role::Profile) {
-        bail!(
-            "{} holds no design search's files (search.parquet or designs.parquet written by \
-             `rtw-scan design`, or an atlas's designs-NAME.parquet): not a design folder",
-            dir.display()
-        );
+        return Ok(None);
     }
     same_search(&files)?;
-    Ok(files)
+    Ok(Some(files))
 }
 
 /// A search's folder holds the evaluations and the reported designs of one
@@ -155,7 +140,7 @@ fn same_search(files: &[DesignFile]) -> Result<()> {
     }
     if let Some(e) = evaluations.first() {
         for r in reported {
-            if r.metadata.get(META_DESIGN) != e.metadata.get(META_DESIGN) {
+            if r.schema.metadata().get(META_DESIGN) != e.schema.metadata().get(META_DESIGN) {
                 bail!(
                     "{}: its designs are of other settings or options than {}'s search: \
                      run the search again, or move one of them",
@@ -173,9 +158,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_folder_without_design_files_is_refused_by_name() {
+    fn a_folder_without_design_files_is_not_a_design_folder() {
         let dir = tempfile::tempdir().unwrap();
-        let e = read_folder(dir.path()).err().unwrap().to_string();
-        assert!(e.contains("not a design folder"), "{e}");
+        assert!(read_folder(dir.path()).unwrap().is_none());
     }
 }
