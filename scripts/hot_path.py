@@ -65,16 +65,16 @@ def measure(path):
         )
 
     total = fn["TOTAL"]
-    rhs = incl(r"rtw::Rtw::dynamics \[")
+    rhs = incl(r"::dynamics::<impl rtw_model::plant::rtw::model::Rtw>::dynamics \[")
     # Root finding: the guard evaluations at the iterates (`Rtw::guards`,
     # all of them, before; `Rtw::guard`, the located one, after).
-    root = incl(r"Rtw as hybrid_ode::system::HybridSystem<20_usize>>::guards \[") + incl(
-        r"Rtw as hybrid_ode::system::HybridSystem<20_usize>>::guard \["
+    root = incl(r"HybridSystem<20_usize> for rtw_model::plant::rtw::model::Rtw>::guards \[") + incl(
+        r"HybridSystem<20_usize> for rtw_model::plant::rtw::model::Rtw>::guard \["
     )
     # Step ends: the guard set from the RHS's by-products (`guards_of` called
     # from the engine, not from `Rtw::guards`).
-    step_end = incl(r"rtw::Rtw::guards_of \[") - called_from(
-        r"rtw::Rtw::guards_of \[", r"HybridSystem<20_usize>>::guards \("
+    step_end = incl(r"<impl rtw_model::plant::rtw::model::Rtw>::guards_of \[") - called_from(
+        r"<impl rtw_model::plant::rtw::model::Rtw>::guards_of \[", r"for rtw_model::plant::rtw::model::Rtw>::guards \("
     )
     # Runge–Kutta arithmetic: the tableau code inlined into the engine, and
     # the dense output.
@@ -83,13 +83,13 @@ def measure(path):
     )
     # The test for a crossing inside a step: the guards' rates at each step
     # end, and the search of the dense output where the model allows a dip.
-    rates = incl(r"HybridSystem<20_usize>>::guard_rates \[")
+    rates = incl(r"for rtw_model::plant::rtw::model::Rtw>::guard_rates \[")
     dips = incl(r"events::find_dip")
-    resets = incl(r"HybridSystem<20_usize>>::reset \[")
+    resets = incl(r"for rtw_model::plant::rtw::model::Rtw>::reset \[")
     # The run's observer: its step statistics (mu_required) and, at events,
     # the energy and centre of mass before and after the reset.
-    observe = incl(r"Recorder as hybrid_ode::system::Observer<20_usize,rtw_model::plant::rtw::Rtw>>::on_step \[") + incl(
-        r"Recorder as hybrid_ode::system::Observer<20_usize,rtw_model::plant::rtw::Rtw>>::on_transition \["
+    observe = incl(r"Recorder as hybrid_ode::system::Observer<20_usize,rtw_model::plant::rtw::model::Rtw>>::on_step \[") + incl(
+        r"Recorder as hybrid_ode::system::Observer<20_usize,rtw_model::plant::rtw::model::Rtw>>::on_transition \["
     )
     sincos = incl(r"__sincos_fma \[")
     return {
@@ -107,7 +107,20 @@ def measure(path):
         "resets (events, energy bookkeeping)": pct(resets, total),
         "observer (statistics, mu_required, energy at events)": pct(observe, total),
         "sincos (all callers)": pct(sincos, total),
+        "run cost / its RHS evaluations alone": f"{total / rhs:.2f}×",
+        "RHS evaluations / steps / rejected / events": work(path),
     }
+
+
+def work(path):
+    """RHS evaluations / steps / rejected / events, from the profile
+    example's line (`PATH.work`, written by scripts/hot_path.sh), if any."""
+    try:
+        line = open(path + ".work").read().split("\n")[0]
+    except OSError:
+        return "–"
+    got = dict(re.findall(r"(rhs|steps|rejected|events) (\d+)", line))
+    return " / ".join(f"{int(got[k]):,}".replace(",", " ") for k in ("rhs", "steps", "rejected", "events"))
 
 
 def pct(x, total):

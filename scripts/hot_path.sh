@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The "Hot path" table of docs/performance.md: instruction counts (callgrind, repeatable on
-# a shared machine) of one 20 s run at Fig. 7(a), s = 0.85, for the default
+# a shared machine) of one 20 s run at Fig. 7(a) at the default model, for the default
 # method (DP5(4) at rtol 1e-4) and DOP853 at rtol 1e-10, split by
 # scripts/hot_path.py. Needs valgrind. Usage: scripts/hot_path.sh [OUTDIR]
 set -euo pipefail
@@ -11,6 +11,6 @@ cargo build --release -q -p rtw-model --example profile
 for run in "dp54 1e-4" "dop853 1e-10"; do
   set -- $run
   valgrind --tool=callgrind --callgrind-out-file="$out/$1" \
-    target/release/examples/profile 0.85 "$1" "$2" 1 2>/dev/null
+    target/release/examples/profile default "$1" "$2" 1 2>/dev/null >"$out/$1.work"
 done
 (cd "$out" && python3 "$OLDPWD/scripts/hot_path.py" dp54 dop853)

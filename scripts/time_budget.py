@@ -49,13 +49,28 @@ def fit(path):
 def main(paths):
     if not paths:
         sys.exit(__doc__)
-    for path in paths:
-        coef, share, r2, total, n = fit(path)
+    fits = [fit(path) for path in paths]
+    for path, (coef, share, r2, total, n) in zip(paths, fits):
         print(f"{path}: {n} samples, summed sample time {total:.3f} s, R² {r2:.3f}")
         print("| per | cost | share of the time |")
         print("|---|---:|---:|")
         for (name, _, scale, unit), c, s in zip(TERMS, coef, share):
             print(f"| {name} | {c * scale:.1f} {unit} | {100 * s:.0f} % |")
+        print()
+    if len(fits) > 1:
+        def span(values, fmt):
+            lo, hi = fmt.format(min(values)), fmt.format(max(values))
+            return lo if lo == hi else f"{lo}–{hi}"
+
+        print(f"## All {len(fits)} scans")
+        print()
+        print(f"| per | cost ({len(fits)} scans) | share of the summed sample time |")
+        print("|---|---:|---:|")
+        for i, (name, _, scale, unit) in enumerate(TERMS):
+            print(f"| {name} | {span([f[0][i] * scale for f in fits], '{:.1f}')} {unit} "
+                  f"| {span([100 * f[1][i] for f in fits], '{:.0f}')} % |")
+        print(f"| R² of the fit | {span([f[2] for f in fits], '{:.3f}')} | |")
+        print(f"| summed sample time | {span([f[3] for f in fits], '{:.2f}')} s | |")
         print()
 
 

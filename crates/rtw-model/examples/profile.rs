@@ -1,6 +1,7 @@
 //! One run at the Fig. 7(a) point, repeated, for profilers:
 //! `cargo run --release -p rtw-model --example profile -- [s] [method] [rtol] [reps]`
-//! (defaults: 0.85 dop853 1e-10 1), e.g. under
+//! (defaults: `default` dop853 1e-10 1; `s = default` keeps the default
+//! model's rest-length ratio), e.g. under
 //! `valgrind --tool=callgrind target/release/examples/profile` for repeatable
 //! instruction counts of the RHS against the whole run.
 use rtw_model::Method;
@@ -10,7 +11,10 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let arg = |i: usize, default: &str| args.get(i).cloned().unwrap_or(default.to_string());
     let mut o = Options::default();
-    o.strings.rest_length_ratio = arg(0, "0.85").parse().expect("s: a number in [0, 1)");
+    let s = arg(0, "default");
+    if s != "default" {
+        o.strings.rest_length_ratio = s.parse().expect("s: `default` or a number in [0, 1)");
+    }
     o.method = match arg(1, "dop853").as_str() {
         "dp54" => Method::Dp54,
         "dop853" => Method::Dop853,
