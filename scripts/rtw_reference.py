@@ -33,7 +33,7 @@ class Model:
     """Physical constants (docs/model.md §1, normalization "supplementary")
     and the default variant's choices."""
 
-    def __init__(self, length, rho, alpha, fn, zeta, phi, g=9.81, s=0.85, mu=0.8,
+    def __init__(self, length, rho, alpha, fn, zeta, phi, s, g=9.81, mu=0.8,
                  touchdown_offset=1e-10, collapse_height_ratio=0.5):
         w = (1.0 - 2.0 * alpha) ** 2
         self.L = length

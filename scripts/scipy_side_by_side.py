@@ -31,12 +31,17 @@ import rtw_reference as ref  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTOL, ATOL = 1e-4, 1e-6
+# The strings' natural length over r: rtw's default model's
+# (configs/template.toml), given to both sides, so neither runs a hidden
+# default of its own.
+S = 0.8875
 
 
 def rtw(binary, p, extra, tol=(RTOL, ATOL)):
     cmd = [binary, "simulate", "--length", str(p.length), "--rho", repr(p.rho), "--alpha",
            repr(p.alpha), "--fn", repr(p.fn), "--zeta", repr(p.zeta), "--phi", repr(p.phi),
            "--set", "stop_when_settled=false", "--set", f"rtol={tol[0]}", "--set", f"atol={tol[1]}",
+           "--set", f"strings.rest_length_ratio={S}",
            "--json", *extra]
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     return json.loads(out)
@@ -70,7 +75,7 @@ def main():
             rods0 = [[s0[f"{k}_{r}"] for k in ("x", "y", "theta", "vx", "vy", "omega")]
                      for r in "abc"]
             codes = [int(s0[f"contact_{r}"]) for r in "abc"]
-            model = ref.Model(p.length, p.rho, p.alpha, p.fn, p.zeta, p.phi)
+            model = ref.Model(p.length, p.rho, p.alpha, p.fn, p.zeta, p.phi, S)
             started = time.perf_counter()
             label, detail, stats = ref.simulate(model, rods0, codes, rtol=RTOL, atol=ATOL)
             dt = time.perf_counter() - started
