@@ -7,7 +7,8 @@ use rtw_model::{Options, Params, simulate};
 fn main() {
     println!("| s | method | rtol | label | median ms | RHS evals | steps | rejected | events |");
     println!("|---|---|---|---|---|---|---|---|---|");
-    for s in [0.0, 0.85] {
+    // s = 0 (no prestress) and the default model's natural length.
+    for s in [0.0, Options::default().strings.rest_length_ratio] {
         for (method, name) in [(Method::Dp54, "dp54"), (Method::Dop853, "dop853")] {
             for rtol in [1e-6, 1e-8, 1e-10] {
                 let mut o = Options {
