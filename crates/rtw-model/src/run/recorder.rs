@@ -4,8 +4,8 @@
 //! robustness measures on top; the measures (robustness.rs) rerun from a
 //! run's end state through [`with_end_state`] and [`run_from`].
 
-use crate::cycles::limit_cycle::cycle_of_run;
-use crate::cycles::section::SectionLog;
+use crate::cycles::map::limit_cycle::cycle_of_run;
+use crate::cycles::map::section::SectionLog;
 use crate::options::Options;
 use crate::outcome::{Energy, FailureDetail, Label, Outcome, Stance, TraceSample};
 use crate::params::{Params, Physical};

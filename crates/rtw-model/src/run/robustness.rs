@@ -1,6 +1,6 @@
 //! How much disturbance a gait survives (docs/robustness.md): the largest
 //! step down it walks on from, and the gait sensitivity norm
-//! ([`crate::cycles::gsn`]).
+//! ([`crate::cycles::robustness::gsn`]).
 //!
 //! **Survives** (docs/model.md §5, "Robustness"): the gait is met by a step
 //! down of height `h` when it has settled (the state the flat run ended in,
@@ -158,9 +158,9 @@ pub(crate) fn measure(
         .step_down_h50
         .then(|| largest_height(phys.length, |h| s.half_survive(h, &mut work)).0);
     let gsn = options.robustness.gsn.then(|| {
-        crate::cycles::gsn::settled_cycle(params, options, rtw, y, &mut work)
+        crate::cycles::robustness::gsn::settled_cycle(params, options, rtw, y, &mut work)
             .map_or(f64::NAN, |(map, orbit)| {
-                crate::cycles::gsn::gsn(&map, &orbit, EDGE_AHEAD)
+                crate::cycles::robustness::gsn::gsn(&map, &orbit, EDGE_AHEAD)
             })
     });
     let steps_to_fall = options.robustness.steps_to_fall.then(|| {

@@ -4,7 +4,7 @@
 //! bad settings are refused by name; and the classification rule
 //! ([`follow`]) against the rimless wheel's closed-form basin.
 
-use crate::cycles::basin::follow;
+use crate::cycles::robustness::basin::follow;
 use crate::cycles::{Axis, Basin, BasinError, BasinSpec, Coord, CycleOptions, Fate, StepError};
 use crate::outcome::FailureDetail;
 use crate::{Label, Options, Params};

@@ -4,7 +4,7 @@
 use crate::GuardKind;
 use crate::Tip;
 use crate::cycles::LimitCycle;
-use crate::cycles::nonsmooth::{EndKind, EndOptions, Setting, guard_name, locate_end};
+use crate::cycles::branches::nonsmooth::{EndKind, EndOptions, Setting, guard_name, locate_end};
 use crate::cycles::{CycleOptions, StepMap, continue_segments};
 use crate::{Options, Param, Params};
 use hybrid_ode::continuation::Options as Cont;

@@ -138,7 +138,7 @@ fn gsn_is_in_the_json_row_only_when_asked_for_and_changes_nothing_else() {
     let flat = json(&[]);
     assert!(flat.get("gsn").is_none(), "{flat}");
     let v = json(&["--set", "robustness.gsn=true"]);
-    // The Fig. 7(a) walk's norm (crates/rtw-model/src/cycles/gsn.rs checks
+    // The Fig. 7(a) walk's norm (crates/rtw-model/src/cycles/robustness/gsn.rs checks
     // it against the full simulation's response to a small step).
     let g = v["gsn"].as_f64().unwrap();
     assert!((g - 4.6349).abs() < 1e-3, "{v}");

@@ -5,7 +5,7 @@
 //! State: three rods × six slots and two dissipated energies
 //! ([`crate::plant::slots`]). [`Rtw`] is the one [`HybridSystem`](hybrid_ode::HybridSystem)
 //! of the model; what a run records is its observer's business
-//! ([`crate::run::simulate`], [`crate::cycles::stepmap`],
+//! ([`crate::run::simulate`], [`crate::cycles::map::stepmap`],
 //! [`crate::plant::initial`]'s settling).
 //!
 //! | file | what it holds |

@@ -3,9 +3,9 @@
 //! is not the segment's, and each segment ends where [`locate_end`] names
 //! the change (docs/limit-cycles.md).
 
-use crate::cycles::continuation::StepMapFamily;
-use crate::cycles::nonsmooth::*;
-use crate::cycles::section::SectionPoint;
+use crate::cycles::branches::continuation::StepMapFamily;
+use crate::cycles::branches::nonsmooth::*;
+use crate::cycles::map::section::SectionPoint;
 use crate::outcome::Label;
 use hybrid_ode::continuation::{self, Branch, End, MapEval, Options as ContOptions, ParamMap};
 use hybrid_ode::limit;
@@ -90,7 +90,7 @@ pub struct Segment {
 /// branch in one mode sequence ([`continuation::continue_branch`], its
 /// corrector rejecting points of another sequence); where it ends,
 /// a bisection between the last value with the old sequence and the first
-/// with another names why ([`EndKind`](super::EndKind)), and if there is an
+/// with another names why ([`EndKind`](crate::cycles::EndKind)), and if there is an
 /// orbit past the change the next segment starts from it. At most `max_segments`.
 #[allow(clippy::too_many_arguments)]
 pub fn continue_segments(

@@ -6,8 +6,8 @@
 //! variational run per Newton iteration.
 
 use super::{Orbit, Setting, map_at, watch};
-use crate::cycles::section::SectionPoint;
-use crate::cycles::stepmap::StepMap;
+use crate::cycles::map::section::SectionPoint;
+use crate::cycles::map::stepmap::StepMap;
 use hybrid_ode::limit;
 use nalgebra::{DMatrix, DVector};
 

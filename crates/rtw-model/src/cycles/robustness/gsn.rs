@@ -9,7 +9,7 @@
 //! x_{k+1} = A_k x_k + B_k e_k,    y_k = C_k x_k + D_k e_k,
 //! ```
 //!
-//! `x_k` the deviation of the section point ([`crate::cycles::section`])
+//! `x_k` the deviation of the section point ([`crate::cycles::map::section`])
 //! before step `k`, `e_k` the drop of the floor met by step `k`'s landing
 //! foot (a step down of `e_k` between the stance foot and where the next
 //! foot lands; the floor stays at the lower level from there on), `y_k` the
@@ -37,9 +37,9 @@
 //! fails or lands in another mode pattern (the map is not smooth there), or
 //! when the response does not decay within [`MAX_STEPS`] steps.
 
-use crate::cycles::limit_cycle::{RUN_PERIOD_TOL, run_cycle_options};
-use crate::cycles::section::{SectionLog, SectionPoint};
-use crate::cycles::stepmap::{CycleOptions, Step, StepMap};
+use crate::cycles::map::limit_cycle::{RUN_PERIOD_TOL, run_cycle_options};
+use crate::cycles::map::section::{SectionLog, SectionPoint};
+use crate::cycles::map::stepmap::{CycleOptions, Step, StepMap};
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
 use crate::outcome::MAX_PERIOD;
 use crate::params::Params;
@@ -124,7 +124,7 @@ fn crossings<'a>(rtw: &Rtw, y: &[f64; N], until: usize, map: Option<&'a StepMap>
 /// the run continued on the flat slope until a period shows on its section
 /// crossings, then the fixed point of `Pⁿ` near the last one to the
 /// tolerance of the run's `floquet_max`
-/// ([`crate::cycles::limit_cycle::cycle_of_run`]), by [`orbit_near`].
+/// ([`crate::cycles::map::limit_cycle::cycle_of_run`]), by [`orbit_near`].
 /// `work` gains the continued run's.
 pub(crate) fn settled_cycle(
     params: &Params,

@@ -30,9 +30,9 @@
 //! * [`Fate::Fails`] when a step fails (a collapse, a stall, a numerical
 //!   end, or no new foot within the map's step horizon): [`StepError`].
 
-use crate::cycles::limit_cycle::{CycleError, LimitCycle, RUN_PERIOD_TOL};
-use crate::cycles::section::SectionPoint;
-use crate::cycles::stepmap::{CycleOptions, Step, StepError, StepMap};
+use crate::cycles::map::limit_cycle::{CycleError, LimitCycle, RUN_PERIOD_TOL};
+use crate::cycles::map::section::SectionPoint;
+use crate::cycles::map::stepmap::{CycleOptions, Step, StepError, StepMap};
 use crate::options::Options;
 use crate::outcome::{Label, MAX_PERIOD};
 use crate::params::{Params, Physical};

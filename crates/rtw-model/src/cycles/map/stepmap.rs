@@ -1,5 +1,5 @@
-//! The RTW's step map on its section ([`crate::cycles::section`]) and its
-//! Jacobian; the limit cycles it finds are in [`crate::cycles::limit_cycle`].
+//! The RTW's step map on its section ([`crate::cycles::map::section`]) and its
+//! Jacobian; the limit cycles it finds are in [`crate::cycles::map::limit_cycle`].
 //!
 //! **Jacobian.** By the variational equations integrated alongside the step,
 //! through every impact and mode switch with its saltation matrix
@@ -7,7 +7,7 @@
 //! central differences of the map ([`hybrid_ode::limit::fd_jacobian`]). The tests
 //! check one against the other.
 
-use crate::cycles::section::{
+use crate::cycles::map::section::{
     STANCE_SPOKE, SectionPoint, canonical, canonical_jacobian, new_foot, source,
 };
 use crate::options::{LabelOptions, Method, Options};
@@ -22,7 +22,7 @@ use nalgebra::DMatrix;
 
 /// Which touchdowns cross the map's section, as its settings
 /// ([`CycleOptions::section`]) name it.
-pub use crate::cycles::section::Section;
+pub use crate::cycles::map::section::Section;
 
 /// Dimension of the RTW state with its sensitivity.
 const M: usize = N + N * N;
@@ -284,7 +284,7 @@ impl StepMap {
     }
 
     /// One step from `p` with `extra` watching it too (the events and guard
-    /// minima of [`crate::cycles::nonsmooth`]).
+    /// minima of [`crate::cycles::branches::nonsmooth`]).
     pub(crate) fn step_watched<O: Observer<N, Rtw>>(
         &self,
         p: &SectionPoint,

@@ -1,6 +1,6 @@
 //! Where a gait's branch leaves its mode sequence, and what happens there:
 //! the nonsmooth bifurcations that end a smooth continuation of the step
-//! map ([`crate::cycles::continuation`]), located and named, and the branch
+//! map ([`crate::cycles::branches::continuation`]), located and named, and the branch
 //! continued on the other side.
 //!
 //! A fixed point's **mode sequence** is what happens over its `n` steps:
@@ -24,9 +24,9 @@
 //! new sequence: a branch of [`Segment`]s, each with its mode sequence and
 //! gait label, whose corrector rejects any point of another sequence.
 
-use crate::cycles::limit_cycle::LimitCycle;
-use crate::cycles::section::SectionPoint;
-use crate::cycles::stepmap::{CycleOptions, StepMap};
+use crate::cycles::map::limit_cycle::LimitCycle;
+use crate::cycles::map::section::SectionPoint;
+use crate::cycles::map::stepmap::{CycleOptions, StepMap};
 use crate::options::Options;
 use crate::params::{Param, Params};
 use crate::plant::contact::RodMode;
@@ -301,7 +301,7 @@ fn settled(
     (map.period_of(&twice, n, cycle.period_tol) == Some(n)).then_some(c)
 }
 
-/// How [`continue_segments`](super::continue_segments) locates and names a
+/// How [`continue_segments`](crate::cycles::continue_segments) locates and names a
 /// branch's end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EndOptions {

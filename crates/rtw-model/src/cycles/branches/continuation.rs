@@ -7,9 +7,9 @@
 //! the branch meets a change of pattern the map is not smooth and the
 //! continuation stops there.
 
-use crate::cycles::limit_cycle::{CycleError, LimitCycle};
-use crate::cycles::section::SectionPoint;
-use crate::cycles::stepmap::{CycleOptions, Jacobian, StepMap};
+use crate::cycles::map::limit_cycle::{CycleError, LimitCycle};
+use crate::cycles::map::section::SectionPoint;
+use crate::cycles::map::stepmap::{CycleOptions, Jacobian, StepMap};
 use crate::plant::slots::{self, OMEGA};
 use crate::{Options, Param, Params};
 use hybrid_ode::continuation::{

@@ -1,11 +1,11 @@
-//! The limit cycles of the RTW's step map ([`crate::cycles::stepmap`]):
+//! The limit cycles of the RTW's step map ([`crate::cycles::map::stepmap`]):
 //! the period recognised on the section points, then Newton on `Pⁿ(z) = z`
 //! and the Floquet multipliers at the solution; and the limit cycle a
 //! finished run settled into (a scan's `period`, `floquet_max` and
 //! `cycle_residual`).
 
-use crate::cycles::section::{SectionLog, SectionPoint};
-use crate::cycles::stepmap::{CycleOptions, Jacobian, Step, StepError, StepMap};
+use crate::cycles::map::section::{SectionLog, SectionPoint};
+use crate::cycles::map::stepmap::{CycleOptions, Jacobian, Step, StepError, StepMap};
 use crate::options::{LabelOptions, Options};
 use crate::outcome::{CycleSummary, Label};
 use crate::params::Params;
