@@ -111,7 +111,7 @@ impl Drop for Registered {
 /// Removes every temporary and lock file this process has open: called by
 /// the signal handler before it exits, since a process ending in
 /// `std::process::exit` runs no destructors.
-pub(crate) fn remove_live_files() {
+pub fn remove_live_files() {
     // A set of files being moved into place is finished first (renames
     // take microseconds), so that it is never left half in place.
     let _renamed = COMMIT.lock().unwrap_or_else(|e| e.into_inner());

@@ -22,6 +22,7 @@
 //! | [`profile`] | a design's slope profile: its gait along φ, each change of label located by bisection, its stable intervals |
 //! | [`search`] | design search: the design of a box that walks on the widest range of slopes, the shallowest slope or fastest, by CMA-ES over slope profiles with falls a learned constraint; a Pareto front of two objectives |
 //! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
+//! | [`studies`] | the public entry point of each study computed above (a scan and its merge, its summary and clusters, refinement, a bifurcation sweep, continuation), which the command line calls and only prints |
 //! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
 //! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands; the progress bar and the signal handler (the `cli` feature only) |
 //!
@@ -51,10 +52,6 @@
 //! `scripts/check_parquet.py`.
 
 #![warn(missing_docs)]
-// Without the command line, the crate-private parts that only it calls
-// (analysis, bifurcation, continuation, the merge) have no caller; the
-// default build, which has one, still reports dead code.
-#![cfg_attr(not(feature = "cli"), allow(dead_code))]
 
 pub(crate) mod analysis;
 pub mod basin;
@@ -75,6 +72,7 @@ pub mod sampling;
 pub mod scan;
 pub mod search;
 pub(crate) mod sizes;
+pub mod studies;
 /// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
 pub use analysis::sensitivity;
 
@@ -83,6 +81,10 @@ pub use analysis::report::{Z95, failure_clusters, wilson};
 pub use analysis::scan_table::{ScanTable, read_indices, read_scan_table};
 #[cfg(feature = "cli")]
 pub use cli::main;
+/// For a front end's signal handler, which ends the process without
+/// running destructors: removes every temporary and lock file this process
+/// has open, finishing first a set of files being moved into place.
+pub use files::remove_live_files;
 
 /// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in
 /// the environment, a run says `paused at POINT` on stderr and waits there a

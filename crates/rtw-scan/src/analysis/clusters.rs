@@ -186,7 +186,7 @@ impl Standardization {
 
 /// The clustering of a scan's failures.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub(crate) struct FailureClusters {
+pub struct FailureClusters {
     pub(crate) k: usize,
     /// Every failure of the scan; sizes and cross-table count them all.
     pub(crate) failures: usize,

@@ -273,7 +273,7 @@ pub fn failure_clusters(path: &Path) -> Result<Option<Vec<(u64, usize)>>> {
 
 /// The summary of one scan.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub(crate) struct Summary {
+pub struct Summary {
     pub(crate) name: Option<String>,
     pub(crate) file: String,
     pub(crate) version: String,
@@ -446,11 +446,7 @@ fn share_row(s: &Share, paper: bool, bold: bool) -> String {
 }
 
 /// The cluster table in Markdown.
-pub(crate) fn clusters_markdown(
-    k: usize,
-    clusters: Option<&FailureClusters>,
-    failures: usize,
-) -> String {
+pub fn clusters_markdown(k: usize, clusters: Option<&FailureClusters>, failures: usize) -> String {
     let Some(fc) = clusters else {
         return format!(
             "## Failure clusters\n\nNot computed: {failures} failed samples (collapse or stall), fewer than k = {k}.\n"
@@ -490,7 +486,7 @@ pub(crate) fn clusters_markdown(
 
 impl Summary {
     /// The summary as Markdown (also what `run` and `summary` print).
-    pub(crate) fn to_markdown(&self) -> String {
+    pub fn to_markdown(&self) -> String {
         let mut md = String::new();
         let dir_name = Path::new(&self.file)
             .parent()

@@ -12,12 +12,15 @@ use crate::io::metadata::{
 };
 use crate::io::parquet;
 use crate::io::table::{self, Column, Get, column};
+use crate::scan::progress::Progress;
 use anyhow::Result;
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
 use rtw_model::cycles::{Basin, BasinPoint, CycleOptions, Fate, StepError};
 use rtw_model::{Options, Params};
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
 
 /// One grid point with what its row shows.
 pub(crate) struct Row {
@@ -197,4 +200,37 @@ pub(crate) fn write(
 pub(crate) fn check_output(out: &Path, force: bool) -> Result<()> {
     check_destination(out, FileKind::Basin, &[], "--out", force)?;
     files::remove_stray_temps(out)
+}
+
+/// The basin slice of `settings` around the gait of `params` under
+/// `options` (both already checked, see [`crate::basin::slice`]) written to
+/// `out`, refused first, unless `force`, over a file that is not a basin
+/// slice. Returns the slice, its points in grid order and the wall time
+/// in seconds. `rtw-scan basin` runs it.
+pub fn run_to_files(
+    params: &Params,
+    options: &Options,
+    settings: &crate::basin::Settings,
+    out: &Path,
+    force: bool,
+    cancel: &AtomicBool,
+    progress: &dyn Progress,
+) -> Result<(Basin, Vec<BasinPoint>, f64)> {
+    check_output(out, force)?;
+    let cycle = CycleOptions::default();
+    let t0 = Instant::now();
+    let slice = crate::basin::slice(params, options, settings, cancel, progress);
+    progress.finish(slice.is_ok());
+    let (slice, points) = slice?;
+    let wall = t0.elapsed().as_secs_f64();
+    write(
+        out,
+        &slice,
+        params,
+        options,
+        &cycle,
+        &rows(&slice, &points),
+        wall,
+    )?;
+    Ok((slice, points, wall))
 }

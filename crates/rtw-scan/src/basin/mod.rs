@@ -6,6 +6,8 @@
 
 pub(crate) mod files;
 
+pub use files::run_to_files;
+
 use crate::bifurcation::sweep::{PointLabel, failure_label};
 use crate::scan::progress::Progress;
 use crate::scan::workers::{Stopped, parse_threads, worker_pool};

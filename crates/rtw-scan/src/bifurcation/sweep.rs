@@ -16,7 +16,7 @@ use std::time::Instant;
 /// A sweep: which parameter, its values in order, the base point and model,
 /// and how many steps to settle and to record at each value.
 #[derive(Clone, Debug)]
-pub(crate) struct Sweep {
+pub struct Sweep {
     pub(crate) param: SweepParam,
     pub(crate) values: Vec<f64>,
     pub(crate) base: Params,
@@ -38,7 +38,7 @@ impl Sweep {
     /// checked: both ends valid for the parameter, `points ≥ 2`, `record ≥ 2`
     /// (a period-1 gait needs two section points to be recognised).
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn new(
+    pub fn new(
         param: SweepParam,
         from: f64,
         to: f64,

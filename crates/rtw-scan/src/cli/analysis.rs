@@ -1,14 +1,12 @@
 //! `cluster` and `summary`: a finished scan's failure clusters and summary.
+//! The studies are the library's ([`crate::studies::summary`]); this parses
+//! and prints.
 
-use crate::analysis::assignments::AssignmentsWriter;
-use crate::analysis::report::{self, clusters_markdown};
-use crate::files;
-use crate::io::destination;
-use crate::io::metadata::{FileKind, META_SEED, META_VERSION, kv};
-use anyhow::{Context, Result, anyhow};
+use crate::studies::summary;
+use anyhow::Result;
 use clap::Args;
 use std::num::NonZeroUsize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Args, Debug)]
@@ -47,54 +45,25 @@ pub(super) struct SummaryArgs {
 }
 
 pub(super) fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
-    let data = report::read_scan(&a.samples)?;
-    let k =
-        a.k.map_or(data.config.cluster.k as usize, NonZeroUsize::get);
-    let clusters = data.clusters(Some(k))?;
-    let failures = data.failures.seen();
-    if let Some(path) = &a.assignments {
-        destination::check_destination(
-            path,
-            FileKind::Assignments,
-            &[&a.samples],
-            "--assignments",
-            a.force,
-        )?;
-        let fc = clusters.as_ref().ok_or_else(|| {
-            anyhow!(
-                "--assignments: {failures} failed samples (collapse or stall) in {}, fewer than k = {k}: nothing to cluster",
-                a.samples.display()
-            )
-        })?;
-        let meta = vec![
-            kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
-            kv(META_SEED, data.config.seed.to_string()),
-        ];
-        files::remove_stray_temps(path)?;
-        let written = || -> Result<()> {
-            let mut w = AssignmentsWriter::create(path, fc, meta)?;
-            data.for_each_assigned(fc, |f, c| w.write(f, c))?;
-            w.finish()
-        };
-        written().with_context(|| format!("--assignments {}", path.display()))?;
-    }
+    let c = summary::cluster(
+        &a.samples,
+        a.k.map(NonZeroUsize::get),
+        a.assignments.as_deref(),
+        a.force,
+    )?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&clusters)?);
+        println!("{}", serde_json::to_string_pretty(&c.clusters)?);
     } else {
-        print!("{}", clusters_markdown(k, clusters.as_ref(), failures));
+        print!(
+            "{}",
+            summary::clusters_markdown(c.k, c.clusters.as_ref(), c.failures)
+        );
     }
     Ok(ExitCode::SUCCESS)
 }
 
 pub(super) fn cmd_summary(a: SummaryArgs) -> Result<ExitCode> {
-    let dir = a
-        .samples
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    report::check_summary_target(dir, &a.samples, a.force)?;
-    let summary = report::summarize(&a.samples, a.k.map(NonZeroUsize::get))?;
-    report::write_summary(dir, &summary)?;
+    let summary = summary::summary_to_files(&a.samples, a.k.map(NonZeroUsize::get), a.force)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {

@@ -4,16 +4,13 @@
 use super::bifurcation::ModelArgs;
 use super::progress::StderrProgress;
 use super::signal::STOP;
-use crate::basin::{self, OUTCOMES, Settings, files, outcome_index};
+use crate::basin::{self, OUTCOMES, Settings, outcome_index};
 use crate::config::params::checked_params;
 use crate::config::validate_options;
-use crate::scan::progress::Progress;
 use anyhow::Result;
 use clap::Args;
-use rtw_model::cycles::CycleOptions;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 #[derive(Args, Debug)]
 pub(super) struct BasinArgs {
@@ -58,24 +55,11 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     validate_options(&options, "simulation")?;
     let settings = Settings::parse(&a.x, &a.y, &a.steps, a.tol, a.threads.as_deref(), "--")?;
     let spec = settings.spec;
-    files::check_output(&a.out, a.force)?;
-    let cycle = CycleOptions::default();
-    let t0 = Instant::now();
     let progress = StderrProgress::study(a.quiet, "basin: grid points");
-    let slice = basin::slice(&params, &options, &settings, &STOP, &progress);
-    progress.finish(slice.is_ok());
-    let (slice, points) = slice?;
-    let wall = t0.elapsed().as_secs_f64();
-    let per_point = wall / points.len() as f64;
-    files::write(
-        &a.out,
-        &slice,
-        &params,
-        &options,
-        &cycle,
-        &files::rows(&slice, &points),
-        wall,
+    let (slice, points, wall) = basin::run_to_files(
+        &params, &options, &settings, &a.out, a.force, &STOP, &progress,
     )?;
+    let per_point = wall / points.len() as f64;
     let (cx, cy) = slice.centre();
     println!(
         "gait: {}, period {} (max |mu| {:.4}), fixed point {} = {cx:.6}, {} = {cy:.6}",

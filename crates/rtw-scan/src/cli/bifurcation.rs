@@ -1,18 +1,15 @@
 //! `bifurcation`: one parameter swept with continuation on the step map.
+//! The study is the library's ([`crate::studies::bifurcation`]); this
+//! parses and prints.
 
 use super::validate::simulation_options;
-use crate::bifurcation::files::{check_outputs, write};
-use crate::bifurcation::summary::{period_str, summary_markdown};
-use crate::bifurcation::sweep::{Sweep, run_sweep};
 use crate::config::params::SweepParam;
-use crate::files::write_atomic;
-use crate::io::destination::summary_path;
+use crate::studies::bifurcation::{self, Sweep};
 use anyhow::Result;
 use clap::Args;
 use rtw_model::{Options, Params};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// The start of a sweep or a diagram: the base point (default Fig. 7(a))
 /// and the model (`bifurcation` and `continuation` take it alike).
@@ -114,44 +111,21 @@ pub(super) fn cmd_bifurcation(a: BifurcationArgs) -> Result<ExitCode> {
     let out = a
         .out
         .unwrap_or_else(|| Path::new("runs/bifurcation").join(format!("{}.parquet", param.name())));
-    check_outputs(&out, a.force)?;
-    sweep_and_write(&sweep, &out, a.quiet)
-}
-
-/// Runs the checked sweep (progress on stderr), writes both Parquet files
-/// and the summary (`FILE.md`), and prints the summary.
-fn sweep_and_write(sweep: &Sweep, out: &Path, quiet: bool) -> Result<ExitCode> {
-    let t0 = Instant::now();
-    let n = sweep.values.len();
-    let (points, steps) = run_sweep(sweep, |i, r| {
-        if quiet {
-            return;
+    let quiet = a.quiet;
+    let written = bifurcation::run_to_files(&sweep, &out, a.force, |line| {
+        if !quiet {
+            eprintln!("rtw-scan: {line}");
         }
-        eprintln!(
-            "rtw-scan: {} = {:.5} ({}/{n}): {} period {} max|mu| {}{} [{:.2} s]",
-            sweep.param.name(),
-            r.value,
-            i + 1,
-            r.label.as_str(),
-            period_str(r.period),
-            r.floquet_max.map_or("-".into(), |m| format!("{m:.4}")),
-            if r.restarted { " (restarted)" } else { "" },
-            r.wall_time_s,
-        );
-    });
-    let wall = t0.elapsed().as_secs_f64();
-    let sp = write(out, sweep, &points, &steps, wall)?;
-    let md = summary_markdown(sweep, &points, wall);
-    write_atomic(&summary_path(out), md.as_bytes())?;
+    })?;
     if !quiet {
         eprintln!(
             "rtw-scan: {} values in {}, {} recorded steps in {}",
-            points.len(),
+            written.values,
             out.display(),
-            steps.len(),
-            sp.display()
+            written.steps,
+            written.steps_path.display()
         );
     }
-    print!("{md}");
+    print!("{}", written.summary);
     Ok(ExitCode::SUCCESS)
 }

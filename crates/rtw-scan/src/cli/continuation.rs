@@ -3,7 +3,7 @@
 
 use super::bifurcation::ModelArgs;
 use super::progress::StderrProgress;
-use crate::continuation::{Continuation, CurveSettings, study};
+use crate::studies::continuation::{self as study, Continuation, CurveSettings};
 use anyhow::Result;
 use clap::Args;
 use rtw_model::Param;

@@ -1,8 +1,9 @@
 //! The command line, a thin layer in named stages: clap arguments (each
 //! subcommand family's `…Args`, raw text) → `validate` (flag text → typed,
 //! checked values: `--set KEY=VALUE` → typed overrides) and `values` (the
-//! parsers of single flag values) → calls into config, scan, io, analysis
-//! and bifurcation, which take only typed values. This file holds the
+//! parsers of single flag values) → calls into the library's studies
+//! ([`crate::studies`], `basin`, `profile`, `search`, `sensitivity`), which
+//! take only typed values; a handler prints what they return. This file holds the
 //! command tree and the exit codes, `signal` the signal handling, and
 //! `progress` the progress shown on stderr.
 

@@ -5,7 +5,7 @@
 use super::progress::StderrProgress;
 use super::signal::STOP;
 use super::simulate::{DesignArgs, OptionArgs};
-use crate::profile::{self, Names, Settings, files};
+use crate::profile::{self, Names, Settings};
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
@@ -61,13 +61,13 @@ pub(super) fn cmd_profile(a: ProfileArgs) -> Result<ExitCode> {
     let options = a.options.resolve()?;
     let progress = StderrProgress::unless(a.quiet);
     let p = match &a.out {
-        Some(out) => files::run_to_files(&settings, &options, out, a.force, &progress, &STOP)?,
+        Some(out) => profile::run_to_files(&settings, &options, out, a.force, &progress, &STOP)?,
         None => profile::run(&settings, &options, &progress, &STOP)?,
     };
     if a.json {
         println!("{}", serde_json::to_string_pretty(&p.to_json())?);
     } else {
-        print!("{}", files::markdown(&p));
+        print!("{}", profile::markdown(&p));
     }
     if let Some(out) = &a.out {
         eprintln!("rtw-scan: {} slopes written to {}", p.runs(), out.display());

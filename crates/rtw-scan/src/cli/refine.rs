@@ -2,10 +2,9 @@
 
 use super::progress::StderrProgress;
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
-use crate::refine::{self, Refine, RefineStatus, check_budget};
-use crate::scan::run::{DEFAULT_CHUNK_SIZE, RunSettings, RunStatus};
-use crate::scan::shard::Shard;
 use crate::scan::workers::check_threads;
+use crate::studies::refine::{self, Refine, RefineStatus, check_budget};
+use crate::studies::scan::{DEFAULT_CHUNK_SIZE, RunSettings, RunStatus, Shard};
 use anyhow::Result;
 use clap::Args;
 use std::num::NonZeroUsize;
@@ -58,10 +57,7 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
     check_threads(a.threads, "--threads")?;
     let seed = match a.seed {
         Some(s) => s,
-        None => {
-            let base = a.dir.join("samples.parquet");
-            crate::analysis::report::open_scan(&base)?.1.seed
-        }
+        None => refine::default_seed(&a.dir)?,
     };
     let r = Refine {
         dir: a.dir.clone(),

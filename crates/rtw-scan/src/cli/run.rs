@@ -2,15 +2,10 @@
 
 use super::progress::StderrProgress;
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
-use crate::analysis::report;
 use crate::config::ScanConfig;
-use crate::files;
 use crate::hash::fnv1a64;
-use crate::scan::checkpoint::Layout;
-use crate::scan::run::{self, RunSettings, RunStatus};
-use crate::scan::shard::{self, Shard};
-use crate::scan::space;
 use crate::scan::workers::parse_threads;
+use crate::studies::scan::{self, RunSettings, RunStatus, Shard};
 use anyhow::{Result, anyhow};
 use clap::Args;
 use std::num::NonZeroUsize;
@@ -52,7 +47,7 @@ pub(super) struct RunArgs {
     quiet: bool,
     /// Rows per chunk and row group (a resumed run keeps its own).
     #[arg(long, hide = true, value_name = "N", value_parser = super::values::positive,
-          default_value_t = NonZeroUsize::new(run::DEFAULT_CHUNK_SIZE).unwrap())]
+          default_value_t = NonZeroUsize::new(scan::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
     /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
     #[cfg(feature = "fake-sim")]
@@ -115,7 +110,7 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
         Some(d) => d,
         None => default_out_dir(&cfg, &a.config, &a.set)?,
     };
-    check_run_outputs(&cfg, &out, a.shard, a.force)?;
+    scan::check_outputs(&cfg, &out, a.shard, a.force)?;
     GRACEFUL.store(true, Ordering::SeqCst);
     let settings = RunSettings {
         out_dir: out.clone(),
@@ -130,34 +125,11 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
         let sim = |p: &_, o: &_| crate::fake::simulate(p, o, delay);
-        let status = run::run_scan(&cfg, &settings, &sim, &STOP, &progress)?;
+        let status = scan::run_scan(&cfg, &settings, &sim, &STOP, &progress)?;
         return finish_run(&a, &out, status);
     }
-    let status = run::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP, &progress)?;
+    let status = scan::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP, &progress)?;
     finish_run(&a, &out, status)
-}
-
-/// Before any work: the files a run writes (its rows, and for a whole scan
-/// `summary.json` and `summary.md`) are not symlinks or special files, the
-/// summaries there are rtw-scan's own, and the output fits on the disk
-/// (these two unless `force`).
-fn check_run_outputs(
-    cfg: &ScanConfig,
-    out: &Path,
-    shard: Option<Shard>,
-    force: bool,
-) -> Result<()> {
-    let layout = Layout::new(out, shard);
-    files::refuse_special(&layout.samples, "--out")?;
-    if shard.is_none() {
-        report::check_summary_target(out, &layout.samples, force)?;
-    }
-    if !force {
-        let total = cfg.total_rows()?;
-        let ids = shard.map_or(Ok(0..total), |s| s.ids(total))?;
-        space::check_free_space(ids.end - ids.start, out, &layout.partial)?;
-    }
-    Ok(())
 }
 
 /// What a run prints and returns once it has ended.
@@ -207,19 +179,16 @@ fn finish_run(a: &RunArgs, out: &Path, status: RunStatus) -> Result<ExitCode> {
     }
 }
 
-/// The end of a whole scan (`run`, `merge`): `summary.json` and `summary.md`
-/// beside the samples file, and the summary printed.
+/// The end of a whole scan (`run`, `merge`): its summary written beside
+/// the samples file, and printed.
 fn write_and_print_summary(dir: &Path, samples: &Path) -> Result<ExitCode> {
-    let summary = report::summarize(samples, None)?;
-    report::write_summary(dir, &summary)?;
+    let summary = scan::write_summary(dir, samples)?;
     print!("{}", summary.to_markdown());
     Ok(ExitCode::SUCCESS)
 }
 
 pub(super) fn cmd_merge(a: MergeArgs) -> Result<ExitCode> {
-    files::refuse_special(&a.dir.join("samples.parquet"), "")?;
-    report::check_summary_target(&a.dir, &a.dir.join("samples.parquet"), a.force)?;
-    let merged = shard::merge_parts(&a.dir, a.force)?;
+    let merged = scan::merge(&a.dir, a.force)?;
     if !a.quiet {
         eprintln!(
             "rtw-scan: merged {} shards, {} rows, into {}",

@@ -2,14 +2,13 @@
 
 use super::validate::simulation_options;
 use crate::config::params::checked_params;
-use crate::files;
-use crate::io::destination;
-use crate::io::metadata::FileKind;
-use crate::io::scan_rows::{self, JsonRow};
-use crate::io::trace::{self, TraceWriter};
+use crate::io::scan_rows::{COLUMNS, JsonRow, Row, robustness_entries};
+use crate::io::table::Get;
+use crate::io::{TraceNames, TraceWriter};
 use crate::scan::one::run_one;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
+use rtw_model::options::RobustnessOptions;
 use rtw_model::outcome::Energy;
 use rtw_model::{Label, Options, Outcome, Params};
 use std::path::PathBuf;
@@ -114,17 +113,15 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
     let params = checked_params([length, rho, alpha, f_n, zeta, a.phi], "--")?;
     let options = a.options.resolve()?;
     let mut trace = match &a.trace {
-        Some(path) => {
-            destination::check_destination(path, FileKind::Trace, &[], "--trace", a.force)?;
-            trace::check_trace_size(&options, a.trace_limit, trace::TraceNames::CLI)
-                .with_context(|| format!("--trace {}", path.display()))?;
-            files::remove_stray_temps(path)?;
-            let meta = trace::trace_metadata(&params, &options)?;
-            Some(
-                TraceWriter::create(path, meta, a.trace_limit)
-                    .with_context(|| format!("trace {}", path.display()))?,
-            )
-        }
+        Some(path) => Some(TraceWriter::to_file(
+            path,
+            &params,
+            &options,
+            a.trace_limit,
+            a.force,
+            "--trace",
+            TraceNames::CLI,
+        )?),
         None => None,
     };
     let mut trace_error = None;
@@ -158,7 +155,7 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
             serde_json::to_string_pretty(&JsonRow(&row, &options.robustness))?
         );
     } else {
-        print!("{}", scan_rows::to_text(&row, &options.robustness));
+        print!("{}", to_text(&row, &options.robustness));
     }
     if let Some(e) = row.outcome.map(|o| o.energy)
         && e.balance_exceeds_bound()
@@ -181,6 +178,39 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
     Ok(ExitCode::FAILURE)
 }
 
+/// A row as a readable two-column table, grouped by section.
+fn to_text(r: &Row, asked: &RobustnessOptions) -> String {
+    let mut out = String::new();
+    let mut group = "";
+    for c in COLUMNS {
+        if c.group != group {
+            group = c.group;
+            out.push_str(&format!("[{group}]\n"));
+        }
+        let value = match &c.get {
+            Get::F64(g) => g(r).map(|v| format!("{v:.6}")),
+            Get::I64(g) => g(r).map(|v| v.to_string()),
+            Get::Bool(g) => g(r).map(|v| v.to_string()),
+            Get::Str(g) => g(r).map(str::to_string),
+            Get::Label { index, names } => Some(names()[index(r)].to_string()),
+        };
+        out.push_str(&format!(
+            "  {:<24} {}\n",
+            c.name,
+            value.as_deref().unwrap_or("-")
+        ));
+    }
+    let robustness = robustness_entries(r, asked);
+    if !robustness.is_empty() {
+        out.push_str("[robustness]\n");
+    }
+    for (name, value) in robustness {
+        let value = value.map_or("-".to_string(), |v| format!("{v:.6}"));
+        out.push_str(&format!("  {name:<24} {value}\n"));
+    }
+    out
+}
+
 /// What `simulate` says of a run whose energy balance is off by more than
 /// its bound: the integration error is then large enough to doubt the outcome.
 pub(crate) fn energy_warning(e: &Energy) -> String {
@@ -197,6 +227,14 @@ pub(crate) fn energy_warning(e: &Energy) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn text_form_groups_the_columns() {
+        use crate::io::scan_rows::tests::{outcome, row};
+        let r = row(4, Some(outcome(Label::Walk)));
+        let text = to_text(&r, &Default::default());
+        assert!(text.contains("[metric]") && text.contains("outcome") && text.contains("walk"));
+    }
 
     #[test]
     fn simulate_options_layer_config_and_sets() {

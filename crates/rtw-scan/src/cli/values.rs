@@ -14,7 +14,7 @@ pub(super) fn positive(s: &str) -> Result<std::num::NonZeroUsize, String> {
 /// Parses `continuation --through`: an integer in [0, THROUGH_MAX], the
 /// range said whatever was given (a float, a count beyond any integer).
 pub(super) fn through(s: &str) -> Result<usize, String> {
-    use crate::continuation::study::{THROUGH_MAX, check_through};
+    use crate::studies::continuation::{THROUGH_MAX, check_through};
     let n = s
         .trim()
         .parse::<usize>()

@@ -31,7 +31,7 @@ use rtw_model::{Num, Options, Param, Params};
 
 /// A second input and its range: the plane of the two-parameter curves.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct CurveSettings {
+pub struct CurveSettings {
     /// The second input.
     pub param: Param,
     /// Its range: a curve ends where it leaves it.
@@ -40,7 +40,7 @@ pub(crate) struct CurveSettings {
 
 /// A checked continuation: what to follow, where, how.
 #[derive(Clone, Debug)]
-pub(crate) struct Continuation {
+pub struct Continuation {
     /// The input continued.
     pub param: Param,
     /// The start (its limit cycle is the one followed).
@@ -58,7 +58,7 @@ pub(crate) struct Continuation {
 impl Continuation {
     /// Checks the settings, naming the flag and the valid range.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn new(
+    pub fn new(
         param: Param,
         base: Params,
         options: Options,

@@ -16,11 +16,11 @@ use std::path::Path;
 use std::time::Instant;
 
 /// Most segments `through` follows each way.
-pub(crate) const THROUGH_MAX: usize = 100;
+pub const THROUGH_MAX: usize = 100;
 
 /// Checks `through` (segments each way; 0: none), naming the flag and the
 /// range.
-pub(crate) fn check_through(through: usize) -> Result<()> {
+pub fn check_through(through: usize) -> Result<()> {
     if through > THROUGH_MAX {
         bail!("--through {through}: must lie in [0, {THROUGH_MAX}]");
     }
@@ -32,7 +32,7 @@ pub(crate) fn check_through(through: usize) -> Result<()> {
 /// each way (0: none); returns the summary written to `FILE.md`. `progress`
 /// sees two stages: the diagram (one unit), then the directions followed
 /// through the mode changes (a unit each).
-pub(crate) fn run_to_files(
+pub fn run_to_files(
     c: &Continuation,
     through: usize,
     out: &Path,

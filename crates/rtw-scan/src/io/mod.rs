@@ -33,4 +33,6 @@ pub use crate::sizes::parse_size;
 pub use metadata::kv;
 pub use parquet::{ParquetInput, VerifiedReader, open, write_file};
 pub use scan_rows::{ColumnKind, Kind, Value, row_columns, schema};
-pub use trace::{TraceNames, check_trace_size, trace_batch, trace_metadata, trace_schema};
+pub use trace::{
+    TraceNames, TraceWriter, check_trace_size, trace_batch, trace_metadata, trace_schema,
+};

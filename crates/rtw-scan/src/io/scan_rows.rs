@@ -495,39 +495,6 @@ pub(crate) fn values(r: &Row) -> Vec<Value> {
         .collect()
 }
 
-/// A row as a readable two-column table, grouped by section.
-pub(crate) fn to_text(r: &Row, asked: &RobustnessOptions) -> String {
-    let mut out = String::new();
-    let mut group = "";
-    for c in COLUMNS {
-        if c.group != group {
-            group = c.group;
-            out.push_str(&format!("[{group}]\n"));
-        }
-        let value = match &c.get {
-            Get::F64(g) => g(r).map(|v| format!("{v:.6}")),
-            Get::I64(g) => g(r).map(|v| v.to_string()),
-            Get::Bool(g) => g(r).map(|v| v.to_string()),
-            Get::Str(g) => g(r).map(str::to_string),
-            Get::Label { index, names } => Some(names()[index(r)].to_string()),
-        };
-        out.push_str(&format!(
-            "  {:<24} {}\n",
-            c.name,
-            value.as_deref().unwrap_or("-")
-        ));
-    }
-    let robustness = robustness_entries(r, asked);
-    if !robustness.is_empty() {
-        out.push_str("[robustness]\n");
-    }
-    for (name, value) in robustness {
-        let value = value.map_or("-".to_string(), |v| format!("{v:.6}"));
-        out.push_str(&format!("  {name:<24} {value}\n"));
-    }
-    out
-}
-
 /// The robustness measures `asked` for (`robustness.*`,
 /// docs/robustness.md), after the scan row's columns in its JSON and text
 /// forms: none unless asked for, so a row's form is unchanged by default;
@@ -685,7 +652,6 @@ pub(crate) mod tests {
         assert_eq!(d["outcome"], "diverged");
         assert_eq!(d["message"], "boom");
         assert!(d["t_end"].is_null());
-        let text = to_text(&r, &Default::default());
         // Every field of Outcome has a column: nested structs flatten to
         // their field names (`energy` with an `energy_` prefix).
         let o = serde_json::to_value(r.outcome.unwrap()).unwrap();
@@ -719,6 +685,5 @@ pub(crate) mod tests {
                 );
             }
         }
-        assert!(text.contains("[metric]") && text.contains("outcome") && text.contains("walk"));
     }
 }

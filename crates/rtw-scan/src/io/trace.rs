@@ -1,11 +1,13 @@
 //! Trace files (`simulate --trace`): a run's time series, streamed to
 //! Parquet, and the size it may reach.
 
-use crate::io::metadata::{META_OPTIONS, META_PARAMS, META_VERSION, kv};
+use crate::files;
+use crate::io::destination::check_destination;
+use crate::io::metadata::{FileKind, META_OPTIONS, META_PARAMS, META_VERSION, kv};
 use crate::io::parquet::{ParquetFile, writer_properties};
 use crate::io::table;
 use crate::sizes::human_bytes;
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use arrow_array::{ArrayRef, Float64Array, Int8Array, RecordBatch};
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use parquet::file::metadata::KeyValue;
@@ -14,8 +16,10 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// Writes a trajectory ([`TraceSample`]s) to Parquet in row groups of
-/// `BATCH` samples, so a long trace never sits in memory.
-pub(crate) struct TraceWriter {
+/// 8192 samples, so a long trace never sits in memory: [`Self::to_file`]
+/// opens it, [`Self::push`] takes each sample, [`Self::finish`] moves the
+/// file into place.
+pub struct TraceWriter {
     file: ParquetFile,
     buffer: Vec<TraceSample>,
     rows: u64,
@@ -227,6 +231,29 @@ pub(crate) fn trace_rows_bound(options: &Options) -> u64 {
 impl TraceWriter {
     const BATCH: usize = 8192;
 
+    /// The trace of the run of `params` under `options` (its metadata), to
+    /// be written at `dest` (named `flag` in errors): refused, unless
+    /// `force`, over a file that is not a trace (never over a symlink or a
+    /// special file), and refused when its size before compression,
+    /// estimated from the options, may pass `limit` bytes (in the caller's
+    /// `names`); stray temporary files of an interrupted write are removed.
+    pub fn to_file(
+        dest: &Path,
+        params: &Params,
+        options: &Options,
+        limit: u64,
+        force: bool,
+        flag: &str,
+        names: TraceNames,
+    ) -> Result<Self> {
+        check_destination(dest, FileKind::Trace, &[], flag, force)?;
+        check_trace_size(options, limit, names)
+            .with_context(|| format!("{flag} {}", dest.display()))?;
+        files::remove_stray_temps(dest)?;
+        let meta = trace_metadata(params, options)?;
+        Self::create(dest, meta, limit).with_context(|| format!("trace {}", dest.display()))
+    }
+
     /// A trace of at most `limit` bytes before compression: a sample past it
     /// is an error (the estimate made before the run is an upper bound, this
     /// is the backstop).
@@ -243,7 +270,7 @@ impl TraceWriter {
     }
 
     /// Buffers one sample, writing a row group when the buffer is full.
-    pub(crate) fn push(&mut self, s: &TraceSample) -> Result<()> {
+    pub fn push(&mut self, s: &TraceSample) -> Result<()> {
         if self.rows + self.buffer.len() as u64 >= self.max_rows {
             bail!(
                 "the trace reached its limit of {} samples ({}); raise --trace-limit or trace_dt",
@@ -269,7 +296,7 @@ impl TraceWriter {
     }
 
     /// Writes what is buffered and moves the file into place; returns the row count.
-    pub(crate) fn finish(mut self) -> Result<u64> {
+    pub fn finish(mut self) -> Result<u64> {
         self.flush()?;
         self.file.finish()?;
         Ok(self.rows)

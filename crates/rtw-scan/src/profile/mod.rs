@@ -30,6 +30,7 @@ use rtw_model::{Label, Num, Options, Param, Params};
 use std::num::NonZeroUsize;
 use std::sync::atomic::AtomicBool;
 
+pub use files::{markdown, run_to_files};
 pub use locate::{Change, Segment};
 
 /// Most slopes of the coarse grid: (to − from) / grid is at most this.

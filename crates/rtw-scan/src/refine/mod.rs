@@ -46,26 +46,37 @@ use std::sync::atomic::AtomicBool;
 
 /// What to refine, and how.
 #[derive(Clone, Debug)]
-pub(crate) struct Refine {
+pub struct Refine {
     /// The scan's directory (its `samples.parquet`).
-    pub(crate) dir: PathBuf,
-    pub(crate) budget: u64,
-    pub(crate) rounds: u64,
-    pub(crate) seed: u64,
+    pub dir: PathBuf,
+    /// New samples in all rounds together.
+    pub budget: u64,
+    /// Rounds the budget is split into.
+    pub rounds: u64,
+    /// Seed of the rounds' candidates and uniform draws.
+    pub seed: u64,
     /// How each round runs (its `out_dir` is set per round).
-    pub(crate) run: RunSettings,
+    pub run: RunSettings,
 }
 
 /// How a refinement ended.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) enum RefineStatus {
+pub enum RefineStatus {
     /// Every round is in; `combined` holds every row.
-    Complete { combined: PathBuf, rows: u64 },
+    Complete {
+        /// `DIR/refine/samples.parquet`: the scan's rows and the new ones.
+        combined: PathBuf,
+        /// Its rows.
+        rows: u64,
+    },
     /// Round `round` (its directory `dir`) stopped before its end: it was
     /// interrupted, or one shard of it ran.
     Stopped {
+        /// The round (1-based).
         round: u64,
+        /// Its directory, `DIR/refine/round-RRR`.
         dir: PathBuf,
+        /// How its scan ended.
         status: RunStatus,
     },
 }
@@ -81,7 +92,7 @@ pub(crate) const MAX_BASE_ROWS: i64 = 1_000_000;
 
 /// Checks the flags: `1 ≤ budget ≤ MAX_BUDGET`, `⌈budget / MAX_POINTS⌉ ≤
 /// rounds ≤ budget`.
-pub(crate) fn check_budget(budget: u64, rounds: u64) -> Result<()> {
+pub fn check_budget(budget: u64, rounds: u64) -> Result<()> {
     if !(1..=MAX_BUDGET).contains(&budget) {
         bail!(
             "--budget: {budget} is invalid: must be an integer in [1, {MAX_BUDGET}] (new samples \
@@ -316,7 +327,7 @@ pub(crate) fn round_dir(dir: &Path, round: u64) -> PathBuf {
 }
 
 /// Runs the rounds that are not complete yet, then writes the combined file.
-pub(crate) fn refine(
+pub fn refine(
     r: &Refine,
     sim: Simulator,
     stop: &AtomicBool,

@@ -54,38 +54,47 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Rows per chunk unless told otherwise.
-pub(crate) const DEFAULT_CHUNK_SIZE: usize = 256;
+pub const DEFAULT_CHUNK_SIZE: usize = 256;
 
 /// How to run a scan (the config says what to run).
 #[derive(Clone, Debug)]
-pub(crate) struct RunSettings {
-    pub(crate) out_dir: PathBuf,
+pub struct RunSettings {
+    /// The scan's directory: `samples.parquet` (or the shard's
+    /// `part-K.parquet`) and, while it runs, `.partial/`.
+    pub out_dir: PathBuf,
     /// Worker threads (`None`: one per core).
-    pub(crate) threads: Option<NonZeroUsize>,
-    pub(crate) resume: bool,
+    pub threads: Option<NonZeroUsize>,
+    /// Finish the interrupted run in `out_dir`, keeping its finished chunks.
+    pub resume: bool,
     /// Rows per chunk; a resumed run keeps the size it was started with.
-    pub(crate) chunk_size: NonZeroUsize,
+    pub chunk_size: NonZeroUsize,
     /// Run only this shard's id range, into `part-K.parquet`.
-    pub(crate) shard: Option<Shard>,
+    pub shard: Option<Shard>,
     /// Write even over another scan's results (or its unfinished run) in
     /// the output directory.
-    pub(crate) force: bool,
+    pub force: bool,
 }
 
 /// How a scan ended.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) enum RunStatus {
+pub enum RunStatus {
     /// `samples` (or the shard's part file) is complete with `rows` rows;
     /// `computed` rows were simulated in this session.
     Complete {
+        /// The scan file (or the shard's part file).
         samples: PathBuf,
+        /// Its rows.
         rows: u64,
+        /// The rows simulated in this session (0: it was already complete).
         computed: u64,
     },
     /// Stopped early; finished chunks are kept in `partial`.
     Interrupted {
+        /// The chunks finished and kept.
         chunks_done: u64,
+        /// The chunks of the whole run.
         chunks: u64,
+        /// The directory that keeps them (`.partial/`).
         partial: PathBuf,
     },
 }
@@ -93,7 +102,7 @@ pub(crate) enum RunStatus {
 /// Runs (or resumes) a scan into `settings.out_dir`: `stop` set (by a
 /// signal handler, say) ends it after the samples in flight, and `progress`
 /// watches it.
-pub(crate) fn run_scan(
+pub fn run_scan(
     cfg: &ScanConfig,
     settings: &RunSettings,
     sim: Simulator,

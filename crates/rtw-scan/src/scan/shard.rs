@@ -28,9 +28,11 @@ use std::str::FromStr;
 
 /// Shard `index` (0-based) of `count`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Shard {
-    pub(crate) index: u64,
-    pub(crate) count: u64,
+pub struct Shard {
+    /// K, the shard's number (0-based).
+    pub index: u64,
+    /// N, the number of shards.
+    pub count: u64,
 }
 
 impl FromStr for Shard {
@@ -188,12 +190,15 @@ fn describe(p: &Part) -> String {
     }
 }
 
-/// What [`merge_parts`] did.
+/// What a merge of shards did (`studies::scan::merge`).
 #[derive(Debug)]
-pub(crate) struct Merged {
-    pub(crate) samples: PathBuf,
-    pub(crate) shards: u64,
-    pub(crate) rows: u64,
+pub struct Merged {
+    /// The merged scan file, `DIR/samples.parquet`.
+    pub samples: PathBuf,
+    /// The shards joined.
+    pub shards: u64,
+    /// The rows of the merged scan.
+    pub rows: u64,
 }
 
 /// The parts of a complete shard set, checked by [`complete_parts`].
