@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterable, Sequence
 
 from . import _rtw
+from ._progress import Progress
 from ._rtw import FAILURE_LABELS, LABELS, failure_clusters
 
 # The paper's five design inputs (L is fixed by its scan); L joins them when a scan varies it.
@@ -383,7 +384,7 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         ImportError: numpy is missing (``pip install 'rtw[report]'``), or
             rtw's Plotly.js bundle is missing or changed.
     """
-    from . import __version__, _reporter
+    from . import __version__
 
     directory = Path(directory)
     if not directory.exists():
@@ -396,7 +397,7 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     outputs = list(DEFAULT_OUTPUTS) if outputs is None else _column_names(outputs)
     check_out(out, force)
     plotly_js = _plotly_bundle()
-    tell = _reporter(progress, "rtw.report", "gaits")
+    tell = Progress(progress, "rtw.report", "gaits")
 
     # rtw-scan's verified reader: the files' hashes, the rows' values, the
     # ids once each in order, every shard of an unmerged set; errors name the file.
@@ -490,17 +491,18 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     gaits = []
     options = config.get("simulation", {})
     # Each gait under the scan's own stored config (its text, as rtw.trace takes it).
-    for k, (i, why) in enumerate(picks):
-        if tell:
-            tell(k, len(picks))
-        row = {c: rows[c][i] for c in table.column_names}
-        g = _gait(row, config_text, options)
-        g["why"] = why
-        if not detail:
-            g["row"] = _clean(row)
-        gaits.append(g)
-    if tell:
-        tell(len(picks), len(picks))
+    with tell as count:
+        for k, (i, why) in enumerate(picks):
+            if count:
+                count(k, len(picks))
+            row = {c: rows[c][i] for c in table.column_names}
+            g = _gait(row, config_text, options)
+            g["why"] = why
+            if not detail:
+                g["row"] = _clean(row)
+            gaits.append(g)
+        if count:
+            count(len(picks), len(picks))
     data["gaits"] = gaits
     data["sensitivity"] = _sensitivity(base, meta, n)
     # The maps in DIR (robustness maps, figures), up to 2 MB each.
