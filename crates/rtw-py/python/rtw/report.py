@@ -129,25 +129,6 @@ def _column_names(outputs: Any) -> list[str]:
     return names
 
 
-def _assignments(directory: Path) -> tuple[dict[int, int], str] | None:
-    """Each failure's cluster from an assignments file in DIR
-    (`rtw-scan cluster --assignments`, recognised by its rtw.clusters metadata)."""
-    import pyarrow.parquet as pq
-
-    if not directory.is_dir():
-        return None
-    for f in sorted(directory.glob("*.parquet")):
-        try:
-            m = _meta(pq.read_metadata(f).metadata)
-        except Exception:  # not Parquet: not ours to read
-            continue
-        if "rtw.clusters" in m:
-            t = pq.read_table(f, columns=["sample_id", "cluster"]).to_pydict()
-            got = {int(s): int(c) - 1 for s, c in zip(t["sample_id"], t["cluster"])}
-            return got, f"from {f.name} (rtw-scan cluster --assignments)"
-    return None
-
-
 def _representatives(rows: dict[str, list], clusters: dict[int, int] | None, centres: list[dict],
                      per_outcome: int, asked: Iterable[int]) -> list[tuple[int, str]]:
     """(row index, why) of the samples whose gait the page animates: the
@@ -376,8 +357,9 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         FileNotFoundError: no such directory or file.
         ValueError: not a scan, or a scan rtw-scan refuses (read with
             :func:`rtw.read_scan`: corrupt, altered, an incomplete shard
-            set; the message names the file), sensitivity indices beside it
-            that are not its own, an unknown output column, a bad option,
+            set; the message names the file), a summary.json, assignments
+            file or sensitivity indices beside it that are not its own
+            (another scan's, or altered), an unknown output column, a bad option,
             an output that is not an rtw report (without ``force``).
         TypeError: ``samples`` not a list of integer ids, ``outputs`` not
             a list of column names.
@@ -400,9 +382,11 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     tell = Progress(progress, "rtw.report", "gaits")
 
     # rtw-scan's verified reader: the files' hashes, the rows' values, the
-    # ids once each in order, every shard of an unmerged set; errors name the file.
+    # ids once each in order, every shard of an unmerged set; and beside the
+    # scan its summary.json and assignments file, only when they are its own
+    # (the counts, the hashes); errors name the file.
     try:
-        table, files = _rtw.read_scan(directory)
+        table, files, summary_text, found = _rtw.read_scan_folder(directory)
     except ValueError as e:
         # Not a scan: a design search's folder or an atlas is reported as one
         # (the design page), read by rtw-scan's verified design reader.
@@ -431,15 +415,14 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
             raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
     rows = table.to_pydict()
     counts = Counter(rows["outcome"])
-    summary_path = base / "summary.json"
-    summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
+    summary = json.loads(summary_text) if summary_text is not None else None
     # "clusters" is null when there are fewer failures than the config's k.
     centres = ((summary or {}).get("clusters") or {}).get("clusters") or []
 
     failed = [i for i, o in enumerate(rows["outcome"]) if o in FAILURE_LABELS]
-    found = _assignments(base)
     if found:
-        assign, how = found
+        assign = dict(found[1])
+        how = f"from {found[0].name} (rtw-scan cluster --assignments)"
     elif centres and failed and len(files) == 1:
         # rtw-scan's own clustering of the file (the config's k, seed and
         # restarts), the assignments `rtw-scan cluster --assignments` writes.

@@ -4,7 +4,7 @@ use crate::analysis::assignments::AssignmentsWriter;
 use crate::analysis::report::{self, clusters_markdown};
 use crate::files;
 use crate::io::destination;
-use crate::io::metadata::{FileKind, META_SEED, META_VERSION, kv};
+use crate::io::metadata::{FileKind, META_SCAN_HASH, META_SEED, META_VERSION, kv};
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use std::num::NonZeroUsize;
@@ -69,6 +69,7 @@ pub(super) fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
         let meta = vec![
             kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
             kv(META_SEED, data.config.seed.to_string()),
+            kv(META_SCAN_HASH, data.content_hash.clone()),
         ];
         files::remove_stray_temps(path)?;
         let written = || -> Result<()> {
