@@ -10,6 +10,7 @@
 //! Python object).
 
 mod design;
+mod geometry;
 mod options;
 mod studies;
 mod types;
@@ -562,6 +563,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
         PyTuple::new(m.py(), label_names(Label::is_failure))?,
     )?;
     m.add("Z95", rtw_scan::Z95)?;
+    geometry::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

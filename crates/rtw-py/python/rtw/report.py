@@ -184,7 +184,7 @@ def _gait(row: dict[str, Any], config_text: str, options: dict) -> dict[str, Any
     import numpy as np
 
     from . import trace as run_trace
-    from .draw import SPOKES, STATE_NAMES, Geometry, Trace, check_geometry, rod_points, slope_axes, stance_tips
+    from .draw import MINUS, PLUS, STATE_NAMES, STRINGS, Geometry, Trace, check_geometry, slope_axes, stance_tips, star_points
 
     inputs = [row[c] for c in ("length", "rho", "alpha", "fn", "zeta", "phi")]
     table = run_trace(*inputs, config=config_text, dt=FRAME_DT)
@@ -205,14 +205,12 @@ def _gait(row: dict[str, Any], config_text: str, options: dict) -> dict[str, Any
     start = max(float(tr.t[0]), float(tr.t[-1]) - TRACE_WINDOW)
     keep = tr.nearest(start + FRAME_DT * np.arange(int((float(tr.t[-1]) - start) / FRAME_DT + 1e-9) + 1))
     d, to_world = design, slope_axes(design.phi)
-    (tp, tm), (cp, cm) = rod_points(tr.x[:, keep], tr.y[:, keep], tr.theta[:, keep], d.length / 2, d.r)
-    tips = np.stack([tp, tm], axis=2) @ to_world  # [rod, sample, end, xy]
-    conns = np.stack([cp, cm], axis=2) @ to_world
-    rods = tips.reshape(3, len(keep), 4).transpose(1, 0, 2)  # [sample, rod, x0 y0 x1 y1]
-    strings = np.stack([np.concatenate([conns[a[0], :, a[1]], conns[b[0], :, b[1]]], axis=-1)
-                        for a, b in zip(SPOKES, SPOKES[1:] + SPOKES[:1])], axis=1)  # [sample, string, 4]
+    tips, conns = (p @ to_world for p in star_points(tr.x[:, keep], tr.y[:, keep], tr.theta[:, keep],
+                                                     d.length, d.r))  # [spoke, sample, xy]
+    rods = np.concatenate([tips[PLUS], tips[MINUS]], axis=-1).transpose(1, 0, 2)  # [sample, rod, x0 y0 x1 y1]
+    strings = np.concatenate([conns[STRINGS[:, 0]], conns[STRINGS[:, 1]]], axis=-1).transpose(1, 0, 2)  # [sample, string, 4]
     code = tr.contact[:, keep]
-    feet = stance_tips(tips[:, :, 0], tips[:, :, 1], code).transpose(1, 0, 2)  # [sample, rod, xy]
+    feet = stance_tips(tips[PLUS], tips[MINUS], code).transpose(1, 0, 2)  # [sample, rod, xy]
     hub = np.stack([tr.x[:, keep].mean(axis=0), np.zeros(len(keep))], axis=-1) @ to_world
     centre = hub + np.array([0.0, 0.45 * d.length])
     r6 = lambda a: np.round(a, 5).tolist()  # noqa: E731 (0.01 mm: below a pixel)
