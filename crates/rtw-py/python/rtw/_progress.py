@@ -83,8 +83,10 @@ class Progress:
                 file=self.stream,
                 bar_format=BAR if in_place else LINE,
                 mininterval=REDRAW if in_place else LOG_EVERY,
+                # A log keeps its lines as they are: no last line drawn again on close.
                 leave=in_place,
-                smoothing=0 if not in_place else 0.3,
+                # A log's lines give the mean rate so far; a bar tqdm's smoothed one.
+                smoothing=0.3 if in_place else 0.0,
             )
             # The first count comes a while after the call began: its times run from the call.
             self.bar.start_t = self.started
