@@ -10,6 +10,7 @@
 //! Python object).
 
 mod design;
+mod geometry;
 mod options;
 mod studies;
 mod types;
@@ -484,6 +485,34 @@ fn read_scan<'py>(py: Python<'py>, path: PathBuf) -> PyResult<(Bound<'py, PyAny>
     Ok((tables(py, scan.batches, scan.schema)?, scan.files))
 }
 
+/// What `read_scan_folder` gives: the rows, the files read, `summary.json`'s
+/// text, and the assignments file with each failure's (0-based) cluster.
+type ScanFolder<'py> = (
+    Bound<'py, PyAny>,
+    Vec<PathBuf>,
+    Option<String>,
+    Option<(PathBuf, Vec<(u64, usize)>)>,
+);
+
+/// A scan as `read_scan` reads it, with the files beside it that are its
+/// own: `summary.json` when it counts the scan's rows, the assignments file
+/// of `cluster --assignments` when it is intact and records this scan's
+/// content hash (rtw-scan's `read_scan_folder`); another file is refused,
+/// named. The HTML report reads a scan's folder through it.
+#[pyfunction]
+fn read_scan_folder<'py>(py: Python<'py>, path: PathBuf) -> PyResult<ScanFolder<'py>> {
+    let folder = py
+        .detach(|| rtw_scan::read_scan_folder(&path))
+        .map_err(value_error)?;
+    let scan = folder.scan;
+    Ok((
+        tables(py, scan.batches, scan.schema)?,
+        scan.files,
+        folder.summary,
+        folder.assignments.map(|a| (a.path, a.clusters)),
+    ))
+}
+
 /// The sensitivity indices at `path` as a `pyarrow.Table`, refused unless
 /// they were computed from the scan with metadata `scan` and `rows` rows.
 #[pyfunction]
@@ -517,6 +546,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(failure_clusters, m)?)?;
     m.add_function(wrap_pyfunction!(read_scan, m)?)?;
     m.add_function(wrap_pyfunction!(read_indices, m)?)?;
+    m.add_function(wrap_pyfunction!(read_scan_folder, m)?)?;
     m.add_function(wrap_pyfunction!(studies::read_design, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
@@ -533,6 +563,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
         PyTuple::new(m.py(), label_names(Label::is_failure))?,
     )?;
     m.add("Z95", rtw_scan::Z95)?;
+    geometry::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -198,3 +198,46 @@ def test_options_of_the_wrong_type_are_refused_by_name(kwargs, error, message, t
     with pytest.raises(error, match=message):
         rtw.report(SCAN, out=tmp_path / "r.html", per_outcome=0, **kwargs)
     assert not (tmp_path / "r.html").exists()
+
+
+def _cluster(scan: Path, dest: Path) -> None:
+    """`rtw-scan cluster --assignments`: each failure of `scan` and its cluster, written to `dest`."""
+    subprocess.run([str(BINARY), "cluster", str(scan / "samples.parquet"), "--assignments", str(dest)],
+                   check=True, capture_output=True)
+
+
+def test_the_scans_own_assignments_are_read_and_an_altered_file_is_refused(tmp_path):
+    """rtw-scan's reader of an assignments file checks its rows against the
+    content hash written with them: a file whose clusters were changed after
+    (its metadata kept, as a hostile user would) is refused, naming it."""
+    a = run_scan(tmp_path, "a", seed=3, n=64)
+    _cluster(a, a / "clusters.parquet")
+    data = json.loads(blob(rtw.report(a, per_outcome=0).read_text(), "data-gz"))
+    assert data["clusters"]["how"].startswith("from clusters.parquet"), data["clusters"]["how"]
+    want = pq.read_table(a / "clusters.parquet", columns=["sample_id", "cluster"]).to_pydict()
+    ids = [data["columns"]["sample_id"][i] for i in data["clusters"]["index"]]
+    assert dict(zip(ids, data["clusters"]["cluster"])) == {s: c - 1 for s, c in zip(want["sample_id"], want["cluster"])}
+    rewrite(a / "clusters.parquet", a / "clusters.parquet",
+            lambda t: t.set_column(1, t.schema.field(1), pc.add(t["cluster"], 1)), keep_hash=True)
+    with pytest.raises(ValueError, match=r"clusters\.parquet is corrupt: its rows hash to"):
+        rtw.report(a, per_outcome=0)
+
+
+def test_another_scans_assignments_are_refused(tmp_path):
+    """An assignments file beside a scan must record that scan's content hash:
+    the failures of another scan (same sample ids, other rows) are refused."""
+    a = run_scan(tmp_path, "a", seed=3, n=64)
+    b = run_scan(tmp_path, "b", seed=4, n=64)
+    _cluster(b, a / "clusters.parquet")
+    with pytest.raises(ValueError, match=r"clusters\.parquet holds another scan's failure clusters"):
+        rtw.report(a, per_outcome=0)
+
+
+def test_another_scans_summary_is_refused(tmp_path):
+    """summary.json beside a scan must count that scan's rows: another scan's
+    (same size, other seed and outcomes) is refused, naming it."""
+    a = run_scan(tmp_path, "a", seed=3, n=64)
+    b = run_scan(tmp_path, "b", seed=4, n=64)
+    shutil.copy(b / "summary.json", a / "summary.json")
+    with pytest.raises(ValueError, match=r"summary\.json is not the summary of this scan"):
+        rtw.report(a, per_outcome=0)

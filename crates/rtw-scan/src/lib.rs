@@ -79,6 +79,10 @@ pub use analysis::sensitivity;
 pub use analysis::report::{Z95, failure_clusters, wilson};
 /// A scan read whole and verified; its sensitivity indices checked as its own.
 pub use analysis::scan_table::{ScanTable, read_indices, read_scan_table};
+/// A scan's folder read for a report: the files beside the scan only when they are its own.
+pub use analysis::verified::{
+    Assignments, ScanFolder, read_assignments, read_scan_folder, read_summary,
+};
 #[cfg(feature = "cli")]
 pub use cli::main;
 /// For a front end's signal handler, which ends the process without

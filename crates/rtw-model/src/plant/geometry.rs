@@ -149,6 +149,33 @@ pub const SPOKES: [(usize, Tip); 6] = [
     (2, Tip::Minus),
 ];
 
+/// The six strings as pairs of spokes (indices into [`SPOKES`]): string `j`
+/// joins the connection points of spoke `j` and spoke `j + 1`, round the
+/// star (a+–b+, b+–c+, c+–a−, a−–b−, b−–c−, c−–a+).
+pub const STRINGS: [(usize, usize); 6] = [(0, 1), (1, 2), (2, 3), (3, 4), (4, 5), (5, 0)];
+
+/// The tip and the connection point of every spoke, in [`SPOKES`] order, of
+/// rods with centres `c` and angles `theta` (`rods[i] = (c, theta)`): tip
+/// `c ± (L/2) e`, connection point `c ± r e`. What a drawing of the star
+/// needs; the strings join the connection points as [`STRINGS`] pairs them.
+pub fn spoke_points(rods: &[(V2, f64); 3], length: f64, r: f64) -> ([V2; 6], [V2; 6]) {
+    let frames = rods.map(|(c, theta)| {
+        RodFrame::new(&RodState {
+            c,
+            theta,
+            v: [0.0, 0.0],
+            omega: 0.0,
+        })
+    });
+    let at = |a: f64| -> [V2; 6] {
+        std::array::from_fn(|j| {
+            let (i, tip) = SPOKES[j];
+            frames[i].point(tip.sign() * a).0
+        })
+    };
+    (at(0.5 * length), at(r))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

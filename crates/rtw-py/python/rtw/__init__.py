@@ -28,16 +28,14 @@ per value.
 
 from __future__ import annotations
 
-import math
 import numbers
 import os
-import sys
-import time
 import warnings
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Any, Callable, Mapping, TextIO
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from . import _rtw
+from ._progress import Progress
 from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, DesignSearch, LimitCycle, Modes, Outcome, Profile
 from .report import report
 from .sensitivity import sensitivity
@@ -246,102 +244,6 @@ def trace(
     return _rtw.trace(values, config, _path(variant), _options(options, more), str(limit))
 
 
-class _Bar:
-    """A run's progress on stderr, drawn as Python users know it from tqdm.
-
-    A terminal gets a bar redrawn in place (``\\r``), ended by a newline
-    when the scan is done; a notebook (ipykernel's stream, which draws
-    ``\\r`` too) one text line updated in place; any other stream (a log, a
-    pipe) a plain line every 10 % or 10 s and at the end, as ``rtw-scan
-    run`` prints when stderr is not a terminal. No dependency: tqdm is not
-    needed.
-    """
-
-    REDRAW = 0.1  # s between redraws in place
-    LOG_EVERY = 10.0  # s between plain lines
-
-    def __init__(self, stream: TextIO, name: str = "rtw.scan", unit: str = "samples") -> None:
-        self.stream = stream
-        self.name, self.unit = name, unit
-        self.started = time.monotonic()
-        self.drawn_at = -math.inf
-        self.decile = 0
-        self.last_done = -1
-        self.in_place = _draws_in_place(stream)
-        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "")
-        self.fill = "█" if encoding == "utf8" or not self.in_place else "#"
-
-    def __call__(self, done: int, total: int) -> None:
-        now = time.monotonic()
-        finished = done >= total
-        if self.in_place:
-            if finished or now - self.drawn_at >= self.REDRAW:
-                self.drawn_at = now
-                self.stream.write("\r" + self._bar(done, total, now) + ("\n" if finished else ""))
-                self.stream.flush()
-            return
-        decile = done * 10 // max(total, 1)
-        if done != self.last_done and (
-            finished or decile > self.decile or now - self.drawn_at >= self.LOG_EVERY
-        ):
-            self.drawn_at, self.decile, self.last_done = now, decile, done
-            self.stream.write(f"{self.name}: {self._counts(done, total, now)}\n")
-            self.stream.flush()
-
-    def _counts(self, done: int, total: int, now: float) -> str:
-        elapsed = now - self.started
-        rate = done / elapsed if elapsed > 0 else 0.0
-        left = (total - done) / rate if rate > 0 else math.inf
-        pct = 100 * done // max(total, 1)
-        return (
-            f"{done}/{total} ({pct}%) [{_clock(elapsed)}<{_clock(left)}, {rate:.1f} {self.unit}/s]"
-        )
-
-    def _bar(self, done: int, total: int, now: float) -> str:
-        elapsed = now - self.started
-        rate = done / elapsed if elapsed > 0 else 0.0
-        left = (total - done) / rate if rate > 0 else math.inf
-        pct = 100 * done // max(total, 1)
-        width = 25
-        full = width * done // max(total, 1)
-        bar = self.fill * full + " " * (width - full)
-        return (
-            f"{self.name} {pct:3d}%|{bar}| {done}/{total} "
-            f"[{_clock(elapsed)}<{_clock(left)}, {rate:.1f} {self.unit}/s]"
-        )
-
-
-def _reporter(
-    progress: bool | Callable[[int, int], object], name: str, unit: str
-) -> Callable[[int, int], object] | None:
-    """What ``progress=`` asks for: a bar on stderr (``True``), nothing, or the caller's callable."""
-    if isinstance(progress, bool):
-        stream = sys.stderr
-        return _Bar(stream, name, unit) if progress and stream is not None else None
-    if callable(progress):
-        return progress
-    raise ValueError(f"progress: {progress!r} is invalid: must be True, False or a callable")
-
-
-def _draws_in_place(stream: TextIO) -> bool:
-    """Whether ``\\r`` redraws a line on ``stream``: a terminal, or a notebook's output."""
-    if type(stream).__module__.startswith("ipykernel"):
-        return True
-    try:
-        return stream.isatty()
-    except (AttributeError, ValueError):
-        return False
-
-
-def _clock(seconds: float) -> str:
-    """``mm:ss`` (``h:mm:ss`` from an hour on; ``?`` when unknown), as tqdm shows times."""
-    if not math.isfinite(seconds):
-        return "?"
-    m, sec = divmod(int(seconds), 60)
-    h, m = divmod(m, 60)
-    return f"{h}:{m:02d}:{sec:02d}" if h else f"{m:02d}:{sec:02d}"
-
-
 def scan(
     config: Config,
     *,
@@ -370,9 +272,10 @@ def scan(
         options: then these options (``{"contact.mu": 0.8}``), as ``--set``
             and as for :func:`simulate`.
         threads: worker threads (default: one per core; at most 4 per core).
-        progress: show the scan's progress on stderr (the default): a bar
-            redrawn in place in a terminal, one line updated in place in a
-            notebook, a line every 10 % elsewhere (a log). ``False``: nothing.
+        progress: show the scan's progress on stderr (the default), drawn
+            by tqdm: a bar redrawn in place in a terminal, one line updated
+            in place in a notebook, a status line every 10 s and at the end
+            elsewhere (a log). ``False``: nothing.
             A callable is called instead with ``(done, total)`` (rows
             computed, rows in all) every 50 ms and at the end; an exception
             it raises stops the scan and is raised.
@@ -399,7 +302,7 @@ def scan(
         MemoryError: the rows do not fit in memory.
         KeyboardInterrupt: interrupted.
     """
-    report = _reporter(progress, "rtw.scan", "samples")
+    tell = Progress(progress, "rtw.scan", "samples")
     if set is not None:
         warnings.warn(
             "rtw.scan(set=...) is deprecated: use options=..., the keyword of every rtw function",
@@ -413,7 +316,8 @@ def scan(
         if value is not None and (isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**63):
             low = 1 if key == "samples" else 0
             raise ValueError(f"{key}: {value!r} is invalid: must be an integer >= {low} and below 2^63")
-    return _rtw.scan(config, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
+    with tell as report:
+        return _rtw.scan(config, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
 
 
 def limit_cycle(
@@ -493,10 +397,10 @@ def basin(
             flight).
     """
     values = _design("basin", design, more)
-    report = _reporter(progress, "rtw.basin", "points")
-    return _rtw.basin(
-        values, config, _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
-    )
+    with Progress(progress, "rtw.basin", "points") as report:
+        return _rtw.basin(
+            values, config, _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
+        )
 
 
 def profile(
@@ -689,8 +593,8 @@ def design(
         KeyboardInterrupt: interrupted (Ctrl-C stops the runs in flight;
             with ``out``, every finished design is kept).
     """
-    report = _reporter(progress, "rtw.design", "runs")
-    return _rtw.design(
-        os.fspath(config), _path(out), _path(variant), _options(options, {}), threads, bool(force), report
-    )
+    with Progress(progress, "rtw.design", "runs") as report:
+        return _rtw.design(
+            os.fspath(config), _path(out), _path(variant), _options(options, {}), threads, bool(force), report
+        )
 

@@ -24,6 +24,9 @@ LABELS: tuple[str, ...]
 STABLE_LABELS: tuple[str, ...]
 FAILURE_LABELS: tuple[str, ...]
 Z95: float
+# Each spoke (a+, b+, c+, a−, b−, c−) as (rod index, tip sign ±1); each string as its pair of spokes.
+SPOKES: list[tuple[int, int]]
+STRINGS: list[tuple[int, int]]
 
 class Outcome:
     sample_id: int
@@ -205,5 +208,11 @@ def sensitivity(
     progress: Callable[[int, int], object] | None = None,
 ) -> pyarrow.Table: ...
 def read_scan(path: str | os.PathLike[str]) -> tuple[pyarrow.Table, list[Path]]: ...
+def star_points(
+    x: Sequence[float], y: Sequence[float], theta: Sequence[float], length: float, r: float
+) -> tuple[list[float], list[float]]: ...
+def read_scan_folder(
+    path: str | os.PathLike[str],
+) -> tuple[pyarrow.Table, list[Path], str | None, tuple[Path, list[tuple[int, int]]] | None]: ...
 def read_indices(path: str | os.PathLike[str], scan: Mapping[str, str], rows: int) -> pyarrow.Table: ...
 def read_design(path: str | os.PathLike[str]) -> list[tuple[Path, str, pyarrow.Table]] | None: ...

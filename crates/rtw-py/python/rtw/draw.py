@@ -6,11 +6,11 @@ module). A trace is any table with the columns
 `pyarrow.Table`, a polars or pandas DataFrame, or a mapping of column name to
 array. Columns are taken whole as numpy arrays; nothing loops over rows.
 
-The geometry is the model's (docs/model.md §1–§2, crates/rtw-model geometry.rs
-and strings.rs): rod i has centre (x_i, y_i) in the slope frame (x downhill,
-y normal to the slope), angle θ_i, tips c ± (L/2) e and connection points
-c ± r e with e = (cos θ, sin θ); string j joins spoke j and spoke j+1 in the
-angular order a+, b+, c+, a−, b−, c−. `check_geometry` holds the drawing to
+The geometry is the model's, computed by it (rtw-model's `spoke_points`,
+`SPOKES` and `STRINGS`, docs/model.md §1–§2): rod i has centre (x_i, y_i) in
+the slope frame (x downhill, y normal to the slope) and angle θ_i; rtw-model
+gives each spoke's tip and connection point and the spokes each string
+joins. `check_geometry` holds the drawing to
 the trace: every foot in contact on the ground and the strings' energy equal
 to the trace's, at every sample.
 """
@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _rtw
 from ._rtw import FAILURE_LABELS, STABLE_LABELS
 
 RODS = "abc"
@@ -47,9 +48,13 @@ STRING_COLOR = "#555555"
 GROUND_COLOR = "#8c6d31"
 EARTH_COLOR = "#e8dcc4"
 
-# Spokes in angular order a+, b+, c+, a−, b−, c− as (rod index, end: 0 = +, 1 = −);
-# string j joins spoke j and j+1 (strings.rs).
-SPOKES = [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (2, 1)]
+# rtw-model's spokes in angular order (a+, b+, c+, a−, b−, c−) as (rod index,
+# tip sign ±1), and its strings as the pair of spokes each joins.
+SPOKES = _rtw.SPOKES
+STRINGS = np.array(_rtw.STRINGS)
+# The spoke of each rod's tip + and of its tip − (rows: rods a, b, c).
+PLUS = [SPOKES.index((i, 1)) for i in range(3)]
+MINUS = [SPOKES.index((i, -1)) for i in range(3)]
 
 # The columns drawing and checking need (a trace has more).
 TRACE_COLUMNS = ("t", *(f"{q}_{rod}" for rod in RODS for q in ("x", "y", "theta", "contact")),
@@ -108,13 +113,17 @@ class Geometry:
         return cls.from_params(p["length"], p["alpha"], p["phi"], options)
 
 
-def rod_points(x, y, th, half: float, r: float):
-    """Tips c ± (L/2) e and connection points c ± r e (geometry.rs), for
-    scalars or arrays of samples: ((tip+, tip−), (conn+, conn−)), each with
-    the (x, y) pair on the last axis."""
-    e = np.stack([np.cos(th), np.sin(th)], axis=-1)
-    c = np.stack([np.asarray(x, dtype=float), np.asarray(y, dtype=float)], axis=-1)
-    return (c + half * e, c - half * e), (c + r * e, c - r * e)
+def star_points(x, y, theta, length: float, r: float):
+    """Every spoke's tip and connection point, as rtw-model computes them
+    (`spoke_points`), for the rods' centres (x, y) and angles θ given as
+    arrays [rod, ...] (one frame: [rod]): (tips, connection points), each
+    [spoke, ..., xy] in the order of SPOKES."""
+    x, y, theta = (np.asarray(a, dtype=float) for a in (x, y, theta))
+    shape = x.shape[1:]
+    flat = lambda a: np.moveaxis(a.reshape(3, -1), 0, -1).ravel().tolist()  # noqa: E731 ([frame, rod])
+    tips, conns = _rtw.star_points(flat(x), flat(y), flat(theta), float(length), float(r))
+    unflat = lambda v: np.moveaxis(np.asarray(v).reshape(-1, 6, 2), 1, 0).reshape(6, *shape, 2)  # noqa: E731
+    return unflat(tips), unflat(conns)
 
 
 def stance_tips(plus, minus, code):
@@ -192,13 +201,13 @@ class Trace:
         return len(self.t)
 
     def points(self):
-        """((tip+, tip−), (conn+, conn−)) of every rod at every sample, each [rod, sample, xy]."""
-        return rod_points(self.x, self.y, self.theta, self.design.length / 2, self.design.r)
+        """(tips, connection points) of every spoke at every sample, each [spoke, sample, xy] (star_points)."""
+        return star_points(self.x, self.y, self.theta, self.design.length, self.design.r)
 
     def feet(self) -> np.ndarray:
         """The tip each rod stands on (+ for a positive code, − for a negative), [rod, sample, xy]."""
-        (plus, minus), _ = self.points()
-        return stance_tips(plus, minus, self.contact)
+        tips, _ = self.points()
+        return stance_tips(tips[PLUS], tips[MINUS], self.contact)
 
     def nearest(self, times) -> np.ndarray:
         """Index of the sample nearest each time (the earlier one on a tie)."""
@@ -212,11 +221,8 @@ class Trace:
 
 def string_lengths(trace: Trace) -> np.ndarray:
     """The six strings' lengths, [string, sample]."""
-    _, (cplus, cminus) = trace.points()
-    conn = np.stack([cplus, cminus], axis=1)  # [rod, end, sample, xy]
-    ends = np.array(SPOKES)
-    nxt = np.roll(ends, -1, axis=0)
-    return np.linalg.norm(conn[ends[:, 0], ends[:, 1]] - conn[nxt[:, 0], nxt[:, 1]], axis=-1)
+    _, conns = trace.points()
+    return np.linalg.norm(conns[STRINGS[:, 0]] - conns[STRINGS[:, 1]], axis=-1)
 
 
 def check_geometry(trace: Trace, k: float | None = None) -> float:
@@ -280,7 +286,7 @@ class Star:
         self.mark_lines = LineCollection([], colors=GROUND_COLOR, linewidths=1.0, zorder=1)
         if marks:
             ax.add_collection(self.mark_lines)
-        self.strings = [ax.plot([], [], color=STRING_COLOR, lw=0.9, zorder=2)[0] for _ in SPOKES]
+        self.strings = [ax.plot([], [], color=STRING_COLOR, lw=0.9, zorder=2)[0] for _ in STRINGS]
         self.rods = [ax.plot([], [], color=ROD_COLOR[i], lw=3.2, solid_capstyle="round", zorder=3)[0]
                      for i in range(3)]
         feet = dict(ls="none", zorder=4, markersize=math.sqrt(38), markeredgecolor="black", markeredgewidth=1.2)
@@ -298,10 +304,8 @@ class Star:
     def update(self, trace: Trace, i: int) -> list:
         """Move every artist to sample i; returns the artists changed."""
         d = self.design
-        (tplus, tminus), (cplus, cminus) = rod_points(trace.x[:, i], trace.y[:, i], trace.theta[:, i],
-                                                      d.length / 2, d.r)
-        tips = self.world(np.stack([tplus, tminus], axis=1))  # [rod, end, xy]
-        conns = self.world(np.stack([cplus, cminus], axis=1))
+        tips, conns = (self.world(p) for p in star_points(trace.x[:, i], trace.y[:, i], trace.theta[:, i],
+                                                           d.length, d.r))  # [spoke, xy]
         hub_x = float(np.mean(trace.x[:, i]))
         centre = self.world(np.array([hub_x, 0.0])) + np.array([0.0, 0.45 * d.length])
         # Ground: the slope line y = 0 and a band below it.
@@ -315,13 +319,14 @@ class Star:
                            math.floor((hub_x + reach) / self.marks) + 1) * self.marks
             top = self.world(np.stack([xs, np.zeros_like(xs)], axis=-1))
             self.mark_lines.set_segments([[p, p + 0.06 * below] for p in top])
-        for j, (a, b) in enumerate(zip(SPOKES, SPOKES[1:] + SPOKES[:1])):
+        for j, (a, b) in enumerate(STRINGS):
             p, q = conns[a], conns[b]
             self.strings[j].set_data([p[0], q[0]], [p[1], q[1]])
         for r in range(3):
-            self.rods[r].set_data(tips[r, :, 0], tips[r, :, 1])
+            ends = tips[[PLUS[r], MINUS[r]]]
+            self.rods[r].set_data(ends[:, 0], ends[:, 1])
         code = trace.contact[:, i]
-        foot = stance_tips(tips[:, 0], tips[:, 1], code)
+        foot = stance_tips(tips[PLUS], tips[MINUS], code)
         for artist, kind in ((self.stick, STICK), (self.slide, SLIDE)):
             m = np.abs(code) == kind
             artist.set_data(foot[m, 0], foot[m, 1])

@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterable, Sequence
 
 from . import _rtw
+from ._progress import Progress
 from ._rtw import FAILURE_LABELS, LABELS, failure_clusters
 
 # The paper's five design inputs (L is fixed by its scan); L joins them when a scan varies it.
@@ -128,25 +129,6 @@ def _column_names(outputs: Any) -> list[str]:
     return names
 
 
-def _assignments(directory: Path) -> tuple[dict[int, int], str] | None:
-    """Each failure's cluster from an assignments file in DIR
-    (`rtw-scan cluster --assignments`, recognised by its rtw.clusters metadata)."""
-    import pyarrow.parquet as pq
-
-    if not directory.is_dir():
-        return None
-    for f in sorted(directory.glob("*.parquet")):
-        try:
-            m = _meta(pq.read_metadata(f).metadata)
-        except Exception:  # not Parquet: not ours to read
-            continue
-        if "rtw.clusters" in m:
-            t = pq.read_table(f, columns=["sample_id", "cluster"]).to_pydict()
-            got = {int(s): int(c) - 1 for s, c in zip(t["sample_id"], t["cluster"])}
-            return got, f"from {f.name} (rtw-scan cluster --assignments)"
-    return None
-
-
 def _representatives(rows: dict[str, list], clusters: dict[int, int] | None, centres: list[dict],
                      per_outcome: int, asked: Iterable[int]) -> list[tuple[int, str]]:
     """(row index, why) of the samples whose gait the page animates: the
@@ -202,7 +184,7 @@ def _gait(row: dict[str, Any], config_text: str, options: dict) -> dict[str, Any
     import numpy as np
 
     from . import trace as run_trace
-    from .draw import SPOKES, STATE_NAMES, Geometry, Trace, check_geometry, rod_points, slope_axes, stance_tips
+    from .draw import MINUS, PLUS, STATE_NAMES, STRINGS, Geometry, Trace, check_geometry, slope_axes, stance_tips, star_points
 
     inputs = [row[c] for c in ("length", "rho", "alpha", "fn", "zeta", "phi")]
     table = run_trace(*inputs, config=config_text, dt=FRAME_DT)
@@ -223,14 +205,12 @@ def _gait(row: dict[str, Any], config_text: str, options: dict) -> dict[str, Any
     start = max(float(tr.t[0]), float(tr.t[-1]) - TRACE_WINDOW)
     keep = tr.nearest(start + FRAME_DT * np.arange(int((float(tr.t[-1]) - start) / FRAME_DT + 1e-9) + 1))
     d, to_world = design, slope_axes(design.phi)
-    (tp, tm), (cp, cm) = rod_points(tr.x[:, keep], tr.y[:, keep], tr.theta[:, keep], d.length / 2, d.r)
-    tips = np.stack([tp, tm], axis=2) @ to_world  # [rod, sample, end, xy]
-    conns = np.stack([cp, cm], axis=2) @ to_world
-    rods = tips.reshape(3, len(keep), 4).transpose(1, 0, 2)  # [sample, rod, x0 y0 x1 y1]
-    strings = np.stack([np.concatenate([conns[a[0], :, a[1]], conns[b[0], :, b[1]]], axis=-1)
-                        for a, b in zip(SPOKES, SPOKES[1:] + SPOKES[:1])], axis=1)  # [sample, string, 4]
+    tips, conns = (p @ to_world for p in star_points(tr.x[:, keep], tr.y[:, keep], tr.theta[:, keep],
+                                                     d.length, d.r))  # [spoke, sample, xy]
+    rods = np.concatenate([tips[PLUS], tips[MINUS]], axis=-1).transpose(1, 0, 2)  # [sample, rod, x0 y0 x1 y1]
+    strings = np.concatenate([conns[STRINGS[:, 0]], conns[STRINGS[:, 1]]], axis=-1).transpose(1, 0, 2)  # [sample, string, 4]
     code = tr.contact[:, keep]
-    feet = stance_tips(tips[:, :, 0], tips[:, :, 1], code).transpose(1, 0, 2)  # [sample, rod, xy]
+    feet = stance_tips(tips[PLUS], tips[MINUS], code).transpose(1, 0, 2)  # [sample, rod, xy]
     hub = np.stack([tr.x[:, keep].mean(axis=0), np.zeros(len(keep))], axis=-1) @ to_world
     centre = hub + np.array([0.0, 0.45 * d.length])
     r6 = lambda a: np.round(a, 5).tolist()  # noqa: E731 (0.01 mm: below a pixel)
@@ -375,15 +355,16 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         FileNotFoundError: no such directory or file.
         ValueError: not a scan, or a scan rtw-scan refuses (read with
             :func:`rtw.read_scan`: corrupt, altered, an incomplete shard
-            set; the message names the file), sensitivity indices beside it
-            that are not its own, an unknown output column, a bad option,
+            set; the message names the file), a summary.json, assignments
+            file or sensitivity indices beside it that are not its own
+            (another scan's, or altered), an unknown output column, a bad option,
             an output that is not an rtw report (without ``force``).
         TypeError: ``samples`` not a list of integer ids, ``outputs`` not
             a list of column names.
         ImportError: numpy is missing (``pip install 'rtw[report]'``), or
             rtw's Plotly.js bundle is missing or changed.
     """
-    from . import __version__, _reporter
+    from . import __version__
 
     directory = Path(directory)
     if not directory.exists():
@@ -396,12 +377,14 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     outputs = list(DEFAULT_OUTPUTS) if outputs is None else _column_names(outputs)
     check_out(out, force)
     plotly_js = _plotly_bundle()
-    tell = _reporter(progress, "rtw.report", "gaits")
+    tell = Progress(progress, "rtw.report", "gaits")
 
     # rtw-scan's verified reader: the files' hashes, the rows' values, the
-    # ids once each in order, every shard of an unmerged set; errors name the file.
+    # ids once each in order, every shard of an unmerged set; and beside the
+    # scan its summary.json and assignments file, only when they are its own
+    # (the counts, the hashes); errors name the file.
     try:
-        table, files = _rtw.read_scan(directory)
+        table, files, summary_text, found = _rtw.read_scan_folder(directory)
     except ValueError as e:
         # Not a scan: a design search's folder or an atlas is reported as one
         # (the design page), read by rtw-scan's verified design reader.
@@ -430,15 +413,14 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
             raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
     rows = table.to_pydict()
     counts = Counter(rows["outcome"])
-    summary_path = base / "summary.json"
-    summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
+    summary = json.loads(summary_text) if summary_text is not None else None
     # "clusters" is null when there are fewer failures than the config's k.
     centres = ((summary or {}).get("clusters") or {}).get("clusters") or []
 
     failed = [i for i, o in enumerate(rows["outcome"]) if o in FAILURE_LABELS]
-    found = _assignments(base)
     if found:
-        assign, how = found
+        assign = dict(found[1])
+        how = f"from {found[0].name} (rtw-scan cluster --assignments)"
     elif centres and failed and len(files) == 1:
         # rtw-scan's own clustering of the file (the config's k, seed and
         # restarts), the assignments `rtw-scan cluster --assignments` writes.
@@ -490,17 +472,18 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     gaits = []
     options = config.get("simulation", {})
     # Each gait under the scan's own stored config (its text, as rtw.trace takes it).
-    for k, (i, why) in enumerate(picks):
-        if tell:
-            tell(k, len(picks))
-        row = {c: rows[c][i] for c in table.column_names}
-        g = _gait(row, config_text, options)
-        g["why"] = why
-        if not detail:
-            g["row"] = _clean(row)
-        gaits.append(g)
-    if tell:
-        tell(len(picks), len(picks))
+    with tell as count:
+        for k, (i, why) in enumerate(picks):
+            if count:
+                count(k, len(picks))
+            row = {c: rows[c][i] for c in table.column_names}
+            g = _gait(row, config_text, options)
+            g["why"] = why
+            if not detail:
+                g["row"] = _clean(row)
+            gaits.append(g)
+        if count:
+            count(len(picks), len(picks))
     data["gaits"] = gaits
     data["sensitivity"] = _sensitivity(base, meta, n)
     # The maps in DIR (robustness maps, figures), up to 2 MB each.

@@ -7,6 +7,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from . import _rtw
+from ._progress import Progress
 
 if TYPE_CHECKING:
     import pyarrow
@@ -61,7 +62,5 @@ def sensitivity(
     """
     if isinstance(table, (str, os.PathLike)):
         table = os.fspath(table)
-    from . import _reporter  # the package's, defined after this module is imported
-
-    report = _reporter(progress, "rtw.sensitivity", "resamples")
-    return _rtw.sensitivity(table, resamples, seed, report)
+    with Progress(progress, "rtw.sensitivity", "resamples") as report:
+        return _rtw.sensitivity(table, resamples, seed, report)

@@ -8,6 +8,7 @@
 //! | [`assignments`] | `cluster --assignments` files: each failure and its cluster |
 //! | [`report`] | shares with Wilson intervals, paper numbers, `summary.json`/`summary.md` |
 //! | [`scan_table`] | a scan read whole and verified (files, hashes, ids, shard set); its sensitivity indices checked as its own |
+//! | [`verified`] | a scan's folder for a report: the scan, and its `summary.json` and assignments file only when they are its own |
 //! | [`sensitivity`] | Sobol indices of every output to every uniform input (Saltelli design or given data) |
 
 pub(crate) mod assignments;
@@ -16,3 +17,4 @@ pub(crate) mod kmeans;
 pub(crate) mod report;
 pub mod scan_table;
 pub mod sensitivity;
+pub mod verified;

@@ -14,7 +14,9 @@ use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
 use crate::files::{self, write_atomic};
 use crate::io::destination::SUMMARY_MAX_BYTES;
-use crate::io::metadata::{META_CONFIG, META_REFINE, META_VERSION, META_WALL_TIME};
+use crate::io::metadata::{
+    META_CONFIG, META_CONTENT_HASH, META_REFINE, META_VERSION, META_WALL_TIME,
+};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_files;
 use crate::io::scan_rows::label_index;
@@ -85,6 +87,8 @@ pub(crate) struct ScanData {
     pub(crate) path: PathBuf,
     pub(crate) config: ScanConfig,
     pub(crate) version: String,
+    /// Its `rtw.content_hash`: what an assignments file records of its scan.
+    pub(crate) content_hash: String,
     pub(crate) rows: u64,
     /// Rows per label, in [`Label::ALL`] order.
     pub(crate) counts: [u64; 6],
@@ -157,6 +161,11 @@ pub(crate) fn read_scan(path: &Path) -> Result<ScanData> {
         version: input
             .metadata
             .get(META_VERSION)
+            .cloned()
+            .unwrap_or_default(),
+        content_hash: input
+            .metadata
+            .get(META_CONTENT_HASH)
             .cloned()
             .unwrap_or_default(),
         rows: 0,
@@ -365,7 +374,7 @@ pub(crate) fn summarize(path: &Path, k: Option<usize>) -> Result<Summary> {
 /// `summary.md`'s `- file: `...`` line under its `# rtw-scan summary:`
 /// title. These are what every summary rtw-scan writes carries; a file
 /// without them is not one of its summaries.
-fn summary_of(name: &str, text: &str) -> Option<String> {
+pub(crate) fn summary_of(name: &str, text: &str) -> Option<String> {
     if name.ends_with(".json") {
         let v = serde_json::from_str::<serde_json::Value>(text).ok()?;
         (v.get("version").is_some() && v.get("outcomes").is_some())

@@ -48,6 +48,9 @@ pub(crate) const META_METADATA_HASH: &str = "rtw.metadata_hash";
 /// Metadata key of an assignments file: the clustering (centres, sizes,
 /// cross-table) as JSON, exactly what `cluster --json` prints.
 pub(crate) const META_CLUSTERS: &str = "rtw.clusters";
+/// Metadata key of an assignments file: the `rtw.content_hash` of the scan
+/// it clusters, by which a reader tells that scan's assignments from another's.
+pub(crate) const META_SCAN_HASH: &str = "rtw.scan_content_hash";
 /// Metadata key: the swept parameter of a bifurcation file.
 pub(crate) const META_PARAM: &str = "rtw.bifurcation.param";
 /// Metadata key of `rtw-scan sensitivity`'s indices: JSON (method, scan,

@@ -6,7 +6,7 @@ use crate::analysis::clusters::FailureClusters;
 use crate::analysis::report;
 use crate::files;
 use crate::io::destination;
-use crate::io::metadata::{FileKind, META_SEED, META_VERSION, kv};
+use crate::io::metadata::{FileKind, META_SCAN_HASH, META_SEED, META_VERSION, kv};
 use anyhow::{Context, Result, anyhow};
 use std::path::Path;
 
@@ -70,6 +70,7 @@ pub fn cluster(
         let meta = vec![
             kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
             kv(META_SEED, data.config.seed.to_string()),
+            kv(META_SCAN_HASH, data.content_hash.clone()),
         ];
         files::remove_stray_temps(path)?;
         let written = || -> Result<()> {

@@ -665,6 +665,11 @@ fn cluster_assignments_name_every_failure_once_and_match_the_summary() {
         serde_json::from_str::<serde_json::Value>(&meta).unwrap(),
         printed
     );
+    // The file records the scan it clusters, by which a reader tells it from another scan's.
+    assert_eq!(
+        file_metadata(&assign, "rtw.scan_content_hash"),
+        file_metadata(&samples, "rtw.content_hash")
+    );
 
     // Fewer failures than clusters: a clear error, and no file.
     let none = dir.path().join("none.parquet");
