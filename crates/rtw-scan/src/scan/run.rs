@@ -33,7 +33,6 @@ use crate::config::ScanConfig;
 use crate::files;
 use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, VERSION};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
-use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows;
 use crate::scan::checkpoint::{
@@ -244,7 +243,7 @@ pub(crate) fn run_scan_with(
     compute_chunks(&pool, &todo, &jobs, |c, chunk, wall| {
         let mut meta = metadata.clone();
         meta.push(metadata::kv(META_CHUNK_WALL_TIME, wall.to_string()));
-        let batch = with_robustness(scan_rows::to_batch(&chunk), &chunk, &cfg.simulation);
+        let batch = scan_rows::to_batch(&chunk, &cfg.simulation.robustness);
         parquet::write_file(&layout.chunk(c), &batch, meta)?;
         written += 1;
         computed += chunk.len() as u64;
