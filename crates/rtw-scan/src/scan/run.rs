@@ -36,12 +36,12 @@ use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows;
 use crate::scan::checkpoint::{
-    Checkpoint, Intent, Layout, Resume, check_chunk_size, refuse_other_results, remove_partial,
-    report_unknown,
+    Checkpoint, Intent, Layout, Resume, check_chunk_size, refuse_other_results, report_unknown,
 };
 use crate::scan::chunks::{Todo, compute_chunks};
 use crate::scan::lock::Lock;
 use crate::scan::one::Simulator;
+use crate::scan::partial::remove_partial;
 use crate::scan::progress::Progress;
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
@@ -273,8 +273,8 @@ mod tests {
     use crate::io::metadata::VERSION;
     use crate::io::scan_rows::schema;
     use crate::scan::batch::scan_batch;
-    use crate::scan::checkpoint::chunks_on_disk;
     use crate::scan::fixtures::{CFG, fake_sim};
+    use crate::scan::partial::chunks_on_disk;
     use crate::scan::progress::Silent;
     use arrow::array::{Array, AsArray, RecordBatch};
     use rtw_model::Label;
@@ -516,6 +516,52 @@ mod tests {
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
         );
+    }
+
+    #[test]
+    fn open_says_what_it_found_fresh_continue_or_complete() {
+        let cfg = parse(CFG).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        let checkpoint = Checkpoint::new(dir.path(), &cfg, 0..37, None);
+        let intent = |resume, chunk_size| Intent {
+            resume,
+            force: false,
+            chunk_size,
+        };
+        // An empty directory: a new run in the asked chunk size, its
+        // manifest written.
+        let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Fresh { chunk_size: 8 });
+        assert!(checkpoint.layout.manifest().is_file());
+        std::fs::remove_dir_all(&checkpoint.layout.partial).unwrap();
+
+        // A run stopped with chunks of 4 rows: continued in its own chunk
+        // size, whatever is asked, keeping exactly the chunks on disk.
+        stopped_after(&cfg, dir.path(), 10);
+        let on_disk: BTreeSet<u64> = chunks_on_disk(&checkpoint.layout.partial)
+            .unwrap()
+            .into_iter()
+            .collect();
+        assert!(on_disk.len() >= 2, "{on_disk:?}");
+        let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
+        assert_eq!(
+            found,
+            Resume::Continue {
+                chunk_size: 4,
+                kept: on_disk
+            }
+        );
+
+        // Finished, then resumed again: complete, nothing to compute.
+        let mut s = settings(dir.path(), 1, 4);
+        s.resume = true;
+        run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
+        let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Complete);
+        // Without --resume a finished result is computed anew.
+        let found = checkpoint.open(intent(false, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Fresh { chunk_size: 8 });
     }
 
     #[test]
