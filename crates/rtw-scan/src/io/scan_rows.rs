@@ -750,9 +750,11 @@ pub(crate) mod tests {
         // one whose splitting saw no fall has mfpt = mfpt_lo = ∞: both are
         // measured, unlike a measure that could not be computed (NaN), and a
         // reader must tell them apart.
-        let mut asked = RobustnessOptions::default();
-        asked.mfpt = true;
-        asked.gsn = true;
+        let asked = RobustnessOptions {
+            mfpt: true,
+            gsn: true,
+            ..RobustnessOptions::default()
+        };
         let with = |mfpt, lo, hi, fall_rate, gsn| {
             let mut o = outcome(Label::Walk);
             o.robustness = Some(Robustness {
