@@ -4,8 +4,7 @@
 
 use crate::io::metadata::META_WALL_TIME;
 use crate::io::parquet::{self, ParquetFile, READ_BATCH_ROWS};
-use crate::io::robustness_columns::schema_of_files;
-use crate::io::scan_rows::{COLUMNS, schema};
+use crate::io::scan_rows::{COLUMNS, schema, schema_of_files};
 use crate::io::table::{f64_column, i64_column};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::{Context, Result, anyhow, bail};

@@ -8,10 +8,11 @@
 //! label list [`Label::ALL`] (pandas and polars read it as categorical);
 //! floats are `Float64`, counts `Int64`.
 
+use crate::io::robustness_columns::{append, extend_schema};
 use crate::io::robustness_measures::picked;
 use crate::io::table::{self, Column, Get};
 use arrow_array::RecordBatch;
-use arrow_schema::SchemaRef;
+use arrow_schema::{Schema, SchemaRef};
 use rtw_model::options::RobustnessOptions;
 use rtw_model::outcome::FailureDetail;
 use rtw_model::{Label, Outcome, Params, Physical};
@@ -395,9 +396,28 @@ fn label_names() -> Vec<&'static str> {
     Label::ALL.iter().map(|l| l.as_str()).collect()
 }
 
-/// Rows → one record batch in [`schema`].
-pub(crate) fn to_batch(rows: &[Row]) -> RecordBatch {
-    table::batch(COLUMNS, schema(), rows)
+/// Rows → one record batch: the columns of [`COLUMNS`], then the
+/// robustness columns `asked` switches on, in [`schema_for`]`(asked)`. The
+/// one way scan rows become a batch (a scan's chunks, the in-memory scan, a
+/// slope profile), so none can leave the robustness columns out.
+pub(crate) fn to_batch(rows: &[Row], asked: &RobustnessOptions) -> RecordBatch {
+    let batch = table::batch(COLUMNS, schema(), rows);
+    append(batch, rows, |r| r.outcome.and_then(|o| o.robustness), asked)
+}
+
+/// The schema of scan rows under `asked`: [`schema`], then the robustness
+/// columns it switches on.
+pub(crate) fn schema_for(asked: &RobustnessOptions) -> SchemaRef {
+    extend_schema(schema(), picked(|c| (c.on)(asked)))
+}
+
+/// The schema of scan files whose first file has schema `first`: [`schema`],
+/// then the robustness columns it carries.
+pub(crate) fn schema_of_files(first: &Schema) -> SchemaRef {
+    extend_schema(
+        schema(),
+        picked(|c| first.column_with_name(c.name).is_some()),
+    )
 }
 
 /// A row as one flat JSON object, keys in column order (`outcome` is the
@@ -535,7 +555,9 @@ pub(crate) mod tests {
     use arrow_array::Array;
     use arrow_array::cast::AsArray;
     use rtw_model::Normalization;
-    use rtw_model::outcome::{ContactFractions, Energy, FailureDetail, IntegratorWork};
+    use rtw_model::outcome::{
+        ContactFractions, Energy, FailureDetail, IntegratorWork, MeanFirstPassage, Robustness,
+    };
 
     pub(crate) fn outcome(label: Label) -> Outcome {
         Outcome {
@@ -596,7 +618,7 @@ pub(crate) mod tests {
             row(1, None),
             row(2, Some(outcome(Label::Stall))),
         ];
-        let b = to_batch(&rows);
+        let b = to_batch(&rows, &Default::default());
         assert_eq!(b.num_rows(), 3);
         assert_eq!(b.num_columns(), COLUMNS.len());
         assert_eq!(
@@ -623,7 +645,7 @@ pub(crate) mod tests {
         let rows: Vec<Row> = (0..5).map(|i| row(i, Some(outcome(Label::Skip)))).collect();
         write_file(
             &path,
-            &to_batch(&rows),
+            &to_batch(&rows, &Default::default()),
             vec![KeyValue::new(META_SEED.into(), "7".to_string())],
         )
         .unwrap();
@@ -632,7 +654,7 @@ pub(crate) mod tests {
         assert_eq!(input.metadata[META_SEED], "7");
         let batches: Vec<RecordBatch> = input.reader.collect::<Result<_, _>>().unwrap();
         assert_eq!(batches[0].schema().fields(), schema().fields());
-        assert_eq!(batches[0], to_batch(&rows));
+        assert_eq!(batches[0], to_batch(&rows, &Default::default()));
         // Nothing but the file is left in the directory.
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
@@ -685,5 +707,56 @@ pub(crate) mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn an_mfpt_open_above_keeps_its_infinite_upper_end_and_nan_is_null() {
+        // A gait whose fall rate's interval reaches 0 has mfpt_hi = ∞, and
+        // one whose splitting saw no fall has mfpt = mfpt_lo = ∞: both are
+        // measured, unlike a measure that could not be computed (NaN), and a
+        // reader must tell them apart.
+        let asked = RobustnessOptions {
+            mfpt: true,
+            gsn: true,
+            ..RobustnessOptions::default()
+        };
+        let with = |mfpt, lo, hi, fall_rate, gsn| {
+            let mut o = outcome(Label::Walk);
+            o.robustness = Some(Robustness {
+                gsn: Some(gsn),
+                mfpt: Some(MeanFirstPassage {
+                    mfpt,
+                    lo,
+                    hi,
+                    fall_rate,
+                    steps: 1000,
+                }),
+                ..Robustness::default()
+            });
+            o
+        };
+        let inf = f64::INFINITY;
+        let rows = vec![
+            row(0, Some(with(5171.0, 2537.0, inf, 1.9e-4, 4.6))),
+            row(1, Some(with(inf, inf, inf, 0.0, f64::NAN))),
+            row(2, Some(with(146.1, 85.3, 1174.3, 0.0074, 4.6))),
+        ];
+        let b = to_batch(&rows, &asked);
+        assert_eq!(b.schema(), schema_for(&asked));
+        let column = |name| f64_column(&b, name).unwrap();
+        let (mfpt, lo, hi, rate, gsn) = (
+            column("mfpt"),
+            column("mfpt_lo"),
+            column("mfpt_hi"),
+            column("fall_rate"),
+            column("gsn"),
+        );
+        assert_eq!(hi.null_count(), 0, "mfpt_hi: {hi:?}");
+        assert_eq!(hi.value(0), inf);
+        assert_eq!((mfpt.value(1), lo.value(1), hi.value(1)), (inf, inf, inf));
+        assert_eq!(rate.value(1), 0.0);
+        assert_eq!(hi.value(2), 1174.3);
+        assert!(gsn.is_null(1), "a NaN measure is null: {gsn:?}");
+        assert_eq!(gsn.value(0), 4.6);
     }
 }

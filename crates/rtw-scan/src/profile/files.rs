@@ -12,7 +12,7 @@ use crate::io::metadata::{
     kv,
 };
 use crate::io::parquet;
-use crate::io::robustness_columns::schema_for;
+use crate::io::scan_rows::schema_for;
 use crate::scan::progress::Progress;
 use anyhow::Result;
 use rtw_model::{Label, Options};
@@ -32,7 +32,7 @@ pub(crate) fn check_outputs(out: &Path, options: &Options, force: bool) -> Resul
     let files_ = [Output {
         path: out.to_path_buf(),
         flag: "--out",
-        schema: schema_for(options),
+        schema: schema_for(&options.robustness),
     }];
     destination::check_outputs(
         out,

@@ -19,7 +19,6 @@ pub(crate) mod files;
 mod locate;
 
 use crate::config::params::checked_params;
-use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_rows::{self, Row};
 use crate::scan::one::run_one;
 use crate::scan::progress::Progress;
@@ -263,7 +262,7 @@ impl Profile {
     /// options ask for (`robustness.mfpt`: the MFPT along φ), one row per
     /// slope in φ order.
     pub fn table(&self) -> RecordBatch {
-        with_robustness(scan_rows::to_batch(&self.rows), &self.rows, &self.options)
+        scan_rows::to_batch(&self.rows, &self.options.robustness)
     }
 
     /// The profile as JSON: what `rtw-scan profile --json` prints and its

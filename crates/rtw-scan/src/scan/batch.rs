@@ -3,7 +3,6 @@
 
 use crate::config::ScanConfig;
 use crate::io::metadata::{self, META_WALL_TIME};
-use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_rows::{self, Row};
 use crate::scan::one::Simulator;
 use crate::scan::progress::Progress;
@@ -90,7 +89,7 @@ pub fn scan_batch(
         META_WALL_TIME,
         started.elapsed().as_secs_f64().to_string(),
     ));
-    let batch = with_robustness(scan_rows::to_batch(&rows), &rows, &cfg.simulation);
+    let batch = scan_rows::to_batch(&rows, &cfg.simulation.robustness);
     Ok(Some(metadata::with_metadata(batch, meta)?))
 }
 

@@ -1,7 +1,8 @@
 //! What makes an interrupted scan resumable: where its files go
 //! ([`Layout`]), the manifest that ties its unfinished chunks to one config,
-//! the checks that keep a chunk, and the refusal to mix another scan's
-//! results into a directory.
+//! the checks that keep a chunk, the refusal to mix another scan's results
+//! into a directory, and the one decision a run makes from what it finds
+//! ([`Checkpoint::open`] → [`Resume`]).
 
 use crate::config;
 use crate::config::ScanConfig;
@@ -9,13 +10,18 @@ use crate::files;
 use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::{scan_files, table};
+use crate::scan::partial::{chunks_on_disk, remove_partial, remove_stray_temps};
+use crate::scan::progress::Progress;
 use crate::scan::shard::{self, Shard};
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::cast::AsArray;
 use arrow_array::types::Int64Type;
 use rtw_model::Label;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeSet;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// What `.partial/manifest.json` records to make a resume safe.
 #[derive(Debug, PartialEq, Serialize, Deserialize)]
@@ -55,6 +61,281 @@ impl Layout {
     }
     pub(crate) fn chunk(&self, c: u64) -> PathBuf {
         self.partial.join(format!("chunk-{c:05}.parquet"))
+    }
+}
+
+/// Most rows per chunk (`--chunk-size`): a chunk's rows are held in memory
+/// until it is written (about 400 bytes a row: 26 MB at the limit), so a
+/// huge size would allocate gigabytes. 256 (the default) already makes the
+/// chunk files' overhead small.
+pub(crate) const MAX_CHUNK_SIZE: usize = 65_536;
+
+/// Refuses a chunk size outside `1..=MAX_CHUNK_SIZE`.
+pub(crate) fn check_chunk_size(n: usize) -> Result<()> {
+    if !(1..=MAX_CHUNK_SIZE).contains(&n) {
+        bail!("--chunk-size: {n} is invalid: must be in 1..={MAX_CHUNK_SIZE} (rows per chunk)");
+    }
+    Ok(())
+}
+
+/// What a run asks of the unfinished run it may find: `--resume` (finish
+/// it), `--force` (discard one it cannot finish) and the chunk size of a run
+/// it starts.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Intent {
+    pub(crate) resume: bool,
+    pub(crate) force: bool,
+    pub(crate) chunk_size: usize,
+}
+
+/// What [`Checkpoint::open`] found on disk, and so what is left to compute.
+#[derive(Debug, PartialEq)]
+pub(crate) enum Resume {
+    /// The result file is there, complete, for this very config and shard
+    /// (a resume of a finished run): nothing is left to compute.
+    Complete,
+    /// Finished chunks are kept: the run goes on in chunks of `chunk_size`
+    /// (the size it was started with), computing the chunks not in `kept`.
+    Continue {
+        chunk_size: usize,
+        kept: BTreeSet<u64>,
+    },
+    /// Nothing is kept: every chunk is computed, in chunks of `chunk_size`.
+    Fresh { chunk_size: usize },
+}
+
+/// The rows of a scan, or of one shard of it, on their way to its result
+/// file: where they go ([`Layout`]) and what an unfinished run in its
+/// `.partial` must match to be resumed (the config, the rows, the shard).
+pub(crate) struct Checkpoint<'a> {
+    pub(crate) layout: Layout,
+    cfg: &'a ScanConfig,
+    /// `cfg` as TOML: what the manifest and every chunk record.
+    config: String,
+    /// The sample ids of the rows.
+    pub(crate) ids: Range<u64>,
+    /// The shard as `K/N`; `None` for a whole scan.
+    shard: Option<String>,
+}
+
+impl<'a> Checkpoint<'a> {
+    /// The checkpoint of the rows `ids` of `cfg` (shard `shard`, if any) in
+    /// the output directory `out`.
+    pub(crate) fn new(
+        out: &Path,
+        cfg: &'a ScanConfig,
+        ids: Range<u64>,
+        shard: Option<Shard>,
+    ) -> Self {
+        Self {
+            layout: Layout::new(out, shard),
+            cfg,
+            config: cfg.to_toml(),
+            ids,
+            shard: shard.map(|s| s.to_string()),
+        }
+    }
+
+    pub(crate) fn rows(&self) -> u64 {
+        self.ids.end - self.ids.start
+    }
+
+    /// How many chunks of `chunk_size` rows the rows make.
+    pub(crate) fn chunks(&self, chunk_size: usize) -> u64 {
+        self.rows().div_ceil(chunk_size as u64)
+    }
+
+    /// The sample ids of chunk `c` in chunks of `chunk_size` rows.
+    pub(crate) fn chunk_ids(&self, chunk_size: usize, c: u64) -> Range<u64> {
+        let cs = chunk_size as u64;
+        self.ids.start + c * cs..(self.ids.start + (c + 1) * cs).min(self.ids.end)
+    }
+
+    /// Decides, from what is on disk and what the run asks, whether the
+    /// rows are complete, an unfinished run goes on, or a run starts; and
+    /// makes the state on disk that decision's: a complete result's
+    /// leftover `.partial` is cleaned up, a new run's manifest written, the
+    /// temporary files of a killed run removed, and each finished chunk
+    /// checked (config, version, rows, ids) and kept or removed to be
+    /// computed again. Refuses, naming both sides, what it must not resume
+    /// or discard (see `unfinished_run`). Once the run is to compute,
+    /// `progress` hears its start and each row kept; `stop` set ends the
+    /// checking of chunks early (those not checked yet are not kept).
+    pub(crate) fn open(
+        &self,
+        intent: Intent,
+        stop: &AtomicBool,
+        progress: &dyn Progress,
+    ) -> Result<Resume> {
+        let layout = &self.layout;
+        if intent.resume && is_complete(&layout.samples, &self.config, self.shard.as_deref()) {
+            // Complete: at most the clean-up of a run killed after its merge is left.
+            if layout.partial.is_dir() {
+                report_unknown(progress, &layout.partial, &remove_partial(&layout.partial)?);
+            }
+            return Ok(Resume::Complete);
+        }
+        let chunk_size = match self.unfinished_run(intent, progress)? {
+            Some(manifest) => manifest.chunk_size,
+            None => self.start(intent.chunk_size)?,
+        };
+        let unknown = remove_stray_temps(&layout.partial)?;
+        if !unknown.is_empty() {
+            progress.warn(&format!(
+                "rtw-scan: ignoring {} in {}: not made by rtw-scan (left as they are)",
+                unknown.join(", "),
+                layout.partial.display()
+            ));
+        }
+        progress.start(self.rows());
+        let kept = self.keep_finished(chunk_size, stop, progress)?;
+        Ok(if kept.is_empty() {
+            Resume::Fresh { chunk_size }
+        } else {
+            Resume::Continue { chunk_size, kept }
+        })
+    }
+
+    /// Starts a run in chunks of `chunk_size`: its `.partial` and manifest.
+    /// No finished chunk is kept under an old manifest: a `.partial` without
+    /// one is a run killed before it wrote one, or one holding only files
+    /// rtw-scan did not make.
+    fn start(&self, chunk_size: usize) -> Result<usize> {
+        let partial = &self.layout.partial;
+        std::fs::create_dir_all(partial)
+            .with_context(|| format!("cannot create {}", partial.display()))?;
+        crate::pause_at("manifest");
+        let manifest = Manifest {
+            version: VERSION.into(),
+            config: self.config.clone(),
+            chunk_size,
+            rows: self.rows(),
+            shard: self.shard.clone(),
+        };
+        files::write_atomic(
+            &self.layout.manifest(),
+            &serde_json::to_vec_pretty(&manifest)?,
+        )?;
+        Ok(chunk_size)
+    }
+
+    /// The finished chunks in `.partial` that hold their rows for this run,
+    /// their rows reported to `progress` as kept; the others are removed, to
+    /// be computed again. Found by listing `.partial`, so the work before
+    /// the first sample grows with the chunks kept, not with the scan's size.
+    fn keep_finished(
+        &self,
+        chunk_size: usize,
+        stop: &AtomicBool,
+        progress: &dyn Progress,
+    ) -> Result<BTreeSet<u64>> {
+        let chunks = self.chunks(chunk_size);
+        let mut kept = BTreeSet::new();
+        for c in chunks_on_disk(&self.layout.partial)? {
+            let path = self.layout.chunk(c);
+            if stop.load(Ordering::SeqCst) {
+                break;
+            }
+            let checked = if c < chunks {
+                chunk_labels(&path, self.chunk_ids(chunk_size, c), &self.config)
+            } else {
+                Err(anyhow!("beyond the scan's {chunks} chunks"))
+            };
+            match checked {
+                Ok(labels) => {
+                    kept.insert(c);
+                    labels.into_iter().for_each(|l| progress.kept(l));
+                }
+                Err(e) => {
+                    progress.note(&format!("redoing {}: {e:#}", path.display()));
+                    std::fs::remove_file(&path)
+                        .with_context(|| format!("cannot remove {}", path.display()))?;
+                }
+            }
+        }
+        Ok(kept)
+    }
+
+    /// The unfinished run in `.partial` to resume, if there is one, with its
+    /// manifest. Refuses (naming both sides) an unfinished run of another
+    /// config, shard or rtw-scan version unless `force` (which discards it),
+    /// and one of this very scan without `resume`. A `.partial` without a
+    /// manifest holds no finished chunk of a run that can be resumed from
+    /// it: `None` (chunks in it, left by a clean-up killed after the merge
+    /// or by a lost manifest, are checked one by one like any other).
+    fn unfinished_run(&self, intent: Intent, progress: &dyn Progress) -> Result<Option<Manifest>> {
+        let (layout, cfg, rows, shard) =
+            (&self.layout, self.cfg, self.rows(), self.shard.as_deref());
+        let partial = &layout.partial;
+        if !layout.manifest().exists() {
+            if partial.is_dir() && !chunks_on_disk(partial)?.is_empty() && !intent.resume {
+                if !intent.force {
+                    bail!(
+                        "{} holds finished chunks of an unfinished run: pass --resume to finish it, or \
+                         --force to discard it",
+                        partial.display()
+                    );
+                }
+                report_unknown(progress, partial, &remove_partial(partial)?);
+            }
+            return Ok(None);
+        }
+        let m = read_manifest(&layout.manifest())
+            .map_err(|e| e.context("restore it, or pass --force to discard the unfinished run"));
+        let refusal = match &m {
+            Err(_) => None,
+            Ok(m) if m.config != self.config || m.rows != rows || m.shard.as_deref() != shard => {
+                Some(anyhow!(
+                    "cannot {} in {}: its unfinished run was started with a different config or \
+                     --shard split: {}. Choose another --out, or pass --force to discard it",
+                    if intent.resume { "resume" } else { "start" },
+                    partial.display(),
+                    describe_mismatch(m, cfg, rows, shard)
+                ))
+            }
+            Ok(m) => metadata::refuse_mixed_versions(
+                &format!(
+                    "cannot resume the unfinished run in {}: its chunks and this run",
+                    partial.display()
+                ),
+                ("its chunks", &m.version),
+                ("this run", VERSION),
+                &format!(
+                    "one result never mixes two versions' rows: finish it with rtw-scan {}, or pass \
+                     --force to discard it and compute the scan anew",
+                    m.version
+                ),
+            )
+            .err(),
+        };
+        if intent.force && (m.is_err() || refusal.is_some()) {
+            report_unknown(progress, partial, &remove_partial(partial)?);
+            return Ok(None);
+        }
+        let m = m?;
+        if let Some(e) = refusal {
+            return Err(e);
+        }
+        if !intent.resume {
+            bail!(
+                "{} holds an unfinished run of this scan: pass --resume to finish it, or delete it to start over",
+                partial.display()
+            );
+        }
+        check_chunk_size(m.chunk_size)
+            .with_context(|| format!("{} is corrupt", layout.manifest().display()))?;
+        Ok(Some(m))
+    }
+}
+
+/// Says which entries of `partial` rtw-scan left in place, not having made them.
+pub(crate) fn report_unknown(progress: &dyn Progress, partial: &Path, unknown: &[String]) {
+    if !unknown.is_empty() {
+        progress.warn(&format!(
+            "rtw-scan: kept {}: it holds {}, not made by rtw-scan",
+            partial.display(),
+            unknown.join(", ")
+        ));
     }
 }
 
@@ -99,72 +380,6 @@ pub(crate) fn chunk_labels(
         labels.extend(table::label_column(&batch)?);
     }
     Ok(labels)
-}
-
-/// `N` of a file named `chunk-NNNNN.parquet`.
-fn chunk_number(name: &str) -> Option<u64> {
-    name.strip_prefix("chunk-")
-        .and_then(|n| n.strip_suffix(".parquet"))
-        .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
-        .and_then(|n| n.parse().ok())
-}
-
-/// What an entry of `.partial` is.
-#[derive(Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Entry {
-    Manifest,
-    Chunk(u64),
-    /// The temporary file of a killed writer of the manifest or a chunk
-    /// (`.NAME.XXXXXX.tmp`, [`crate::files`]).
-    Temp,
-    /// Anything else: not made by rtw-scan, so never removed by it.
-    Unknown,
-}
-
-/// What the entry `name` of `.partial` is; only regular files are rtw-scan's
-/// (a directory or a symlink under a chunk's name is someone else's).
-fn entry_kind(name: &str, is_file: bool) -> Entry {
-    let own = |n: &str| n == "manifest.json" || chunk_number(n).is_some();
-    let temp = name
-        .strip_prefix('.')
-        .and_then(|n| n.strip_suffix(".tmp"))
-        .and_then(|n| n.rsplit_once('.'))
-        .is_some_and(|(n, random)| random.len() == 6 && own(n));
-    match (is_file, chunk_number(name)) {
-        (false, _) => Entry::Unknown,
-        (true, Some(c)) => Entry::Chunk(c),
-        _ if name == "manifest.json" => Entry::Manifest,
-        _ if temp => Entry::Temp,
-        _ => Entry::Unknown,
-    }
-}
-
-/// The entries of `partial` with their kinds, sorted by name.
-fn entries(partial: &Path) -> Result<Vec<(String, Entry)>> {
-    let mut found = Vec::new();
-    for entry in
-        std::fs::read_dir(partial).with_context(|| format!("cannot read {}", partial.display()))?
-    {
-        let entry = entry?;
-        let name = entry.file_name().to_string_lossy().into_owned();
-        let kind = entry_kind(&name, entry.file_type()?.is_file());
-        found.push((name, kind));
-    }
-    found.sort();
-    Ok(found)
-}
-
-/// The chunk numbers of the `chunk-NNNNN.parquet` files in `partial`.
-pub(crate) fn chunks_on_disk(partial: &Path) -> Result<Vec<u64>> {
-    let mut found: Vec<u64> = entries(partial)?
-        .into_iter()
-        .filter_map(|(_, kind)| match kind {
-            Entry::Chunk(c) => Some(c),
-            _ => None,
-        })
-        .collect();
-    found.sort_unstable();
-    Ok(found)
 }
 
 /// Refuses to run into a directory that holds another scan's results: a
@@ -229,54 +444,6 @@ pub(crate) fn read_manifest(path: &Path) -> Result<Manifest> {
             )
         })?;
     serde_json::from_slice(&text).with_context(|| format!("{} is corrupt", path.display()))
-}
-
-/// Removes the temporary files a killed run left in `partial` (its own
-/// only), and returns the names of the entries rtw-scan did not make, which
-/// it leaves alone.
-pub(crate) fn remove_stray_temps(partial: &Path) -> Result<Vec<String>> {
-    let mut unknown = Vec::new();
-    for (name, kind) in entries(partial)? {
-        match kind {
-            Entry::Temp => remove(&partial.join(&name))?,
-            Entry::Unknown => unknown.push(name),
-            Entry::Manifest | Entry::Chunk(_) => {}
-        }
-    }
-    Ok(unknown)
-}
-
-/// Removes what rtw-scan made in `partial` (chunks first, the manifest last,
-/// so that a kill meanwhile leaves a state a resume recognises) and then the
-/// directory, unless it holds entries rtw-scan did not make: their names are
-/// returned, and they stay where they are.
-pub(crate) fn remove_partial(partial: &Path) -> Result<Vec<String>> {
-    let found = entries(partial)?;
-    let mut unknown = Vec::new();
-    let mut removed = 0;
-    for (name, kind) in found.iter().filter(|(_, k)| *k != Entry::Manifest) {
-        if *kind == Entry::Unknown {
-            unknown.push(name.clone());
-            continue;
-        }
-        remove(&partial.join(name))?;
-        removed += 1;
-        if removed == 1 {
-            crate::pause_at("cleanup");
-        }
-    }
-    if found.iter().any(|(_, k)| *k == Entry::Manifest) {
-        remove(&partial.join("manifest.json"))?;
-    }
-    if unknown.is_empty() {
-        std::fs::remove_dir(partial)
-            .with_context(|| format!("cannot remove {}", partial.display()))?;
-    }
-    Ok(unknown)
-}
-
-fn remove(path: &Path) -> Result<()> {
-    std::fs::remove_file(path).with_context(|| format!("cannot remove {}", path.display()))
 }
 
 /// Why the unfinished run of `manifest` is not the run of `cfg` (rows

@@ -10,7 +10,8 @@
 //! | `one` | one sample's row (panics caught, wall time) |
 //! | `workers` | the worker pool, the thread cap, a worker's sample |
 //! | [`single`] | one run in memory: its `--json` row and its trace (the Python package) |
-//! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks |
+//! | `checkpoint` | the layout of a run's files, the resume manifest, chunk checks, the resume decision |
+//! | `partial` | the entries of a run's `.partial`: what rtw-scan made there, and their clean-up |
 //! | `shard` | `--shard K/N` id ranges; `merge` checks and joins the parts |
 //! | [`progress`] | what watches a scan: the [`Progress`] observer |
 //! | `panic` | a sample's panic caught as its message |
@@ -25,6 +26,7 @@ mod fixtures;
 pub(crate) mod lock;
 pub(crate) mod one;
 pub(crate) mod panic;
+pub(crate) mod partial;
 pub mod progress;
 pub(crate) mod run;
 pub mod sample;

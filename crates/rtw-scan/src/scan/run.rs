@@ -31,27 +31,27 @@
 
 use crate::config::ScanConfig;
 use crate::files;
-use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS, VERSION};
+use crate::io::metadata::{self, META_CHUNK_WALL_TIME, META_SHARD, META_TOTAL_ROWS};
 use crate::io::parquet::{self, MAX_ROW_GROUP_ROWS};
-use crate::io::robustness_columns::with_robustness;
 use crate::io::scan_files::concat_scan_files;
 use crate::io::scan_rows;
 use crate::scan::checkpoint::{
-    Layout, Manifest, chunk_labels, chunks_on_disk, describe_mismatch, is_complete, read_manifest,
-    refuse_other_results, remove_partial, remove_stray_temps,
+    Checkpoint, Intent, Layout, Resume, check_chunk_size, refuse_other_results, report_unknown,
 };
 use crate::scan::chunks::{Todo, compute_chunks};
 use crate::scan::lock::Lock;
 use crate::scan::one::Simulator;
+use crate::scan::partial::remove_partial;
 use crate::scan::progress::Progress;
 use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
 use crate::scan::workers::{Jobs, worker_pool};
-use anyhow::{Context, Result, anyhow, bail};
+use ::parquet::file::metadata::KeyValue;
+use anyhow::{Context, Result};
 use std::collections::BTreeSet;
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 /// Rows per chunk unless told otherwise.
 pub const DEFAULT_CHUNK_SIZE: usize = 256;
@@ -114,6 +114,12 @@ pub fn run_scan(
 
 /// [`run_scan`] with the rows' parameters from `sampler` (stored points of a
 /// refinement round; `cfg` still names the scan, its rows and options).
+///
+/// The stages: the checks made before any file (shard, threads, chunk
+/// size); the output directory claimed ([`claim_output`]); the resume
+/// decision ([`Checkpoint::open`]); the chunks left computed and written
+/// ([`write_chunks`]); and, once all are there, their merge into the result
+/// file ([`merge_chunks`]).
 pub(crate) fn run_scan_with(
     cfg: &ScanConfig,
     sampler: &Sampler,
@@ -127,116 +133,32 @@ pub(crate) fn run_scan_with(
         Some(s) => s.ids(total)?,
         None => 0..total,
     };
-    let rows = ids.end - ids.start;
-    let shard_text = settings.shard.map(|s| s.to_string());
-    let config_toml = cfg.to_toml();
     // Started here, before any file is made: the pool refuses a thread
     // count beyond its cap.
     let pool = worker_pool(settings.threads)?;
     check_chunk_size(settings.chunk_size.get())?;
-    let out = &settings.out_dir;
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("cannot create output directory {}", out.display()))?;
-    let layout = Layout::new(out, settings.shard);
-    let _lock = Lock::acquire(
-        &layout.samples,
-        &format!("writing {}", layout.samples.display()),
-    )?;
-    if !settings.force {
-        refuse_other_results(out, cfg, settings.shard)?;
-    }
-    // Temporary files of a killed run, merge or summary of this very result.
-    files::remove_stray_temps(&layout.samples)?;
-    if settings.shard.is_none() {
-        for f in ["summary.json", "summary.md"] {
-            files::remove_stray_temps(&out.join(f))?;
-        }
-    }
+    let checkpoint = Checkpoint::new(&settings.out_dir, cfg, ids, settings.shard);
+    let rows = checkpoint.rows();
+    let _lock = claim_output(&checkpoint.layout, cfg, settings)?;
 
-    if settings.resume && is_complete(&layout.samples, &config_toml, shard_text.as_deref()) {
-        // Complete: at most the clean-up of a run killed after its merge is left.
-        if layout.partial.is_dir() {
-            report_unknown(progress, &layout.partial, &remove_partial(&layout.partial)?);
-        }
-        return Ok(RunStatus::Complete {
-            samples: layout.samples,
-            rows,
-            computed: 0,
-        });
-    }
-    let chunk_size = match unfinished_run(
-        &layout,
-        settings,
-        cfg,
-        (rows, shard_text.as_deref()),
-        progress,
-    )? {
-        Some(manifest) => manifest.chunk_size,
-        None => {
-            // No finished chunk to keep: (re)start. A `.partial` without a
-            // manifest is a run killed before it wrote one, or one holding
-            // only files rtw-scan did not make.
-            std::fs::create_dir_all(&layout.partial)
-                .with_context(|| format!("cannot create {}", layout.partial.display()))?;
-            crate::pause_at("manifest");
-            let manifest = Manifest {
-                version: VERSION.into(),
-                config: config_toml.clone(),
-                chunk_size: settings.chunk_size.get(),
-                rows,
-                shard: shard_text.clone(),
-            };
-            files::write_atomic(&layout.manifest(), &serde_json::to_vec_pretty(&manifest)?)?;
-            settings.chunk_size.get()
-        }
+    let intent = Intent {
+        resume: settings.resume,
+        force: settings.force,
+        chunk_size: settings.chunk_size.get(),
     };
-    let unknown = remove_stray_temps(&layout.partial)?;
-    if !unknown.is_empty() {
-        progress.warn(&format!(
-            "rtw-scan: ignoring {} in {}: not made by rtw-scan (left as they are)",
-            unknown.join(", "),
-            layout.partial.display()
-        ));
-    }
-
-    let cs = chunk_size as u64;
-    let chunks = rows.div_ceil(cs);
-    let range = |c: u64| ids.start + c * cs..(ids.start + (c + 1) * cs).min(ids.end);
-    let mut metadata = metadata::scan_metadata(cfg);
-    if let Some(s) = &shard_text {
-        metadata.push(metadata::kv(META_SHARD, s.clone()));
-        metadata.push(metadata::kv(META_TOTAL_ROWS, total.to_string()));
-    }
-
-    // Chunks already on disk (resume), with their labels for the progress
-    // counts: found by listing `.partial`, so the work before the first
-    // sample grows with the chunks kept, not with the scan's size.
-    let mut done = BTreeSet::new();
-    progress.start(rows);
-    for c in chunks_on_disk(&layout.partial)? {
-        let path = layout.chunk(c);
-        if stop.load(Ordering::SeqCst) {
-            break;
+    let (chunk_size, done) = match checkpoint.open(intent, stop, progress)? {
+        Resume::Complete => {
+            return Ok(RunStatus::Complete {
+                samples: checkpoint.layout.samples,
+                rows,
+                computed: 0,
+            });
         }
-        let checked = if c < chunks {
-            chunk_labels(&path, range(c), &config_toml)
-        } else {
-            Err(anyhow!("beyond the scan's {chunks} chunks"))
-        };
-        match checked {
-            Ok(labels) => {
-                done.insert(c);
-                labels.into_iter().for_each(|l| progress.kept(l));
-            }
-            Err(e) => {
-                progress.note(&format!("redoing {}: {e:#}", path.display()));
-                std::fs::remove_file(&path)
-                    .with_context(|| format!("cannot remove {}", path.display()))?;
-            }
-        }
-    }
+        Resume::Continue { chunk_size, kept } => (chunk_size, kept),
+        Resume::Fresh { chunk_size } => (chunk_size, BTreeSet::new()),
+    };
 
-    let mut computed = 0;
+    let metadata = file_metadata(cfg, settings.shard, total);
     let jobs = Jobs {
         sampler,
         options: &cfg.simulation,
@@ -244,36 +166,105 @@ pub(crate) fn run_scan_with(
         stop,
         progress,
     };
-    let todo = Todo {
-        chunks,
-        range: &range,
-        done: &done,
-    };
-    let mut written = 0;
-    compute_chunks(&pool, &todo, &jobs, |c, chunk, wall| {
-        let mut meta = metadata.clone();
-        meta.push(metadata::kv(META_CHUNK_WALL_TIME, wall.to_string()));
-        let batch = with_robustness(scan_rows::to_batch(&chunk), &chunk, &cfg.simulation);
-        parquet::write_file(&layout.chunk(c), &batch, meta)?;
-        written += 1;
-        computed += chunk.len() as u64;
-        Ok(())
-    })?;
-
-    let chunks_done = done.len() as u64 + written;
+    let (written, computed) =
+        write_chunks(&pool, &checkpoint, chunk_size, &done, &jobs, &metadata)?;
+    let (chunks_done, chunks) = (done.len() as u64 + written, checkpoint.chunks(chunk_size));
     if chunks_done < chunks {
         progress.finish(false);
         return Ok(RunStatus::Interrupted {
             chunks_done,
             chunks,
-            partial: layout.partial,
+            partial: checkpoint.layout.partial,
         });
     }
     progress.finish(true);
+    merge_chunks(&checkpoint, chunks, metadata, progress)?;
+    Ok(RunStatus::Complete {
+        samples: checkpoint.layout.samples,
+        rows,
+        computed,
+    })
+}
+
+/// Makes the output directory and takes the lock of the result file in
+/// `layout`; refuses, unless `force`, a directory that holds another scan's
+/// results; and removes the temporary files a killed run, merge or summary
+/// of this very result left.
+fn claim_output(layout: &Layout, cfg: &ScanConfig, settings: &RunSettings) -> Result<Lock> {
+    let out = &settings.out_dir;
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("cannot create output directory {}", out.display()))?;
+    let lock = Lock::acquire(
+        &layout.samples,
+        &format!("writing {}", layout.samples.display()),
+    )?;
+    if !settings.force {
+        refuse_other_results(out, cfg, settings.shard)?;
+    }
+    files::remove_stray_temps(&layout.samples)?;
+    if settings.shard.is_none() {
+        for f in ["summary.json", "summary.md"] {
+            files::remove_stray_temps(&out.join(f))?;
+        }
+    }
+    Ok(lock)
+}
+
+/// The metadata of the run's chunks and result file: the scan's, and for a
+/// shard its `K/N` and the whole scan's rows.
+fn file_metadata(cfg: &ScanConfig, shard: Option<Shard>, total: u64) -> Vec<KeyValue> {
+    let mut metadata = metadata::scan_metadata(cfg);
+    if let Some(s) = shard {
+        metadata.push(metadata::kv(META_SHARD, s.to_string()));
+        metadata.push(metadata::kv(META_TOTAL_ROWS, total.to_string()));
+    }
+    metadata
+}
+
+/// Computes the chunks of `checkpoint` (of `chunk_size` rows) not in `done`
+/// and writes each, as soon as its rows are in, as one closed Parquet file
+/// in `.partial` with its wall time: the chunks written and the rows
+/// computed.
+fn write_chunks(
+    pool: &rayon::ThreadPool,
+    checkpoint: &Checkpoint<'_>,
+    chunk_size: usize,
+    done: &BTreeSet<u64>,
+    jobs: &Jobs<'_>,
+    metadata: &[KeyValue],
+) -> Result<(u64, u64)> {
+    let range = |c: u64| checkpoint.chunk_ids(chunk_size, c);
+    let todo = Todo {
+        chunks: checkpoint.chunks(chunk_size),
+        range: &range,
+        done,
+    };
+    let (mut written, mut computed) = (0, 0);
+    compute_chunks(pool, &todo, jobs, |c, chunk, wall| {
+        let mut meta = metadata.to_vec();
+        meta.push(metadata::kv(META_CHUNK_WALL_TIME, wall.to_string()));
+        let batch = scan_rows::to_batch(&chunk, &jobs.options.robustness);
+        parquet::write_file(&checkpoint.layout.chunk(c), &batch, meta)?;
+        written += 1;
+        computed += chunk.len() as u64;
+        Ok(())
+    })?;
+    Ok((written, computed))
+}
+
+/// Joins the `chunks` chunk files, in order, into the result file and
+/// removes `.partial` (but what rtw-scan did not make in it).
+fn merge_chunks(
+    checkpoint: &Checkpoint<'_>,
+    chunks: u64,
+    metadata: Vec<KeyValue>,
+    progress: &dyn Progress,
+) -> Result<()> {
+    let layout = &checkpoint.layout;
     let chunk_files: Vec<PathBuf> = (0..chunks).map(|c| layout.chunk(c)).collect();
     concat_scan_files(
         &chunk_files,
-        ids,
+        checkpoint.ids.clone(),
         &layout.samples,
         MAX_ROW_GROUP_ROWS,
         metadata,
@@ -281,110 +272,6 @@ pub(crate) fn run_scan_with(
     )?;
     crate::pause_at("merged");
     report_unknown(progress, &layout.partial, &remove_partial(&layout.partial)?);
-    Ok(RunStatus::Complete {
-        samples: layout.samples,
-        rows,
-        computed,
-    })
-}
-
-/// The unfinished run in `layout.partial` to resume, if there is one, with
-/// its manifest. Refuses (naming both sides) an unfinished run of another
-/// config, shard or rtw-scan version unless `force` (which discards it), and
-/// one of this very scan without `resume`. A `.partial` without a manifest
-/// holds no finished chunk of a run that can be resumed from it:
-/// `None` (chunks in it, left by a clean-up killed after the merge or by a
-/// lost manifest, are checked one by one like any other).
-fn unfinished_run(
-    layout: &Layout,
-    settings: &RunSettings,
-    cfg: &ScanConfig,
-    (rows, shard): (u64, Option<&str>),
-    progress: &dyn Progress,
-) -> Result<Option<Manifest>> {
-    let partial = &layout.partial;
-    if !layout.manifest().exists() {
-        if partial.is_dir() && !chunks_on_disk(partial)?.is_empty() && !settings.resume {
-            if !settings.force {
-                bail!(
-                    "{} holds finished chunks of an unfinished run: pass --resume to finish it, or \
-                     --force to discard it",
-                    partial.display()
-                );
-            }
-            report_unknown(progress, partial, &remove_partial(partial)?);
-        }
-        return Ok(None);
-    }
-    let m = read_manifest(&layout.manifest())
-        .map_err(|e| e.context("restore it, or pass --force to discard the unfinished run"));
-    let refusal = match &m {
-        Err(_) => None,
-        Ok(m) if m.config != cfg.to_toml() || m.rows != rows || m.shard.as_deref() != shard => {
-            Some(anyhow!(
-                "cannot {} in {}: its unfinished run was started with a different config or \
-                 --shard split: {}. Choose another --out, or pass --force to discard it",
-                if settings.resume { "resume" } else { "start" },
-                partial.display(),
-                describe_mismatch(m, cfg, rows, shard)
-            ))
-        }
-        Ok(m) => metadata::refuse_mixed_versions(
-            &format!(
-                "cannot resume the unfinished run in {}: its chunks and this run",
-                partial.display()
-            ),
-            ("its chunks", &m.version),
-            ("this run", VERSION),
-            &format!(
-                "one result never mixes two versions' rows: finish it with rtw-scan {}, or pass \
-                 --force to discard it and compute the scan anew",
-                m.version
-            ),
-        )
-        .err(),
-    };
-    if settings.force && (m.is_err() || refusal.is_some()) {
-        report_unknown(progress, partial, &remove_partial(partial)?);
-        return Ok(None);
-    }
-    let m = m?;
-    if let Some(e) = refusal {
-        return Err(e);
-    }
-    if !settings.resume {
-        bail!(
-            "{} holds an unfinished run of this scan: pass --resume to finish it, or delete it to start over",
-            partial.display()
-        );
-    }
-    check_chunk_size(m.chunk_size)
-        .with_context(|| format!("{} is corrupt", layout.manifest().display()))?;
-    Ok(Some(m))
-}
-
-/// Says which entries of `partial` rtw-scan left in place, not having made them.
-fn report_unknown(progress: &dyn Progress, partial: &std::path::Path, unknown: &[String]) {
-    if !unknown.is_empty() {
-        progress.warn(&format!(
-            "rtw-scan: kept {}: it holds {}, not made by rtw-scan",
-            partial.display(),
-            unknown.join(", ")
-        ));
-    }
-}
-
-/// Most rows per chunk (`--chunk-size`): a chunk's rows are held in memory
-/// until it is written (about 400 bytes a row: 26 MB at the limit), so a
-/// huge size would allocate gigabytes. 256 (the default) already makes the
-/// chunk files' overhead small.
-pub(crate) const MAX_CHUNK_SIZE: usize = 65_536;
-
-/// Refuses a chunk size outside `1..=MAX_CHUNK_SIZE`.
-pub(crate) fn check_chunk_size(n: usize) -> Result<()> {
-    if !(1..=MAX_CHUNK_SIZE).contains(&n) {
-        bail!("--chunk-size: {n} is invalid: must be in 1..={MAX_CHUNK_SIZE} (rows per chunk)");
-    }
     Ok(())
 }
 
@@ -392,16 +279,18 @@ pub(crate) fn check_chunk_size(n: usize) -> Result<()> {
 mod tests {
     use super::*;
     use crate::config::parse;
+    use crate::io::metadata::VERSION;
     use crate::io::scan_rows::schema;
     use crate::scan::batch::scan_batch;
     use crate::scan::fixtures::{CFG, fake_sim};
+    use crate::scan::partial::chunks_on_disk;
     use crate::scan::progress::Silent;
     use arrow::array::{Array, AsArray, RecordBatch};
     use rtw_model::Label;
     use rtw_model::outcome::FailureDetail;
     use rtw_model::{Options, Params};
     use std::path::Path;
-    use std::sync::atomic::AtomicU64;
+    use std::sync::atomic::{AtomicU64, Ordering};
 
     fn settings(dir: &Path, threads: usize, chunk: usize) -> RunSettings {
         RunSettings {
@@ -636,6 +525,52 @@ mod tests {
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
         );
+    }
+
+    #[test]
+    fn open_says_what_it_found_fresh_continue_or_complete() {
+        let cfg = parse(CFG).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        let checkpoint = Checkpoint::new(dir.path(), &cfg, 0..37, None);
+        let intent = |resume, chunk_size| Intent {
+            resume,
+            force: false,
+            chunk_size,
+        };
+        // An empty directory: a new run in the asked chunk size, its
+        // manifest written.
+        let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Fresh { chunk_size: 8 });
+        assert!(checkpoint.layout.manifest().is_file());
+        std::fs::remove_dir_all(&checkpoint.layout.partial).unwrap();
+
+        // A run stopped with chunks of 4 rows: continued in its own chunk
+        // size, whatever is asked, keeping exactly the chunks on disk.
+        stopped_after(&cfg, dir.path(), 10);
+        let on_disk: BTreeSet<u64> = chunks_on_disk(&checkpoint.layout.partial)
+            .unwrap()
+            .into_iter()
+            .collect();
+        assert!(on_disk.len() >= 2, "{on_disk:?}");
+        let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
+        assert_eq!(
+            found,
+            Resume::Continue {
+                chunk_size: 4,
+                kept: on_disk
+            }
+        );
+
+        // Finished, then resumed again: complete, nothing to compute.
+        let mut s = settings(dir.path(), 1, 4);
+        s.resume = true;
+        run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
+        let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Complete);
+        // Without --resume a finished result is computed anew.
+        let found = checkpoint.open(intent(false, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Fresh { chunk_size: 8 });
     }
 
     #[test]
