@@ -207,6 +207,7 @@ REF = "docs/refine.md"
 README = "README.md"
 RS = "results/robustness/summary.md"
 MCOST = "results/robustness/mfpt_cost-robustness-map.txt"
+PCOST = "results/robustness/mfpt_cost.txt"
 BASIN = "results/robustness/basin_fig7a.txt"
 ATLAS = "results/design/atlas.md"
 RB = "results/refine/summary.md"
@@ -476,6 +477,20 @@ PINS: list[Pin] = [
             rf"\({N}\); 10000–100000: {N} s \({N}\); 100000–1e\+06: {N} s \(1\);")]),
     Pin(ROB, rf"the {N} gaits with no fall seen are the cheapest \({N} s:",
         [Rx(MCOST, rf"no fall seen: [\d.]+ s \({N}\)$"), Rx(MCOST, rf"no fall seen: {N} s \(\d+\)$")]),
+    # The cost of the MFPT on the paper scan (results/robustness/mfpt_cost.txt).
+    Pin(ROB, rf"The scan took {N} s of wall time and \*\*{N} s of CPU\*\*: on 2 idle cores at perfect scaling that is "
+        rf"\*\*{N} minutes,",
+        [Rx(PCOST, rf"^wall times: [^;]*; median {N} s"), Rx(PCOST, rf"^CPU times [^;]*; median {N} s"),
+         Rx(PCOST, rf"half of it {N} min")]),
+    Pin(ROB, rf"Its {N} stable gaits took a median of {N} s and a mean of {N} s of one thread each \(90 % below {N} s, "
+        rf"the slowest {N} s\)",
+        [Rx(PCOST, rf"^stable gaits: {N} of"), Rx(PCOST, rf"median {N} s, mean {N} s, 90 % {N} s, max {N} s;")]),
+    Pin(ROB, rf"A gait's time grows with its MFPT by \+{N} s per decade \(log–log slope \+{N}; Spearman \+{N}\)",
+        [Rx(PCOST, rf"{P} s per decade of MFPT"), Rx(PCOST, rf"log-log slope {P}"), Rx(PCOST, rf"Spearman {P}$")]),
+    Pin(ROB, rf"from {N} s for MFPT 10–100 \({N} gaits\) to {N} s above 10⁶ \({N}\); the {N} gaits with no fall seen "
+        rf"take {N} s",
+        [Rx(PCOST, rf"10–100: {N} s \({N}\)"), Rx(PCOST, rf"1e\+06–inf: {N} s \({N}\)"),
+         Rx(PCOST, rf"no fall seen: [\d.]+ s \({N}\)$"), Rx(PCOST, rf"no fall seen: {N} s \(\d+\)$")]),
     # The basin of the Fig. 7(a) walk (results/robustness/basin_fig7a.{txt,parquet}).
     Pin(ROB, rf"the walk's own ω_a = {N} rad/s, θ_b = {N} rad\): {N} points return, {N} fail and {N} start with a tip in "
         rf"the ground; none survives",

@@ -9,6 +9,9 @@
 # the runs). The scans go to a temporary directory. CONFIG (default
 # configs/paper.toml) is for trying the script on a smaller scan, such as
 # configs/robustness-map.toml; the result file is then named after it.
+# Each run's CPU time (user + sys) is recorded too: on a machine shared with
+# other jobs the wall time grows with their load, the CPU time much less, and
+# CPU / 2 is what the run would take on 2 idle cores at perfect scaling.
 #
 #   ./scripts/mfpt_cost.sh [RUNS] [CONFIG]
 set -euo pipefail
@@ -24,10 +27,8 @@ bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for i in $(seq 1 "$runs"); do
-  t0=$(date +%s.%N)
-  "$bin" run "$config" --out "$tmp/run$i" --threads 2 --quiet --set robustness.mfpt=true >/dev/null
-  t1=$(date +%s.%N)
-  python3 -c "print($t1 - $t0)" >>"$tmp/times"
+  /usr/bin/time -f "%e %U %S" -a -o "$tmp/times" \
+    "$bin" run "$config" --out "$tmp/run$i" --threads 2 --quiet --set robustness.mfpt=true >/dev/null
 done
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 mkdir -p results/robustness
@@ -39,7 +40,9 @@ import numpy as np
 import pyarrow.parquet as pq
 
 tmp, runs, load, config = Path(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
-times = [float(x) for x in (tmp / "times").read_text().split()]
+runs_text = [line.split() for line in (tmp / "times").read_text().splitlines() if line.strip()]
+times = [float(r[0]) for r in runs_text]
+cpu = [float(r[1]) + float(r[2]) for r in runs_text]
 stable = ("skip", "walk", "crawl")
 per_run = []
 for i in range(1, runs + 1):
@@ -59,6 +62,8 @@ print()
 print(f"rtw-scan run {config} --threads 2 --set robustness.mfpt=true (sigma 1 cm, the default), {runs} run(s)")
 print("wall times: " + ", ".join(f"{x:.1f} s" for x in times) + f"; median {np.median(times):.1f} s "
       f"({np.median(times) / 60:.2f} min; target 10 min); load average after the runs {load} (2 cores)")
+print("CPU times (user + sys): " + ", ".join(f"{x:.1f} s" for x in cpu) + f"; median {np.median(cpu):.1f} s, "
+      f"half of it {np.median(cpu) / 2 / 60:.2f} min (2 idle cores at perfect scaling)")
 print(f"stable gaits: {n} of {len(first['outcome'])}; per stable gait (wall_time_s, median over the runs): "
       f"median {np.median(wall):.2f} s, mean {wall.mean():.2f} s, 90 % {np.percentile(wall, 90):.2f} s, max {wall.max():.2f} s; "
       f"sum {wall.sum():.0f} s of thread time")
