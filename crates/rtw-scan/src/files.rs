@@ -204,6 +204,19 @@ fn special_kind(ft: std::fs::FileType) -> &'static str {
     }
 }
 
+/// The regular `*.parquet` files in `dir`, sorted by name: the files a
+/// reader of a folder looks at (a FIFO or a device named so is not one, and
+/// is never opened).
+pub(crate) fn parquet_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("cannot read directory {}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "parquet") && p.is_file())
+        .collect();
+    paths.sort();
+    Ok(paths)
+}
+
 /// Refuses to write at `dest` (given by the option `flag`, or `""`) when it
 /// is a symlink or exists and is not a regular file (a directory, a device,
 /// a FIFO, a socket). rtw-scan replaces only plain files, through a rename

@@ -1,6 +1,6 @@
 //! The hexagon of six massless Kelvin–Voigt strings (docs/model.md §3, §9).
 //!
-//! String `j` joins spoke `j` to spoke `j+1` of [`SPOKES`] (a+–b+, b+–c+,
+//! String `j` joins the spokes [`STRINGS`] pairs, `j` and `j+1` of [`SPOKES`] (a+–b+, b+–c+,
 //! c+–a−, a−–b−, b−–c−, c−–a+), between the connection points `c ± r e`.
 //! Tension `T = k (ℓ − ℓ₀) + c ℓ̇` (damping `along`), or spring along the
 //! string plus the isotropic damper `−c (Ṗ − Q̇)` (damping `relative`); with
@@ -8,7 +8,7 @@
 
 use crate::options::{Damping, Options};
 use crate::params::Physical;
-use crate::plant::geometry::{RodFrame, SPOKES, V2, add, cross, dot, scale, sub};
+use crate::plant::geometry::{RodFrame, SPOKES, STRINGS, V2, add, cross, dot, scale, sub};
 
 /// String constants of one RTW.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,8 +106,7 @@ impl StringSet {
             let (p, v) = rods[i].point(a);
             ends[j] = (p, v, sub(p, rods[i].c));
         }
-        for j in 0..6 {
-            let n = (j + 1) % 6;
+        for &(j, n) in &STRINGS {
             let (p, vp, arm_p) = ends[j];
             let (q, vq, arm_q) = ends[n];
             let (f, diss) = self.string_force(p, vp, q, vq);
@@ -127,9 +126,10 @@ impl StringSet {
         for (j, &(i, tip)) in SPOKES.iter().enumerate() {
             ends[j] = rods[i].point(tip.sign() * self.r).0;
         }
-        (0..6)
-            .map(|j| {
-                let d = sub(ends[j], ends[(j + 1) % 6]);
+        STRINGS
+            .iter()
+            .map(|&(j, n)| {
+                let d = sub(ends[j], ends[n]);
                 let stretch = dot(d, d).sqrt() - self.rest_length;
                 if self.slack && stretch < 0.0 {
                     0.0

@@ -8,11 +8,10 @@ use crate::analysis::report::summary_of;
 use crate::analysis::scan_table::{ScanTable, read_scan_table};
 use crate::files;
 use crate::io::destination::SUMMARY_MAX_BYTES;
-use crate::io::metadata::{META_CLUSTERS, META_CONTENT_HASH, META_SCAN_HASH, META_SEED};
+use crate::io::metadata::{FileKind, META_CONTENT_HASH, META_SCAN_HASH, META_SEED};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::scan_rows::label_index;
 use crate::io::table::{i64_column, label_column};
-use ::parquet::file::reader::{FileReader, SerializedFileReader};
 use anyhow::{Context, Result, anyhow, bail};
 use rtw_model::Label;
 use std::path::{Path, PathBuf};
@@ -177,28 +176,11 @@ pub fn read_assignments(dir: &Path, scan: &ScanTable) -> Result<Option<Assignmen
     Ok(Some(Assignments { path, clusters }))
 }
 
-/// The first `*.parquet` in `dir`, by name, whose footer has `rtw.clusters`;
-/// a file that is not Parquet, or not a regular file, is not one.
+/// The first `*.parquet` in `dir`, by name, that is an assignments file by
+/// its metadata ([`FileKind::of`]); a file that is not Parquet is not one.
 fn assignments_file(dir: &Path) -> Result<Option<PathBuf>> {
-    let mut names: Vec<PathBuf> = std::fs::read_dir(dir)
-        .with_context(|| format!("cannot read directory {}", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "parquet"))
-        .collect();
-    names.sort();
-    Ok(names.into_iter().find(|p| {
-        // Only the footer's key-value metadata, as told from a regular file
-        // (a FIFO would never end).
-        std::fs::metadata(p).is_ok_and(|m| m.is_file())
-            && std::fs::File::open(p)
-                .ok()
-                .and_then(|f| SerializedFileReader::new(f).ok())
-                .is_some_and(|r| {
-                    r.metadata()
-                        .file_metadata()
-                        .key_value_metadata()
-                        .is_some_and(|kv| kv.iter().any(|kv| kv.key == META_CLUSTERS))
-                })
+    Ok(files::parquet_files(dir)?.into_iter().find(|p| {
+        parquet::open(p, 1).is_ok_and(|i| FileKind::of(&i.metadata) == Some(FileKind::Assignments))
     }))
 }
 

@@ -59,13 +59,7 @@ pub struct DesignFile {
 /// caller says what else it might have been).
 pub fn read_folder(dir: &Path) -> Result<Option<Vec<DesignFile>>> {
     let paths: Vec<PathBuf> = if dir.is_dir() {
-        let mut p: Vec<PathBuf> = std::fs::read_dir(dir)
-            .with_context(|| format!("cannot read directory {}", dir.display()))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|x| x == "parquet") && p.is_file())
-            .collect();
-        p.sort();
-        p
+        crate::files::parquet_files(dir)?
     } else {
         vec![dir.to_path_buf()]
     };
