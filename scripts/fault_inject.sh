@@ -89,8 +89,12 @@ for i in $(seq 8); do
   code=$?
   set -e
   faults=$((faults + 1))
-  if [ -f "$out/samples.parquet" ] && [ ! -d "$out/.partial" ]; then
-    echo "fault_inject: kill $i (SIG$sig after ${delay_ms} ms): the run had already finished"
+  # The merged file is written whole, before .partial's clean-up removes the
+  # chunks one by one: a kill during that clean-up leaves fewer chunks but
+  # loses no row (they are all in samples.parquet, which the final resume's
+  # comparison checks, after it finishes the clean-up).
+  if [ -f "$out/samples.parquet" ]; then
+    echo "fault_inject: kill $i (SIG$sig after ${delay_ms} ms): the run had already merged its rows"
     break
   fi
   case $sig:$code in
@@ -104,6 +108,7 @@ for i in $(seq 8); do
 done
 "$bin" "${scan[@]}" --out "$out" --resume >/dev/null || fail "the final resume failed"
 compare "$out" "killed and resumed"
+[ ! -d "$out/.partial" ] || fail "the final resume left $out/.partial"
 
 # 2. A full disk: a tmpfs too small for the scan; the run must fail with an
 # error (not an abort), keep what it finished, and resume once there is room.
