@@ -18,7 +18,8 @@
 #      -> results/fidelity.md
 #   8. the side-by-side table (scripts/reproduction_report.py) -> results/reproduction.md
 #   9. the generated tables of README.md and docs/*.md (scripts/readme_tables.py)
-#  10. the paper scan's report, one HTML page (python -m rtw report) -> results/paper/report.html
+#  10. the paper scan's report, one HTML page (python -m rtw report) -> results/paper/report.html,
+#      and the Saltelli study's -> results/sensitivity/saltelli/report.html
 # SKIP_VARIANTS=1 ./scripts/reproduce.sh re-tabulates the variant study from its
 # committed runs instead of rerunning them (REPORT_ONLY=1 ./scripts/variants.sh):
 # every variant file spells out each model choice, so those runs do not depend
@@ -63,4 +64,5 @@ fi
 PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
   --no-build-isolation ./crates/rtw-py
 .venv/bin/python -m rtw report results/paper --out results/paper/report.html
+.venv/bin/python -m rtw report results/sensitivity/saltelli --out results/sensitivity/saltelli/report.html
 echo "reproduce: done (see git status for what changed)"

@@ -14,6 +14,7 @@ mod geometry;
 mod options;
 mod studies;
 mod types;
+mod views;
 
 use arrow_array::RecordBatch;
 use arrow_pyarrow::{IntoPyArrow, Table};
@@ -548,6 +549,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_indices, m)?)?;
     m.add_function(wrap_pyfunction!(read_scan_folder, m)?)?;
     m.add_function(wrap_pyfunction!(studies::read_design, m)?)?;
+    m.add_function(wrap_pyfunction!(views::scan_views, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;

@@ -136,6 +136,7 @@ def test_refuses_to_write_over_a_file_it_did_not_make(made, tmp_path):
 
 @pytest.mark.parametrize("kwargs, message", [
     ({"outputs": ["speedd"]}, r"outputs: 'speedd' is not a numeric column"),
+    ({"outputs": ["failure"]}, r"outputs: 'failure' is not a numeric column"),
     ({"per_outcome": 11}, r"per_outcome: 11 is invalid: must be an integer in \[0, 10\]"),
     ({"samples": [10**9]}, r"--sample: sample_id 1000000000 is not in the scan"),
 ])

@@ -23,6 +23,7 @@ import time
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
 import pyarrow.parquet as pq
 import pytest
 
@@ -176,4 +177,56 @@ def test_the_first_view_is_drawn_before_the_webgl_views(page):
     assert marks["first-view"] <= marks["parallel coordinates"] < marks["ready"]
     types = page.execute_script("return document.getElementById('gaitmap').data.map(t => t.type)")
     assert set(types) == {"scatter"}
+    no_console_errors(page)
+
+
+@pytest.fixture(scope="module")
+def large_page(tmp_path_factory):
+    """The report of a scan of more than PLOT_ROWS rows (large_scan.py), open."""
+    from large_scan import make_scan
+
+    folder = tmp_path_factory.mktemp("large")
+    scan = make_scan(folder)
+    html = folder / "large.html"
+    made = subprocess.run([sys.executable, "-m", "rtw", "report", str(scan), "--out", str(html), "--per-outcome", "1"],
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
+    assert made.returncode == 0, made.stderr
+    t = timing()
+    driver = t.open_chromium()
+    try:
+        driver.get(html.as_uri())
+        t.wait_ready(driver)
+        yield driver, pq.read_table(scan / "samples.parquet")
+    finally:
+        driver.quit()
+
+
+def test_a_large_scan_is_brushed_over_every_row(large_page):
+    page, table = large_page
+    no_console_errors(page)
+    # The gait map is every row's density (a layout image) and the gaits' marks.
+    assert page.execute_script("return document.getElementById('gaitmap').layout.images.length") == 1
+    alpha = table["alpha"].to_numpy()
+    outcome = table["outcome"].to_pylist()
+    lo, hi = float(alpha.min()), float(alpha.max())
+    a, b = lo + 0.3 * (hi - lo), lo + 0.6 * (hi - lo)
+    # A row counts when its bin (1/255 of the axis, numpy's own floor here)
+    # meets the brushed range.
+    k = np.clip(np.floor((alpha - lo) / (hi - lo) * 255), 0, 254)
+    w = (hi - lo) / 255
+    keep = (lo + k * w <= b) & (lo + (k + 1) * w >= a)
+    want = Counter(o for o, y in zip(outcome, keep) if y)
+    labels = page.execute_script("return document.getElementById('parcoords').data[0].dimensions.map(d => d.label)")
+    i = labels.index("α")
+    page.execute_script(f"Plotly.restyle('parcoords', {{'dimensions[{i}].constraintrange': [[{a}, {b}]]}})")
+    time.sleep(0.5)
+    text = page.execute_script("return document.getElementById('count').textContent")
+    assert int(page.execute_script("return document.getElementById('count').dataset.selected")) == sum(want.values()), text
+    assert text.startswith(f"{sum(want.values()):,} of {len(alpha):,} samples selected")
+    for o, c in want.items():
+        assert f"{o} {c:,}" in text
+    # Cleared, every row again.
+    page.execute_script(f"Plotly.restyle('parcoords', {{'dimensions[{i}].constraintrange': [null]}})")
+    time.sleep(0.5)
+    assert int(page.execute_script("return document.getElementById('count').dataset.selected")) == len(alpha)
     no_console_errors(page)

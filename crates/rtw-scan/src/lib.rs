@@ -75,6 +75,7 @@ pub(crate) mod sizes;
 pub mod studies;
 /// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
 pub use analysis::sensitivity;
+pub use analysis::views;
 
 pub use analysis::report::{Z95, failure_clusters, wilson};
 /// A scan read whole and verified; its sensitivity indices checked as its own.

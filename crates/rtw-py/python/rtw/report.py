@@ -241,12 +241,66 @@ def _style() -> dict[str, Any]:
             "cluster": ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf"]}
 
 
-def _bins(values: list[float], lo: float, hi: float, n: int = 4) -> tuple[list[str], list[str]]:
-    """Equal-width bins of [lo, hi]: each value's label 'a–b', and the labels in order."""
+def _bins(values: Any, lo: float, hi: float, n: int = 4) -> tuple[list[str], list[str]]:
+    """Equal-width bins of [lo, hi]: each value's label 'a–b', and the labels
+    in order. `values`: a list, or a column (pyarrow or numpy) of numbers."""
+    import numpy as np
+
     w = (hi - lo) / n if hi > lo else 1.0
     edges = [lo + w * k for k in range(n + 1)]
     labels = [f"{edges[k]:.3g}–{edges[k + 1]:.3g}" for k in range(n)]
-    return [labels[min(max(int((v - lo) / w), 0), n - 1)] for v in values], labels
+    v = np.asarray(values, dtype=float)
+    # As int((v - lo) / w) clamped to [0, n - 1]: truncation and floor differ
+    # only below 0, which the clamp sends to 0 either way.
+    k = np.clip(np.floor((v - lo) / w), 0, n - 1).astype(int)
+    return [labels[i] for i in k.tolist()], labels
+
+
+def _outcomes(column: Any) -> list[str]:
+    """The outcome of every row: `rows["outcome"]`, or a table's column."""
+    return column if isinstance(column, list) else column.to_pylist()
+
+
+def _big(table: Any, plotted: list[str], asked: list[int], seed: int) -> tuple[dict[str, list], Counter, dict, Any]:
+    """A scan of more than PLOT_ROWS rows, as rtw-scan aggregates it
+    (`_rtw.scan_views`): the rows the one-mark-per-row views draw (its
+    stratified sample, with the samples asked for), as lists; the outcome
+    counts of every row; the views; and the rows' indices."""
+    import numpy as np
+
+    view = _rtw.scan_views(table, [c for c in plotted if c != "sample_id"], "alpha", "fn", PLOT_ROWS, seed)
+    labels = view["labels"]
+    per = np.bincount(np.frombuffer(view["outcome"], np.uint8), minlength=len(labels))
+    counts = Counter({labels[k]: int(c) for k, c in enumerate(per) if c})
+    ids = table["sample_id"].to_numpy()
+    # The ids are in order (rtw-scan's reader checks it); one not in the scan
+    # is refused by _representatives, which names the scan's ids.
+    at = np.searchsorted(ids, np.asarray(asked, dtype=np.int64))
+    asked_rows = [int(i) for i, sid in zip(at, asked) if i < len(ids) and ids[i] == sid]
+    picked = np.union1d(np.asarray(view["sample"], dtype=np.int64), np.asarray(asked_rows, dtype=np.int64))
+    return table.take(picked).to_pydict(), counts, view, picked
+
+
+def _big_page(view: dict, names: list[str], shown: int) -> dict[str, Any]:
+    """What the page gets of `view` (`_big`): every row's outcome (its index
+    in `names`) and plotted columns coded a byte each, base64; the columns'
+    ranges are the page's `ranges`; the gait map's densities per outcome."""
+    import numpy as np
+
+    labels = view["labels"]
+    to_name = np.full(256, 255, dtype=np.uint8)
+    for k, label in enumerate(labels):
+        if label in names:
+            to_name[k] = names.index(label)
+    b64 = lambda b: base64.b64encode(b).decode()  # noqa: E731
+    return {
+        "rows": shown,
+        "bins": view["code_bins"],
+        "none": view["code_none"],
+        "outcome": b64(to_name[np.frombuffer(view["outcome"], np.uint8)].tobytes()),
+        "codes": {c: b64(codes) for c, (_, codes) in view["columns"].items()},
+        "density": {"x": "alpha", "y": "fn", "grids": [view["density"][labels.index(o)] for o in names]},
+    }
 
 
 def _sensitivity(directory: Path, meta: dict[str, str], rows: int) -> dict | None:
@@ -408,11 +462,24 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
     config_text = meta["rtw.config"]
     config = tomllib.loads(config_text)
     inputs = [c for c in ("length", *INPUTS) if c != "length" or len(set(table["length"].to_pylist())) > 1]
+    import pyarrow as pa
+
     for c in outputs:
-        if c not in table.column_names or c == "outcome":
+        numeric = c in table.column_names and (pa.types.is_integer(table.schema.field(c).type)
+                                               or pa.types.is_floating(table.schema.field(c).type))
+        if not numeric:
             raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
-    rows = table.to_pydict()
-    counts = Counter(rows["outcome"])
+    plotted = ["sample_id", *inputs, *[c for c in outputs if c not in inputs]]
+    big = n > PLOT_ROWS
+    if big:
+        # Too many rows to send one by one: rtw-scan aggregates them (every
+        # plotted column coded a byte per row, per-outcome densities of the
+        # gait map) and picks the rows the one-mark-per-row views draw.
+        rows, counts, big_view, sample_ids = _big(table, plotted, samples, int(meta.get("rtw.seed", "0")))
+    else:
+        rows = table.to_pydict()
+        counts = Counter(rows["outcome"])
+        big_view, sample_ids = None, None
     summary = json.loads(summary_text) if summary_text is not None else None
     # "clusters" is null when there are fewer failures than the config's k.
     centres = ((summary or {}).get("clusters") or {}).get("clusters") or []
@@ -430,7 +497,6 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         assign, how = {}, "no clusters in summary.json"
 
     detail = n <= DETAIL_ROWS
-    plotted = ["sample_id", *inputs, *[c for c in outputs if c not in inputs]]
     names = [o for o in OUTCOMES if counts.get(o)] + sorted(o for o in counts if o not in OUTCOMES)
     code = {o: k for k, o in enumerate(names)}
     data: dict[str, Any] = {
@@ -444,8 +510,9 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         "detail": detail,
         "detail_rows": DETAIL_ROWS,
         "style": _style(),
-        "ranges": {c: _clean([min(v for v in rows[c] if v is not None), max(v for v in rows[c] if v is not None)])
-                   for c in plotted if any(v is not None for v in rows[c])},
+        "ranges": ({c: r for c, (r, _) in big_view["columns"].items() if r is not None} if big else
+                   {c: _clean([min(v for v in rows[c] if v is not None), max(v for v in rows[c] if v is not None)])
+                    for c in plotted if any(v is not None for v in rows[c])}),
     }
     # Parallel categories: the outcome against the binned inputs that matter most (Fig. S4's three).
     box = config.get("params", {})
@@ -454,15 +521,13 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         u = box.get(c, {}).get("uniform") if isinstance(box.get(c), dict) else None
         return u if u else data["ranges"][c]
 
-    binned = {c: _bins(rows[c], *span(c)) for c in ("alpha", "fn", "phi")}
-    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), rows["outcome"]))
-    if n > PLOT_ROWS:
-        import numpy as np
-
-        rng = np.random.default_rng(int(meta.get("rtw.seed", "0")))
-        data["shown"] = np.sort(rng.choice(n, PLOT_ROWS, replace=False)).tolist()
-    else:
-        data["shown"] = None
+    # Counted over every row (the table's columns when the rows are not all in `rows`).
+    every = table if big else rows
+    binned = {c: _bins(every[c], *span(c)) for c in ("alpha", "fn", "phi")}
+    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), _outcomes(every["outcome"])))
+    data["shown"] = None
+    if big:
+        data["big"] = _big_page(big_view, names, len(rows["sample_id"]))
     data["parcats"] = {"dims": ["alpha", "fn", "phi", "outcome"], "order": [binned[c][1] for c in binned] + [names],
                        "values": [list(k) for k in combos], "counts": list(combos.values())}
     data["clusters"] = {"centres": _clean(centres), "how": how,

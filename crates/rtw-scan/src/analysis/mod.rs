@@ -10,6 +10,7 @@
 //! | [`scan_table`] | a scan read whole and verified (files, hashes, ids, shard set); its sensitivity indices checked as its own |
 //! | [`verified`] | a scan's folder for a report: the scan, and its `summary.json` and assignments file only when they are its own |
 //! | [`sensitivity`] | Sobol indices of every output to every uniform input (Saltelli design or given data) |
+//! | [`views`] | a large scan aggregated for the report: coded columns, per-outcome densities, a stratified sample |
 
 pub(crate) mod assignments;
 pub(crate) mod clusters;
@@ -18,3 +19,4 @@ pub(crate) mod report;
 pub mod scan_table;
 pub mod sensitivity;
 pub mod verified;
+pub mod views;

@@ -22,6 +22,96 @@ function stepped(colors) {
 // its first view (header, summary, gait map) before the views further down.
 const paint = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
 
+// A base64 string's bytes, decoded once per string.
+const decoded = new Map();
+function bytes(b64) {
+  if (!decoded.has(b64)) decoded.set(b64, Uint8Array.from(atob(b64), (ch) => ch.charCodeAt(0)));
+  return decoded.get(b64);
+}
+
+// Brushing over every row of a large scan, from its coded columns: a row is
+// picked when, on every brushed axis, its bin [lo + k·w, lo + (k + 1)·w]
+// meets a brushed range (the "none" position for a row without a value).
+function countCoded(D, cols, ranges, per, picked) {
+  const B = D.big, out = bytes(B.outcome), n = D.n;
+  const tests = [];
+  cols.forEach((c, j) => {
+    const r = ranges[j];
+    if (!r) return;
+    const [lo, hi] = D.ranges[c] || [0, 1];
+    const w = (hi - lo) / B.bins, none = lo - 0.1 * ((hi - lo) || 1);
+    const ok = new Uint8Array(256);
+    for (let k = 0; k < B.bins; k++) {
+      const a = hi > lo ? lo + k * w : lo, b = hi > lo ? lo + (k + 1) * w : lo;
+      ok[k] = r.some(([x, y]) => a <= y && b >= x) ? 1 : 0;
+    }
+    ok[B.none] = r.some(([x, y]) => none >= x && none <= y) ? 1 : 0;
+    tests.push([bytes(B.codes[c]), ok]);
+  });
+  let total = 0;
+  for (let i = 0; i < n; i++) {
+    let yes = 1;
+    for (let t = 0; t < tests.length && yes; t++) yes = tests[t][1][tests[t][0][i]];
+    if (yes) { total++; per[out[i]]++; picked[i] = 1; }
+  }
+  return total;
+}
+
+// The gait map of a large scan: every row on the grid of its α and f_n bins,
+// each cell the mix of its outcomes' colours, more opaque with more rows
+// (log scale), drawn as a layout image; the gaits as clickable marks.
+async function densityMap(gm, D, ocolor, cfg) {
+  const B = D.big, G = B.density, nb = B.bins;
+  const [x0, x1] = D.ranges[G.x], [y0, y1] = D.ranges[G.y];
+  const rgb = ocolor.map((c) => { const e = document.createElement("canvas").getContext("2d"); e.fillStyle = c;
+    const h = e.fillStyle; return [1, 3, 5].map((k) => parseInt(h.slice(k, k + 2), 16)); });
+  const canvas = document.createElement("canvas");
+  canvas.width = nb; canvas.height = nb;
+  const paintGrid = (grids) => {
+    const ctx = canvas.getContext("2d"), img = ctx.createImageData(nb, nb);
+    let most = 0;
+    const tot = new Float64Array(nb * nb);
+    grids.forEach((g) => g.forEach((v, q) => { tot[q] += v; }));
+    tot.forEach((v) => { if (v > most) most = v; });
+    for (let yb = 0; yb < nb; yb++) for (let xb = 0; xb < nb; xb++) {
+      const q = yb * nb + xb, t = tot[q];
+      if (!t) continue;
+      const p = ((nb - 1 - yb) * nb + xb) * 4; // image rows run downwards
+      let r = 0, g = 0, b = 0;
+      grids.forEach((grid, k) => { const f = grid[q] / t; r += f * rgb[k][0]; g += f * rgb[k][1]; b += f * rgb[k][2]; });
+      img.data[p] = r; img.data[p + 1] = g; img.data[p + 2] = b;
+      img.data[p + 3] = 60 + 195 * Math.log1p(t) / Math.log1p(most);
+    }
+    ctx.putImageData(img, 0, 0);
+    return canvas.toDataURL("image/png");
+  };
+  const image = (src) => [{ source: src, xref: "x", yref: "y", x: x0, y: y1, sizex: x1 - x0, sizey: y1 - y0,
+    sizing: "stretch", layer: "below" }];
+  const rowOf = new Map(D.columns.sample_id.map((s, i) => [s, i]));
+  const gaits = D.gaits.map((g) => rowOf.get(g.sample_id));
+  await Plotly.newPlot(gm, [
+    ...D.outcomes.map((o, k) => ({ type: "scatter", mode: "markers", name: o, x: [null], y: [null],
+      marker: { color: ocolor[k], size: 10, symbol: "square" }, hoverinfo: "skip" })),
+    { type: "scatter", mode: "markers", name: "gaits (click)", customdata: gaits,
+      x: gaits.map((i) => D.columns[G.x][i]), y: gaits.map((i) => D.columns[G.y][i]),
+      text: gaits.map((i) => D.columns.sample_id[i]),
+      marker: { color: gaits.map((i) => ocolor[D.outcome[i]]), size: 9, line: { color: "black", width: 1.5 } },
+      hovertemplate: "sample %{text}<extra>gait</extra>" },
+  ], { images: image(paintGrid(G.grids)),
+       xaxis: { title: { text: "α" }, range: [x0, x1] }, yaxis: { title: { text: "f_n [Hz]" }, range: [y0, y1] },
+       margin: { t: 20 }, legend: { title: { text: "outcome" } } }, cfg);
+  // Brushing re-bins the picked rows from their codes (null: every row).
+  const cx = bytes(B.codes[G.x]), cy = bytes(B.codes[G.y]), out = bytes(B.outcome);
+  gm.redraw = (picked) => {
+    if (!picked) { Plotly.relayout(gm, { images: image(paintGrid(G.grids)) }); return; }
+    const grids = G.grids.map(() => new Uint32Array(nb * nb));
+    for (let i = 0; i < D.n; i++) {
+      if (picked[i] && cx[i] !== B.none && cy[i] !== B.none) grids[out[i]][cy[i] * nb + cx[i]]++;
+    }
+    Plotly.relayout(gm, { images: image(paintGrid(grids)) });
+  };
+}
+
 async function main(D) {
   const S = D.style;
   const K = D.outcomes.length;
@@ -31,10 +121,19 @@ async function main(D) {
   const scatter = (m) => (m > 5000 ? "scattergl" : "scatter");
   // The rows drawn: all of them, or above a limit a seeded random subset chosen
   // in Python (the same in every view); counts are always of every row.
-  const shown = D.shown || Array.from({ length: D.n }, (_, i) => i);
-  const isShown = new Uint8Array(D.n);
+  // Above PLOT_ROWS rows (D.big) the page holds a stratified sample's rows,
+  // and every row coded a byte per plotted column (bytes below): the gait map
+  // and the counts are of every row.
+  const rows = D.big ? D.big.rows : D.n;
+  const shown = D.shown || Array.from({ length: rows }, (_, i) => i);
+  const isShown = new Uint8Array(rows);
   shown.forEach((i) => { isShown[i] = 1; });
-  document.getElementById("drawn").textContent = D.shown
+  document.getElementById("drawn").textContent = D.big
+    ? `The gait map shows every one of the ${D.n.toLocaleString("en")} samples as a density (each cell `
+      + "coloured by the outcomes in it, darker with more samples). The views with a mark per sample draw "
+      + `${shown.length.toLocaleString("en")} of them (the same ones in every view): each outcome an equal share, `
+      + "an outcome with fewer samples all of them. The counts are of every sample."
+    : D.shown
     ? `The views draw a random ${shown.length.toLocaleString("en")} of the ${D.n.toLocaleString("en")} samples `
       + "(the same ones in every view); the counts are of every sample."
     : `The views draw every one of the ${D.n.toLocaleString("en")} samples.`;
@@ -49,7 +148,7 @@ async function main(D) {
   const sid = D.columns.sample_id;
   const hover = "sample %{text}<br>α %{x:.4f}<br>f_n %{y:.3f}<extra>%{fullData.name}</extra>";
   const gm = document.getElementById("gaitmap");
-  await Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
+  if (D.big) await densityMap(gm, D, ocolor, cfg); else await Plotly.newPlot(gm, D.outcomes.map((o, k) => ({
     type: scatter(shown.length), mode: "markers", name: o, x: byOutcome[k].map((i) => A[i]), y: byOutcome[k].map((i) => F[i]),
     customdata: byOutcome[k], text: byOutcome[k].map((i) => sid[i]), marker: { color: ocolor[k], size: shown.length > 5000 ? 3 : 6, opacity: 0.8 },
     unselected: { marker: { opacity: 0.08 } },
@@ -198,7 +297,7 @@ async function main(D) {
   const dims = pcCols.map((c) => {
     const v = D.columns[c];
     const [lo, hi] = D.ranges[c] || [0, 1];
-    const hasNone = v.some((x) => x === null);
+    const hasNone = D.big ? bytes(D.big.codes[c]).includes(D.big.none) : v.some((x) => x === null);
     const none = lo - 0.1 * ((hi - lo) || 1);
     const values = hasNone ? v.map((x) => (x === null ? none : x)) : v;
     pcValues.push(values);
@@ -216,6 +315,10 @@ async function main(D) {
     line: { color: D.shown ? shown.map((i) => D.outcome[i]) : D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
   }], { margin: { l: 70, r: 70, t: 50, b: 30 } }, cfg);
   const countEl = document.getElementById("count");
+  if (D.big) {
+    countEl.title = `Counted over every sample from its bin (1/${D.big.bins} of each axis): `
+      + "a sample counts when its bin meets the brushed range.";
+  }
   function brushed() {
     const ranges = pc.data[0].dimensions.map((d) => {
       const r = d.constraintrange;
@@ -225,7 +328,9 @@ async function main(D) {
     const per = new Array(K).fill(0);
     const picked = new Uint8Array(D.n);
     let total = 0;
-    for (let i = 0; i < D.n; i++) {
+    if (D.big) {
+      total = countCoded(D, pcCols, ranges, per, picked);
+    } else for (let i = 0; i < D.n; i++) {
       let ok = true;
       for (let j = 0; j < ranges.length && ok; j++) {
         const r = ranges[j];
@@ -237,7 +342,9 @@ async function main(D) {
     }
     // The gait map shows the brushed samples, the others faded.
     const gmap = document.getElementById("gaitmap");
-    if (gmap.data) {
+    if (D.big) {
+      if (gmap.data) gmap.redraw(ranges.every((r) => !r) ? null : picked);
+    } else if (gmap.data) {
       const all = ranges.every((r) => !r);
       Plotly.restyle(gmap, { selectedpoints: byOutcome.map((m) => (all ? null : m.flatMap((i, p) => (picked[i] ? [p] : [])))) });
     }

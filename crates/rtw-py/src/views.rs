@@ -1,0 +1,49 @@
+//! The report's views of a large scan, aggregated in rtw-scan
+//! (`rtw_scan::views`): Python only packs them into the page.
+
+use arrow_pyarrow::{FromPyArrow, Table};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use rtw_model::Label;
+
+/// The rows of `table` (a scan as `read_scan` gives it) for a page that
+/// cannot carry them one by one: a dict with `labels` (the outcome names,
+/// `Label::ALL`'s order), `outcome` (bytes: each row's index in `labels`),
+/// `columns` ({name: (range or None, bytes)}: each row's bin of
+/// `CODE_BINS` on the column's range, `CODE_NONE` when it has no value),
+/// `density` (per label, its rows on the grid of the columns `x` and `y`,
+/// row-major) and `sample` (at most `sample` row indices: every outcome an
+/// equal share, a rarer one all its rows; seeded by `seed`).
+#[pyfunction]
+#[pyo3(signature = (table, columns, x, y, sample, seed))]
+pub(crate) fn scan_views<'py>(
+    py: Python<'py>,
+    table: Bound<'py, PyAny>,
+    columns: Vec<String>,
+    x: String,
+    y: String,
+    sample: usize,
+    seed: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (batches, _) = Table::from_pyarrow_bound(&table)
+        .map_err(|e| PyValueError::new_err(format!("table: not a pyarrow table: {e}")))?
+        .into_inner();
+    let v = py
+        .detach(|| rtw_scan::views::views(&batches, &columns, (&x, &y), sample, seed))
+        .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
+    let out = PyDict::new(py);
+    let labels: Vec<&str> = Label::ALL.iter().map(|l| l.as_str()).collect();
+    out.set_item("labels", labels)?;
+    out.set_item("outcome", PyBytes::new(py, &v.outcomes))?;
+    let cols = PyDict::new(py);
+    for (name, coded) in &v.columns {
+        cols.set_item(name, (coded.range, PyBytes::new(py, &coded.codes)))?;
+    }
+    out.set_item("columns", cols)?;
+    out.set_item("density", v.density)?;
+    out.set_item("sample", v.sample)?;
+    out.set_item("code_bins", rtw_scan::views::CODE_BINS)?;
+    out.set_item("code_none", rtw_scan::views::CODE_NONE)?;
+    Ok(out)
+}

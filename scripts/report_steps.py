@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""The time of each step of one scan report, as one line of text:
+
+    .venv/bin/python scripts/report_steps.py DIR OUT.html
+
+Steps: reading the scan through rtw-scan's verified reader; aggregating it
+(the coded columns, densities and stratified sample of a scan of more than
+PLOT_ROWS rows, in Rust); the gaits (a run of each representative sample);
+packing the page (JSON, gzip, base64) and writing it; and the rest. Each is
+timed by wrapping the report module's own function, so what is timed is what
+`python -m rtw report` runs (scripts/report_scale.sh).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections import defaultdict
+
+import rtw  # noqa: F401  (loads rtw.report)
+
+report = sys.modules["rtw.report"]
+spent: dict[str, float] = defaultdict(float)
+
+
+def timed(step: str, f):
+    def wrapper(*args, **kwargs):
+        t = time.perf_counter()
+        try:
+            return f(*args, **kwargs)
+        finally:
+            spent[step] += time.perf_counter() - t
+    return wrapper
+
+
+class Rtw:
+    """rtw.report's `_rtw`, with its reader timed."""
+
+    def __getattr__(self, name):
+        f = getattr(report._rtw_module, name)
+        return timed("read", f) if name == "read_scan_folder" else f
+
+
+report._rtw_module = report._rtw
+report._rtw = Rtw()
+report._big = timed("aggregate", report._big)
+report._gait = timed("gaits", report._gait)
+report._b64gz = timed("pack", report._b64gz)
+report.write_page = timed("pack", report.write_page)
+start = time.perf_counter()
+report.report(sys.argv[1], sys.argv[2], force=True, progress=False)
+total = time.perf_counter() - start
+parts = ["read", "aggregate", "gaits", "pack"]
+rest = total - sum(spent[p] for p in parts)
+print(", ".join(f"{p} {spent[p]:.1f}" for p in parts) + f", the rest {rest:.1f}")
