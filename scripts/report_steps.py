@@ -5,8 +5,10 @@
 
 Steps: reading the scan through rtw-scan's verified reader; aggregating it
 (the coded columns, densities and stratified sample of a scan of more than
-PLOT_ROWS rows, in Rust); the gaits (a run of each representative sample);
-packing the page (JSON, gzip, base64) and writing it; and the rest. Each is
+PLOT_ROWS rows, in Rust); clustering the failures (rtw-scan's k-means, when
+no assignments file is beside the scan); the gaits (a run of each
+representative sample); packing the page (JSON, gzip, base64) and writing
+it; and the rest. Each is
 timed by wrapping the report module's own function, so what is timed is what
 `python -m rtw report` runs (scripts/report_scale.sh).
 """
@@ -44,12 +46,14 @@ class Rtw:
 report._rtw_module = report._rtw
 report._rtw = Rtw()
 report._big = timed("aggregate", report._big)
+report._big_clusters = timed("aggregate", report._big_clusters)
+report.failure_clusters = timed("clusters", report.failure_clusters)
 report._gait = timed("gaits", report._gait)
 report._b64gz = timed("pack", report._b64gz)
 report.write_page = timed("pack", report.write_page)
 start = time.perf_counter()
 report.report(sys.argv[1], sys.argv[2], force=True, progress=False)
 total = time.perf_counter() - start
-parts = ["read", "aggregate", "gaits", "pack"]
+parts = ["read", "aggregate", "clusters", "gaits", "pack"]
 rest = total - sum(spent[p] for p in parts)
 print(", ".join(f"{p} {spent[p]:.1f}" for p in parts) + f", the rest {rest:.1f}")

@@ -550,6 +550,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_scan_folder, m)?)?;
     m.add_function(wrap_pyfunction!(studies::read_design, m)?)?;
     m.add_function(wrap_pyfunction!(views::scan_views, m)?)?;
+    m.add_function(wrap_pyfunction!(views::density_grid, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;

@@ -47,3 +47,25 @@ pub(crate) fn scan_views<'py>(
     out.set_item("code_none", rtw_scan::views::CODE_NONE)?;
     Ok(out)
 }
+
+/// Per group `0..groups`, the rows of `group` (a byte a row: each row's
+/// group; other values are left out) counted on the grid of two coded columns `x` and `y` (as
+/// `scan_views` gives them), row-major: the report's failure projections
+/// per cluster.
+#[pyfunction]
+pub(crate) fn density_grid(
+    group: &[u8],
+    groups: usize,
+    x: &[u8],
+    y: &[u8],
+) -> PyResult<Vec<Vec<u32>>> {
+    if group.len() != x.len() || x.len() != y.len() {
+        return Err(PyValueError::new_err(format!(
+            "group, x, y: {}, {} and {} rows: must be one byte for each row",
+            group.len(),
+            x.len(),
+            y.len()
+        )));
+    }
+    Ok(rtw_scan::views::density(group, groups, x, y))
+}

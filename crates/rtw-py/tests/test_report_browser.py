@@ -204,8 +204,9 @@ def large_page(tmp_path_factory):
 def test_a_large_scan_is_brushed_over_every_row(large_page):
     page, table = large_page
     no_console_errors(page)
-    # The gait map is every row's density (a layout image) and the gaits' marks.
-    assert page.execute_script("return document.getElementById('gaitmap').layout.images.length") == 1
+    # The gait map and the failure projections are densities (a layout image each).
+    for view in ("gaitmap", "proj0", "proj1", "proj2"):
+        assert page.execute_script(f"return document.getElementById('{view}').layout.images.length") == 1, view
     alpha = table["alpha"].to_numpy()
     outcome = table["outcome"].to_pylist()
     lo, hi = float(alpha.min()), float(alpha.max())

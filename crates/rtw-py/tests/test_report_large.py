@@ -101,9 +101,9 @@ def test_the_drawn_rows_share_equally_and_keep_every_rare_outcome(big):
     # The rarest outcome is drawn whole (a uniform subset would thin it).
     rare = min(counts, key=counts.get)
     assert drawn[rare] == counts[rare]
-    # The drawn rows are the file's rows.
+    # The drawn rows are the file's rows (to 7 significant digits).
     at = np.searchsorted(table["sample_id"].to_numpy(), ids)
-    assert data["columns"]["alpha"] == table["alpha"].to_numpy()[at].tolist()
+    assert data["columns"]["alpha"] == [float(f"{v:.7g}") for v in table["alpha"].to_numpy()[at]]
     # The parallel categories count every row.
     assert sum(data["parcats"]["counts"]) == SAMPLES
     # The failure views are the drawn failures.
@@ -121,3 +121,26 @@ def test_a_text_column_is_not_an_output(big, tmp_path):
     with pytest.raises(ReportError, match="outputs: 'message' is not a numeric column"):
         rtw.report(big[0], out=tmp_path / "r.html", per_outcome=0, outputs=["message"], progress=False)
     assert not (tmp_path / "r.html").exists()
+
+
+def test_the_failure_projections_count_every_failure_per_cluster(big):
+    scan, table, data, _ = big
+    from rtw._rtw import failure_clusters
+
+    cluster = dict(failure_clusters(scan / "samples.parquet"))
+    P = data["big"]["clusters"]
+    k = len(data["clusters"]["centres"])
+    assert P["groups"] == k + 1
+    outcome = table["outcome"].to_pylist()
+    group = np.array([cluster.get(s, k) if o in ("collapse", "stall") else 255
+                      for s, o in zip(table["sample_id"].to_pylist(), outcome)])
+    assert data["big"]["failures"] == int(np.count_nonzero(group != 255))
+    codes = {c: coded(table[c].to_numpy())[1].astype(int) for c in ("alpha", "fn", "phi")}
+    for p, (x, y) in enumerate([("alpha", "fn"), ("alpha", "phi"), ("fn", "phi")]):
+        for j in range(k + 1):
+            rows = group == j
+            want = np.bincount(codes[y][rows] * BINS + codes[x][rows], minlength=BINS * BINS)
+            assert np.array_equal(np.array(P["grids"][p][j]), want), (x, y, j)
+    # The drawn columns are the file's to 7 significant digits.
+    at = np.searchsorted(table["sample_id"].to_numpy(), data["columns"]["sample_id"])
+    assert data["columns"]["phi"] == [float(f"{v:.7g}") for v in table["phi"].to_numpy()[at]]

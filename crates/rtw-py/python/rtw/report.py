@@ -256,11 +256,6 @@ def _bins(values: Any, lo: float, hi: float, n: int = 4) -> tuple[list[str], lis
     return [labels[i] for i in k.tolist()], labels
 
 
-def _outcomes(column: Any) -> list[str]:
-    """The outcome of every row: `rows["outcome"]`, or a table's column."""
-    return column if isinstance(column, list) else column.to_pylist()
-
-
 def _big(table: Any, plotted: list[str], asked: list[int], seed: int) -> tuple[dict[str, list], Counter, dict, Any]:
     """A scan of more than PLOT_ROWS rows, as rtw-scan aggregates it
     (`_rtw.scan_views`): the rows the one-mark-per-row views draw (its
@@ -279,6 +274,35 @@ def _big(table: Any, plotted: list[str], asked: list[int], seed: int) -> tuple[d
     asked_rows = [int(i) for i, sid in zip(at, asked) if i < len(ids) and ids[i] == sid]
     picked = np.union1d(np.asarray(view["sample"], dtype=np.int64), np.asarray(asked_rows, dtype=np.int64))
     return table.take(picked).to_pydict(), counts, view, picked
+
+
+def _shown(values: list) -> list:
+    """A drawn column of a large scan, to 7 significant digits: the page shows
+    6 (and brushing counts from the codes), and the page is a third smaller."""
+    return [v if not isinstance(v, float) else (float(f"{v:.7g}") if math.isfinite(v) else None) for v in values]
+
+
+def _big_clusters(view: dict, table: Any, assign: dict[int, int], k: int) -> dict[str, Any]:
+    """The failure projections of a large scan, per cluster, in rtw-scan
+    (`_rtw.density_grid`): every failure's cluster (`k` for one without),
+    counted on the grids of (α, f_n), (α, φ) and (f_n, φ)."""
+    import numpy as np
+
+    ids = table["sample_id"].to_numpy()
+    labels = view["labels"]
+    outcome = np.frombuffer(view["outcome"], np.uint8)
+    group = np.full(len(ids), 255, dtype=np.uint8)
+    group[np.isin(outcome, [labels.index(f) for f in FAILURE_LABELS])] = k
+    if assign:
+        a_ids = np.fromiter(assign.keys(), dtype=np.int64, count=len(assign))
+        a_k = np.fromiter(assign.values(), dtype=np.int64, count=len(assign))
+        at = np.minimum(np.searchsorted(ids, a_ids), len(ids) - 1)
+        mine = (ids[at] == a_ids) & (a_k >= 0) & (a_k < k)
+        group[at[mine]] = a_k[mine]
+    codes = {c: view["columns"][c][1] for c in ("alpha", "fn", "phi")}
+    pairs = [("alpha", "fn"), ("alpha", "phi"), ("fn", "phi")]
+    return {"groups": k + 1,
+            "grids": [_rtw.density_grid(group.tobytes(), k + 1, codes[x], codes[y]) for x, y in pairs]}
 
 
 def _big_page(view: dict, names: list[str], shown: int) -> dict[str, Any]:
@@ -505,7 +529,8 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         "outputs": outputs,
         "outcomes": names,
         "outcome": [code[o] for o in rows["outcome"]],
-        "columns": {c: _clean(rows[c]) for c in (table.column_names if detail else plotted) if c != "outcome"},
+        "columns": {c: (_shown(rows[c]) if big else _clean(rows[c]))
+                    for c in (table.column_names if detail else plotted) if c != "outcome"},
         "all_columns": table.column_names,
         "detail": detail,
         "detail_rows": DETAIL_ROWS,
@@ -522,12 +547,19 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         return u if u else data["ranges"][c]
 
     # Counted over every row (the table's columns when the rows are not all in `rows`).
-    every = table if big else rows
+    every = rows
+    if big:
+        import numpy as np
+
+        every = {c: table[c] for c in ("alpha", "fn", "phi")}
+        every["outcome"] = np.array(big_view["labels"], dtype=object)[np.frombuffer(big_view["outcome"], np.uint8)]
     binned = {c: _bins(every[c], *span(c)) for c in ("alpha", "fn", "phi")}
-    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), _outcomes(every["outcome"])))
+    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), every["outcome"]))
     data["shown"] = None
     if big:
         data["big"] = _big_page(big_view, names, len(rows["sample_id"]))
+        data["big"]["clusters"] = _big_clusters(big_view, table, assign, len(centres))
+        data["big"]["failures"] = sum(counts.get(f, 0) for f in FAILURE_LABELS)
     data["parcats"] = {"dims": ["alpha", "fn", "phi", "outcome"], "order": [binned[c][1] for c in binned] + [names],
                        "values": [list(k) for k in combos], "counts": list(combos.values())}
     data["clusters"] = {"centres": _clean(centres), "how": how,

@@ -114,14 +114,14 @@ pub fn outcome_codes(batches: &[RecordBatch]) -> Result<Vec<u8>> {
     Ok(out)
 }
 
-/// Per label of [`Label::ALL`], its rows counted on the `CODE_BINS` ×
-/// `CODE_BINS` grid of two coded columns (row-major: `y * CODE_BINS + x`);
-/// rows with no value in either are not on the map.
-pub fn density(outcomes: &[u8], x: &[u8], y: &[u8]) -> Vec<Vec<u32>> {
-    let mut grids = vec![vec![0u32; CODE_BINS * CODE_BINS]; Label::ALL.len()];
-    for ((&o, &cx), &cy) in outcomes.iter().zip(x).zip(y) {
-        if cx != CODE_NONE && cy != CODE_NONE {
-            grids[o as usize][cy as usize * CODE_BINS + cx as usize] += 1;
+/// Per class `0..classes`, its rows counted on the `CODE_BINS` × `CODE_BINS`
+/// grid of two coded columns (row-major: `y * CODE_BINS + x`); rows of
+/// another class, or with no value in either column, are not on the map.
+pub fn density(class: &[u8], classes: usize, x: &[u8], y: &[u8]) -> Vec<Vec<u32>> {
+    let mut grids = vec![vec![0u32; CODE_BINS * CODE_BINS]; classes];
+    for ((&k, &cx), &cy) in class.iter().zip(x).zip(y) {
+        if (k as usize) < classes && cx != CODE_NONE && cy != CODE_NONE {
+            grids[k as usize][cy as usize * CODE_BINS + cx as usize] += 1;
         }
     }
     grids
@@ -176,7 +176,7 @@ pub struct Views {
     pub outcomes: Vec<u8>,
     /// The columns asked for, coded, in the order asked.
     pub columns: Vec<(String, Coded)>,
-    /// The rows per outcome on the grid of the columns `x` and `y`.
+    /// The rows per outcome ([`Label::ALL`]'s order) on the grid of the columns `x` and `y`.
     pub density: Vec<Vec<u32>>,
     /// The rows the one-mark-per-row views draw ([`stratified`]).
     pub sample: Vec<u32>,
@@ -204,7 +204,7 @@ pub fn views(
             .map(|(_, coded)| &coded.codes)
             .ok_or_else(|| anyhow!("the density's column `{name}` is not one of the columns coded"))
     };
-    let density = density(&outcomes, of(x)?, of(y)?);
+    let density = density(&outcomes, Label::ALL.len(), of(x)?, of(y)?);
     let sample = stratified(&outcomes, &sample_ids(batches)?, sample, seed);
     Ok(Views {
         outcomes,
@@ -234,15 +234,19 @@ mod tests {
 
     #[test]
     fn the_density_counts_every_row_with_both_values_once() {
-        let o = [0, 0, 1, 2, 2];
-        let x = [0, 0, 3, CODE_NONE, 7];
-        let y = [1, 1, 2, 4, 0];
-        let g = density(&o, &x, &y);
+        let o = [0, 0, 1, 2, 2, 3];
+        let x = [0, 0, 3, CODE_NONE, 7, 1];
+        let y = [1, 1, 2, 4, 0, 1];
+        let g = density(&o, 3, &x, &y);
+        assert_eq!(g.len(), 3, "class 3 is beyond the 3 asked for");
         assert_eq!(g[0][CODE_BINS], 2, "x 0, y 1");
         assert_eq!(g[1][2 * CODE_BINS + 3], 1);
         assert_eq!(g[2][7], 1);
         let total: u32 = g.iter().flatten().sum();
-        assert_eq!(total, 4, "the row with no x is not on the map");
+        assert_eq!(
+            total, 4,
+            "neither the row with no x nor the class-3 row is on the map"
+        );
     }
 
     #[test]

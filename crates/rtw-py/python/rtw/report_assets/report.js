@@ -57,36 +57,42 @@ function countCoded(D, cols, ranges, per, picked) {
   return total;
 }
 
-// The gait map of a large scan: every row on the grid of its α and f_n bins,
-// each cell the mix of its outcomes' colours, more opaque with more rows
-// (log scale), drawn as a layout image; the gaits as clickable marks.
-async function densityMap(gm, D, ocolor, cfg) {
-  const B = D.big, G = B.density, nb = B.bins;
-  const [x0, x1] = D.ranges[G.x], [y0, y1] = D.ranges[G.y];
-  const rgb = ocolor.map((c) => { const e = document.createElement("canvas").getContext("2d"); e.fillStyle = c;
+// A density of rows per group on an nb × nb grid (row-major, y up) as a PNG
+// data URL: each cell the mix of its groups' colours, more opaque with more
+// rows (log scale), empty cells transparent.
+function densityPng(grids, colors, nb) {
+  const rgb = colors.map((c) => { const e = document.createElement("canvas").getContext("2d"); e.fillStyle = c;
     const h = e.fillStyle; return [1, 3, 5].map((k) => parseInt(h.slice(k, k + 2), 16)); });
   const canvas = document.createElement("canvas");
   canvas.width = nb; canvas.height = nb;
-  const paintGrid = (grids) => {
-    const ctx = canvas.getContext("2d"), img = ctx.createImageData(nb, nb);
-    let most = 0;
-    const tot = new Float64Array(nb * nb);
-    grids.forEach((g) => g.forEach((v, q) => { tot[q] += v; }));
-    tot.forEach((v) => { if (v > most) most = v; });
-    for (let yb = 0; yb < nb; yb++) for (let xb = 0; xb < nb; xb++) {
-      const q = yb * nb + xb, t = tot[q];
-      if (!t) continue;
-      const p = ((nb - 1 - yb) * nb + xb) * 4; // image rows run downwards
-      let r = 0, g = 0, b = 0;
-      grids.forEach((grid, k) => { const f = grid[q] / t; r += f * rgb[k][0]; g += f * rgb[k][1]; b += f * rgb[k][2]; });
-      img.data[p] = r; img.data[p + 1] = g; img.data[p + 2] = b;
-      img.data[p + 3] = 60 + 195 * Math.log1p(t) / Math.log1p(most);
-    }
-    ctx.putImageData(img, 0, 0);
-    return canvas.toDataURL("image/png");
-  };
-  const image = (src) => [{ source: src, xref: "x", yref: "y", x: x0, y: y1, sizex: x1 - x0, sizey: y1 - y0,
-    sizing: "stretch", layer: "below" }];
+  const ctx = canvas.getContext("2d"), img = ctx.createImageData(nb, nb);
+  let most = 0;
+  const tot = new Float64Array(nb * nb);
+  grids.forEach((g) => g.forEach((v, q) => { tot[q] += v; }));
+  tot.forEach((v) => { if (v > most) most = v; });
+  for (let yb = 0; yb < nb; yb++) for (let xb = 0; xb < nb; xb++) {
+    const q = yb * nb + xb, t = tot[q];
+    if (!t) continue;
+    const p = ((nb - 1 - yb) * nb + xb) * 4; // image rows run downwards
+    let r = 0, g = 0, b = 0;
+    grids.forEach((grid, k) => { const f = grid[q] / t; r += f * rgb[k][0]; g += f * rgb[k][1]; b += f * rgb[k][2]; });
+    img.data[p] = r; img.data[p + 1] = g; img.data[p + 2] = b;
+    img.data[p + 3] = 60 + 195 * Math.log1p(t) / Math.log1p(most);
+  }
+  ctx.putImageData(img, 0, 0);
+  return canvas.toDataURL("image/png");
+}
+
+// A layout image covering [x0, x1] × [y0, y1] of a plot's axes.
+const imageOn = (src, [x0, x1], [y0, y1]) => [{ source: src, xref: "x", yref: "y", x: x0, y: y1, sizex: x1 - x0,
+  sizey: y1 - y0, sizing: "stretch", layer: "below" }];
+
+// The gait map of a large scan: every row on the grid of its α and f_n bins
+// (densityPng, by outcome); the gaits as clickable marks.
+async function densityMap(gm, D, ocolor, cfg) {
+  const B = D.big, G = B.density, nb = B.bins;
+  const [x0, x1] = D.ranges[G.x], [y0, y1] = D.ranges[G.y];
+  const image = (grids) => imageOn(densityPng(grids, ocolor, nb), [x0, x1], [y0, y1]);
   const rowOf = new Map(D.columns.sample_id.map((s, i) => [s, i]));
   const gaits = D.gaits.map((g) => rowOf.get(g.sample_id));
   await Plotly.newPlot(gm, [
@@ -97,18 +103,18 @@ async function densityMap(gm, D, ocolor, cfg) {
       text: gaits.map((i) => D.columns.sample_id[i]),
       marker: { color: gaits.map((i) => ocolor[D.outcome[i]]), size: 9, line: { color: "black", width: 1.5 } },
       hovertemplate: "sample %{text}<extra>gait</extra>" },
-  ], { images: image(paintGrid(G.grids)),
+  ], { images: image(G.grids),
        xaxis: { title: { text: "α" }, range: [x0, x1] }, yaxis: { title: { text: "f_n [Hz]" }, range: [y0, y1] },
        margin: { t: 20 }, legend: { title: { text: "outcome" } } }, cfg);
   // Brushing re-bins the picked rows from their codes (null: every row).
   const cx = bytes(B.codes[G.x]), cy = bytes(B.codes[G.y]), out = bytes(B.outcome);
   gm.redraw = (picked) => {
-    if (!picked) { Plotly.relayout(gm, { images: image(paintGrid(G.grids)) }); return; }
+    if (!picked) { Plotly.relayout(gm, { images: image(G.grids) }); return; }
     const grids = G.grids.map(() => new Uint32Array(nb * nb));
     for (let i = 0; i < D.n; i++) {
       if (picked[i] && cx[i] !== B.none && cy[i] !== B.none) grids[out[i]][cy[i] * nb + cx[i]]++;
     }
-    Plotly.relayout(gm, { images: image(paintGrid(grids)) });
+    Plotly.relayout(gm, { images: image(grids) });
   };
 }
 
@@ -376,8 +382,11 @@ async function main(D) {
   mark("failure clusters");
   // ---- failure clusters in 3-D and the three projections of Fig. S4.
   const C = D.clusters;
-  document.getElementById("cluster-note").textContent =
-    `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
+  document.getElementById("cluster-note").textContent = D.big
+    ? `${D.big.failures.toLocaleString("en")} failures: the 3-D view draws the ${C.index.length.toLocaleString("en")} failures `
+      + "among the drawn samples (collapse: filled, stall: open), the projections every failure's density by cluster "
+      + `(grey: a failure in no cluster); clusters: ${C.how}.`
+    : `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
   const ccol = (j) => (j >= 0 ? S.cluster[j % S.cluster.length] : "#999");
   const groups = new Map();
   C.index.forEach((i, k) => { if (!isShown[i]) return; const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
@@ -399,6 +408,17 @@ async function main(D) {
   document.getElementById("clusters3d").on("plotly_click", onClick);
   const cols = { alpha: A, fn: F, phi: PHI };
   [["alpha", "fn"], ["alpha", "phi"], ["fn", "phi"]].forEach(([cx, cy], p) => {
+    if (D.big) {
+      // Every failure, per cluster, as a density (the last group: failures without one).
+      const P = D.big.clusters, colors = [...Array(P.groups).keys()].map((j) => (j < P.groups - 1 ? ccol(j) : "#999"));
+      Plotly.newPlot(`proj${p}`, [{ type: "scatter", mode: "markers", name: "k-means centres", showlegend: false,
+        hoverinfo: "name", x: C.centres.map((c) => c[cx]), y: C.centres.map((c) => c[cy]),
+        marker: { size: 14, color: "black", symbol: "x" } }],
+      { images: imageOn(densityPng(P.grids[p], colors, D.big.bins), D.ranges[cx], D.ranges[cy]),
+        xaxis: { title: { text: label(cx) }, range: D.ranges[cx] }, yaxis: { title: { text: label(cy) }, range: D.ranges[cy] },
+        margin: { t: 10, r: 10 } }, cfg);
+      return;
+    }
     Plotly.newPlot(`proj${p}`, [
       ...keys.map((j) => { const m = groups.get(j); return {
         type: scatter(C.index.length), mode: "markers", name: cname(j), customdata: m, showlegend: false,
