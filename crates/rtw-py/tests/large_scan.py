@@ -17,14 +17,19 @@ BINARY = Path(os.environ.get("RTW_SCAN", Path(os.environ.get("CARGO_TARGET_DIR",
 SAMPLES = PLOT_ROWS + 1000
 
 
-def make_scan(folder: Path) -> Path:
-    """The scan in `folder`/scan (its samples.parquet and summary)."""
+def make_scan(folder: Path, alpha: float | None = None) -> Path:
+    """The scan in `folder`/scan (its samples.parquet and summary); with
+    `alpha`, α held fixed at that value instead of drawn."""
     assert BINARY.is_file(), f"{BINARY} is missing: cargo build --release -p rtw-scan (or set RTW_SCAN)"
     text = (ROOT / "configs/paper.toml").read_text()
     assert "\nsamples = 1000\n" in text and "\nt_max = 20.0\n" in text
+    text = text.replace("\nsamples = 1000\n", f"\nsamples = {SAMPLES}\n").replace("\nt_max = 20.0\n", "\nt_max = 1.0\n")
+    if alpha is not None:
+        drawn = "\nalpha = { uniform = [0.0, 0.4] }\n"
+        assert drawn in text
+        text = text.replace(drawn, f"\nalpha = {alpha}\n")
     config = folder / "large.toml"
-    config.write_text(text.replace("\nsamples = 1000\n", f"\nsamples = {SAMPLES}\n")
-                      .replace("\nt_max = 20.0\n", "\nt_max = 1.0\n"))
+    config.write_text(text)
     scan = folder / "scan"
     subprocess.run([str(BINARY), "run", str(config), "--out", str(scan), "--quiet"], check=True,
                    capture_output=True, timeout=600)

@@ -41,7 +41,8 @@ def coded(values: np.ndarray) -> tuple[list[float], np.ndarray]:
     ok = np.isfinite(values)
     lo, hi = float(values[ok].min()), float(values[ok].max())
     codes = np.full(len(values), NONE, dtype=np.uint8)
-    codes[ok] = np.clip(np.floor((values[ok] - lo) / (hi - lo) * BINS), 0, BINS - 1)
+    # A column of one value: every row in the middle bin.
+    codes[ok] = np.clip(np.floor((values[ok] - lo) / (hi - lo) * BINS), 0, BINS - 1) if hi > lo else BINS // 2
     return [lo, hi], codes
 
 
@@ -144,3 +145,16 @@ def test_the_failure_projections_count_every_failure_per_cluster(big):
     # The drawn columns are the file's to 7 significant digits.
     at = np.searchsorted(table["sample_id"].to_numpy(), data["columns"]["sample_id"])
     assert data["columns"]["phi"] == [float(f"{v:.7g}") for v in table["phi"].to_numpy()[at]]
+
+
+def test_a_column_the_scan_holds_fixed_is_in_the_middle_bin(tmp_path):
+    # α fixed at 0.125: its range is one value, and every row sits in the
+    # middle of the gait map's α axis (which the page widens around it).
+    scan = make_scan(tmp_path, alpha=0.125)
+    out = rtw.report(scan, out=tmp_path / "fixed.html", per_outcome=0, progress=False)
+    b64 = re.search(r'<script type="application/octet-stream" id="data-gz">([^<]*)</script>', out.read_text()).group(1)
+    data = json.loads(gzip.decompress(base64.b64decode(b64)))
+    assert data["ranges"]["alpha"] == [0.125, 0.125]
+    assert set(raw(data["big"]["codes"]["alpha"]).tolist()) == {BINS // 2}
+    grids = np.array(data["big"]["density"]["grids"]).reshape(len(data["outcomes"]), BINS, BINS)
+    assert grids[:, :, BINS // 2].sum() == grids.sum() == SAMPLES

@@ -38,13 +38,15 @@ pub struct Coded {
 }
 
 /// The bin of `v` on `CODE_BINS` equal bins of `[lo, hi]`: the largest
-/// value is in the last bin; a range of one value is all bin 0.
+/// value is in the last bin. A range of one value (a column the scan holds
+/// fixed) is all the middle bin, so a map drawn over that value widened
+/// both ways shows it at the value.
 pub fn code(v: f64, [lo, hi]: [f64; 2]) -> u8 {
     if !v.is_finite() {
         return CODE_NONE;
     }
     if hi <= lo {
-        return 0;
+        return (CODE_BINS / 2) as u8;
     }
     let k = ((v - lo) / (hi - lo) * CODE_BINS as f64).floor();
     k.clamp(0.0, (CODE_BINS - 1) as f64) as u8
@@ -229,7 +231,11 @@ mod tests {
         assert_eq!(code(255.0, r), 254);
         assert_eq!(code(f64::NAN, r), CODE_NONE);
         assert_eq!(code(f64::INFINITY, r), CODE_NONE);
-        assert_eq!(code(3.0, [3.0, 3.0]), 0);
+        assert_eq!(
+            code(3.0, [3.0, 3.0]),
+            127,
+            "one value: the middle of 255 bins"
+        );
     }
 
     #[test]

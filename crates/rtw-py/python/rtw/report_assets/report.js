@@ -83,6 +83,11 @@ function densityPng(grids, colors, nb) {
   return canvas.toDataURL("image/png");
 }
 
+// A coded column's range as a map's axis: a column of one value (held fixed
+// by the scan, all in the middle bin) widened both ways, so it is drawn at
+// its value.
+const axisOf = ([lo, hi]) => (hi > lo ? [lo, hi] : [lo - 0.05 * (Math.abs(lo) || 1), lo + 0.05 * (Math.abs(lo) || 1)]);
+
 // A layout image covering [x0, x1] × [y0, y1] of a plot's axes.
 const imageOn = (src, [x0, x1], [y0, y1]) => [{ source: src, xref: "x", yref: "y", x: x0, y: y1, sizex: x1 - x0,
   sizey: y1 - y0, sizing: "stretch", layer: "below" }];
@@ -91,7 +96,7 @@ const imageOn = (src, [x0, x1], [y0, y1]) => [{ source: src, xref: "x", yref: "y
 // (densityPng, by outcome); the gaits as clickable marks.
 async function densityMap(gm, D, ocolor, cfg) {
   const B = D.big, G = B.density, nb = B.bins;
-  const [x0, x1] = D.ranges[G.x], [y0, y1] = D.ranges[G.y];
+  const [x0, x1] = axisOf(D.ranges[G.x]), [y0, y1] = axisOf(D.ranges[G.y]);
   const image = (grids) => imageOn(densityPng(grids, ocolor, nb), [x0, x1], [y0, y1]);
   const rowOf = new Map(D.columns.sample_id.map((s, i) => [s, i]));
   const gaits = D.gaits.map((g) => rowOf.get(g.sample_id));
@@ -414,8 +419,9 @@ async function main(D) {
       Plotly.newPlot(`proj${p}`, [{ type: "scatter", mode: "markers", name: "k-means centres", showlegend: false,
         hoverinfo: "name", x: C.centres.map((c) => c[cx]), y: C.centres.map((c) => c[cy]),
         marker: { size: 14, color: "black", symbol: "x" } }],
-      { images: imageOn(densityPng(P.grids[p], colors, D.big.bins), D.ranges[cx], D.ranges[cy]),
-        xaxis: { title: { text: label(cx) }, range: D.ranges[cx] }, yaxis: { title: { text: label(cy) }, range: D.ranges[cy] },
+      { images: imageOn(densityPng(P.grids[p], colors, D.big.bins), axisOf(D.ranges[cx]), axisOf(D.ranges[cy])),
+        xaxis: { title: { text: label(cx) }, range: axisOf(D.ranges[cx]) },
+        yaxis: { title: { text: label(cy) }, range: axisOf(D.ranges[cy]) },
         margin: { t: 10, r: 10 } }, cfg);
       return;
     }
