@@ -256,16 +256,17 @@ def _bins(values: Any, lo: float, hi: float, n: int = 4) -> tuple[list[str], lis
     return [labels[i] for i in k.tolist()], labels
 
 
-def _big(table: Any, plotted: list[str], asked: list[int], seed: int) -> tuple[dict[str, list], Counter, dict, Any]:
+def _big(table: Any, plotted: list[str], asked: list[int], seed: int) -> tuple[dict[str, list], Counter, dict]:
     """A scan of more than PLOT_ROWS rows, as rtw-scan aggregates it
     (`_rtw.scan_views`): the rows the one-mark-per-row views draw (its
     stratified sample, with the samples asked for), as lists; the outcome
-    counts of every row; the views; and the rows' indices."""
+    counts of every row; and the views, their `outcome` as a numpy array."""
     import numpy as np
 
     view = _rtw.scan_views(table, [c for c in plotted if c != "sample_id"], "alpha", "fn", PLOT_ROWS, seed)
     labels = view["labels"]
-    per = np.bincount(np.frombuffer(view["outcome"], np.uint8), minlength=len(labels))
+    view["outcome"] = np.frombuffer(view["outcome"], np.uint8)
+    per = np.bincount(view["outcome"], minlength=len(labels))
     counts = Counter({labels[k]: int(c) for k, c in enumerate(per) if c})
     ids = table["sample_id"].to_numpy()
     # The ids are in order (rtw-scan's reader checks it); one not in the scan
@@ -273,7 +274,7 @@ def _big(table: Any, plotted: list[str], asked: list[int], seed: int) -> tuple[d
     at = np.searchsorted(ids, np.asarray(asked, dtype=np.int64))
     asked_rows = [int(i) for i, sid in zip(at, asked) if i < len(ids) and ids[i] == sid]
     picked = np.union1d(np.asarray(view["sample"], dtype=np.int64), np.asarray(asked_rows, dtype=np.int64))
-    return table.take(picked).to_pydict(), counts, view, picked
+    return table.take(picked).to_pydict(), counts, view
 
 
 def _shown(values: list) -> list:
@@ -290,9 +291,8 @@ def _big_clusters(view: dict, table: Any, assign: dict[int, int], k: int) -> dic
 
     ids = table["sample_id"].to_numpy()
     labels = view["labels"]
-    outcome = np.frombuffer(view["outcome"], np.uint8)
     group = np.full(len(ids), 255, dtype=np.uint8)
-    group[np.isin(outcome, [labels.index(f) for f in FAILURE_LABELS])] = k
+    group[np.isin(view["outcome"], [labels.index(f) for f in FAILURE_LABELS])] = k
     if assign:
         a_ids = np.fromiter(assign.keys(), dtype=np.int64, count=len(assign))
         a_k = np.fromiter(assign.values(), dtype=np.int64, count=len(assign))
@@ -321,7 +321,7 @@ def _big_page(view: dict, names: list[str], shown: int) -> dict[str, Any]:
         "rows": shown,
         "bins": view["code_bins"],
         "none": view["code_none"],
-        "outcome": b64(to_name[np.frombuffer(view["outcome"], np.uint8)].tobytes()),
+        "outcome": b64(to_name[view["outcome"]].tobytes()),
         "codes": {c: b64(codes) for c, (_, codes) in view["columns"].items()},
         "density": {"x": "alpha", "y": "fn", "grids": [view["density"][labels.index(o)] for o in names]},
     }
@@ -499,11 +499,11 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         # Too many rows to send one by one: rtw-scan aggregates them (every
         # plotted column coded a byte per row, per-outcome densities of the
         # gait map) and picks the rows the one-mark-per-row views draw.
-        rows, counts, big_view, sample_ids = _big(table, plotted, samples, int(meta.get("rtw.seed", "0")))
+        rows, counts, big_view = _big(table, plotted, samples, int(meta.get("rtw.seed", "0")))
     else:
         rows = table.to_pydict()
         counts = Counter(rows["outcome"])
-        big_view, sample_ids = None, None
+        big_view = None
     summary = json.loads(summary_text) if summary_text is not None else None
     # "clusters" is null when there are fewer failures than the config's k.
     centres = ((summary or {}).get("clusters") or {}).get("clusters") or []
@@ -552,10 +552,9 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         import numpy as np
 
         every = {c: table[c] for c in ("alpha", "fn", "phi")}
-        every["outcome"] = np.array(big_view["labels"], dtype=object)[np.frombuffer(big_view["outcome"], np.uint8)]
+        every["outcome"] = np.array(big_view["labels"], dtype=object)[big_view["outcome"]]
     binned = {c: _bins(every[c], *span(c)) for c in ("alpha", "fn", "phi")}
     combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), every["outcome"]))
-    data["shown"] = None
     if big:
         data["big"] = _big_page(big_view, names, len(rows["sample_id"]))
         data["big"]["clusters"] = _big_clusters(big_view, table, assign, len(centres))

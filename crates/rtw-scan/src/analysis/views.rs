@@ -15,11 +15,12 @@
 //! A million rows of nine columns code to 9 MB, read once.
 
 use crate::hash::mix;
+use crate::io::scan_rows::label_index;
 use crate::io::table::label_column;
 use anyhow::{Result, anyhow, bail};
 use arrow_array::cast::AsArray;
 use arrow_array::types::{Float64Type, Int64Type, UInt64Type};
-use arrow_array::{Array, RecordBatch};
+use arrow_array::{ArrowPrimitiveType, PrimitiveArray, RecordBatch};
 use rtw_model::Label;
 
 /// The bins of a coded column: codes `0..CODE_BINS`.
@@ -54,28 +55,24 @@ pub fn code(v: f64, [lo, hi]: [f64; 2]) -> u8 {
 
 /// The values of a numeric column (Float64, Int64 or UInt64), nulls as NaN.
 fn values(batches: &[RecordBatch], column: &str) -> Result<Vec<f64>> {
+    fn push<T: ArrowPrimitiveType>(
+        out: &mut Vec<f64>,
+        a: &PrimitiveArray<T>,
+        f: fn(T::Native) -> f64,
+    ) {
+        out.extend(a.iter().map(|v| v.map_or(f64::NAN, f)));
+    }
     let mut out = Vec::new();
     for batch in batches {
         let col = batch
             .column_by_name(column)
             .ok_or_else(|| anyhow!("column `{column}` is missing"))?;
-        let get = |i: usize, v: f64| if col.is_null(i) { f64::NAN } else { v };
         if let Some(a) = col.as_primitive_opt::<Float64Type>() {
-            out.extend(a.values().iter().enumerate().map(|(i, &v)| get(i, v)));
+            push(&mut out, a, |v| v);
         } else if let Some(a) = col.as_primitive_opt::<Int64Type>() {
-            out.extend(
-                a.values()
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| get(i, v as f64)),
-            );
+            push(&mut out, a, |v| v as f64);
         } else if let Some(a) = col.as_primitive_opt::<UInt64Type>() {
-            out.extend(
-                a.values()
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| get(i, v as f64)),
-            );
+            push(&mut out, a, |v| v as f64);
         } else {
             bail!(
                 "column `{column}` is {}, not a number column (Float64, Int64 or UInt64)",
@@ -106,12 +103,11 @@ pub fn coded(batches: &[RecordBatch], column: &str) -> Result<Coded> {
 pub fn outcome_codes(batches: &[RecordBatch]) -> Result<Vec<u8>> {
     let mut out = Vec::new();
     for batch in batches {
-        out.extend(label_column(batch)?.into_iter().map(|l| {
-            Label::ALL
-                .iter()
-                .position(|&a| a == l)
-                .expect("every label is in Label::ALL") as u8
-        }));
+        out.extend(
+            label_column(batch)?
+                .into_iter()
+                .map(|l| label_index(l) as u8),
+        );
     }
     Ok(out)
 }

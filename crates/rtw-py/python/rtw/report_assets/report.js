@@ -132,21 +132,15 @@ async function main(D) {
   const scatter = (m) => (m > 5000 ? "scattergl" : "scatter");
   // The rows drawn: all of them, or above a limit a seeded random subset chosen
   // in Python (the same in every view); counts are always of every row.
-  // Above PLOT_ROWS rows (D.big) the page holds a stratified sample's rows,
-  // and every row coded a byte per plotted column (bytes below): the gait map
-  // and the counts are of every row.
-  const rows = D.big ? D.big.rows : D.n;
-  const shown = D.shown || Array.from({ length: rows }, (_, i) => i);
-  const isShown = new Uint8Array(rows);
-  shown.forEach((i) => { isShown[i] = 1; });
+  // The rows the page holds one by one: all of them, or above PLOT_ROWS rows
+  // (D.big) a stratified sample's, with every row coded a byte per plotted
+  // column (bytes below): the maps and the counts are then of every row.
+  const shown = Array.from({ length: D.big ? D.big.rows : D.n }, (_, i) => i);
   document.getElementById("drawn").textContent = D.big
     ? `The gait map shows every one of the ${D.n.toLocaleString("en")} samples as a density (each cell `
       + "coloured by the outcomes in it, darker with more samples). The views with a mark per sample draw "
       + `${shown.length.toLocaleString("en")} of them (the same ones in every view): each outcome an equal share, `
       + "an outcome with fewer samples all of them. The counts are of every sample."
-    : D.shown
-    ? `The views draw a random ${shown.length.toLocaleString("en")} of the ${D.n.toLocaleString("en")} samples `
-      + "(the same ones in every view); the counts are of every sample."
     : `The views draw every one of the ${D.n.toLocaleString("en")} samples.`;
 
   const byOutcome = D.outcomes.map(() => []);
@@ -312,7 +306,7 @@ async function main(D) {
     const none = lo - 0.1 * ((hi - lo) || 1);
     const values = hasNone ? v.map((x) => (x === null ? none : x)) : v;
     pcValues.push(values);
-    const d = { label: label(c), values: D.shown ? shown.map((i) => values[i]) : values, range: [hasNone ? none : lo, hi] };
+    const d = { label: label(c), values, range: [hasNone ? none : lo, hi] };
     if (hasNone) {
       const ticks = [0, 1, 2, 3, 4].map((k) => lo + (k * (hi - lo)) / 4);
       d.tickvals = [none, ...ticks];
@@ -323,7 +317,7 @@ async function main(D) {
   const pc = document.getElementById("parcoords");
   Plotly.newPlot(pc, [{
     type: "parcoords", dimensions: dims,
-    line: { color: D.shown ? shown.map((i) => D.outcome[i]) : D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
+    line: { color: D.outcome, colorscale: stepped(ocolor), cmin: -0.5, cmax: K - 0.5, showscale: false },
   }], { margin: { l: 70, r: 70, t: 50, b: 30 } }, cfg);
   const countEl = document.getElementById("count");
   if (D.big) {
@@ -394,7 +388,7 @@ async function main(D) {
     : `${C.index.length.toLocaleString("en")} failures (collapse: filled, stall: open); clusters: ${C.how}.`;
   const ccol = (j) => (j >= 0 ? S.cluster[j % S.cluster.length] : "#999");
   const groups = new Map();
-  C.index.forEach((i, k) => { if (!isShown[i]) return; const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
+  C.index.forEach((i, k) => { const j = C.cluster[k]; if (!groups.has(j)) groups.set(j, []); groups.get(j).push(i); });
   const cname = (j) => (j >= 0 && C.centres[j] ? `cluster ${j + 1}: ${C.centres[j].name}` : "unassigned");
   const isCollapse = (i) => D.outcomes[D.outcome[i]] === "collapse";
   const keys = [...groups.keys()].sort((a, b) => a - b);
