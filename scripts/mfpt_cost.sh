@@ -71,7 +71,7 @@ fin = np.isfinite(mfpt)
 closed = fin & np.isfinite(hi)
 noshow = np.isinf(mfpt)
 print(f"MFPT finite {fin.sum()} (interval closed {closed.sum()}, open above {(fin & ~np.isfinite(hi)).sum()}); "
-      f"no fall seen by the splitting (mfpt = inf) {noshow.sum()}; null {(~fin & ~noshow).sum()}")
+      f"no fall counted (mfpt = inf) {noshow.sum()}; null {(~fin & ~noshow).sum()}")
 x, y = np.log10(mfpt[fin]), wall[fin]
 slope, icpt = np.polyfit(x, y, 1)
 lslope, licpt = np.polyfit(x, np.log10(y), 1)

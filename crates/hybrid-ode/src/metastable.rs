@@ -7,7 +7,11 @@
 //! with a constant probability `p` per step (`fall_rate`); the MFPT from
 //! there is `1/p` (Byl and Tedrake, IJRR 28(8) 2009; Saglam and Byl's
 //! `1/(1 − λ₂)`). [`mfpt`] estimates `p` in independent batches, each in
-//! two parts:
+//! two parts (the second as [`MfptOptions::fall_rate`] says: the splitting
+//! below, or [`FallRate::Counting`], the cloud's falls over its
+//! `replicas × sample_steps` walker-steps, at a fixed cost and with no
+//! score, but an interval open above once the MFPT is beyond about a fifth
+//! of the walker-steps):
 //!
 //! 1. **The QSD and the set near the gait.** A Fleming–Viot cloud of
 //!    `replicas` walkers steps from the start for `burn_in` steps, then
@@ -42,6 +46,11 @@
 //! `fall_rate`, `mfpt` and its interval (`mfpt_hi` infinite when the interval
 //! of `p` reaches 0). The unbiasedness of AMS holds for any score; a score
 //! that grows toward the fall only makes it efficient.
+//!
+//! With counting, `fall_rate` is all the batches' falls over all their
+//! counted walker-steps, and its interval the wider of the exact Poisson
+//! interval of the count ([`poisson95`]) and the batches' Student-t
+//! interval (which sees falls that come in clusters).
 //!
 //! **Cost.** Part 1 costs `replicas × (burn_in + sample_steps)` steps per
 //! batch; AMS
@@ -104,9 +113,24 @@ impl Rng {
     }
 }
 
+/// How [`mfpt`] estimates the fall rate in the quasi-stationary regime.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FallRate {
+    /// Adaptive multilevel splitting from the set near the gait (cost
+    /// `log(MFPT)`; needs a score that climbs before a fall).
+    #[default]
+    Splitting,
+    /// The falls of the Fleming–Viot cloud over its `sample_steps`,
+    /// counted (a fixed cost; no score; beyond about a fifth of the
+    /// walker-steps the interval opens above).
+    Counting,
+}
+
 /// The settings of [`mfpt`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MfptOptions {
+    /// The fall rate's estimator.
+    pub fall_rate: FallRate,
     /// Seed of every batch's randomness.
     pub seed: u64,
     /// Independent batches (at least 2): their spread gives the interval.
@@ -131,6 +155,7 @@ pub struct MfptOptions {
 impl Default for MfptOptions {
     fn default() -> Self {
         Self {
+            fall_rate: FallRate::Splitting,
             seed: 0,
             batches: 12,
             burn_in: 20,
@@ -156,8 +181,8 @@ pub struct Mfpt {
     /// Per-step fall probability in the quasi-stationary regime (mean over
     /// the batches).
     pub fall_rate: f64,
-    /// Half width of the fall rate's 95 % interval.
-    pub fall_rate_half: f64,
+    /// The fall rate's 95 % interval.
+    pub fall_rate_interval: (f64, f64),
     /// Steps the walker took in all (the cost).
     pub steps: u64,
 }
@@ -165,12 +190,39 @@ pub struct Mfpt {
 impl Mfpt {
     /// The 95 % interval of the MFPT from the QSD, `1/fall_rate`.
     pub fn qsd_interval(&self) -> (f64, f64) {
-        let (p, h) = (self.fall_rate, self.fall_rate_half);
-        (
-            1.0 / (p + h),
-            if p > h { 1.0 / (p - h) } else { f64::INFINITY },
-        )
+        let (lo, hi) = self.fall_rate_interval;
+        (1.0 / hi, if lo > 0.0 { 1.0 / lo } else { f64::INFINITY })
     }
+}
+
+/// The exact (Garwood) 95 % interval of a Poisson mean from `k` events.
+pub fn poisson95(k: u64) -> (f64, f64) {
+    // P(N <= k) for N ~ Poisson(mu), its terms summed in the log domain.
+    let cdf = |k: u64, mu: f64| -> f64 {
+        let (mut ln_fact, mut sum) = (0.0, 0.0);
+        for i in 0..=k {
+            if i > 0 {
+                ln_fact += (i as f64).ln();
+            }
+            sum += (-mu + i as f64 * mu.ln() - ln_fact).exp();
+        }
+        sum
+    };
+    // The mean at which `cdf(j, mu)` falls to `target` (it decreases in mu).
+    let solve = |j: u64, target: f64| {
+        let (mut lo, mut hi) = (0.0, 2.0 * j as f64 + 20.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if cdf(j, mid) > target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let lo = if k == 0 { 0.0 } else { solve(k - 1, 0.975) };
+    (lo, solve(k, 0.025))
 }
 
 /// Two-sided 95 % quantile of Student's t with `df` degrees of freedom.
@@ -191,8 +243,8 @@ pub fn t95(df: usize) -> f64 {
 /// `start` (see the module doc).
 pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
     assert!(
-        o.batches >= 2 && o.replicas >= 2,
-        "mfpt: at least 2 batches and 2 replicas"
+        o.batches >= 2 && o.replicas >= 2 && o.sample_steps >= 1,
+        "mfpt: at least 2 batches, 2 replicas and 1 sampled step"
     );
     let mut steps = 0u64;
     let batches: Vec<Batch> = (0..o.batches)
@@ -212,18 +264,31 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
         (mean, t * (var / m).sqrt())
     };
     let (p, half) = mean_half(|b| b.fall_rate);
+    let (p_lo, p_hi) = match o.fall_rate {
+        FallRate::Splitting => ((p - half).max(0.0), p + half),
+        // The wider of the batches' interval and the Poisson interval of
+        // all falls: the count's is exact for independent falls and stays
+        // informative with few, the batches' sees falls that come in
+        // clusters (a copy of a doomed walker falls with it).
+        FallRate::Counting => {
+            let falls: u64 = batches.iter().map(|b| b.falls).sum();
+            let w = (o.batches * o.replicas * o.sample_steps) as f64;
+            let (k_lo, k_hi) = poisson95(falls);
+            ((p - half).max(0.0).min(k_lo / w), (p + half).max(k_hi / w))
+        }
+    };
     let (head, head_half) = mean_half(|b| b.head);
     let (alive, alive_half) = mean_half(|b| b.alive);
     Mfpt {
         mfpt: head + alive / p,
-        lo: (head - head_half).max(0.0) + (alive - alive_half).max(0.0) / (p + half),
-        hi: if p > half {
-            head + head_half + (alive + alive_half).min(1.0) / (p - half)
+        lo: (head - head_half).max(0.0) + (alive - alive_half).max(0.0) / p_hi,
+        hi: if p_lo > 0.0 {
+            head + head_half + (alive + alive_half).min(1.0) / p_lo
         } else {
             f64::INFINITY
         },
         fall_rate: p,
-        fall_rate_half: half,
+        fall_rate_interval: (p_lo, p_hi),
         steps,
     }
 }
@@ -236,6 +301,9 @@ struct Batch {
     head: f64,
     /// The share of them still walking after it.
     alive: f64,
+    /// The cloud's falls over its `sample_steps` (counted for
+    /// [`FallRate::Counting`]).
+    falls: u64,
 }
 
 /// One batch: the transient from the start, and the fall rate.
@@ -251,6 +319,7 @@ fn batch<W: Walker>(
     let mut cloud: Vec<W::State> = vec![start.clone(); o.replicas];
     let mut original = vec![true; o.replicas];
     let mut head = 0.0;
+    let mut falls = 0u64;
     let mut sample: Vec<(f64, W::State)> = Vec::with_capacity(o.replicas * o.sample_steps);
     for i in 0..o.burn_in + o.sample_steps {
         *steps += o.replicas as u64;
@@ -264,6 +333,9 @@ fn batch<W: Walker>(
             }
         }
         let alive: Vec<usize> = (0..next.len()).filter(|&j| next[j].is_some()).collect();
+        if i >= o.burn_in {
+            falls += (next.len() - alive.len()) as u64;
+        }
         cloud = next
             .iter()
             .map(|s| match s {
@@ -275,9 +347,20 @@ fn batch<W: Walker>(
                     .unwrap_or_else(|| start.clone()),
             })
             .collect();
-        if i >= o.burn_in {
+        if i >= o.burn_in && o.fall_rate == FallRate::Splitting {
             sample.extend(cloud.iter().map(|s| (walker.score(s), s.clone())));
         }
+    }
+    let n = o.replicas as f64;
+    let head = head / n;
+    let alive = original.iter().filter(|&&a| a).count() as f64 / n;
+    if o.fall_rate == FallRate::Counting {
+        return Batch {
+            fall_rate: falls as f64 / (o.replicas * o.sample_steps) as f64,
+            head,
+            alive,
+            falls,
+        };
     }
     let mut scores: Vec<f64> = sample.iter().map(|s| s.0).collect();
     scores.sort_by(f64::total_cmp);
@@ -289,11 +372,11 @@ fn batch<W: Walker>(
         .collect();
     // Part 2: the splitting, and the returns of its first round.
     let (q, returns) = splitting(walker, &near, level, o, rng, steps);
-    let n = o.replicas as f64;
     Batch {
         fall_rate: fall_rate(q, &returns),
-        head: head / n,
-        alive: original.iter().filter(|&&a| a).count() as f64 / n,
+        head,
+        alive,
+        falls,
     }
 }
 
@@ -535,6 +618,50 @@ mod tests {
             assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
             assert!(hi / lo < 2.0, "{m:?}");
             assert_eq!(m, mfpt(&l, &top, &o));
+        }
+    }
+
+    #[test]
+    fn counting_the_cloud_s_falls_gives_the_ladder_s_fall_rate() {
+        let o = MfptOptions {
+            fall_rate: FallRate::Counting,
+            replicas: 40,
+            batches: 6,
+            sample_steps: 500,
+            ..MfptOptions::default()
+        };
+        // MFPT about 196: the interval is closed and holds it.
+        let l = Ladder { up: 0.6, top: 6 };
+        let exact = 1.0 / ladder_rate(&l);
+        let m = mfpt(&l, &6, &o);
+        let (lo, hi) = m.qsd_interval();
+        assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
+        assert!(hi / lo < 1.5, "{m:?}");
+        assert_eq!(m.steps, 6 * 40 * (20 + 500));
+        // MFPT about 1.45e6, far beyond its 120 000 counted walker-steps:
+        // no fall or few, and the interval is a lower bound that holds.
+        let l = Ladder { up: 0.7, top: 14 };
+        let exact = 1.0 / ladder_rate(&l);
+        let m = mfpt(&l, &14, &o);
+        let (lo, hi) = m.qsd_interval();
+        assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
+        assert!(lo > 120_000.0 / 6.0, "{m:?}");
+    }
+
+    /// The Garwood interval against SciPy:
+    /// `chi2.ppf(0.025, 2k) / 2` and `chi2.ppf(0.975, 2k + 2) / 2`.
+    #[test]
+    fn the_poisson_interval_is_scipy_s() {
+        for (k, lo, hi) in [
+            (0, 0.0, 3.6888794541139354),
+            (1, 0.025317807984289876, 5.571643390938898),
+            (10, 4.7953886961324335, 18.39035604201778),
+            (100, 81.36399125092314, 121.62679379242638),
+            (1000, 938.9730184076952, 1063.952136016302),
+        ] {
+            let (a, b) = poisson95(k);
+            assert!((a - lo).abs() <= 1e-9 * lo.max(1.0), "{k}: {a} vs {lo}");
+            assert!((b - hi).abs() <= 1e-9 * hi, "{k}: {b} vs {hi}");
         }
     }
 }

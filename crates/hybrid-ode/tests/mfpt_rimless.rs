@@ -19,7 +19,7 @@
 //! the substochastic matrix `Q` (power iteration), the quantity the
 //! estimator estimates; from a given start, `m = (I − Q)⁻¹ 1`.
 
-use hybrid_ode::metastable::{MfptOptions, Rng, Walker, mfpt};
+use hybrid_ode::metastable::{FallRate, MfptOptions, Rng, Walker, mfpt};
 use hybrid_ode::rimless::RimlessWheel;
 
 const L: f64 = 1.0;
@@ -241,6 +241,44 @@ fn the_estimator_s_mfpt_is_the_chain_s_at_three_roughnesses() {
                 m.lo <= from && from <= m.hi,
                 "chain m(omega*) {from} vs {m:?}"
             );
+        }
+    }
+}
+
+/// The counting estimator (the RTW's: the Fleming–Viot cloud's falls over
+/// its walker-steps) at the same three roughnesses, at the RTW's budget
+/// per batch (32 walkers, 60 + 60 steps) with more batches: the interval
+/// holds the chain's MFPT; closed where the falls are many (σ = 0.3,
+/// 0.08), a lower bound of the right order where the MFPT is far beyond
+/// the walker-steps counted (σ = 0.04, 1.5e5 against 38 400).
+#[test]
+fn counting_the_falls_gives_the_chain_s_mfpt_or_a_lower_bound_of_it() {
+    for sigma in [0.3, 0.08, 0.04] {
+        let exact = reference(sigma).qsd_mfpt();
+        let o = MfptOptions {
+            fall_rate: FallRate::Counting,
+            seed: 1,
+            batches: 20,
+            replicas: 32,
+            burn_in: 60,
+            sample_steps: 60,
+            ..MfptOptions::default()
+        };
+        let m = mfpt(&Rough { sigma }, &Rough::omega_star(), &o);
+        let (lo, hi) = m.qsd_interval();
+        eprintln!(
+            "sigma {sigma}: chain {exact:.4e}, counting {:.4e} [{lo:.4e}, {hi:.4e}] in {} steps",
+            1.0 / m.fall_rate,
+            m.steps
+        );
+        assert!(
+            lo <= exact && exact <= hi,
+            "sigma {sigma}: chain {exact} vs {m:?}"
+        );
+        if sigma >= 0.08 {
+            assert!(hi / lo < 2.0, "sigma {sigma}: {m:?}");
+        } else {
+            assert!(lo > 38_400.0 / 20.0, "sigma {sigma}: {m:?}");
         }
     }
 }

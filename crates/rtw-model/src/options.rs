@@ -488,7 +488,8 @@ pub struct RobustnessOptions {
     pub max_steps: u32,
     /// Estimate the mean first-passage time on the rough slope of
     /// roughness `sigma` (`mfpt`, `mfpt_lo`, `mfpt_hi`, `fall_rate`,
-    /// docs/robustness.md): uncensored, by splitting.
+    /// docs/robustness.md): uncensored, from the falls of a Fleming–Viot
+    /// cloud.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub mfpt: bool,
 }

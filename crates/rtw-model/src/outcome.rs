@@ -503,7 +503,7 @@ pub struct Robustness {
     /// The mean steps to fall on a rough slope (Monte Carlo,
     /// docs/robustness.md).
     pub steps_to_fall: Option<StepsToFall>,
-    /// The mean first-passage time on a rough slope (splitting,
+    /// The mean first-passage time on a rough slope (Fleming–Viot,
     /// docs/robustness.md).
     pub mfpt: Option<MeanFirstPassage>,
     /// Integrator work of the measures' runs.

@@ -6,7 +6,7 @@
 //! | `robustness` (crate-private; `meet_step` is re-exported) | how much disturbance a gait survives: the largest step down |
 //! | `steps_to_fall` (crate-private) | the mean steps to fall on seeded rough slopes (Monte Carlo) |
 //! | `cancel` (`cancellable` is re-exported) | a stop flag that ends every run of a computation at its next step end |
-//! | `mfpt` (crate-private) | the mean first-passage time on rough slopes, uncensored (splitting) |
+//! | `mfpt` (crate-private) | the mean first-passage time on rough slopes, uncensored (Fleming–Viot) |
 //! | `settled` (crate-private) | the settled gait every robustness measure starts from, and the run from it on other ground |
 //! | `gait` (crate-private) | the statistics over the analysis window, the return map and the settled-gait test |
 

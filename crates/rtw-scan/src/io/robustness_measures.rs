@@ -81,8 +81,8 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
         unit: "steps",
         description: "mean first-passage time: expected steps of the flat gait to the fall from \
                       the quasi-stationary regime on seeded rough slopes of roughness \
-                      robustness.sigma, uncensored (Fleming–Viot sample and multilevel \
-                      splitting; docs/robustness.md); null unless stable; only with \
+                      robustness.sigma, uncensored (the falls of a Fleming–Viot cloud, \
+                      counted; docs/robustness.md); null unless stable; only with \
                       robustness.mfpt = true",
         on: |r| r.mfpt,
         get: |m| m.mfpt.map(|s| s.mfpt),

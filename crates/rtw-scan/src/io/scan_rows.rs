@@ -712,7 +712,7 @@ pub(crate) mod tests {
     #[test]
     fn an_mfpt_open_above_keeps_its_infinite_upper_end_and_nan_is_null() {
         // A gait whose fall rate's interval reaches 0 has mfpt_hi = ∞, and
-        // one whose splitting saw no fall has mfpt = mfpt_lo = ∞: both are
+        // one whose estimator saw no fall has mfpt = mfpt_lo = ∞: both are
         // measured, unlike a measure that could not be computed (NaN), and a
         // reader must tell them apart.
         let asked = RobustnessOptions {
