@@ -320,7 +320,12 @@ fn batch<W: Walker>(
     let mut original = vec![true; o.replicas];
     let mut head = 0.0;
     let mut falls = 0u64;
-    let mut sample: Vec<(f64, W::State)> = Vec::with_capacity(o.replicas * o.sample_steps);
+    // Only the splitting keeps the sampled states.
+    let kept = match o.fall_rate {
+        FallRate::Splitting => o.replicas * o.sample_steps,
+        FallRate::Counting => 0,
+    };
+    let mut sample: Vec<(f64, W::State)> = Vec::with_capacity(kept);
     for i in 0..o.burn_in + o.sample_steps {
         *steps += o.replicas as u64;
         let next: Vec<Option<W::State>> = cloud.iter().map(|s| walker.step(s, rng)).collect();

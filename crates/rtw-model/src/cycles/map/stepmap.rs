@@ -378,14 +378,23 @@ impl StepMap {
     /// The map's Jacobian at `p` by central differences of the map, with
     /// steps `rel · scale` in each coordinate. `None` if a perturbed step
     /// fails or lands in another mode pattern.
+    #[cfg(test)]
     pub(crate) fn fd_jacobian(&self, p: &SectionPoint, rel: f64) -> Option<DMatrix<f64>> {
+        self.step_with_fd_jacobian(p, rel).map(|(_, j)| j)
+    }
+
+    /// The step from `p` and [`fd_jacobian`](Self::fd_jacobian) there: the
+    /// unperturbed step, whose modes the perturbed ones must land in, is
+    /// taken once for both.
+    fn step_with_fd_jacobian(&self, p: &SectionPoint, rel: f64) -> Option<(Step, DMatrix<f64>)> {
         let z = p.coords();
-        let to = self.step(p).ok()?.to;
+        let centre = self.step(p).ok()?;
         let step: Vec<f64> = self.coord_scale(p).iter().map(|s| rel * s).collect();
-        limit::fd_jacobian(&z, &step, |zz| {
+        let j = limit::fd_jacobian(&z, &step, |zz| {
             let s = self.step(&p.with_coords(zz)).ok()?;
-            (s.to.modes == to.modes).then(|| s.to.coords())
-        })
+            (s.to.modes == centre.to.modes).then(|| s.to.coords())
+        })?;
+        Some((centre, j))
     }
 }
 
@@ -436,7 +445,8 @@ impl StepMap {
                     (s.to, j)
                 }
                 Jacobian::Differences { rel } => {
-                    (self.step(&q).ok()?.to, self.fd_jacobian(&q, rel)?)
+                    let (s, j) = self.step_with_fd_jacobian(&q, rel)?;
+                    (s.to, j)
                 }
             };
             if j.ncols() != jac.nrows() {

@@ -46,6 +46,7 @@ use crate::params::Params;
 use crate::plant::contact::RodMode;
 use crate::plant::rtw::{Rtw, Transition};
 use crate::plant::slots::{N, X, Y, at};
+use hybrid_ode::limit::NewtonError;
 use hybrid_ode::{Flow, Observer, Work, limit, run};
 
 use nalgebra::{DMatrix, DVector};
@@ -163,7 +164,8 @@ pub(crate) fn settled_cycle(
 /// multipliers, and a Jacobian at each iterate costs 2d + 2 steps (central
 /// differences) where a chord iteration costs one; from a start the run
 /// settled near, the chord gains about three digits an iteration. Newton
-/// ([`StepMap::solve`]) where the chord does not converge.
+/// ([`StepMap::solve`]) where the chord does not converge, unless the map
+/// already failed at the start (Newton would begin with the same call).
 fn orbit_near(
     map: &StepMap,
     start: &SectionPoint,
@@ -189,6 +191,9 @@ fn orbit_near(
     );
     let p = match chord {
         Ok(fixed) => start.with_coords(&fixed.z),
+        // The map failed at the start itself: Newton's first evaluation is
+        // the same one, and fails the same way.
+        Err(NewtonError::MapFailed(0)) => return None,
         Err(_) => map.solve(start, n, cycle).ok()?.orbit[0],
     };
     let mut orbit = vec![p];
