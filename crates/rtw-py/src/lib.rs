@@ -567,6 +567,6 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     )?;
     m.add("Z95", rtw_scan::Z95)?;
     geometry::register(m)?;
-    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("__version__", rtw_scan::VERSION)?;
     Ok(())
 }

@@ -86,6 +86,10 @@ def test_scan_equals_the_cli_row_for_row(cli: Path, tmp_path: Path) -> None:
     for key in gm:
         if key != b"rtw.wall_time_s":
             assert gm[key] == wm[key], key
+    # The package's version is the one its rows record (with the build's
+    # identity), so a notebook can tell which build made a file.
+    assert gm[b"rtw.version"].decode() == rtw.__version__
+    assert rtw.__version__.startswith("0.1.0+") and len(rtw.__version__) == 22
     # The config as TOML text, with a set and one thread: the same rows.
     text = (ROOT / "configs/smoke.toml").read_text()
     again = rtw.scan(text, options={"t_max": 4.0}, threads=1)

@@ -56,6 +56,9 @@
 pub(crate) mod analysis;
 pub mod basin;
 pub(crate) mod bifurcation;
+#[cfg(test)]
+#[path = "../build_id.rs"]
+mod build_id;
 #[cfg(feature = "cli")]
 mod cli;
 pub mod config;
@@ -90,6 +93,10 @@ pub use cli::main;
 /// running destructors: removes every temporary and lock file this process
 /// has open, finishing first a set of files being moved into place.
 pub use files::remove_live_files;
+/// The version every file rtw-scan writes records (`rtw.version`): rows of
+/// two versions never end up in one result, and a study never resumes from
+/// another version's rows (docs/results-on-disk.md, "Versions").
+pub use io::metadata::VERSION;
 
 /// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in
 /// the environment, a run says `paused at POINT` on stderr and waits there a

@@ -183,7 +183,7 @@ pub(crate) fn write(
         std::fs::create_dir_all(dir)?;
     }
     let meta = vec![
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_VERSION, crate::io::metadata::VERSION.into()),
         kv(META_BASIN, basin_json(basin).to_string()),
         kv(META_PARAMS, serde_json::to_string(params)?),
         kv(META_OPTIONS, toml::to_string(options)?),

@@ -258,7 +258,7 @@ pub(crate) fn steps_batch(sweep: &Sweep, rows: &[StepRow]) -> RecordBatch {
 /// The file metadata of both output files.
 fn file_metadata(sweep: &Sweep, wall_time_s: f64) -> Result<Vec<KeyValue>> {
     Ok(vec![
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_VERSION, crate::io::metadata::VERSION.into()),
         kv(META_PARAM, sweep.param.name().into()),
         kv(META_PARAMS, serde_json::to_string(&sweep.base)?),
         kv(META_OPTIONS, toml::to_string(&sweep.options)?),

@@ -56,7 +56,7 @@ or a simulation that did not finish (a `diverged` run: numerical failure or pani
 #[derive(Parser, Debug)]
 #[command(
     name = "rtw-scan",
-    version,
+    version = crate::VERSION,
     about = "Seeded, parallel parameter scans of the RTW model, streamed to Parquet, with failure clustering.",
     long_about = "Seeded, parallel parameter scans of the rimless wheel-like tensegrity (RTW) model, streamed to \
                   Parquet, with outcome statistics and k-means clustering of the failures.\n\n\

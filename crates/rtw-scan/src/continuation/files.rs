@@ -484,7 +484,7 @@ pub(crate) fn rows(c: &Continuation, r: &Result2) -> Rows {
 
 fn file_metadata(c: &Continuation, wall_time_s: f64) -> Result<Vec<KeyValue>> {
     let mut m = vec![
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_VERSION, crate::io::metadata::VERSION.into()),
         kv(META_CONT_PARAM, c.param.name().into()),
         kv(META_PARAMS, serde_json::to_string(&c.base)?),
         kv(META_OPTIONS, toml::to_string(&c.options)?),

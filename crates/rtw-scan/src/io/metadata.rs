@@ -111,9 +111,11 @@ pub(crate) const KEYS_BEFORE_METADATA_HASH: [&str; 21] = [
     "ARROW:schema",
 ];
 
-/// rtw-scan's version, written into every scan file ([`META_VERSION`]) and
-/// resume manifest.
-pub(crate) const VERSION: &str = env!("CARGO_PKG_VERSION");
+/// rtw-scan's version, written into every file it makes (`rtw.version`)
+/// and resume manifest: the crate's version, then `+` and the identity of
+/// the sources that make its numbers (`build.rs`), so that a build whose
+/// sources differ is another version, even at the same crate version.
+pub const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+", env!("RTW_BUILD_ID"));
 
 /// The rule for rows of two rtw-scan versions: they never end up in one
 /// result (which carries one version label, while a row's numbers may differ

@@ -152,7 +152,7 @@ pub fn trace_batch(samples: &[TraceSample]) -> RecordBatch {
 /// version, the parameters (JSON) and the resolved options (TOML).
 pub fn trace_metadata(params: &Params, options: &Options) -> Result<Vec<KeyValue>> {
     Ok(vec![
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_VERSION, crate::io::metadata::VERSION.into()),
         kv(META_PARAMS, serde_json::to_string(params)?),
         kv(META_OPTIONS, toml::to_string(options)?),
     ])

@@ -63,7 +63,7 @@ pub fn run_to_files(
         std::fs::create_dir_all(dir)?;
     }
     let meta = vec![
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_VERSION, crate::io::metadata::VERSION.into()),
         kv(META_PROFILE, profile.to_json().to_string()),
         kv(META_PARAMS, serde_json::to_string(&settings.design)?),
         kv(META_OPTIONS, toml::to_string(options)?),

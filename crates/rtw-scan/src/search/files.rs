@@ -11,12 +11,13 @@
 //! The three appear together at the end; an earlier `search.parquet` of
 //! other settings is refused unless `force`.
 
-use super::{Evaluation, Method, Reported, Search, SearchSettings};
+use super::{Evaluation, Reported, Search, SearchSettings};
 use crate::config::variant::ModelChoices;
 use crate::files::FileSet;
 use crate::io::destination::{self, Output};
 use crate::io::metadata::{
-    FileKind, META_DESIGN, META_OPTIONS, META_VARIANT, META_VERSION, META_WALL_TIME, kv,
+    self, FileKind, META_DESIGN, META_OPTIONS, META_VARIANT, META_VERSION, META_WALL_TIME, VERSION,
+    kv,
 };
 use crate::io::parquet;
 use crate::io::table::{self, Column, Get, column};
@@ -24,13 +25,9 @@ use crate::scan::progress::Progress;
 use anyhow::{Context, Result, bail};
 use arrow_array::RecordBatch;
 use rtw_model::Options;
-use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-
-/// The first words of a search's summary.
-const HEADING: &str = "# Design search ";
 
 /// The evaluations file in `out`.
 pub fn search_path(out: &Path) -> PathBuf {
@@ -49,10 +46,6 @@ struct Line {
     length: f64,
     found: Option<Evaluation>,
     checked: Option<super::check::Checked>,
-}
-
-fn width(e: &Evaluation) -> Option<f64> {
-    Some(e.phi_hi? - e.phi_lo?)
 }
 
 fn design_columns() -> Vec<Column<Line>> {
@@ -327,7 +320,7 @@ fn metadata(
     wall: f64,
 ) -> Result<Vec<::parquet::file::metadata::KeyValue>> {
     Ok(vec![
-        kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+        kv(META_VERSION, VERSION.into()),
         kv(META_DESIGN, identity(s, options)?),
         kv(META_OPTIONS, toml::to_string(options)?),
         kv(META_VARIANT, ModelChoices::of(options).to_string()),
@@ -369,6 +362,24 @@ pub fn stored(
              replaced; choose another folder, or pass --force",
             out.display(),
         );
+    }
+    // The same settings, but perhaps not the same numbers: an evaluation is
+    // what the build that made it computes.
+    let theirs = input
+        .metadata
+        .get(META_VERSION)
+        .map_or("(none)", String::as_str);
+    if let Err(e) = metadata::refuse_mixed_versions(
+        &format!(
+            "--out {}: its stored evaluations and this search",
+            out.display()
+        ),
+        ("the evaluations", theirs),
+        ("this search", VERSION),
+        "a search never resumes from another version's numbers: choose another folder, or pass \
+         --force to compute the search anew",
+    ) {
+        return if force { Ok(Vec::new()) } else { Err(e) };
     }
     let mut evals = Vec::new();
     for batch in input.reader {
@@ -528,69 +539,5 @@ pub fn run_to_files(
     Ok((search, reported))
 }
 
-fn opt(v: Option<f64>) -> String {
-    v.map_or("–".into(), |v| format!("{v:.4}"))
-}
-
-/// The search's summary: its settings, its cost, how often it drew a design
-/// that fell, and the reported designs with their verified intervals.
-pub fn markdown(search: &Search, reported: &[Reported]) -> String {
-    let s = &search.settings;
-    let mut m = String::new();
-    let objectives: Vec<&str> = s.objectives.iter().map(|o| o.as_str()).collect();
-    let _ = writeln!(m, "{HEADING}{}\n", s.name);
-    let method = match s.method {
-        Method::Cmaes => "CMA-ES with the learned fall constraint",
-        Method::Sobol => "Sobol designs (baseline)",
-    };
-    let _ = writeln!(
-        m,
-        "- objectives: {} (gait: {}); method: {method}; seed {}",
-        objectives.join(", "),
-        s.gait.map_or("any stable", |g| g.as_str()),
-        s.seed
-    );
-    let _ = writeln!(
-        m,
-        "- slopes [{}, {}] rad, grid {}, tol {}; reported designs verified on grid {}",
-        s.from, s.to, s.grid, s.tol, s.verify_grid
-    );
-    let falls = search.evaluations.iter().filter(|e| !e.feasible()).count();
-    let _ = writeln!(
-        m,
-        "- {} designs evaluated in {} simulations (budget {}); {} infeasible ({:.1} %)\n",
-        search.evaluations.len(),
-        search.runs(),
-        s.budget,
-        falls,
-        100.0 * falls as f64 / search.evaluations.len().max(1) as f64
-    );
-    let _ = writeln!(
-        m,
-        "| index | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | speed | mfpt | search's slope range |"
-    );
-    let _ = writeln!(
-        m,
-        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-    );
-    for r in reported {
-        let e = &r.verified;
-        let _ = writeln!(
-            m,
-            "| {} | {:.3} | {:.4} | {:.3} | {:.4} | {} | {} | {} | {} | {} | {} | {} |",
-            e.index,
-            e.design[0],
-            e.design[1],
-            e.design[2],
-            e.design[3],
-            opt(e.phi_lo),
-            opt(e.phi_hi),
-            opt(width(e)),
-            opt(e.phi_min),
-            opt(e.speed),
-            e.mfpt.map_or("–".into(), |v| format!("{v:.1}")),
-            opt(width(&r.found))
-        );
-    }
-    m
-}
+pub use super::summary::markdown;
+use super::summary::{HEADING, width};

@@ -30,6 +30,7 @@ pub mod files;
 mod propose;
 pub mod read;
 mod settings;
+mod summary;
 
 pub use settings::{INPUTS, Method, Objective, SearchSettings};
 

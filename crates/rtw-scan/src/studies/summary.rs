@@ -68,7 +68,7 @@ pub fn cluster(
             )
         })?;
         let meta = vec![
-            kv(META_VERSION, env!("CARGO_PKG_VERSION").into()),
+            kv(META_VERSION, crate::io::metadata::VERSION.into()),
             kv(META_SEED, data.config.seed.to_string()),
             kv(META_SCAN_HASH, data.content_hash.clone()),
         ];

@@ -405,6 +405,57 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
     );
 }
 
+/// A stored search made by another build is not resumed: its evaluations
+/// may be numbers that this build no longer computes (an earlier MFPT
+/// estimator's, say), and a resume would report them as this build's.
+#[test]
+fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
+    use rtw_scan::io as output;
+    use rtw_scan::search::{SearchSettings, files};
+    use std::sync::atomic::AtomicBool;
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = design_config(dir.path(), "build", "");
+    let settings = SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
+    let options = rtw_model::Options::default();
+    let out = dir.path().join("out");
+    let cancel = AtomicBool::new(false);
+    let stop = StopAfter {
+        done: 0.into(),
+        at: 40,
+        cancel: &cancel,
+    };
+    files::run_to_files(&settings, &options, None, &out, false, &stop, &cancel)
+        .expect_err("stopped");
+    let stored = files::stored(&out, &settings, &options, false).unwrap();
+    assert!(!stored.is_empty());
+    // The same file as another build would have written it.
+    let path = files::search_path(&out);
+    let input = output::open(&path, 1 << 20).unwrap();
+    let mut meta = input.metadata.clone();
+    let batches: Vec<_> = input.reader.map(|b| b.unwrap()).collect();
+    assert_eq!(meta["rtw.version"], rtw_scan::VERSION);
+    meta.insert("rtw.version".into(), "0.1.0+0000000000000000".into());
+    let kv = meta.into_iter().map(|(k, v)| output::kv(&k, v)).collect();
+    output::write_file(&path, &batches[0], kv).unwrap();
+
+    let e = files::stored(&out, &settings, &options, false).expect_err("another build");
+    let msg = format!("{e:#}");
+    for want in [
+        "different rtw-scan versions",
+        "0.1.0+0000000000000000",
+        rtw_scan::VERSION,
+        "--force",
+    ] {
+        assert!(msg.contains(want), "{want:?} not in {msg}");
+    }
+    // --force keeps none of them: the search starts anew.
+    assert!(
+        files::stored(&out, &settings, &options, true)
+            .unwrap()
+            .is_empty()
+    );
+}
+
 #[test]
 fn the_reported_designs_intervals_hold_under_direct_simulation() {
     let dir = tempfile::tempdir().unwrap();

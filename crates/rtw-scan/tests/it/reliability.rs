@@ -1036,7 +1036,7 @@ fn a_resume_by_another_rtw_scan_version_is_refused_naming_both() {
     let out = dir.path().join("o");
     interrupted(&cfg, &out);
     // The unfinished run was started by an older rtw-scan.
-    let ours = env!("CARGO_PKG_VERSION");
+    let ours = rtw_scan::VERSION;
     let manifest = out.join(".partial/manifest.json");
     let text = std::fs::read_to_string(&manifest).unwrap();
     let older = text.replace(
