@@ -53,31 +53,33 @@ fn the_mfpt_is_a_function_of_the_seed_and_refused_on_the_flat_slope() {
     assert_eq!(o.validate().unwrap_err().field, "robustness.sigma");
 }
 
-/// At the default roughness (σ = 1 cm) Fig. 7(a)'s walk falls within a
-/// few hundred steps, so plain Monte Carlo to the fall is affordable and
-/// the MFPT's interval must hold it. (The splitting, whose score is the
-/// centre of mass's velocity, gave 5171 [2537, ∞] here against the Monte
-/// Carlo's 495 [422, 568]: its falls come from ground already under way,
-/// which the score does not see.)
+/// Where falls are rare (σ = 3 cm: thousands of steps) plain Monte Carlo
+/// run to the fall is still affordable for a test, and the MFPT's interval
+/// (open above when the cloud counts few falls) must hold it. At the default
+/// roughness (σ = 1 cm) Fig. 7(a)'s walk falls too rarely for either: 69 of
+/// 100 trials walk 20 000 steps, and the MFPT is a lower bound of about
+/// 3 200 steps. (Before a tip put on a face at its foot was watched for
+/// its return there, such tips slid through the lower patch, and the walk
+/// "collapsed" within about 500 steps at σ = 1 cm.)
 #[test]
-fn the_mfpt_agrees_with_uncensored_monte_carlo_at_the_default_roughness() {
+fn the_mfpt_holds_uncensored_monte_carlo_where_falls_are_rare() {
     let o = Options {
         robustness: RobustnessOptions {
             mfpt: true,
             steps_to_fall: true,
-            trials: 100,
-            max_steps: 20_000,
+            sigma: 0.03,
+            trials: 50,
+            max_steps: 200_000,
             ..RobustnessOptions::default()
         },
         ..Options::default()
     };
-    assert_eq!(o.robustness.sigma, 0.01);
     let out = simulate(&Params::fig7a(), &o);
     let r = out.robustness.unwrap();
     let (mc, m) = (r.steps_to_fall.unwrap(), r.mfpt.unwrap());
     eprintln!("Monte Carlo {mc:?}\nMFPT {m:?}");
     assert_eq!(mc.censored, 0, "{mc:?}");
-    assert!(m.hi.is_finite(), "{m:?}");
+    assert!(mc.mean > 1000.0, "{mc:?}");
     assert!(
         m.lo <= mc.hi && mc.lo <= m.hi,
         "Monte Carlo {mc:?} vs MFPT {m:?}"

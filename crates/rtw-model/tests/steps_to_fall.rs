@@ -22,10 +22,13 @@ fn steps_to_fall(sigma: f64, seed: u64) -> StepsToFall {
 
 #[test]
 fn steps_to_fall_is_a_function_of_the_seed() {
+    // σ = 5 cm, where some trials fall within 60 steps (at 1 cm every
+    // trial walks them, so any two seeds agree on 60 censored steps); the
+    // seeds far apart, as trial i draws its ground from seed + i.
     let (a, b, c) = (
-        steps_to_fall(0.01, 3),
-        steps_to_fall(0.01, 3),
-        steps_to_fall(0.01, 4),
+        steps_to_fall(0.05, 3),
+        steps_to_fall(0.05, 3),
+        steps_to_fall(0.05, 1000),
     );
     assert_eq!(a, b);
     assert_ne!(a, c);

@@ -248,7 +248,7 @@ impl TerrainOptions {
 
     /// The ground's height (slope normal) under `x`.
     #[inline]
-    pub(crate) fn ground(&self, x: f64) -> f64 {
+    pub fn ground(&self, x: f64) -> f64 {
         if self.is_flat() {
             0.0
         } else {

@@ -132,7 +132,12 @@ impl Rtw {
     fn wall_guard(&self, y: &[f64; N], rod: usize, side: f64) -> (f64, bool) {
         let face = self.terrain.face_beside(y[slots::at(rod, X)], side);
         let h = y[slots::at(rod, Y)];
-        let (above_foot, below_top) = (h - face.low, face.high - h);
+        // The foot is declared a hair below it, as a touchdown is
+        // (`touchdown_offset`; `touchdown_height` < 0): the corner puts a tip
+        // that accelerates up the face on it at its foot, and a guard that
+        // starts there (or a rounding below) never counts the tip's return,
+        // which then slides down the face through the lower patch.
+        let (above_foot, below_top) = (h - face.low - self.touchdown_height, face.high - h);
         (above_foot.min(below_top), above_foot <= below_top)
     }
 
@@ -455,8 +460,10 @@ mod tests {
             side: -1.0,
         };
         let high = first_patch(true, 0.05).ground(0.1);
-        // Sliding down, located a hair below the foot: the corner.
-        let (mut sys, mut y, _) = on_face(wall, -1e-13, -0.5);
+        // Sliding down, located a hair below where the foot is declared
+        // (`touchdown_offset` L below it): the corner.
+        let declared = Options::default().touchdown_offset * Params::fig7a().length;
+        let (mut sys, mut y, _) = on_face(wall, -declared - 1e-13, -0.5);
         assert!(sys.edge_guard(&y, 0) < 0.0);
         let mut dy = [0.0; N];
         dy[slots::at(0, Y)] = -0.5;
@@ -480,6 +487,26 @@ mod tests {
         assert_at_face(&sys, (&before.0, before.1), &y, 0.05f64.next_down(), -1.0);
         let (p, v) = tip_of(&sys, &y, Tip::Plus);
         assert!(p[1] >= high && v[1] > 0.0);
+    }
+
+    /// The corner's mode choice puts a tip that accelerates up the face on
+    /// the wall at its foot. Its foot guard must start on the side it
+    /// watches, as a touchdown guard does (`touchdown_offset`): started at
+    /// the foot, or a rounding below it, a return to the foot within one
+    /// step was never counted, and the tip slid down the face through the
+    /// lower patch (Fig. 7(a) on the rough slope of 1 cm, seed 5: at
+    /// t ≈ 4.66 s, then 0.11 m below the ground and a collapse).
+    #[test]
+    fn a_tip_put_on_the_face_at_its_foot_is_watched_for_its_return_there() {
+        let wall = RodMode::Wall {
+            tip: Tip::Plus,
+            side: -1.0,
+        };
+        for height in [0.0, -1e-17, 1e-17] {
+            let (sys, y, _) = on_face(wall, height, 0.0);
+            let g = sys.edge_guard(&y, 0);
+            assert!(g > 0.0, "at {height} above the foot: guard {g}");
+        }
     }
 
     #[test]

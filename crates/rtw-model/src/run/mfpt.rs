@@ -35,7 +35,8 @@
 //! and a score of its state (the centre of mass's velocity, below) does
 //! not climb before them: at Fig. 7(a) and σ = 1 cm the splitting gave
 //! 5171 [2537, ∞] steps against plain Monte Carlo's 495 [422, 568]
-//! (docs/robustness.md). Counting has a fixed cost and no score; beyond
+//! (docs/robustness.md; measured while a tip put on a face at its foot
+//! could slide through the lower patch, which made most of those falls). Counting has a fixed cost and no score; beyond
 //! about a fifth of its counted walker-steps its interval opens above.
 //!
 //! **The score** (the splitting's levels, kept so that the walker can be
@@ -59,7 +60,8 @@ use std::cell::RefCell;
 /// slope and 60 more whose falls are counted (11 520 walker-steps counted,
 /// 23 040 taken: the paper scan's stable gaits in 8.9 minutes of 2 cores,
 /// `scripts/mfpt_cost.sh`; 40 walkers took 10.4). The burn-in is long because the fall rate still rises
-/// after 20 steps: at Fig. 7(a) and σ = 5 cm, counting steps 20–80 gave
+/// after 20 steps (measured before the leak at a face's foot was closed,
+/// docs/robustness.md): at Fig. 7(a) and σ = 5 cm, counting steps 20–80 gave
 /// `1/fall_rate` = 164, steps 100–200 gave 98 and 200–400 102, and the
 /// MFPT from the start 174 against plain Monte Carlo's 132 [121, 144];
 /// with 60 steps of burn-in it is 132.
