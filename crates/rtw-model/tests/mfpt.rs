@@ -4,17 +4,23 @@
 //! (`steps_to_fall`) capped far beyond any of them, so uncensored.
 
 use rtw_model::options::RobustnessOptions;
+use rtw_model::outcome::{MeanFirstPassage, StepsToFall};
 use rtw_model::{Options, Params, simulate};
 
-#[test]
-fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
+/// Fig. 7(a)'s stable gait on the rough slope of `sigma`: plain Monte
+/// Carlo of `trials` runs capped at `max_steps`, and the MFPT.
+fn monte_carlo_and_mfpt(
+    sigma: f64,
+    trials: u32,
+    max_steps: u32,
+) -> (StepsToFall, MeanFirstPassage) {
     let o = Options {
         robustness: RobustnessOptions {
             mfpt: true,
             steps_to_fall: true,
-            sigma: 0.05,
-            trials: 200,
-            max_steps: 20_000,
+            sigma,
+            trials,
+            max_steps,
             ..RobustnessOptions::default()
         },
         ..Options::default()
@@ -24,6 +30,12 @@ fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
     let r = out.robustness.unwrap();
     let (mc, m) = (r.steps_to_fall.unwrap(), r.mfpt.unwrap());
     eprintln!("Monte Carlo {mc:?}\nMFPT {m:?}");
+    (mc, m)
+}
+
+#[test]
+fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
+    let (mc, m) = monte_carlo_and_mfpt(0.05, 200, 20_000);
     assert_eq!(mc.censored, 0, "{mc:?}");
     assert!(m.mfpt <= 200.0, "{m:?}");
     // The two 95 % intervals overlap.
@@ -63,21 +75,7 @@ fn the_mfpt_is_a_function_of_the_seed_and_refused_on_the_flat_slope() {
 /// "collapsed" within about 500 steps at σ = 1 cm.)
 #[test]
 fn the_mfpt_holds_uncensored_monte_carlo_where_falls_are_rare() {
-    let o = Options {
-        robustness: RobustnessOptions {
-            mfpt: true,
-            steps_to_fall: true,
-            sigma: 0.03,
-            trials: 50,
-            max_steps: 200_000,
-            ..RobustnessOptions::default()
-        },
-        ..Options::default()
-    };
-    let out = simulate(&Params::fig7a(), &o);
-    let r = out.robustness.unwrap();
-    let (mc, m) = (r.steps_to_fall.unwrap(), r.mfpt.unwrap());
-    eprintln!("Monte Carlo {mc:?}\nMFPT {m:?}");
+    let (mc, m) = monte_carlo_and_mfpt(0.03, 50, 200_000);
     assert_eq!(mc.censored, 0, "{mc:?}");
     assert!(mc.mean > 1000.0, "{mc:?}");
     assert!(

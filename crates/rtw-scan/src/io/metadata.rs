@@ -141,6 +141,20 @@ pub(crate) fn refuse_mixed_versions(
     Ok(())
 }
 
+/// [`refuse_mixed_versions`] for the rows of a file whose metadata is
+/// `meta` (`their` names them) and this build's ([`VERSION`], `ours`):
+/// the file's `rtw.version`, or `(none)` when it has none.
+pub(crate) fn refuse_other_version(
+    what: &str,
+    meta: &BTreeMap<String, String>,
+    their: &str,
+    ours: &str,
+    then: &str,
+) -> Result<()> {
+    let version = meta.get(META_VERSION).map_or("(none)", String::as_str);
+    refuse_mixed_versions(what, (their, version), (ours, VERSION), then)
+}
+
 /// A key-value metadata entry.
 pub fn kv(key: &str, value: String) -> KeyValue {
     KeyValue::new(key.to_string(), value)

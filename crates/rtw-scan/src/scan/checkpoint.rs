@@ -7,7 +7,7 @@
 use crate::config;
 use crate::config::ScanConfig;
 use crate::files;
-use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
+use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::{scan_files, table};
 use crate::scan::partial::{chunks_on_disk, remove_partial, remove_stray_temps};
@@ -349,14 +349,11 @@ pub(crate) fn chunk_labels(
     if input.metadata.get(META_CONFIG).map(String::as_str) != Some(config) {
         bail!("written for another config");
     }
-    let version = input
-        .metadata
-        .get(META_VERSION)
-        .map_or("(none)", String::as_str);
-    metadata::refuse_mixed_versions(
+    metadata::refuse_other_version(
         "the chunk and this run",
-        ("the chunk", version),
-        ("this run", VERSION),
+        &input.metadata,
+        "the chunk",
+        "this run",
         "it is computed again",
     )?;
     if input.rows as u64 != ids.end - ids.start {

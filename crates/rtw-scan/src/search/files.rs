@@ -11,6 +11,8 @@
 //! The three appear together at the end; an earlier `search.parquet` of
 //! other settings is refused unless `force`.
 
+pub use super::summary::markdown;
+use super::summary::{HEADING, width};
 use super::{Evaluation, Reported, Search, SearchSettings};
 use crate::config::variant::ModelChoices;
 use crate::files::FileSet;
@@ -365,17 +367,14 @@ pub fn stored(
     }
     // The same settings, but perhaps not the same numbers: an evaluation is
     // what the build that made it computes.
-    let theirs = input
-        .metadata
-        .get(META_VERSION)
-        .map_or("(none)", String::as_str);
-    if let Err(e) = metadata::refuse_mixed_versions(
+    if let Err(e) = metadata::refuse_other_version(
         &format!(
             "--out {}: its stored evaluations and this search",
             out.display()
         ),
-        ("the evaluations", theirs),
-        ("this search", VERSION),
+        &input.metadata,
+        "the evaluations",
+        "this search",
         "a search never resumes from another version's numbers: choose another folder, or pass \
          --force to compute the search anew",
     ) {
@@ -538,6 +537,3 @@ pub fn run_to_files(
     set.commit()?;
     Ok((search, reported))
 }
-
-pub use super::summary::markdown;
-use super::summary::{HEADING, width};

@@ -339,6 +339,17 @@ fn design_config(dir: &std::path::Path, name: &str, extra: &str) -> String {
     )
 }
 
+/// The small search's settings, read as the library reads a config, at
+/// the default options.
+fn search_settings(
+    dir: &std::path::Path,
+    name: &str,
+) -> (rtw_scan::search::SearchSettings, rtw_model::Options) {
+    let cfg = design_config(dir, name, "");
+    let settings = rtw_scan::search::SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
+    (settings, rtw_model::Options::default())
+}
+
 /// Stops the search (its cancel flag) once `at` simulations are done.
 struct StopAfter<'a> {
     done: std::sync::atomic::AtomicU64,
@@ -358,12 +369,10 @@ impl rtw_scan::scan::Progress for StopAfter<'_> {
 
 #[test]
 fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() {
-    use rtw_scan::search::{SearchSettings, files};
+    use rtw_scan::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
-    let cfg = design_config(dir.path(), "resume", "");
-    let settings = SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
-    let options = rtw_model::Options::default();
+    let (settings, options) = search_settings(dir.path(), "resume");
     let quiet = rtw_scan::scan::progress::Silent;
     let never = AtomicBool::new(false);
     let whole = dir.path().join("whole");
@@ -411,12 +420,10 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
 #[test]
 fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     use rtw_scan::io as output;
-    use rtw_scan::search::{SearchSettings, files};
+    use rtw_scan::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
-    let cfg = design_config(dir.path(), "build", "");
-    let settings = SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
-    let options = rtw_model::Options::default();
+    let (settings, options) = search_settings(dir.path(), "build");
     let out = dir.path().join("out");
     let cancel = AtomicBool::new(false);
     let stop = StopAfter {
