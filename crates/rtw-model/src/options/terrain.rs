@@ -256,6 +256,29 @@ impl TerrainOptions {
         }
     }
 
+    /// Where a point `p` belongs when it lies at most `reach` inside a face
+    /// (nearer the face than the top of the patch it is in, and at most
+    /// `reach` below the face's foot): on the face, at its foot if below
+    /// it; and the face's side. `None` anywhere else.
+    pub(crate) fn out_of_face(&self, p: [f64; 2], reach: f64) -> Option<([f64; 2], f64)> {
+        if self.is_flat() {
+            return None;
+        }
+        let patch = self.patch_at(p[0]);
+        let depth = self.level(patch.index) - p[1];
+        [
+            (patch.index - 1, p[0] - patch.lo, patch.index),
+            (patch.index + 1, patch.hi - p[0], patch.index + 1),
+        ]
+        .into_iter()
+        .map(|(k, across, face)| (self.level(k), across, face))
+        .find(|&(low, across, _)| low - p[1] <= reach && across < depth && across <= reach)
+        .map(|(low, _, face)| {
+            let face = self.face_between(face);
+            ([face.foot_x(), p[1].max(low)], face.side)
+        })
+    }
+
     /// The edge guard of a tip sliding at `x` on the patch at height
     /// `level`: the distance from `x` to the nearer edge of the patch under
     /// it, positive while that patch is the tip's own and negative once it

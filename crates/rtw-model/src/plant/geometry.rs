@@ -59,6 +59,15 @@ impl Tip {
         }
     }
 
+    /// 0 for Plus, 1 for Minus: the tip's place in per-tip arrays.
+    #[inline]
+    pub(crate) fn index(self) -> usize {
+        match self {
+            Tip::Plus => 0,
+            Tip::Minus => 1,
+        }
+    }
+
     /// The rod's other tip.
     #[inline]
     pub(crate) fn other(self) -> Tip {

@@ -129,7 +129,7 @@ impl Walker for RtwWalker<'_, '_> {
         } else {
             furthest_tip(&rtw, &st.y) + self.s.phys.length
         };
-        rtw.terrain.branch_beyond(reach, rng.next_u64());
+        rtw.branch_terrain_beyond(reach, rng.next_u64(), &st.y);
         let (o, rtw, y) = run_from(
             self.s.params,
             &self.options,
@@ -175,7 +175,10 @@ pub(crate) fn mean_first_passage(
         ..s.options
     };
     let mut rtw = s.rtw.clone();
-    rtw.terrain = TerrainOptions::rough(r.sigma, terrain.seed, s.edge, terrain.patch);
+    rtw.set_terrain(
+        TerrainOptions::rough(r.sigma, terrain.seed, s.edge, terrain.patch),
+        s.y,
+    );
     // The energy dissipated so far is the flat run's, not this one's.
     let mut y = *s.y;
     y[DISSIPATED] = 0.0;

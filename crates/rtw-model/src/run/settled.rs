@@ -45,7 +45,7 @@ impl SettledGait<'_> {
         work: &mut Work,
     ) -> Outcome {
         let mut sys = self.rtw.clone();
-        sys.terrain = terrain;
+        sys.set_terrain(terrain, self.y);
         // The energy dissipated so far is the flat run's, not this one's.
         let mut y = *self.y;
         y[DISSIPATED] = 0.0;

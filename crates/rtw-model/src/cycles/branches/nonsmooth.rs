@@ -108,6 +108,14 @@ pub(crate) fn guard_name(kind: GuardKind) -> String {
         GuardKind::Slip { rod: r } => format!("slip {}", rod(r)),
         GuardKind::ComLow => "com".to_string(),
         GuardKind::Edge { rod: r } => format!("edge {}", rod(r)),
+        GuardKind::FaceTop { rod: r } => format!("top {}", rod(r)),
+        GuardKind::EdgePass { rod: r, tip } => {
+            format!(
+                "pass {}{}",
+                rod(r),
+                if tip.sign() > 0.0 { "+" } else { "-" }
+            )
+        }
     }
 }
 

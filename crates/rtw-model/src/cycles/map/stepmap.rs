@@ -291,7 +291,7 @@ impl StepMap {
         extra: &mut O,
     ) -> Result<Step, StepError> {
         let mut rtw = self.rtw.clone();
-        rtw.modes = p.modes;
+        rtw.enter(p.modes, &p.y);
         self.run_step(rtw, p.y, extra)
     }
 
@@ -299,7 +299,7 @@ impl StepMap {
     /// run of the full simulation from a section point.
     pub(crate) fn plant_at(&self, p: &SectionPoint) -> (Rtw, EngineOptions) {
         let mut rtw = self.rtw.clone();
-        rtw.modes = p.modes;
+        rtw.enter(p.modes, &p.y);
         (rtw, self.engine)
     }
 
@@ -345,7 +345,7 @@ impl StepMap {
         p: &SectionPoint,
     ) -> Result<(Step, DMatrix<f64>), StepError> {
         let mut rtw = self.rtw.clone();
-        rtw.modes = p.modes;
+        rtw.enter(p.modes, &p.y);
         let log = StepLog {
             section: self.section,
             ..StepLog::default()

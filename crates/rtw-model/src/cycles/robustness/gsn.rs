@@ -140,7 +140,7 @@ pub(crate) fn settled_cycle(
     let cycle = run_cycle_options();
     let map = StepMap::new(params, &flat, &cycle);
     let mut sys = rtw.clone();
-    sys.terrain = flat.terrain;
+    sys.set_terrain(flat.terrain, y);
     // Not bounded by the run's `t_max`: a short run's gait may need more
     // steps than it had to show its period.
     let mut obs = crossings(&sys, y, SETTLE_LANDINGS, Some(&map));
@@ -247,7 +247,7 @@ fn over_step(
     let (l, _) = map.units();
     let (mut rtw, engine) = map.plant_at(p);
     let front = rtw.front_foot(&p.y).map_or(0.0, |(_, x)| x);
-    rtw.terrain = TerrainOptions::step(h * l, front + edge_ahead * l);
+    rtw.set_terrain(TerrainOptions::step(h * l, front + edge_ahead * l), &p.y);
     let mut obs = crossings(&rtw, &p.y, m.unwrap_or(MAX_STEPS_OVER), None);
     if m.is_none() {
         obs.level = Some(rtw.terrain.ground(f64::INFINITY));
@@ -415,7 +415,7 @@ mod tests {
         let flat = landings(&rtw, &p.y, t_max, steps + 1, &engine).unwrap();
         let mut stepped = rtw.clone();
         let front = rtw.front_foot(&p.y).unwrap().1;
-        stepped.terrain = TerrainOptions::step(eps * l, front + EDGE_AHEAD * l);
+        stepped.set_terrain(TerrainOptions::step(eps * l, front + EDGE_AHEAD * l), &p.y);
         let over = landings(&stepped, &p.y, t_max, steps + 1, &engine).unwrap();
         assert_eq!((flat.len(), over.len()), (steps + 1, steps + 1));
         let with_start = |v: &[(f64, f64)]| {

@@ -37,6 +37,16 @@ impl Rtw {
                         rod,
                         tip: Tip::Minus,
                     })?;
+                    if !self.terrain.is_flat() {
+                        visit(GuardKind::EdgePass {
+                            rod,
+                            tip: Tip::Plus,
+                        })?;
+                        visit(GuardKind::EdgePass {
+                            rod,
+                            tip: Tip::Minus,
+                        })?;
+                    }
                 }
                 RodMode::Stick { .. } => {
                     visit(GuardKind::LiftOff { rod })?;
@@ -61,10 +71,15 @@ impl Rtw {
                         visit(GuardKind::Slip { rod })?;
                     }
                 }
+                // The face's foot and top are two guards, each linear in the
+                // tip's height: the nearer of the two as one guard was a tent
+                // whose cubic model on a step missed a tip that went over the
+                // whole of a low face and beyond its top within the step.
                 RodMode::Wall { .. } => {
                     visit(GuardKind::LiftOff { rod })?;
                     visit(GuardKind::RodDown { rod })?;
                     visit(GuardKind::Edge { rod })?;
+                    visit(GuardKind::FaceTop { rod })?;
                 }
             }
         }
@@ -95,13 +110,19 @@ impl Rtw {
         frame: impl Fn(usize) -> RodFrame,
         lambda: impl Fn(usize) -> V2,
     ) -> f64 {
+        let tip = |rod: usize, tip: Tip| frame(rod).point(tip.sign() * self.body.half_length).0;
         // A tip's height above the ground under it (crate::plant::terrain).
-        let tip_height = |rod: usize, tip: Tip| {
-            let p = frame(rod).point(tip.sign() * self.body.half_length).0;
+        let tip_height = |rod: usize, t: Tip| {
+            let p = tip(rod, t);
             p[1] - self.ground(p[0])
         };
         match kind {
-            GuardKind::Touchdown { rod, tip } => tip_height(rod, tip) - self.touchdown_height,
+            // A free tip's height above the patch under it: smooth, as the
+            // patch changes only at an edge pass.
+            GuardKind::Touchdown { rod, tip: t } if !self.terrain.is_flat() => {
+                tip(rod, t)[1] - self.over[rod][t.index()] - self.touchdown_height
+            }
+            GuardKind::Touchdown { rod, tip: t } => tip_height(rod, t) - self.touchdown_height,
             GuardKind::LiftOff { rod } => match self.modes[rod] {
                 // On a face: the face's normal force.
                 RodMode::Wall { side, .. } => side * lambda(rod)[0],
@@ -132,6 +153,8 @@ impl Rtw {
                 (a[1] + b[1] + c[1]) / 3.0 - ground - self.collapse_height
             }
             GuardKind::Edge { rod } => self.edge_guard(y, rod),
+            GuardKind::FaceTop { rod } => self.face_top_guard(y, rod),
+            GuardKind::EdgePass { rod, tip: t } => self.edge_pass_guard(tip(rod, t)[0], rod, t),
         }
     }
 
@@ -164,6 +187,11 @@ impl Rtw {
             }
             GuardKind::ComLow => Some((frames[0].v[1] + frames[1].v[1] + frames[2].v[1]) / 3.0),
             GuardKind::Edge { rod } => Some(self.edge_guard_rate(y, dy, rod)),
+            GuardKind::FaceTop { rod } => Some(-dy[slots::at(rod, slots::Y)]),
+            GuardKind::EdgePass { rod, tip } => {
+                let (p, v) = frames[rod].point(tip.sign() * self.body.half_length);
+                Some(self.edge_pass_rate(p[0], v[0], rod, tip))
+            }
             GuardKind::LiftOff { .. } | GuardKind::Slip { .. } => None,
         }
     }

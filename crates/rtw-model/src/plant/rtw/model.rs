@@ -28,9 +28,14 @@ pub enum GuardKind {
     /// The centre of mass sinks below the collapse height.
     ComLow,
     /// A sliding tip reaches the edge of its patch, or a tip on a face the
-    /// face's foot or top (`plant::terrain`); watched only off the flat
-    /// slope.
+    /// face's foot (`plant::terrain`); watched only off the flat slope.
     Edge { rod: usize },
+    /// A tip on a face reaches the face's top, where it leaves the face.
+    FaceTop { rod: usize },
+    /// A free rod's tip passes an edge of the patch under it: onto the next
+    /// patch if above its level, else into the face of that patch
+    /// (`plant::terrain`); watched only off the flat slope.
+    EdgePass { rod: usize, tip: Tip },
 }
 
 /// What a reset did, for the run's observer.
@@ -91,6 +96,11 @@ pub struct Rtw {
     pub(crate) mu: f64,
     /// The rods' contact modes.
     pub(crate) modes: [RodMode; 3],
+    /// The level of the patch under each tip ([`Tip::index`]) of a free
+    /// rod, off the flat slope: a free tip's touchdown guard is its height
+    /// above this level, which changes only where the tip passes an edge
+    /// ([`GuardKind::EdgePass`]), so that guard is smooth (`plant::terrain`).
+    pub(crate) over: [[f64; 2]; 3],
     /// Touchdown is declared at this tip height (slightly below 0).
     pub(crate) touchdown_height: f64,
     /// A re-stick needs the sliding tip's velocity to reverse by more than this.
@@ -130,6 +140,7 @@ impl Rtw {
             gravity,
             mu: opts.contact.mu,
             modes: [RodMode::Free; 3],
+            over: [[0.0; 2]; 3],
             touchdown_height: -opts.touchdown_offset * phys.length,
             restick_speed: 1e-9 * phys.length,
             collapse_height: opts.collapse_height_ratio * phys.standing_height(),
@@ -158,7 +169,7 @@ impl Rtw {
     }
 
     /// Writes the rods back into `y` in the current modes.
-    pub fn store(&self, rods: &[RodState; 3], y: &mut [f64; N]) {
+    pub fn store(&mut self, rods: &[RodState; 3], y: &mut [f64; N]) {
         for (i, r) in rods.iter().enumerate() {
             self.body.slots(self.modes[i], r, slots::rod_mut(y, i));
             self.set_level(y, i);
@@ -192,5 +203,14 @@ impl Rtw {
     /// Puts the rods in `modes` (the state's slots must be read in them).
     pub fn set_modes(&mut self, modes: [RodMode; 3]) {
         self.modes = modes;
+    }
+
+    /// Puts the RTW in `modes` at the state `y` (a section point's, or a
+    /// perturbed one): the modes, and the patch under each free tip.
+    pub(crate) fn enter(&mut self, modes: [RodMode; 3], y: &[f64; N]) {
+        self.modes = modes;
+        for rod in 0..3 {
+            self.set_over(y, rod);
+        }
     }
 }

@@ -8,8 +8,19 @@ use crate::plant::geometry::{RodFrame, Tip};
 use crate::plant::slots::{self, N, OMEGA, VX};
 
 impl Rtw {
-    /// The reset of guard `kind`, which has just fired at `y`.
+    /// The reset of guard `kind`, which has just fired at `y`; then every
+    /// free rod's tips are put back where their guards watch them
+    /// ([`free_tips_out`](Self::free_tips_out)).
     pub(crate) fn reset_kind(&mut self, y: &mut [f64; N], kind: GuardKind) -> Transition {
+        let transition = self.reset_only(y, kind);
+        if !matches!(transition, Transition::Failure(_)) {
+            self.free_tips_out(y);
+        }
+        transition
+    }
+
+    /// The reset of guard `kind` alone.
+    fn reset_only(&mut self, y: &mut [f64; N], kind: GuardKind) -> Transition {
         match kind {
             GuardKind::Touchdown { rod, tip } => self.touchdown(y, rod, tip),
             GuardKind::LiftOff { rod } | GuardKind::Slip { rod }
@@ -42,6 +53,8 @@ impl Rtw {
             GuardKind::RodDown { .. } => Transition::Failure(FailureDetail::RodDown),
             GuardKind::ComLow => Transition::Failure(FailureDetail::CentreOfMassLow),
             GuardKind::Edge { rod } => self.edge_reset(y, rod),
+            GuardKind::FaceTop { rod } => self.leave_face_over_top(y, rod),
+            GuardKind::EdgePass { rod, tip } => self.pass_edge(y, rod, tip),
         }
     }
 
