@@ -161,7 +161,7 @@ def test_bad_input_raises_value_error_naming_the_key(call, names: list[str]) -> 
         assert n in str(e.value), str(e.value)
 
 
-def test_interrupted_scan_raises_promptly_and_python_stays_usable() -> None:
+def test_interrupted_scan_raises_promptly_and_python_stays_usable(ctrl_c: None) -> None:
     timer = threading.Timer(0.3, _thread.interrupt_main)
     started = time.monotonic()
     timer.start()

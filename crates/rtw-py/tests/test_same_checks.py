@@ -186,7 +186,7 @@ def _interrupted(call) -> float:
     return time.monotonic() - started
 
 
-def test_ctrl_c_stops_basin_and_sensitivity() -> None:
+def test_ctrl_c_stops_basin_and_sensitivity(ctrl_c: None) -> None:
     # Each would run for minutes: 201 × 201 points; 10^4 resamples of every
     # output of the committed Saltelli scan (229 376 rows).
     assert _interrupted(lambda: rtw.basin(*FIG7A, x="omega_a:-30:30:201", y="theta_b:-0.3:0.3:201", steps=60)) < 5
