@@ -39,9 +39,9 @@ use serde::{Deserialize, Serialize};
 
 mod seed;
 mod terrain;
-pub(crate) use terrain::Face;
 use terrain::STEP_HEIGHT_MAX;
 pub use terrain::TerrainOptions;
+pub(crate) use terrain::{Face, Over};
 
 /// The initial shape of the star (docs/model.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

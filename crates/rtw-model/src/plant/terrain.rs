@@ -113,8 +113,11 @@ impl Rtw {
             if self.modes[rod] != RodMode::Free {
                 continue;
             }
+            // The rod's full coordinates, found again only after a tip is
+            // moved: this runs after every reset.
+            let mut r = self.rod(y, rod);
             for tip in [Tip::Plus, Tip::Minus] {
-                let (p, _) = self.body.tip_point(&self.rods(y)[rod], tip);
+                let (p, _) = self.body.tip_point(&r, tip);
                 if let Some((on, side)) = self.terrain.out_of_face(p, reach) {
                     // A touchdown offset off the face, on the lower patch's
                     // side: the free rod's centre, not its tip, is the
@@ -122,15 +125,16 @@ impl Rtw {
                     // face's side of the edge again.
                     y[slots::at(rod, X)] += on[0] - side * self.touchdown_height - p[0];
                     y[slots::at(rod, Y)] += on[1] - p[1];
+                    r = self.rod(y, rod);
                 }
             }
-            self.set_over(y, rod);
+            self.note_over(&r, rod);
             for tip in [Tip::Plus, Tip::Minus] {
-                let (p, v) = self.body.tip_point(&self.rods(y)[rod], tip);
+                let (p, v) = self.body.tip_point(&r, tip);
                 let level = if self.terrain.is_flat() {
                     self.ground(p[0])
                 } else {
-                    self.over[rod][tip.index()]
+                    self.over[rod][tip.index()].level
                 };
                 // Its touchdown guard is crossed (it is below the offset at
                 // which a touchdown is declared), but by a rounding. A tip
@@ -145,6 +149,7 @@ impl Rtw {
                 let watched = !self.terrain.is_flat() || v[1] < 0.0;
                 if below >= -self.touchdown_height && below <= reach && watched {
                     y[slots::at(rod, Y)] += below;
+                    r = self.rod(y, rod);
                 }
             }
         }
@@ -154,15 +159,20 @@ impl Rtw {
     /// free tip is noted again there.
     pub(crate) fn set_terrain(&mut self, terrain: TerrainOptions, y: &[f64; N]) {
         self.terrain = terrain;
-        for rod in 0..3 {
-            self.set_over(y, rod);
-        }
+        self.note_patches(y);
     }
 
     /// Draws the rough patches beyond `x` afresh with `seed`
     /// ([`TerrainOptions::branch_beyond`]), at the state `y`.
     pub(crate) fn branch_terrain_beyond(&mut self, x: f64, seed: u64, y: &[f64; N]) {
         self.terrain.branch_beyond(x, seed);
+        self.note_patches(y);
+    }
+
+    /// Notes the patch under each free tip at `y`: wherever the modes or the
+    /// ground change under a walker otherwise than by a reset (a section
+    /// point entered, a ground put under it or drawn afresh ahead of it).
+    pub(crate) fn note_patches(&mut self, y: &[f64; N]) {
         for rod in 0..3 {
             self.set_over(y, rod);
         }
@@ -172,10 +182,16 @@ impl Rtw {
     /// flat slope), from which its touchdown guard measures.
     pub(crate) fn set_over(&mut self, y: &[f64; N], rod: usize) {
         if self.modes[rod] == RodMode::Free && !self.terrain.is_flat() {
-            let r = self.rods(y)[rod];
+            self.note_over(&self.rod(y, rod), rod);
+        }
+    }
+
+    /// [`set_over`](Self::set_over) from the rod's full coordinates `r`.
+    fn note_over(&mut self, r: &RodState, rod: usize) {
+        if self.modes[rod] == RodMode::Free && !self.terrain.is_flat() {
             for tip in [Tip::Plus, Tip::Minus] {
-                let (p, _) = self.body.tip_point(&r, tip);
-                self.over[rod][tip.index()] = self.ground(p[0]);
+                let (p, _) = self.body.tip_point(r, tip);
+                self.over[rod][tip.index()] = self.terrain.over_at(p[0]);
             }
         }
     }
@@ -187,13 +203,16 @@ impl Rtw {
     /// itself.
     #[inline]
     pub(crate) fn edge_pass_guard(&self, x: f64, rod: usize, tip: Tip) -> f64 {
-        self.terrain.edge_distance(x, self.over[rod][tip.index()]) - self.touchdown_height
+        self.terrain
+            .edge_distance_over(x, &self.over[rod][tip.index()])
+            - self.touchdown_height
     }
 
     /// Its rate, for the tip moving at `vx`.
     #[inline]
     pub(crate) fn edge_pass_rate(&self, x: f64, vx: f64, rod: usize, tip: Tip) -> f64 {
-        self.terrain.edge_rate(x, vx, self.over[rod][tip.index()])
+        self.terrain
+            .edge_rate_over(x, vx, &self.over[rod][tip.index()])
     }
 
     /// A free rod's `tip` passes an edge of the patch under it: above the
@@ -205,11 +224,11 @@ impl Rtw {
     /// over the top and out through the face, it was never negative at a
     /// step's end.
     pub(crate) fn pass_edge(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
-        let (p, v) = self.body.tip_point(&self.rods(y)[rod], tip);
+        let (p, v) = self.body.tip_point(&self.rod(y, rod), tip);
         let next = self
             .terrain
-            .level_beyond(p[0], v[0], self.over[rod][tip.index()]);
-        if p[1] < next {
+            .over_beyond(p[0], v[0], &self.over[rod][tip.index()]);
+        if p[1] < next.level {
             return self.meet_face(y, rod, tip);
         }
         self.over[rod][tip.index()] = next;
@@ -318,7 +337,7 @@ impl Rtw {
     /// its face: the face's impact, then the wall or free. A tip meeting it
     /// at its foot arrives in the corner.
     pub(crate) fn meet_face(&mut self, y: &mut [f64; N], rod: usize, tip: Tip) -> Transition {
-        let mut r = self.rods(y)[rod];
+        let mut r = self.rod(y, rod);
         let (p, v) = self.body.tip_point(&r, tip);
         let face = self.terrain.face_crossed(p[0], v[0]);
         // The event is located a hair past the face: put the tip on it (in
@@ -336,7 +355,7 @@ impl Rtw {
     /// hair past), then the corner's impact and mode choice.
     fn meet_corner(&mut self, y: &mut [f64; N], rod: usize, face: Face) -> Transition {
         let tip = self.modes[rod].tip().expect("grounded rod");
-        let mut r = self.rods(y)[rod];
+        let mut r = self.rod(y, rod);
         let (p, _) = self.body.tip_point(&r, tip);
         r.c = add(r.c, [face.foot_x() - p[0], face.low - p[1]]);
         self.face_contact(y, rod, tip, r, face, true)
@@ -758,7 +777,7 @@ mod tests {
         let terrain = first_patch(true, 0.05);
         let high = terrain.ground(0.1);
         let (mut sys, y) = on_front_foot(RodMode::Free, terrain);
-        assert_eq!(sys.over[0][Tip::Plus.index()], 0.0);
+        assert_eq!(sys.over[0][Tip::Plus.index()].level, 0.0);
         let past = 0.05 - sys.touchdown_height + 1e-13;
         // Above the higher patch: on over it, nothing else changed.
         let mut over = moved(&sys, &y, [past, high + 1e-3], [0.4, -0.1]);
@@ -773,7 +792,7 @@ mod tests {
             },
         );
         assert_eq!(t, Transition::ModeChange { rod: 0 });
-        assert_eq!(sys.over[0][Tip::Plus.index()], high);
+        assert_eq!(sys.over[0][Tip::Plus.index()].level, high);
         assert_eq!(over, before);
         assert_eq!(sys.modes()[0], RodMode::Free);
         // Below it: the face's impact, the tip at the face.
@@ -834,7 +853,7 @@ mod tests {
         let (p, _) = tip_of(&sys, &y, Tip::Plus);
         let off = 0.05 + sys.touchdown_height;
         assert!((p[0] - off).abs() < 1e-13, "{p:?}");
-        assert_eq!(sys.over[0][Tip::Plus.index()], 0.0);
+        assert_eq!(sys.over[0][Tip::Plus.index()].level, 0.0);
         assert!(sys.edge_pass_guard(p[0], 0, Tip::Plus) > 0.0);
         // A tip on the face a rounding below its foot: at the foot.
         let wall = RodMode::Wall {

@@ -58,8 +58,9 @@ use std::cell::RefCell;
 /// The estimator's settings for the RTW (besides the seed, `terrain.seed`):
 /// 6 batches of a 32-walker Fleming–Viot cloud, 60 steps onto the rough
 /// slope and 60 more whose falls are counted (11 520 walker-steps counted,
-/// 23 040 taken: the paper scan's stable gaits in 8.9 minutes of 2 cores,
-/// `scripts/mfpt_cost.sh`; 40 walkers took 10.4). The burn-in is long because the fall rate still rises
+/// 23 040 taken: what the paper scan's stable gaits cost is measured by
+/// `scripts/mfpt_cost.sh`, results/robustness/mfpt_cost.txt; 40 walkers
+/// took a sixth longer). The burn-in is long because the fall rate still rises
 /// after 20 steps (measured before the leak at a face's foot was closed,
 /// docs/robustness.md): at Fig. 7(a) and σ = 5 cm, counting steps 20–80 gave
 /// `1/fall_rate` = 164, steps 100–200 gave 98 and 200–400 102, and the

@@ -120,7 +120,7 @@ impl Rtw {
             // A free tip's height above the patch under it: smooth, as the
             // patch changes only at an edge pass.
             GuardKind::Touchdown { rod, tip: t } if !self.terrain.is_flat() => {
-                tip(rod, t)[1] - self.over[rod][t.index()] - self.touchdown_height
+                tip(rod, t)[1] - self.over[rod][t.index()].level - self.touchdown_height
             }
             GuardKind::Touchdown { rod, tip: t } => tip_height(rod, t) - self.touchdown_height,
             GuardKind::LiftOff { rod } => match self.modes[rod] {

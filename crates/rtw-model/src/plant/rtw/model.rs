@@ -2,7 +2,7 @@
 //! types its dynamics, guards and resets speak.
 
 use crate::options::Options;
-use crate::options::TerrainOptions;
+use crate::options::{Over, TerrainOptions};
 use crate::outcome::FailureDetail;
 use crate::params::Physical;
 use crate::plant::contact::{ImpactKind, RodBody, RodMode};
@@ -100,7 +100,7 @@ pub struct Rtw {
     /// rod, off the flat slope: a free tip's touchdown guard is its height
     /// above this level, which changes only where the tip passes an edge
     /// ([`GuardKind::EdgePass`]), so that guard is smooth (`plant::terrain`).
-    pub(crate) over: [[f64; 2]; 3],
+    pub(crate) over: [[Over; 2]; 3],
     /// Touchdown is declared at this tip height (slightly below 0).
     pub(crate) touchdown_height: f64,
     /// A re-stick needs the sliding tip's velocity to reverse by more than this.
@@ -140,7 +140,7 @@ impl Rtw {
             gravity,
             mu: opts.contact.mu,
             modes: [RodMode::Free; 3],
-            over: [[0.0; 2]; 3],
+            over: [[Over::level(0.0); 2]; 3],
             touchdown_height: -opts.touchdown_offset * phys.length,
             restick_speed: 1e-9 * phys.length,
             collapse_height: opts.collapse_height_ratio * phys.standing_height(),
@@ -160,7 +160,13 @@ impl Rtw {
 
     /// Full coordinates of the rods.
     pub fn rods(&self, y: &[f64; N]) -> [RodState; 3] {
-        std::array::from_fn(|i| self.body.rod_state(self.modes[i], slots::rod(y, i)))
+        std::array::from_fn(|i| self.rod(y, i))
+    }
+
+    /// Full coordinates of rod `rod` alone (one `sin_cos`, not three).
+    #[inline]
+    pub(crate) fn rod(&self, y: &[f64; N], rod: usize) -> RodState {
+        self.body.rod_state(self.modes[rod], slots::rod(y, rod))
     }
 
     /// [`rods`](Self::rods) from the frames of `y` (no trigonometry again).
@@ -209,8 +215,6 @@ impl Rtw {
     /// perturbed one): the modes, and the patch under each free tip.
     pub(crate) fn enter(&mut self, modes: [RodMode; 3], y: &[f64; N]) {
         self.modes = modes;
-        for rod in 0..3 {
-            self.set_over(y, rod);
-        }
+        self.note_patches(y);
     }
 }
