@@ -193,34 +193,46 @@ impl TerrainOptions {
     #[inline]
     fn patch_at(&self, x: f64) -> Patch {
         if x < self.step_at {
-            return Patch {
-                index: -1,
-                lo: f64::NEG_INFINITY,
-                hi: self.step_at,
-            };
+            return self.patch(-1);
         }
         if self.roughness == 0.0 {
-            return Patch {
-                index: 0,
-                lo: self.step_at,
-                hi: f64::INFINITY,
-            };
+            return self.patch(0);
         }
-        let edge = |k: i64| self.step_at + k as f64 * self.patch;
         // The index from the division, corrected so that `x` lies in
         // `[edge(k), edge(k + 1))` exactly as the edges are computed.
         let mut k = ((x - self.step_at) / self.patch).floor().max(0.0) as i64;
-        while k > 0 && x < edge(k) {
+        while k > 0 && x < self.edge(k) {
             k -= 1;
         }
-        while x >= edge(k + 1) {
+        while x >= self.edge(k + 1) {
             k += 1;
         }
-        Patch {
-            index: k,
-            lo: edge(k),
-            hi: edge(k + 1),
-        }
+        self.patch(k)
+    }
+
+    /// Patch `k`'s extent, the one [`patch_at`](Self::patch_at) finds it
+    /// by; NaN for a patch there is not (beyond the first after `step_at`
+    /// on a ground without roughness).
+    #[inline]
+    fn patch(&self, k: i64) -> Patch {
+        let (lo, hi) = if k < 0 {
+            (f64::NEG_INFINITY, self.step_at)
+        } else if self.roughness == 0.0 {
+            if k == 0 {
+                (self.step_at, f64::INFINITY)
+            } else {
+                (f64::NAN, f64::NAN)
+            }
+        } else {
+            (self.edge(k), self.edge(k + 1))
+        };
+        Patch { index: k, lo, hi }
+    }
+
+    /// The lower edge of rough patch `k`.
+    #[inline]
+    fn edge(&self, k: i64) -> f64 {
+        self.step_at + k as f64 * self.patch
     }
 
     /// The height of patch `k` (−1: the flat slope before `step_at`).
@@ -338,21 +350,16 @@ impl TerrainOptions {
         self.over_patch(self.index_beyond(x, vx, own.level))
     }
 
-    /// Patch `k` as a free tip notes it: its level, and its extent where it
-    /// is the one [`patch_at`](Self::patch_at) finds (elsewhere none, so
-    /// that the guards below take the general path).
+    /// Patch `k` as a free tip notes it: its level and its extent (NaN
+    /// where there is no such patch, so that the guards below take the
+    /// general path).
     fn over_patch(&self, k: i64) -> Over {
-        let level = self.level(k);
-        let extent = if k < 0 {
-            Some((f64::NEG_INFINITY, self.step_at))
-        } else if self.roughness == 0.0 {
-            (k == 0).then_some((self.step_at, f64::INFINITY))
-        } else {
-            let edge = |k: i64| self.step_at + k as f64 * self.patch;
-            Some((edge(k), edge(k + 1)))
-        };
-        let (lo, hi) = extent.unwrap_or((f64::NAN, f64::NAN));
-        Over { level, lo, hi }
+        let Patch { lo, hi, .. } = self.patch(k);
+        Over {
+            level: self.level(k),
+            lo,
+            hi,
+        }
     }
 
     /// [`edge_distance`](Self::edge_distance) from the patch a free tip is
@@ -363,7 +370,7 @@ impl TerrainOptions {
     /// tenth of a rough run's time. The same value, bit for bit.
     #[inline]
     pub(crate) fn edge_distance_over(&self, x: f64, over: &Over) -> f64 {
-        if over.lo <= x && x < over.hi {
+        if over.holds(x) {
             (x - over.lo).min(over.hi - x)
         } else {
             self.edge_distance(x, over.level)
@@ -374,7 +381,7 @@ impl TerrainOptions {
     /// as [`edge_distance_over`](Self::edge_distance_over).
     #[inline]
     pub(crate) fn edge_rate_over(&self, x: f64, vx: f64, over: &Over) -> f64 {
-        if over.lo <= x && x < over.hi {
+        if over.holds(x) {
             if over.hi - x <= x - over.lo { -vx } else { vx }
         } else {
             self.edge_rate(x, vx, over.level)
@@ -384,11 +391,8 @@ impl TerrainOptions {
     /// The face between patch `k − 1` and patch `k` (patch −1 is the flat
     /// slope before `step_at`).
     fn face_between(&self, k: i64) -> Face {
-        let x = if k == 0 {
-            self.step_at
-        } else {
-            self.step_at + k as f64 * self.patch
-        };
+        // `edge(0)` is `step_at` exactly: the step's face too.
+        let x = self.edge(k);
         let (left, right) = (self.level(k - 1), self.level(k));
         Face {
             x,
@@ -451,6 +455,12 @@ impl Over {
             lo: f64::NAN,
             hi: f64::NAN,
         }
+    }
+
+    /// Whether `x` lies in the patch's extent (never where none is noted).
+    #[inline]
+    fn holds(&self, x: f64) -> bool {
+        self.lo <= x && x < self.hi
     }
 }
 
