@@ -1,4 +1,5 @@
-//! Limit cycles of a return map, whatever the system: fixed points by Newton,
+//! Limit cycles of a return map, whatever the system: fixed points by Newton
+//! or by Anderson acceleration (no Jacobian),
 //! Jacobians by finite differences, Floquet multipliers.
 //!
 //! A steady gait is a fixed point `z* = P(z*)` of its step map `P` (a period-n
@@ -85,6 +86,88 @@ pub fn newton(
     }
     Err(NewtonError::NoConvergence {
         iterations: max_iter,
+        residual,
+    })
+}
+
+/// A fixed point found by [`anderson`] (no Jacobian is taken).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AndersonPoint {
+    /// The fixed point (the last iterate at which the map was evaluated).
+    pub z: Vec<f64>,
+    /// `max_k |P(z)_k − z_k| / scale_k` at `z`.
+    pub residual: f64,
+    /// Evaluations of the map.
+    pub evaluations: u32,
+}
+
+/// The fixed point of `P` by Anderson acceleration of the iteration
+/// `z ← P(z)` (type II, depth `depth`: Walker and Ni, SIAM J. Numer. Anal.
+/// 49(4), 2011): each iterate is `P(z_k)` corrected by the combination of
+/// the last `depth` differences of `P` whose residuals best cancel the
+/// latest one (least squares, in the scaled coordinates `z_k / scale_k`).
+///
+/// Near a fixed point `P` is nearly linear, and the acceleration then
+/// behaves like GMRES on `(∂P/∂z − I) δ = −(P(z) − z)`: the slow directions
+/// that take the plain iteration `log(tol) / log(μ)` evaluations (60 for a
+/// multiplier of 0.8) are taken in a few, without the `2d` evaluations a
+/// difference Jacobian costs. No Jacobian comes out, so it suits a caller
+/// that needs the point only.
+///
+/// `map(z)` returns `P(z)`, or `None` where the map is undefined. Converged
+/// when the scaled residual at an evaluated iterate is at most `tol`; that
+/// iterate is returned. Gives up after `max_evals` evaluations.
+pub fn anderson(
+    z0: &[f64],
+    scale: &[f64],
+    tol: f64,
+    depth: usize,
+    max_evals: u32,
+    mut map: impl FnMut(&[f64]) -> Option<Vec<f64>>,
+) -> Result<AndersonPoint, NewtonError> {
+    let n = z0.len();
+    let scaled = |v: &[f64]| DVector::from_iterator(n, (0..n).map(|k| v[k] / scale[k]));
+    let mut z = z0.to_vec();
+    // The latest `depth + 1` values of P and residuals, scaled, oldest first.
+    let mut gs: Vec<DVector<f64>> = Vec::with_capacity(depth + 1);
+    let mut fs: Vec<DVector<f64>> = Vec::with_capacity(depth + 1);
+    let mut residual = f64::INFINITY;
+    for it in 0..max_evals {
+        let pz = map(&z).ok_or(NewtonError::MapFailed(it))?;
+        residual = scaled_max(&pz, &z, scale);
+        if residual <= tol {
+            return Ok(AndersonPoint {
+                z,
+                residual,
+                evaluations: it + 1,
+            });
+        }
+        let g = scaled(&pz);
+        let f = &g - scaled(&z);
+        if gs.len() == depth + 1 {
+            gs.remove(0);
+            fs.remove(0);
+        }
+        gs.push(g);
+        fs.push(f);
+        let m = gs.len() - 1;
+        let (g, f) = (&gs[m], &fs[m]);
+        let next = if m == 0 {
+            g.clone()
+        } else {
+            let df = DMatrix::from_fn(n, m, |r, c| fs[c + 1][r] - fs[c][r]);
+            let dg = DMatrix::from_fn(n, m, |r, c| gs[c + 1][r] - gs[c][r]);
+            let svd = df.svd(true, true);
+            let cut = 1e-12 * svd.singular_values.max();
+            match svd.solve(f, cut) {
+                Ok(gamma) => g - dg * gamma,
+                Err(_) => g.clone(),
+            }
+        };
+        z = (0..n).map(|k| next[k] * scale[k]).collect();
+    }
+    Err(NewtonError::NoConvergence {
+        iterations: max_evals,
         residual,
     })
 }
@@ -209,6 +292,76 @@ mod tests {
         assert_eq!(mu.len(), 2);
         assert!((mu[0].re - (0.1 + d) / 2.0).abs() < 1e-14);
         assert!((mu[1].re - (0.1 - d) / 2.0).abs() < 1e-14);
+    }
+
+    /// An affine contraction in 8 dimensions, not normal, whose slowest
+    /// multipliers are 0.9 ± 0.39 i (modulus 0.98) and 0.97: the plain
+    /// iteration needs about `log(1e-10) / log(0.98)` ≈ 1100 evaluations to
+    /// reach the tolerance; accelerated to depth 6 it reaches the exact
+    /// fixed point `(I − A)⁻¹ b` in under 30, as GMRES would.
+    #[test]
+    fn anderson_finds_the_fixed_point_of_a_slow_affine_map() {
+        let n = 8;
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        a[(0, 0)] = 0.97;
+        a[(1, 1)] = 0.9;
+        a[(1, 2)] = 0.3;
+        a[(2, 1)] = -0.3;
+        a[(2, 2)] = 0.9;
+        for k in 3..n {
+            a[(k, k)] = 0.5 - 0.1 * k as f64;
+        }
+        // Couplings above the diagonal: not normal.
+        for r in 0..n - 1 {
+            a[(r, r + 1)] += 0.2;
+        }
+        let b = DVector::from_fn(n, |k, _| 1.0 + k as f64);
+        let scale: Vec<f64> = (0..n).map(|k| 1.0 + 0.5 * k as f64).collect();
+        let map = |z: &[f64]| {
+            let p = &a * DVector::from_column_slice(z) + &b;
+            Some(p.iter().copied().collect())
+        };
+        let tol = 1e-10;
+        let fp = anderson(&vec![0.0; n], &scale, tol, 6, 60, map).unwrap();
+        assert!(fp.evaluations < 30, "{}", fp.evaluations);
+        assert!(fp.residual <= tol);
+        let exact = (DMatrix::identity(n, n) - &a).lu().solve(&b).unwrap();
+        // The residual bounds the error by ‖(I − A)⁻¹‖∞, 65 here (NumPy).
+        for k in 0..n {
+            assert!((fp.z[k] - exact[k]).abs() <= 100.0 * tol * scale[k], "{k}");
+        }
+    }
+
+    /// The logistic map's fixed point `1 − 1/r` (multiplier `2 − r` = −0.9
+    /// at r = 2.9, so the plain iteration alternates about it and takes some
+    /// 260 evaluations to 1e-12): a nonlinear map, found in under 20.
+    #[test]
+    fn anderson_finds_the_logistic_maps_fixed_point() {
+        let r = 2.9;
+        let fp = anderson(&[0.5], &[1.0], 1e-12, 3, 40, |z| {
+            Some(vec![r * z[0] * (1.0 - z[0])])
+        })
+        .unwrap();
+        assert!((fp.z[0] - (1.0 - 1.0 / r)).abs() < 1e-11);
+        assert!(fp.evaluations < 20, "{}", fp.evaluations);
+    }
+
+    /// A map that fails at the third iterate, and one that cannot converge
+    /// (`z + 1`), are reported as such.
+    #[test]
+    fn anderson_reports_a_failing_map_and_no_convergence() {
+        let mut calls = 0;
+        let e = anderson(&[0.0], &[1.0], 1e-12, 3, 10, |z| {
+            calls += 1;
+            (calls < 3).then(|| vec![0.5 * z[0] + 1.0])
+        })
+        .unwrap_err();
+        assert_eq!(e, NewtonError::MapFailed(2));
+        let e = anderson(&[0.0], &[1.0], 1e-12, 3, 10, |z| Some(vec![z[0] + 1.0])).unwrap_err();
+        assert!(
+            matches!(e, NewtonError::NoConvergence { iterations: 10, .. }),
+            "{e:?}"
+        );
     }
 
     #[test]
