@@ -27,3 +27,19 @@ pub(crate) fn two_touchdown_skip() -> crate::Params {
     )
     .unwrap()
 }
+
+/// A paper-scan skip (sample 432 of configs/paper.toml): period 2, largest
+/// multiplier 0.91, where differences of the step map at 1e-6 of each
+/// coordinate's scale moved with the orbit (the GSN's and the Floquet
+/// column's tests).
+pub(crate) fn skip_432() -> crate::Params {
+    crate::Params::new(
+        0.8,
+        4.64144786287552,
+        0.35886037492879574,
+        2.4815671963934145,
+        0.09085796739355585,
+        0.22783845008492798,
+    )
+    .unwrap()
+}
