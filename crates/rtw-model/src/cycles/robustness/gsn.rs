@@ -149,7 +149,7 @@ pub(crate) fn settled_cycle(
 
 /// The step map on the flat slope, the last section crossing of the flat
 /// run continued from `y` until a period shows on its crossings, and that
-/// period: where [`settled_cycle`] starts its chord.
+/// period: where [`settled_cycle`] starts its search for the orbit.
 fn settled_period(
     params: &Params,
     options: &Options,
@@ -206,17 +206,24 @@ fn orbit_near(
         cycle.newton_tol,
         ANDERSON_DEPTH,
         ANDERSON_EVALS,
-        |z| {
-            let p = start.with_coords(z);
-            let q = map.iterate(&p, n).ok()?.last()?.to;
-            (q.modes == p.modes).then(|| q.coords())
-        },
+        |z| power_in_modes(map, &start.with_coords(z), n).map(|q| q.coords()),
     );
     let z = match accelerated {
         Ok(fixed) => fixed.z,
         Err(_) => chord_orbit(map, start, n, cycle)?,
     };
-    let p = start.with_coords(&z);
+    orbit_through(map, start.with_coords(&z), n)
+}
+
+/// `Pⁿ(p)`, where the map is defined and comes back to `p`'s mode pattern
+/// (the fixed-point iterations compare the two coordinate by coordinate).
+fn power_in_modes(map: &StepMap, p: &SectionPoint, n: usize) -> Option<SectionPoint> {
+    let q = map.iterate(p, n).ok()?.last()?.to;
+    (q.modes == p.modes).then_some(q)
+}
+
+/// The period-`n` orbit through `p`: `p` and its next `n − 1` images.
+fn orbit_through(map: &StepMap, p: SectionPoint, n: usize) -> Option<Vec<SectionPoint>> {
     let mut orbit = vec![p];
     orbit.extend(map.iterate(&p, n - 1).ok()?.iter().map(|s| s.to));
     Some(orbit)
@@ -271,13 +278,7 @@ fn chord_from(
     let chord = limit::newton(from, &scale, cycle.newton_tol, cycle.newton_max_iter, |z| {
         let p = start.with_coords(z);
         let (q, j) = match &kept {
-            Some(j) => {
-                let q = map.iterate(&p, n).ok()?.last()?.to;
-                if q.modes != p.modes {
-                    return None;
-                }
-                (q, j.clone())
-            }
+            Some(j) => (power_in_modes(map, &p, n)?, j.clone()),
             None => {
                 let (q, j) = map.power_with_jacobian(&p, n, cycle.jacobian)?;
                 kept = Some(j.clone());
@@ -623,9 +624,7 @@ mod tests {
             "{first:?}"
         );
         let z = chord_orbit(&map, &start, n, &cycle).expect("the chord started again");
-        let p = start.with_coords(&z);
-        let mut orbit = vec![p];
-        orbit.extend(map.iterate(&p, n - 1).unwrap().iter().map(|s| s.to));
+        let orbit = orbit_through(&map, start.with_coords(&z), n).unwrap();
         assert_newtons(&map, &start, &orbit);
     }
 
@@ -644,14 +643,7 @@ mod tests {
             for k in [0, 3, 7] {
                 let mut z = orbit[0].coords();
                 z[k] += 1e-9 * scale[k];
-                let p = orbit[0].with_coords(&z);
-                let mut moved = vec![p];
-                moved.extend(
-                    map.iterate(&p, orbit.len() - 1)
-                        .unwrap()
-                        .iter()
-                        .map(|s| s.to),
-                );
+                let moved = orbit_through(&map, orbit[0].with_coords(&z), orbit.len()).unwrap();
                 let there = gsn(&map, &moved, EDGE_AHEAD);
                 assert!((there - at).abs() <= 1e-3 * at, "{k}: {at} {there}");
             }
