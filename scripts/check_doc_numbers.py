@@ -413,7 +413,7 @@ PINS: list[Pin] = [
     Pin(ROB, rf"took {N} s for the map and {N} s for the paper scan on 2 shared cores",
         [Rx(RS, rf"^- map scan \(all measures\): {N} s", "Run times"),
          Rx(RS, rf"^- paper scan \(all measures\): {N} s", "Run times")]),
-    Pin(ROB, rf"Spearman {N} \[{N}, {N}\] on the {N} with a finite MFPT, Somers' D {N} \[{N}, {N}\] on the {N} with "
+    Pin(ROB, rf"Spearman {N} \[{N}, {P}\] on the {N} with a finite MFPT, Somers' D {N} \[{N}, {N}\] on the {N} with "
         rf"the censored ones, and in the Tobit model {N} decades less MFPT per standard deviation of its rank "
         rf"\(likelihood ratio p = {N}\)",
         [paper_row("GSN"), Rx(RS, rf"^Spearman's ρ on the {N} gaits", PRC),
@@ -453,7 +453,7 @@ PINS: list[Pin] = [
          Rx(RS, rf"^\| MFPT \| {N} finite", PW),
          Rx(RS, rf"^\| MFPT \| \d+ finite \({N} of them with mfpt_hi = ∞, the interval open above\); {N} with no fall", PW),
          Rx(RS, rf"trials fall for {N} of them", PAPER), Rx(RS, rf"^No fall was counted for {N} stable gaits", PAPER)]),
-    Pin(ROB, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[124, 166\]",
+    Pin(ROB, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[119, 215\]",
         [Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "Fig. 7(a)"})]),
     Pin("docs/design.md", rf"the `robust` search found at that slope \(a walker, α {N} and f_n {N} Hz\)",
         [Cell(ATLAS, "Winners", "α", {"role": "robust-1"}), Cell(ATLAS, "Winners", "f_n", {"role": "robust-1"})]),

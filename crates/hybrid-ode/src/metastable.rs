@@ -13,14 +13,16 @@
 //! score, but an interval open above once the MFPT is beyond about a fifth
 //! of the walker-steps):
 //!
-//! 1. **The QSD and the set near the gait.** A Fleming–Viot cloud of
-//!    `replicas` walkers steps from the start for `burn_in` steps, then
-//!    `sample_steps` more; a walker that falls restarts as a copy of one
-//!    that did not, drawn uniformly, so the cloud samples the walker
-//!    conditioned on not falling. The set `A` near the gait is the states
-//!    whose [`Walker::score`] is at most the `quantile` of the sampled
-//!    scores; the sampled states in `A` are where excursions start (the
-//!    steps until the walker is back in `A` or has fallen).
+//! 1. **The QSD and the set near the gait.** A Fleming–Viot cloud steps
+//!    from the start for `burn_in` steps, then `sample_steps` more; a
+//!    walker that falls restarts as a copy of one that did not, drawn
+//!    uniformly, so the cloud samples the walker conditioned on not
+//!    falling. It has `replicas` walkers; through the burn-in it may have
+//!    fewer (`burn_in_copies`), each going on as that many copies. The set
+//!    `A` near the gait is the states whose [`Walker::score`] is at most
+//!    the `quantile` of the sampled scores; the sampled states in `A` are
+//!    where excursions start (the steps until the walker is back in `A` or
+//!    has fallen).
 //! 2. **The rare fall, by adaptive multilevel splitting** (AMS; Cérou and
 //!    Guyader, Stoch. Anal. Appl. 25(2) 2007; in the discrete-time form
 //!    whose estimate is unbiased, Bréhier, Gazeau, Goudenège, Lelièvre and
@@ -52,8 +54,8 @@
 //! interval of the count ([`poisson95`]) and the batches' Student-t
 //! interval (which sees falls that come in clusters).
 //!
-//! **Cost.** Part 1 costs `replicas × (burn_in + sample_steps)` steps per
-//! batch; AMS
+//! **Cost.** Part 1 costs `(replicas / burn_in_copies) × burn_in +
+//! replicas × sample_steps` steps per batch; AMS
 //! about `N log(1/q)` replacements, each an excursion's remainder. So the
 //! cost grows as `log(MFPT)`, where plain Monte Carlo to the fall grows as
 //! the MFPT. Every step is counted in [`Mfpt::steps`].
@@ -141,6 +143,12 @@ pub struct MfptOptions {
     pub sample_steps: usize,
     /// Walkers of the Fleming–Viot cloud, and excursions per splitting (`N`).
     pub replicas: usize,
+    /// Each walker of the burn-in goes on as this many copies:
+    /// `replicas / burn_in_copies` walkers take the burn-in (its Monte Carlo
+    /// of the transient), and the sampled steps' cloud of `replicas` is
+    /// their copies, which part at their next step (each meets randomness
+    /// of its own). 1: every walker takes the burn-in.
+    pub burn_in_copies: usize,
     /// The set near the gait holds the sampled states scoring at most this
     /// quantile of the sampled scores.
     pub quantile: f64,
@@ -161,6 +169,7 @@ impl Default for MfptOptions {
             burn_in: 20,
             sample_steps: 50,
             replicas: 100,
+            burn_in_copies: 1,
             quantile: 0.5,
             max_excursion: 1000,
             max_rounds: 60,
@@ -246,6 +255,10 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
         o.batches >= 2 && o.replicas >= 2 && o.sample_steps >= 1,
         "mfpt: at least 2 batches, 2 replicas and 1 sampled step"
     );
+    assert!(
+        o.burn_in_copies >= 1 && o.replicas / o.burn_in_copies >= 2,
+        "mfpt: burn_in_copies at least 1, and at least 2 walkers through the burn-in"
+    );
     let mut steps = 0u64;
     let batches: Vec<Batch> = (0..o.batches)
         .map(|b| {
@@ -316,8 +329,13 @@ fn batch<W: Walker>(
 ) -> Batch {
     // Part 1: the Fleming–Viot cloud. Until a walker first falls it is an
     // independent walk from the start (plain Monte Carlo of the burn-in).
-    let mut cloud: Vec<W::State> = vec![start.clone(); o.replicas];
-    let mut original = vec![true; o.replicas];
+    let walkers = if o.burn_in > 0 {
+        o.replicas / o.burn_in_copies
+    } else {
+        o.replicas
+    };
+    let mut cloud: Vec<W::State> = vec![start.clone(); walkers];
+    let mut original = vec![true; walkers];
     let mut head = 0.0;
     let mut falls = 0u64;
     // Only the splitting keeps the sampled states.
@@ -327,7 +345,12 @@ fn batch<W: Walker>(
     };
     let mut sample: Vec<(f64, W::State)> = Vec::with_capacity(kept);
     for i in 0..o.burn_in + o.sample_steps {
-        *steps += o.replicas as u64;
+        if i == o.burn_in && cloud.len() < o.replicas {
+            cloud = (0..o.replicas)
+                .map(|j| cloud[j % walkers].clone())
+                .collect();
+        }
+        *steps += cloud.len() as u64;
         let next: Vec<Option<W::State>> = cloud.iter().map(|s| walker.step(s, rng)).collect();
         if i < o.burn_in {
             for (orig, s) in original.iter_mut().zip(&next) {
@@ -356,7 +379,7 @@ fn batch<W: Walker>(
             sample.extend(cloud.iter().map(|s| (walker.score(s), s.clone())));
         }
     }
-    let n = o.replicas as f64;
+    let n = walkers as f64;
     let head = head / n;
     let alive = original.iter().filter(|&&a| a).count() as f64 / n;
     if o.fall_rate == FallRate::Counting {
@@ -643,6 +666,18 @@ mod tests {
         assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
         assert!(hi / lo < 1.5, "{m:?}");
         assert_eq!(m.steps, 6 * 40 * (20 + 500));
+        // Half the walkers through the burn-in: the same counted
+        // walker-steps, the burn-in's at half the cost, and still the
+        // chain's rate.
+        let halved = MfptOptions {
+            burn_in_copies: 2,
+            ..o
+        };
+        let m = mfpt(&l, &6, &halved);
+        let (lo, hi) = m.qsd_interval();
+        assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
+        assert!(hi / lo < 1.5, "{m:?}");
+        assert_eq!(m.steps, 6 * (20 * 20 + 40 * 500));
         // MFPT about 1.45e6, far beyond its 120 000 counted walker-steps:
         // no fall or few, and the interval is a lower bound that holds.
         let l = Ladder { up: 0.7, top: 14 };

@@ -247,7 +247,8 @@ fn the_estimator_s_mfpt_is_the_chain_s_at_three_roughnesses() {
 
 /// The counting estimator (the RTW's: the Fleming–Viot cloud's falls over
 /// its walker-steps) at the same three roughnesses, at the RTW's budget
-/// per batch (32 walkers, 60 + 60 steps) with more batches: the interval
+/// per batch (16 walkers through 60 steps of burn-in, their 32 copies
+/// through 60 counted steps) with more batches: the interval
 /// holds the chain's MFPT; closed where the falls are many (σ = 0.3,
 /// 0.08), a lower bound of the right order where the MFPT is far beyond
 /// the walker-steps counted (σ = 0.04, 1.5e5 against 38 400).
@@ -260,6 +261,7 @@ fn counting_the_falls_gives_the_chain_s_mfpt_or_a_lower_bound_of_it() {
             seed: 1,
             batches: 20,
             replicas: 32,
+            burn_in_copies: 2,
             burn_in: 60,
             sample_steps: 60,
             ..MfptOptions::default()
