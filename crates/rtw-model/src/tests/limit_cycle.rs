@@ -85,22 +85,9 @@ fn newton_fixed_point_returns_to_itself() {
 /// before: up to 1.5e-3 off at Fig. 7(a), 2.3e-3 at skip 432.)
 #[test]
 fn the_floquet_column_does_not_move_with_the_orbit() {
-    let options = Options::default();
     let cycle = crate::cycles::map::limit_cycle::run_cycle_options();
     for params in [Params::fig7a(), super::skip_432()] {
-        // The orbit the scan's run settles into (as the GSN finds it).
-        let (map, orbit) =
-            crate::run::recorder::with_end_state(&params, &options, |_, rtw, y, _| {
-                crate::cycles::robustness::gsn::settled_cycle(
-                    &params,
-                    &options,
-                    rtw,
-                    y,
-                    &mut hybrid_ode::Work::default(),
-                )
-            })
-            .flatten()
-            .expect("a limit cycle");
+        let (map, orbit) = crate::cycles::robustness::gsn::tests::settled_orbit(&params);
         let n = orbit.len();
         let radius = |z: &[f64], jacobian| {
             let p = orbit[0].with_coords(z);

@@ -31,15 +31,23 @@ pub fn cycle_of_run(params: &Params, options: &Options, log: &SectionLog) -> Opt
     })
 }
 
+/// Difference step of the step map's Jacobian in a finished run's analysis
+/// (the Floquet column, and the GSN's `A` and `C`), relative to each
+/// coordinate's scale: 1e-4, not 1e-6, because what limits the Jacobian is
+/// the perturbed steps' own error divided by the step. At 1e-6 the largest
+/// multiplier moved by up to 2.3e-3, and a skip's GSN by up to 2.5 %, when
+/// the orbit moved by 1e-9 of its scale
+/// (`tests::limit_cycle::the_floquet_column_does_not_move_with_the_orbit`,
+/// `gsn::tests::the_gsn_does_not_move_with_the_orbit_within_its_tolerance`).
+pub(crate) const DIFFERENCE_REL: f64 = 1e-4;
+
 /// The settings of the limit-cycle analysis of a finished run.
 pub(crate) fn run_cycle_options() -> CycleOptions {
-    // Differences: 4× cheaper than the variational equations here. Steps of
-    // 1e-4 of each coordinate's scale, not 1e-6: what limits the Jacobian is
-    // the perturbed steps' own error divided by the step, and at 1e-6 the
-    // largest multiplier moved by up to 2.3e-3 when the orbit moved by 1e-9
-    // of its scale (tests::limit_cycle::the_floquet_column_does_not_move_with_the_orbit).
+    // Differences: 4× cheaper than the variational equations here.
     CycleOptions {
-        jacobian: Jacobian::Differences { rel: 1e-4 },
+        jacobian: Jacobian::Differences {
+            rel: DIFFERENCE_REL,
+        },
         ..CycleOptions::default()
     }
 }

@@ -37,7 +37,7 @@
 //! fails or lands in another mode pattern (the map is not smooth there), or
 //! when the response does not decay within [`MAX_STEPS`] steps.
 
-use crate::cycles::map::limit_cycle::{RUN_PERIOD_TOL, run_cycle_options};
+use crate::cycles::map::limit_cycle::{DIFFERENCE_REL, RUN_PERIOD_TOL, run_cycle_options};
 use crate::cycles::map::section::{SectionLog, SectionPoint};
 use crate::cycles::map::stepmap::{CycleOptions, Step, StepMap};
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
@@ -51,7 +51,8 @@ use hybrid_ode::{Flow, Observer, Work, limit, run};
 
 use nalgebra::{DMatrix, DVector};
 
-/// Difference step of the state coordinates, relative to each one's scale.
+/// Difference step of the state coordinates, relative to each one's scale:
+/// the Floquet column's ([`DIFFERENCE_REL`]).
 ///
 /// What limits `A` is the perturbed steps' own error (the integration's and
 /// the located events'), divided by the step, and the norm sums powers of
@@ -60,7 +61,7 @@ use nalgebra::{DMatrix, DVector};
 /// up to 2.5 %. At 1e-4 that error is a hundredth, and the truncation error, of
 /// order `rel²`, smaller still (`tests::the_gsn_does_not_move_with_the_orbit_within_its_tolerance`).
 /// A map that changes its mode pattern within the step has no norm (NaN).
-pub const STATE_REL: f64 = 1e-4;
+pub const STATE_REL: f64 = DIFFERENCE_REL;
 /// The floor drop of the one-sided differences, in rod lengths.
 pub const FLOOR_STEP: f64 = 1e-5;
 /// The impulse response is summed until the state deviation has fallen by
@@ -463,13 +464,25 @@ pub(crate) fn gsn(map: &StepMap, orbit: &[SectionPoint], edge_ahead: f64) -> f64
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::run::recorder::with_end_state;
     /// The step's edge ahead of the front-most grounded foot, in rod
     /// lengths: the largest step down's (run/robustness.rs).
     const EDGE_AHEAD: f64 = 0.05;
     use hybrid_ode::EngineOptions;
+
+    /// The step map and periodic orbit the stable gait `params` settles into at
+    /// the default model, as the GSN finds it after a scan's run (the tests of
+    /// the GSN and of the Floquet column).
+    pub(crate) fn settled_orbit(params: &Params) -> (StepMap, Vec<SectionPoint>) {
+        let options = Options::default();
+        with_end_state(params, &options, |_, rtw, y, flat| {
+            assert!(flat.label.is_stable(), "{:?}", flat.label);
+            settled_cycle(params, &options, rtw, y, &mut Work::default()).expect("a limit cycle")
+        })
+        .expect("the star stands")
+    }
 
     /// The new-foot landings (time, landing foot's `x`) of `rtw` run from `y`
     /// for at most `t_max` seconds or `until` landings, or `None` if it fails.
@@ -484,16 +497,6 @@ mod tests {
         let (mut rtw, mut y) = (rtw.clone(), *y);
         run(&mut rtw, &mut obs, 0.0, &mut y, t_max, engine);
         (!obs.failed).then_some(obs.landings)
-    }
-
-    /// The step map and periodic orbit of the gait `params` settles into.
-    fn settled(params: &Params) -> (StepMap, Vec<SectionPoint>) {
-        let options = Options::default();
-        with_end_state(params, &options, |_, rtw, y, flat| {
-            assert!(flat.label.is_stable(), "{:?}", flat.label);
-            settled_cycle(params, &options, rtw, y, &mut Work::default()).expect("a limit cycle")
-        })
-        .expect("the star stands")
     }
 
     /// The full simulation's response to a real step of `eps` rod lengths
@@ -530,7 +533,7 @@ mod tests {
 
     #[test]
     fn the_gsn_is_the_full_simulations_response_to_a_small_step() {
-        let (map, orbit) = settled(&Params::fig7a());
+        let (map, orbit) = settled_orbit(&Params::fig7a());
         let phases: Vec<_> = (0..orbit.len())
             .map(|j| linearise(&map, &orbit, j, EDGE_AHEAD).unwrap())
             .collect();
@@ -637,7 +640,7 @@ mod tests {
     #[test]
     fn the_gsn_does_not_move_with_the_orbit_within_its_tolerance() {
         for params in [crate::tests::skip_432(), Params::fig7a()] {
-            let (map, orbit) = settled(&params);
+            let (map, orbit) = settled_orbit(&params);
             let at = gsn(&map, &orbit, EDGE_AHEAD);
             let scale = map.coord_scale(&orbit[0]);
             for k in [0, 3, 7] {
