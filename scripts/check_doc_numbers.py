@@ -227,6 +227,7 @@ PRC = "Paper: rank correlation with the MFPT"
 MRC = "Map: rank correlation with the MFPT"
 PT = "Paper: censored regression of log10 MFPT (Tobit)"
 PTEN = "Paper: what sets the designs with no fall counted apart"
+PSEEDS = "Paper: over terrain seeds"
 # Where a results file prints a correlation or slope with its sign (`+0.06`).
 P = r"\+?" + N
 
@@ -413,6 +414,23 @@ PINS: list[Pin] = [
     Pin(ROB, rf"took {N} s for the map and {N} s for the paper scan on 2 shared cores",
         [Rx(RS, rf"^- map scan \(all measures\): {N} s", "Run times"),
          Rx(RS, rf"^- paper scan \(all measures\): {N} s", "Run times")]),
+    # The study over three draws of the ground (results/robustness/summary.md, "Paper: over terrain seeds").
+    Pin(ROB, rf"and both again at the two other seeds {N} s",
+        [Rx(RS, rf"^- both scans at 2 more terrain seeds \(steps to fall and mfpt\): {N} s", "Run times")]),
+    Pin(ROB, rf"the GSN's Somers' D is {N} ± {N} and its Tobit slope {N} ± {N} decades per SD; Floquet max \|μ\|'s "
+        rf"Somers' D \+{N} ± {N}, `step_down_max`'s \+{N} ± {N} and `step_down_h50`'s \+{N} ± {N}\.",
+        [Rx(RS, rf"^\| GSN \| (?:[^|p]*censored\) \| ){{3}}{P} ± {N} \|$", PSEEDS),
+         Rx(RS, rf"^\| GSN \| (?:[^|]*, p [^|]*\| ){{3}}{P} ± {N} \|$", PSEEDS)]
+        + [Rx(RS, rf"^\| {m} \| (?:[^|p]*censored\) \| ){{3}}{P} ± {N} \|$", PSEEDS)
+           for m in (r"Floquet max \\\|μ\\\|", r"step_down_max \(m\)", r"step_down_h50 \(m\)")]),
+    Pin(ROB, rf"the GSN's is {N}, {N} and {N} \({N} ± {N}\)",
+        [Rx(RS, rf"^\| GSN \| {P} \[[^|]*\(\d+ gaits\) \| {P} \[[^|]*\(\d+ gaits\) \| {P} \[[^|]*\(\d+ gaits\) \| "
+            rf"{P} ± {N} \|$", PSEEDS)]),
+    Pin(ROB, rf"seed 100's MFPTs correlate {P} with them over the {N} gaits finite at both, {N} of the {N} inside seed 0's "
+        rf"interval, and whether any fall is counted agrees for {N} of the {N} stable gaits; seed 200's {P} over {N}, "
+        rf"{N} of the {N}, and {N} of the {N}",
+        [Rx(RS, rf"^\| seed {s} against seed 0 \| {P} \({N}\) \| {N} of {N} \| {N} of {N} \|$", PSEEDS)
+         for s in (100, 200)]),
     Pin(ROB, rf"Spearman {N} \[{N}, {P}\] on the {N} with a finite MFPT, Somers' D {N} \[{N}, {N}\] on the {N} with "
         rf"the censored ones, and in the Tobit model {N} decades less MFPT per standard deviation of its rank "
         rf"\(likelihood ratio p = {N}\)",

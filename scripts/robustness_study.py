@@ -4,6 +4,10 @@ and the paper scan, every stable gait with Floquet max |μ|, the gait
 sensitivity norm, step_down_max, step_down_h50, the Monte Carlo steps to
 fall and the mean first-passage time (MFPT).
 
+The same scans with the rough slope drawn from other terrain seeds, in
+OUT/seed*/map and OUT/seed*/paper (only their MFPT and steps to fall are
+read), give each statistic of the MFPT at each draw and its spread.
+
 Writes OUT/summary.md (every number docs/robustness.md quotes from the
 study), OUT/map-mfpt.png, OUT/map.png and OUT/paper.png.
 
@@ -13,6 +17,7 @@ study), OUT/map-mfpt.png, OUT/map.png and OUT/paper.png.
 from __future__ import annotations
 
 import argparse
+import copy
 import tomllib
 from pathlib import Path
 
@@ -25,7 +30,7 @@ import pyarrow as pa  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 from scipy import stats  # noqa: E402
 
-from robustness_stats import BOOTSTRAP, SEED, somers_d_ci, spearman_ci, tobit  # noqa: E402
+from robustness_stats import BOOTSTRAP, SEED, somers_d_ci, spearman, spearman_ci, tobit  # noqa: E402
 
 STABLE = ("skip", "walk", "crawl")
 # The cheap measures set against the MFPT, in the order of the tables.
@@ -38,6 +43,9 @@ MEASURES = [
 INPUTS = [("rho", "ρ (kg/m)"), ("alpha", "α"), ("fn", "f_n (Hz)"), ("zeta", "ζ"), ("phi", "φ (rad)")]
 TOP = 10
 FIG7A = {"phi": 0.15, "fn": 3.269}
+# The columns that depend on the draw of the rough slope (terrain.seed);
+# the other measures are taken on flat ground or a step.
+DRAWN = ("mfpt", "mfpt_lo", "mfpt_hi", "fall_rate", "steps_to_fall", "steps_to_fall_censored")
 HOW = (
     "`./scripts/robustness_study.sh` (the scans and this page) or "
     "`./scripts/robustness_study.sh --analyse-only` (this page from the committed scans)"
@@ -124,6 +132,26 @@ def undefined_table(scan: Scan) -> list[str]:
     return out
 
 
+def fmt_ci(r: float, lo: float, hi: float) -> str:
+    """A correlation and its interval; a dash where too few gaits define it
+    (fewer than three, or no spread in a rank)."""
+    if not np.isfinite(r):
+        return "—"
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        return f"{r:+.2f}"
+    return f"{r:+.2f} [{lo:+.2f}, {hi:+.2f}]"
+
+
+def rho_ci(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
+    """Spearman's ρ with its interval, undefined (nan) below three gaits."""
+    return spearman_ci(x, y) if len(x) >= 3 else (np.nan, np.nan, np.nan)
+
+
+def d_ci(x: np.ndarray, y: np.ndarray, cens: np.ndarray) -> tuple[float, float, float]:
+    """Somers' D with its interval, undefined (nan) below three gaits."""
+    return somers_d_ci(x, y, cens) if len(x) >= 3 else (np.nan, np.nan, np.nan)
+
+
 def common(scan: Scan, finite: bool = True) -> np.ndarray:
     """The stable gaits where every measure is defined and the MFPT is
     finite (or, with `finite` false, also ∞: no fall seen)."""
@@ -149,14 +177,10 @@ def correlation_table(scan: Scan) -> list[str]:
         "|---|---|---|---|",
     ]
     for col, name in MEASURES + [("steps_to_fall", "steps_to_fall (Monte Carlo, censored at max_steps)")]:
-        x = scan.s(col)[ok]
-        r, lo, hi = spearman_ci(x, y)
-        d, dlo, dhi = somers_d_ci(scan.s(col)[okc], yc, cens)
         own = np.isfinite(scan.s(col)) & np.isfinite(scan.s("mfpt"))
-        r2, lo2, hi2 = spearman_ci(scan.s(col)[own], scan.s("mfpt")[own])
         out.append(
-            f"| {name} | {r:+.2f} [{lo:+.2f}, {hi:+.2f}] | {d:+.2f} [{dlo:+.2f}, {dhi:+.2f}] | "
-            f"{r2:+.2f} [{lo2:+.2f}, {hi2:+.2f}] ({own.sum()}) |"
+            f"| {name} | {fmt_ci(*rho_ci(scan.s(col)[ok], y))} | {fmt_ci(*d_ci(scan.s(col)[okc], yc, cens))} | "
+            f"{fmt_ci(*rho_ci(scan.s(col)[own], scan.s('mfpt')[own]))} ({own.sum()}) |"
         )
     return out
 
@@ -167,6 +191,13 @@ def tobit_table(scan: Scan) -> list[str]:
     ok = common(scan, finite=False)
     yc, cens = (v[ok] for v in scan.censored_mfpt())
     y = np.log10(yc)
+    if (~cens).sum() < 3:
+        # With (almost) every gait censored the likelihood has no maximum:
+        # any slope fits gaits that are only known to walk beyond a bound.
+        return [
+            f"{ok.sum()} gaits (as Somers' D), {cens.sum()} right-censored: too few MFPTs are observed for the "
+            "model (it needs at least 3 uncensored), so it is not fitted."
+        ]
     out = [
         f"{ok.sum()} gaits (as Somers' D), {cens.sum()} right-censored:",
         "",
@@ -215,8 +246,7 @@ def inputs_table(scan: Scan) -> list[str]:
     for col, name in INPUTS:
         if np.ptp(scan.s(col)) == 0:
             continue
-        r, lo, hi = spearman_ci(scan.s(col)[ok], scan.s("mfpt")[ok])
-        out.append(f"| {name} | {r:+.2f} [{lo:+.2f}, {hi:+.2f}] |")
+        out.append(f"| {name} | {fmt_ci(*rho_ci(scan.s(col)[ok], scan.s('mfpt')[ok]))} |")
     return out
 
 
@@ -397,7 +427,115 @@ def paper_figure(scan: Scan, png: Path) -> None:
     plt.close(fig)
 
 
-def section(scan: Scan, title: str, short: str, top: bool) -> list[str]:
+def terrain_seed(scan: Scan) -> int:
+    return int(scan.config.get("simulation", {}).get("terrain", {}).get("seed", 0))
+
+
+def redrawn(base: Scan, other: Scan, where: Path) -> Scan:
+    """`base` with the drawn columns of `other`: the same scan with the rough
+    slope drawn from another terrain.seed, whose flat gaits are base's."""
+    same = np.array_equal(base.cols["sample_id"], other.cols["sample_id"]) and np.array_equal(
+        base.outcome, other.outcome
+    )
+    if other.partial or not same:
+        raise SystemExit(f"{where}: not the same finished samples and gaits as the scan at terrain.seed 0")
+    s = copy.copy(base)
+    s.cols = {**base.cols, **{c: other.cols[c] for c in DRAWN}}
+    return s
+
+
+def mean_sd(v: list[float]) -> str:
+    v = np.array([x for x in v if np.isfinite(x)])
+    if len(v) < 2:
+        return "—"
+    return f"{v.mean():+.2f} ± {v.std(ddof=1):.2f}"
+
+
+def seeds_lines(short: str, draws: list[tuple[int, Scan]]) -> list[str]:
+    """The study's statistics on the rough slope drawn from each terrain
+    seed, and their spread over the seeds: how far the answer moves with
+    the draw of the ground."""
+    k = len(draws)
+    head = " | ".join(f"seed {s}" for s, _ in draws)
+    rule = "|---|" + "---|" * (k + 1)
+    rows = []
+    for s, sc in draws:
+        m = sc.s("mfpt")
+        rows.append(
+            f"{np.isfinite(m).sum()} finite ({sc.open_above().sum()} open above), {sc.no_fall().sum()} no fall"
+        )
+    out = [
+        f"### {short}: over terrain seeds",
+        "",
+        f"The MFPT and the Monte Carlo steps to fall on the rough slope drawn from each of {k} terrain seeds "
+        "(`--set terrain.seed=S`; the other measures do not depend on the draw): each statistic at each "
+        "seed with its bootstrap interval over the gaits (and how many gaits), and the mean ± SD of the "
+        f"{k} point estimates, the spread that comes from the draw of the ground.",
+        "",
+        f"| | {head} |",
+        "|---|" + "---|" * k,
+        f"| MFPT (stable gaits) | {' | '.join(rows)} |",
+    ]
+
+    def table(title: str, stat, rows=MEASURES + [("steps_to_fall", "steps_to_fall")]) -> list[str]:
+        """One statistic of each measure at each seed, and its spread; a
+        sentence instead where no seed defines it."""
+        body, defined = [], False
+        for col, name in rows:
+            vals, pts, gaits = zip(*(stat(sc, col) for _, sc in draws))
+            defined |= bool(np.isfinite(pts).any())
+            cells = " | ".join(f"{v} ({g})" for v, g in zip(vals, gaits))
+            body.append(f"| {name} | {cells} | {mean_sd(list(pts))} |")
+        if not defined:
+            at = "; ".join(f"seed {s}: {g}" for (s, _), g in zip(draws, gaits))
+            return ["", f"{title}: undefined at every seed ({at})."]
+        return ["", f"| {title} | {head} | mean ± SD |", rule, *body]
+
+    def rho(sc: Scan, col: str) -> tuple[str, float]:
+        ok = common(sc)
+        r = rho_ci(sc.s(col)[ok], sc.s("mfpt")[ok])
+        return fmt_ci(*r), r[0], f"{ok.sum()} gaits"
+
+    def somers(sc: Scan, col: str) -> tuple[str, float]:
+        ok = common(sc, finite=False)
+        yc, cens = (v[ok] for v in sc.censored_mfpt())
+        r = d_ci(sc.s(col)[ok], yc, cens)
+        return fmt_ci(*r), r[0], f"{ok.sum()} gaits, {cens.sum()} censored"
+
+    out += table("Spearman ρ with MFPT, every measure defined and the MFPT finite", rho)
+    def tobit_slope(sc: Scan, col: str) -> tuple[str, float, str]:
+        ok = common(sc, finite=False)
+        yc, cens = (v[ok] for v in sc.censored_mfpt())
+        if (~cens).sum() < 3:
+            return "—", np.nan, f"{ok.sum()} gaits, {cens.sum()} censored"
+        f = tobit([sc.s(col)[ok]], np.log10(yc), cens)
+        return f"{f['beta'][0]:+.2f} [{f['lo'][0]:+.2f}, {f['hi'][0]:+.2f}], p {f['p']:.2g}", f["beta"][0], (
+            f"{ok.sum()} gaits, {cens.sum()} censored"
+        )
+
+    out += table("Somers' D, censored, every measure defined", somers)
+    out += table("Tobit slope alone (decades of MFPT per SD), every measure defined", tobit_slope, MEASURES)
+    base, s0 = draws[0][1], draws[0][0]
+    out += [
+        "",
+        f"| the same gait on two draws | Spearman ρ of the MFPTs (gaits finite at both) | inside seed {s0}'s "
+        "interval | no fall seen at both or at neither (stable gaits) |",
+        "|---|---|---|---|",
+    ]
+    for s, sc in draws[1:]:
+        a, b = base.s("mfpt"), sc.s("mfpt")
+        both = np.isfinite(a) & np.isfinite(b)
+        inside = both & (b >= base.s("mfpt_lo")) & (b <= base.s("mfpt_hi"))
+        nof = base.no_fall() == sc.no_fall()
+        r = spearman(a[both], b[both]) if both.sum() >= 3 else np.nan
+        out.append(
+            f"| seed {s} against seed {s0} | {fmt_ci(r, np.nan, np.nan)} ({both.sum()}) | {inside.sum()} of "
+            f"{both.sum()} | {nof.sum()} of {len(a)} |"
+        )
+    return out
+
+
+def section(scan: Scan, title: str, short: str, top: bool, draws: list[tuple[int, Scan]]) -> list[str]:
     n = int(scan.stable.sum())
     ids = scan.cols["sample_id"]
     lines = [f"## {title}: {n} stable gaits of {scan.total}", ""]
@@ -437,6 +575,8 @@ def section(scan: Scan, title: str, short: str, top: bool) -> list[str]:
         "",
         *inputs_table(scan),
     ]
+    if len(draws) > 1:
+        lines += ["", *seeds_lines(short, draws)]
     if top:
         lines += ["", f"### {short}: the {TOP} designs with the largest lower end of the MFPT", "", *top_table(scan), ""]
         lines += [f"### {short}: what sets the designs with no fall counted apart", ""]
@@ -450,10 +590,27 @@ def main() -> None:
     ap.add_argument("--times", default="", help="what the shell script timed, as NAME=TEXT;...")
     a = ap.parse_args()
     mp, pp = Scan(a.out / "map" / "samples.parquet"), Scan(a.out / "paper" / "samples.parquet")
+    draws = {}
+    for short, base in (("map", mp), ("paper", pp)):
+        draws[short] = [(terrain_seed(base), base)]
+        # The same scans with the rough slope drawn from other seeds, the
+        # drawn columns only (scripts/robustness_study.sh: seed*/).
+        for d in sorted(a.out.glob("seed*/"), key=lambda d: d.name):
+            path = d / short / "samples.parquet"
+            other = Scan(path)
+            draws[short].append((terrain_seed(other), redrawn(base, other, path)))
     map_mfpt_figure(mp, a.out / "map-mfpt.png")
     map_figure(mp, a.out / "map.png")
     paper_figure(pp, a.out / "paper.png")
     sig = setting(pp, "robustness.sigma", "0.01")
+    more = [s for s, _ in draws["paper"][1:]]
+    redraws = (
+        f" Both again on the rough slope drawn from terrain.seed {', '.join(map(str, more))} (results/robustness/"
+        f"seed{more[0]}/ …), with `--set terrain.seed=S --set robustness.steps_to_fall=true --set "
+        "robustness.mfpt=true`: the statistics of the MFPT with their spread over the draws."
+        if more
+        else ""
+    )
     lines = [
         "# The robustness study",
         "",
@@ -465,7 +622,8 @@ def main() -> None:
         f"(results/robustness/map/, results/robustness/paper/). Roughness σ = {sig} m "
         f"(robustness.sigma), patches {setting(pp, 'terrain.patch', '0.8')} m, steps to fall over "
         f"{setting(pp, 'robustness.trials', '20')} trials censored at "
-        f"{setting(pp, 'robustness.max_steps', '100')} steps. Model: `{pp.variant}`.",
+        f"{setting(pp, 'robustness.max_steps', '100')} steps. Model: `{pp.variant}`."
+        + redraws,
         "",
         "Statistics (scripts/robustness_stats.py): Spearman's ρ with ties averaged, on the MFPT's point "
         "estimate; Somers' D = 2C − 1 from Harrell's concordance C, which treats an MFPT whose interval is "
@@ -475,9 +633,12 @@ def main() -> None:
         "P(log10 MFPT ≥ log10 mfpt_lo); zᵢ is the measure's van der Waerden normal score (unit SD), "
         "slopes with 200 bootstrap resamples, the likelihood ratio against the intercept alone.",
         "",
-        *section(pp, "The paper scan (configs/paper.toml)", "Paper", top=True),
+        *section(pp, "The paper scan (configs/paper.toml)", "Paper", top=True, draws=draws["paper"]),
         "",
-        *section(mp, "The (φ, f_n) map around Fig. 7(a) (configs/robustness-map.toml)", "Map", top=False),
+        *section(
+            mp, "The (φ, f_n) map around Fig. 7(a) (configs/robustness-map.toml)", "Map", top=False,
+            draws=draws["map"],
+        ),
     ]
     if a.times:
         lines += ["", "## Run times (this machine, as the script ran)", ""]

@@ -8,11 +8,16 @@
 #   the gait sensitivity norm, the Monte Carlo steps to fall and the mean
 #   first-passage time (mfpt, mfpt_lo, mfpt_hi, fall_rate), every
 #   robustness key at its default (σ = robustness.sigma, 1 cm; 0.8 m patches);
-#   3. scripts/robustness_study.py: the rank correlations on the gaits where
+#   3. both again with the rough slope drawn from terrain seeds 100 and 200
+#      (only the drawn columns: steps_to_fall and mfpt; seed100/, seed200/),
+#      so that every statistic of the MFPT comes with its spread over draws
+#      (trial i of steps_to_fall walks seed terrain.seed + i, so the three
+#      draws share no trial up to 100 trials);
+#   4. scripts/robustness_study.py: the rank correlations on the gaits where
 #      every measure is defined, the undefined counts, the censored model of
 #      log MFPT, the ten longest-walking designs, map-mfpt.png, map.png,
 #      paper.png and summary.md.
-# `--analyse-only` runs step 3 on the scans already in results/robustness/.
+# `--analyse-only` runs step 4 on the scans already in results/robustness/.
 # Sets up the Python venv (.venv) and builds rtw-scan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,7 +28,8 @@ mkdir -p "$out"
 if [[ "${1:-}" != "--analyse-only" ]]; then
   cargo build --release -q -p rtw-scan
   bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
-  rm -rf "$out/map" "$out/paper"
+  seeds=(100 200)
+  rm -rf "$out/map" "$out/paper" "$out"/seed*
   measures=(--set limit_cycle=true --set robustness.step_down=true
     --set robustness.step_down_h50=true --set robustness.gsn=true
     --set robustness.steps_to_fall=true --set robustness.mfpt=true)
@@ -32,8 +38,18 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
   t1=$(date +%s.%N)
   "$bin" run configs/paper.toml --out "$out/paper" --quiet "${measures[@]}" >/dev/null
   t2=$(date +%s.%N)
+  for s in "${seeds[@]}"; do
+    for c in map paper; do
+      config=configs/paper.toml
+      [[ $c == map ]] && config=configs/robustness-map.toml
+      "$bin" run "$config" --out "$out/seed$s/$c" --quiet --set terrain.seed="$s" \
+        --set robustness.steps_to_fall=true --set robustness.mfpt=true >/dev/null
+    done
+  done
+  t3=$(date +%s.%N)
   threads=$(nproc)
-  python3 -c "print(f'map_scan_(all_measures)={$t1 - $t0:.1f} s;paper_scan_(all_measures)={$t2 - $t1:.1f} s;threads=$threads')" \
+  python3 -c "print(f'map_scan_(all_measures)={$t1 - $t0:.1f} s;paper_scan_(all_measures)={$t2 - $t1:.1f} s;'
+    f'both_scans_at_${#seeds[@]}_more_terrain_seeds_(steps_to_fall_and_mfpt)={$t3 - $t2:.1f} s;threads=$threads')" \
     >"$out/times.txt"
 fi
 .venv/bin/python scripts/robustness_stats.py >/dev/null # its self-check against SciPy and a simulated sample

@@ -288,9 +288,11 @@ pub struct Options {
     /// The gait labels' thresholds.
     pub labels: LabelOptions,
     /// The ground (`terrain.*`, [`TerrainOptions`]): the flat slope unless a
-    /// step is set. Left out of a serialized config while flat, so a flat
-    /// config's text and hash are those it had before terrain existed.
-    #[serde(skip_serializing_if = "TerrainOptions::is_flat")]
+    /// step is set. Left out of a serialized config while it is the default
+    /// flat slope, so such a config's text and hash are those it had before
+    /// terrain existed; a flat slope with another seed or patch is written,
+    /// because the robustness measures' rough slope is drawn from them.
+    #[serde(skip_serializing_if = "TerrainOptions::is_default_flat")]
     pub terrain: TerrainOptions,
     /// The robustness measures a stable run adds (`robustness.*`,
     /// [`RobustnessOptions`]); all off by default, and then left out of a

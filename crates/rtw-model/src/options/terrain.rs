@@ -137,6 +137,13 @@ impl TerrainOptions {
         self.step_height == 0.0 && self.roughness == 0.0
     }
 
+    /// Is this the default flat slope, seed and patch included? A flat
+    /// slope with another seed or patch is another scan: the steps to fall
+    /// and the MFPT walk a rough slope drawn from them.
+    pub(crate) fn is_default_flat(&self) -> bool {
+        self.is_flat() && self.seed == 0 && self.patch == PATCH_DEFAULT
+    }
+
     /// The slope with a step down of `height` at `at` (m).
     pub(crate) fn step(height: f64, at: f64) -> Self {
         Self {

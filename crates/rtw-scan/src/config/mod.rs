@@ -581,4 +581,22 @@ phi = { uniform = [0.05, 0.3] }
         let c = parse(&text.replace("seed = 1", "seed = 2")).unwrap();
         assert_ne!(a.hash(), c.hash());
     }
+
+    #[test]
+    fn the_rough_slope_of_a_flat_scan_is_in_its_config() {
+        // The steps to fall and the MFPT of a scan on flat ground walk a rough
+        // slope drawn from terrain.seed with terrain.patch: two draws are two
+        // scans (a resume or a shard must not mix them), and the stored
+        // config must rerun the one it describes.
+        let text = "seed = 1\nsamples = 4\n[params]\nlength = 0.8\nrho = 2\nalpha = 0.1\n\
+                    fn = 3\nzeta = 0.05\nphi = 0.1\n[simulation]\nrobustness.steps_to_fall = true\n";
+        let a = parse(text).unwrap();
+        for other in ["terrain.seed = 1\n", "terrain.patch = 0.5\n"] {
+            let b = parse(&format!("{text}{other}")).unwrap();
+            assert_ne!(a.hash(), b.hash(), "{other}");
+            assert_eq!(parse(&b.to_toml()).unwrap().hash(), b.hash(), "{other}");
+        }
+        // The default ground leaves the text as it was before terrain existed.
+        assert!(!a.to_toml().contains("terrain"), "{}", a.to_toml());
+    }
 }
