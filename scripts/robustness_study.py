@@ -148,8 +148,9 @@ def rho_ci(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
 
 
 def d_ci(x: np.ndarray, y: np.ndarray, cens: np.ndarray) -> tuple[float, float, float]:
-    """Somers' D with its interval, undefined (nan) below three gaits."""
-    return somers_d_ci(x, y, cens) if len(x) >= 3 else (np.nan, np.nan, np.nan)
+    """Somers' D with its interval, undefined (nan) below three gaits or
+    with none uncensored (no pair is comparable)."""
+    return somers_d_ci(x, y, cens) if len(x) >= 3 and (~cens).any() else (np.nan, np.nan, np.nan)
 
 
 def common(scan: Scan, finite: bool = True) -> np.ndarray:
