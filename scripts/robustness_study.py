@@ -132,6 +132,11 @@ def undefined_table(scan: Scan) -> list[str]:
     return out
 
 
+# The fewest gaits a rank correlation is taken over, and the fewest
+# observed (uncensored) MFPTs the censored model is fitted to.
+MIN_GAITS = 3
+
+
 def fmt_ci(r: float, lo: float, hi: float) -> str:
     """A correlation and its interval; a dash where too few gaits define it
     (fewer than three, or no spread in a rank)."""
@@ -144,13 +149,13 @@ def fmt_ci(r: float, lo: float, hi: float) -> str:
 
 def rho_ci(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
     """Spearman's ρ with its interval, undefined (nan) below three gaits."""
-    return spearman_ci(x, y) if len(x) >= 3 else (np.nan, np.nan, np.nan)
+    return spearman_ci(x, y) if len(x) >= MIN_GAITS else (np.nan, np.nan, np.nan)
 
 
 def d_ci(x: np.ndarray, y: np.ndarray, cens: np.ndarray) -> tuple[float, float, float]:
     """Somers' D with its interval, undefined (nan) below three gaits or
     with none uncensored (no pair is comparable)."""
-    return somers_d_ci(x, y, cens) if len(x) >= 3 and (~cens).any() else (np.nan, np.nan, np.nan)
+    return somers_d_ci(x, y, cens) if len(x) >= MIN_GAITS and (~cens).any() else (np.nan, np.nan, np.nan)
 
 
 def common(scan: Scan, finite: bool = True) -> np.ndarray:
@@ -162,11 +167,18 @@ def common(scan: Scan, finite: bool = True) -> np.ndarray:
     return ok
 
 
+def censored_common(scan: Scan) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The gaits of the censored statistics (every measure defined, the
+    MFPT finite or no fall seen), and their MFPT and censoring there."""
+    ok = common(scan, finite=False)
+    yc, cens = (v[ok] for v in scan.censored_mfpt())
+    return ok, yc, cens
+
+
 def correlation_table(scan: Scan) -> list[str]:
     ok = common(scan)
     y = scan.s("mfpt")[ok]
-    okc = common(scan, finite=False)
-    yc, cens = (v[okc] for v in scan.censored_mfpt())
+    okc, yc, cens = censored_common(scan)
     out = [
         f"Spearman's ρ on the {ok.sum()} gaits where every measure is defined and the MFPT finite "
         f"({scan.open_above()[ok].sum()} of them open above, ranked by their point estimate); Somers' D on "
@@ -189,15 +201,14 @@ def correlation_table(scan: Scan) -> list[str]:
 def tobit_table(scan: Scan) -> list[str]:
     """log10 MFPT on each measure alone and on all four, right-censored at
     mfpt_lo where the interval is open above."""
-    ok = common(scan, finite=False)
-    yc, cens = (v[ok] for v in scan.censored_mfpt())
+    ok, yc, cens = censored_common(scan)
     y = np.log10(yc)
-    if (~cens).sum() < 3:
+    if (~cens).sum() < MIN_GAITS:
         # With (almost) every gait censored the likelihood has no maximum:
         # any slope fits gaits that are only known to walk beyond a bound.
         return [
             f"{ok.sum()} gaits (as Somers' D), {cens.sum()} right-censored: too few MFPTs are observed for the "
-            "model (it needs at least 3 uncensored), so it is not fitted."
+            f"model (it needs at least {MIN_GAITS} uncensored), so it is not fitted."
         ]
     out = [
         f"{ok.sum()} gaits (as Somers' D), {cens.sum()} right-censored:",
@@ -492,28 +503,27 @@ def seeds_lines(short: str, draws: list[tuple[int, Scan]]) -> list[str]:
             return ["", f"{title}: undefined at every seed ({at})."]
         return ["", f"| {title} | {head} | mean ± SD |", rule, *body]
 
-    def rho(sc: Scan, col: str) -> tuple[str, float]:
+    # Each statistic of a measure at a draw: (its cell, its point estimate,
+    # the gaits it is taken over).
+    def rho(sc: Scan, col: str) -> tuple[str, float, str]:
         ok = common(sc)
         r = rho_ci(sc.s(col)[ok], sc.s("mfpt")[ok])
         return fmt_ci(*r), r[0], f"{ok.sum()} gaits"
 
-    def somers(sc: Scan, col: str) -> tuple[str, float]:
-        ok = common(sc, finite=False)
-        yc, cens = (v[ok] for v in sc.censored_mfpt())
+    def somers(sc: Scan, col: str) -> tuple[str, float, str]:
+        ok, yc, cens = censored_common(sc)
         r = d_ci(sc.s(col)[ok], yc, cens)
         return fmt_ci(*r), r[0], f"{ok.sum()} gaits, {cens.sum()} censored"
 
-    out += table("Spearman ρ with MFPT, every measure defined and the MFPT finite", rho)
     def tobit_slope(sc: Scan, col: str) -> tuple[str, float, str]:
-        ok = common(sc, finite=False)
-        yc, cens = (v[ok] for v in sc.censored_mfpt())
-        if (~cens).sum() < 3:
-            return "—", np.nan, f"{ok.sum()} gaits, {cens.sum()} censored"
+        ok, yc, cens = censored_common(sc)
+        gaits = f"{ok.sum()} gaits, {cens.sum()} censored"
+        if (~cens).sum() < MIN_GAITS:
+            return "—", np.nan, gaits
         f = tobit([sc.s(col)[ok]], np.log10(yc), cens)
-        return f"{f['beta'][0]:+.2f} [{f['lo'][0]:+.2f}, {f['hi'][0]:+.2f}], p {f['p']:.2g}", f["beta"][0], (
-            f"{ok.sum()} gaits, {cens.sum()} censored"
-        )
+        return f"{f['beta'][0]:+.2f} [{f['lo'][0]:+.2f}, {f['hi'][0]:+.2f}], p {f['p']:.2g}", f["beta"][0], gaits
 
+    out += table("Spearman ρ with MFPT, every measure defined and the MFPT finite", rho)
     out += table("Somers' D, censored, every measure defined", somers)
     out += table("Tobit slope alone (decades of MFPT per SD), every measure defined", tobit_slope, MEASURES)
     base, s0 = draws[0][1], draws[0][0]
@@ -528,7 +538,7 @@ def seeds_lines(short: str, draws: list[tuple[int, Scan]]) -> list[str]:
         both = np.isfinite(a) & np.isfinite(b)
         inside = both & (b >= base.s("mfpt_lo")) & (b <= base.s("mfpt_hi"))
         nof = base.no_fall() == sc.no_fall()
-        r = spearman(a[both], b[both]) if both.sum() >= 3 else np.nan
+        r = spearman(a[both], b[both]) if both.sum() >= MIN_GAITS else np.nan
         out.append(
             f"| seed {s} against seed {s0} | {fmt_ci(r, np.nan, np.nan)} ({both.sum()}) | {inside.sum()} of "
             f"{both.sum()} | {nof.sum()} of {len(a)} |"
