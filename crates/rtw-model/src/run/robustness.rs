@@ -74,32 +74,57 @@ impl SettledGait<'_> {
         (o, o.label == self.flat.label)
     }
 
-    /// The runs over a step of `h` with its edge at each of the
-    /// [`H50_POSITIONS`] positions over one step of the gait (module doc).
-    pub(crate) fn over_every_phase(&self, h: f64, work: &mut Work) -> Vec<(Outcome, bool)> {
+    /// Edge position `i` of `step_down_h50` (m): stratum `i` of
+    /// [`H50_POSITIONS`] of a uniform position over one step of the gait
+    /// (module doc).
+    fn phase_edge(&self, i: usize) -> f64 {
         let step = self.flat.speed.abs() / self.flat.f_w_newfoot;
         let step = if step.is_finite() && step > 0.0 {
             step
         } else {
             self.phys.length
         };
+        let u = (i as f64 + 0.5) / H50_POSITIONS as f64;
+        self.front + u * step
+    }
+
+    /// The runs over a step of `h` with its edge at each of the
+    /// [`H50_POSITIONS`] positions over one step of the gait (module doc):
+    /// the survival curve and its failures by kind, which the tests print.
+    #[cfg(test)]
+    pub(crate) fn over_every_phase(&self, h: f64, work: &mut Work) -> Vec<(Outcome, bool)> {
         (0..H50_POSITIONS)
-            .map(|i| {
-                let u = (i as f64 + 0.5) / H50_POSITIONS as f64;
-                self.meet_step_at(h, self.front + u * step, work)
-            })
+            .map(|i| self.meet_step_at(h, self.phase_edge(i), work))
             .collect()
     }
 
-    /// Do at least half of the edge positions survive a step of `h`?
+    /// Do at least half of the edge positions survive a step of `h`? The
+    /// runs stop once the answer is known (ten survivors, or eleven
+    /// failures, of twenty): a height the gait survives at every phase
+    /// costs half the runs, with the same answer.
     fn half_survive(&self, h: f64, work: &mut Work) -> bool {
-        let survived = self
-            .over_every_phase(h, work)
-            .iter()
-            .filter(|(_, ok)| *ok)
-            .count();
-        2 * survived >= H50_POSITIONS
+        at_least_half(H50_POSITIONS, |i| {
+            self.meet_step_at(h, self.phase_edge(i), work).1
+        })
     }
+}
+
+/// Whether at least half of `n` trials pass (`2 · passed ≥ n`), asking
+/// `passes(i)` for `i = 0, 1, …` only until the answer is known.
+fn at_least_half(n: usize, mut passes: impl FnMut(usize) -> bool) -> bool {
+    let need = n.div_ceil(2);
+    let (mut passed, mut failed) = (0, 0);
+    for i in 0..n {
+        if passed >= need || failed > n - need {
+            break;
+        }
+        if passes(i) {
+            passed += 1;
+        } else {
+            failed += 1;
+        }
+    }
+    passed >= need
 }
 
 /// The largest survivable step down of a settled gait and the failing
@@ -268,5 +293,49 @@ mod tests {
             );
         })
         .unwrap();
+    }
+
+    /// `step_down_h50`'s test of a height stops its runs once the answer is
+    /// known; the answer must be the full count's, `2 · passed ≥ n`, for
+    /// every pattern of passes, and no trial may be asked for after it is
+    /// known (nor one skipped before). Every pattern of up to 12 trials,
+    /// and random ones of the 20 positions.
+    #[test]
+    fn half_of_the_trials_stops_when_the_answer_is_known_and_gives_the_full_counts() {
+        let check = |n: usize, pattern: &dyn Fn(usize) -> bool| {
+            let full = 2 * (0..n).filter(|&i| pattern(i)).count() >= n;
+            let mut asked = Vec::new();
+            let answer = at_least_half(n, |i| {
+                asked.push(i);
+                pattern(i)
+            });
+            assert_eq!(answer, full, "n = {n}");
+            assert_eq!(asked, (0..asked.len()).collect::<Vec<_>>(), "n = {n}");
+            // Known after the trials asked, and not before the last of them.
+            let known = |k: usize| {
+                let passed = (0..k).filter(|&i| pattern(i)).count();
+                2 * passed >= n || 2 * (passed + n - k) < n
+            };
+            assert!(
+                known(asked.len()),
+                "n = {n}: stopped before the answer was known"
+            );
+            if let Some(k) = asked.len().checked_sub(1) {
+                assert!(
+                    !known(k),
+                    "n = {n}: asked trial {k} after the answer was known"
+                );
+            }
+        };
+        for n in 0..=12 {
+            for bits in 0u32..1 << n {
+                check(n, &|i| bits >> i & 1 == 1);
+            }
+        }
+        let mut rng = hybrid_ode::metastable::Rng::new(7);
+        for _ in 0..2000 {
+            let bits = rng.next_u64();
+            check(H50_POSITIONS, &|i| bits >> i & 1 == 1);
+        }
     }
 }
