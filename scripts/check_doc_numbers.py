@@ -484,6 +484,8 @@ PINS: list[Pin] = [
         rf"widest-walk winner {N} and {N}",
         [Cell(ATLAS, "Winners", "on fresh draws (seeds 100, 200)", {"role": role}, part=k)
          for role in ("robust-1", "Fig. 7(a)", "widest-walk-1") for k in (0, 1)]),
+    Pin("docs/design.md", rf"the robust winner as rounded there goes {N} steps at seed 0",
+        [Rx(ATLAS, rf"the robust winner as rounded in the table: {N} steps at seed 0")]),
     # The MFPT over the map (results/robustness/map/samples.parquet and the summary).
     Pin(ROB, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and {N} steps, closed intervals, the Monte Carlo's {N} and {N} "
         rf"beside them\)\. {N} of the {N} stable gaits have no fall counted, across the whole map; {N} have a finite "
