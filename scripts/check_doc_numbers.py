@@ -210,6 +210,7 @@ MCOST = "results/robustness/mfpt_cost-robustness-map.txt"
 PCOST = "results/robustness/mfpt_cost.txt"
 BASIN = "results/robustness/basin_fig7a.txt"
 ATLAS = "results/design/atlas.md"
+CURVE = "results/robustness/step_down_curve.md"
 RB = "results/refine/summary.md"
 MAPS = "results/robustness/map/samples.parquet"
 BASIN_ROWS = "results/robustness/basin_fig7a.parquet"
@@ -486,6 +487,12 @@ PINS: list[Pin] = [
          for role in ("robust-1", "Fig. 7(a)", "widest-walk-1") for k in (0, 1)]),
     Pin("docs/design.md", rf"the robust winner as rounded there goes {N} steps at seed 0",
         [Rx(ATLAS, rf"the robust winner as rounded in the table: {N} steps at seed 0")]),
+    # The survival curves of scripts/step_down_curve.py.
+    Pin(ROB, rf"the crawl's `step_down_max`, {N} m, is a fifth of its `step_down_h50`",
+        [Rx(CURVE, rf"^`step_down_max` {N} m \(the best phase\)", "crawl")]),
+    Pin(ROB, rf"the skip's `step_down_h50`, {N} m, is where its ladder first found `S < ½` \(at a height just "
+        rf"above it\), though `S` is {N} at 0\.2 m",
+        [Rx(CURVE, rf"`step_down_h50` {N} m;", "skip"), Rx(CURVE, rf"^\| 0\.2000 \| [\d.]+ \| {N} \|", "skip")]),
     # The MFPT over the map (results/robustness/map/samples.parquet and the summary).
     Pin(ROB, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and {N} steps, closed intervals, the Monte Carlo's {N} and {N} "
         rf"beside them\)\. {N} of the {N} stable gaits have no fall counted, across the whole map; {N} have a finite "

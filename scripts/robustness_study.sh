@@ -13,11 +13,14 @@
 #      so that every statistic of the MFPT comes with its spread over draws
 #      (trial i of steps_to_fall walks seed terrain.seed + i, so the three
 #      draws share no trial up to 100 trials);
-#   4. scripts/robustness_study.py: the rank correlations on the gaits where
+#   4. scripts/step_down_curve.py: the survival curves of the Fig. 7(a)
+#      walk and of a walk, a skip and a crawl of the paper scan
+#      (step_down_curve.md);
+#   5. scripts/robustness_study.py: the rank correlations on the gaits where
 #      every measure is defined, the undefined counts, the censored model of
 #      log MFPT, the ten longest-walking designs, map-mfpt.png, map.png,
 #      paper.png and summary.md.
-# `--analyse-only` runs step 4 on the scans already in results/robustness/.
+# `--analyse-only` runs step 5 on the scans already in results/robustness/.
 # Sets up the Python venv (.venv) and builds rtw-scan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -47,6 +50,8 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
     done
   done
   t3=$(date +%s.%N)
+  # The survival curves of four gaits at stated heights (a few seconds).
+  .venv/bin/python scripts/step_down_curve.py "$out/step_down_curve.md" >/dev/null
   threads=$(nproc)
   python3 -c "print(f'map_scan_(all_measures)={$t1 - $t0:.1f} s;paper_scan_(all_measures)={$t2 - $t1:.1f} s;'
     f'both_scans_at_${#seeds[@]}_more_terrain_seeds_(steps_to_fall_and_mfpt)={$t3 - $t2:.1f} s;threads=$threads')" \

@@ -37,9 +37,10 @@ use hybrid_ode::EngineOptions;
 pub use hybrid_ode::Method;
 use serde::{Deserialize, Serialize};
 
+mod robustness;
 mod seed;
 mod terrain;
-use terrain::STEP_HEIGHT_MAX;
+pub use robustness::RobustnessOptions;
 pub use terrain::TerrainOptions;
 pub(crate) use terrain::{Face, Over};
 
@@ -454,129 +455,6 @@ impl Options {
             ));
         }
         Ok(())
-    }
-}
-
-/// Which robustness measures a stable run adds (the keys `robustness.*` of a
-/// config's `[simulation]` table). All off by default; the Monte Carlo
-/// settings are left out of a serialized config while at their defaults.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RobustnessOptions {
-    /// Measure the largest survivable step down (`step_down_max`).
-    pub step_down: bool,
-    /// Measure the step down over every phase (`step_down_h50`): the height
-    /// half of the edge positions over one step survive.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub step_down_h50: bool,
-    /// Compute the gait sensitivity norm (`gsn`, docs/robustness.md).
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub gsn: bool,
-    /// Measure the mean steps to fall on a rough slope (`steps_to_fall`,
-    /// docs/robustness.md): Monte Carlo over seeded rough grounds.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub steps_to_fall: bool,
-    /// The rough ground's roughness for `steps_to_fall` (m, the standard
-    /// deviation of a patch's height; its patches are `terrain.patch` long
-    /// and trial `i` has seed `terrain.seed + i`).
-    #[serde(skip_serializing_if = "is_default_sigma")]
-    pub sigma: f64,
-    /// Monte Carlo trials (seeded grounds) per gait.
-    #[serde(skip_serializing_if = "is_default_trials")]
-    pub trials: u32,
-    /// A trial that has not fallen after this many steps of the flat gait
-    /// is censored there.
-    #[serde(skip_serializing_if = "is_default_max_steps")]
-    pub max_steps: u32,
-    /// Estimate the mean first-passage time on the rough slope of
-    /// roughness `sigma` (`mfpt`, `mfpt_lo`, `mfpt_hi`, `fall_rate`,
-    /// docs/robustness.md): uncensored, from the falls of a Fleming–Viot
-    /// cloud.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub mfpt: bool,
-}
-
-/// The default roughness of `steps_to_fall` (m).
-pub(crate) const SIGMA_DEFAULT: f64 = 0.01;
-const TRIALS_DEFAULT: u32 = 20;
-const MAX_STEPS_DEFAULT: u32 = 100;
-/// Most steps of the flat gait the rough-slope trials of one sample may
-/// take together (`trials × max_steps`).
-const MAX_TRIAL_STEPS: f64 = 1e7;
-
-fn is_default_sigma(v: &f64) -> bool {
-    *v == SIGMA_DEFAULT
-}
-
-fn is_default_trials(v: &u32) -> bool {
-    *v == TRIALS_DEFAULT
-}
-
-fn is_default_max_steps(v: &u32) -> bool {
-    *v == MAX_STEPS_DEFAULT
-}
-
-impl Default for RobustnessOptions {
-    fn default() -> Self {
-        Self {
-            step_down: false,
-            step_down_h50: false,
-            gsn: false,
-            steps_to_fall: false,
-            sigma: SIGMA_DEFAULT,
-            trials: TRIALS_DEFAULT,
-            max_steps: MAX_STEPS_DEFAULT,
-            mfpt: false,
-        }
-    }
-}
-
-impl RobustnessOptions {
-    /// Is every measure off?
-    pub(crate) fn is_off(&self) -> bool {
-        !self.step_down && !self.step_down_h50 && !self.gsn && !self.steps_to_fall && !self.mfpt
-    }
-
-    /// Refuses a roughness outside [0, 1000] m (or 0 with `mfpt`: on the
-    /// flat slope the walker never falls), fewer than 2 or more than
-    /// 100000 trials, a censoring step count outside [1, 1000000], or more
-    /// than 10⁷ steps in all (`trials × max_steps`).
-    pub fn validate(&self) -> Result<(), ParamError> {
-        if self.mfpt {
-            check(
-                "robustness.sigma",
-                self.sigma,
-                "in (0, 1000] with robustness.mfpt (m, standard deviation of a patch's height)",
-                |v| v > 0.0 && v <= STEP_HEIGHT_MAX,
-            )?;
-        }
-        check(
-            "robustness.sigma",
-            self.sigma,
-            "in [0, 1000] (m, standard deviation of a patch's height)",
-            |v| (0.0..=STEP_HEIGHT_MAX).contains(&v),
-        )?;
-        check(
-            "robustness.trials",
-            f64::from(self.trials),
-            "in [2, 100000]",
-            |v| (2.0..=1e5).contains(&v),
-        )?;
-        check(
-            "robustness.max_steps",
-            f64::from(self.max_steps),
-            "in [1, 1000000] (steps of the flat gait)",
-            |v| (1.0..=1e6).contains(&v),
-        )?;
-        // Each in range, the two together can still ask for 10¹¹ steps a
-        // sample: the Monte Carlo's cost, bounded before anything runs.
-        check(
-            "robustness.trials × robustness.max_steps",
-            f64::from(self.trials) * f64::from(self.max_steps),
-            "at most 10000000 (steps simulated a sample: 15 to 50 minutes of one core at 90 to \
-             290 µs a step; split a larger study over several scans of other terrain.seed)",
-            |v| v <= MAX_TRIAL_STEPS,
-        )
     }
 }
 

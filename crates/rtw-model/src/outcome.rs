@@ -497,6 +497,10 @@ pub struct Robustness {
     /// edge positions over one step of the gait survive, see the module doc
     /// of `run::robustness`.
     pub step_down_h50: Option<f64>,
+    /// A step down of `robustness.step_down_at` met at every phase of the
+    /// gait: the shares of the edge positions that survive it and that
+    /// fail by each kind.
+    pub step_down_at: Option<PhaseSurvival>,
     /// The gait sensitivity norm (dimensionless; NaN where it cannot be
     /// computed), docs/robustness.md.
     pub gsn: Option<f64>,
@@ -508,6 +512,24 @@ pub struct Robustness {
     pub mfpt: Option<MeanFirstPassage>,
     /// Integrator work of the measures' runs.
     pub work: hybrid_ode::Work,
+}
+
+/// A point of a gait's survival curve: a step down of one height met with
+/// its edge at each of the `step_down_h50` positions over one step of the
+/// gait (docs/robustness.md), and the share of them that ended each way.
+/// The shares add up to 1.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PhaseSurvival {
+    /// Survived: the flat gait's label over the run's last ten steps.
+    pub survived: f64,
+    /// Collapsed (a rod down or the centre of mass too low).
+    pub collapse: f64,
+    /// Stalled (the star stopped rolling).
+    pub stall: f64,
+    /// Walked on in another gait (or was still hopping ten steps after).
+    pub other_gait: f64,
+    /// Failed numerically (a defect, never a physical outcome).
+    pub diverged: f64,
 }
 
 /// Steps to fall on seeded rough slopes (docs/robustness.md): over the

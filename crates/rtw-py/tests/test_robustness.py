@@ -28,6 +28,21 @@ def test_a_bad_step_raises_naming_the_key() -> None:
     assert step.t_end != rtw.simulate(*FIG7A).t_end
 
 
+def test_a_point_of_the_survival_curve_and_its_errors() -> None:
+    # The same keys and values as `rtw-scan simulate --set
+    # robustness.step_down_at=H --json`, and its error naming the key.
+    keys = ["step_down_survival", "step_down_collapse", "step_down_stall", "step_down_other_gait",
+            "step_down_diverged"]
+    assert not set(keys) & set(rtw.simulate(*FIG7A).to_dict())
+    out = rtw.simulate(*FIG7A, options={"robustness.step_down_at": 3.0}).to_dict()
+    shares = [out[k] for k in keys]
+    assert sum(shares) == pytest.approx(1.0, abs=1e-12)
+    assert all(round(20 * s) == 20 * s for s in shares)
+    assert out["step_down_survival"] < 1.0
+    with pytest.raises(ValueError, match=r"robustness\.step_down_at: -1 is invalid: must be in \[0, 1000\]"):
+        rtw.simulate(*FIG7A, options={"robustness.step_down_at": -1})
+
+
 SMALL_SCAN = """seed = 3
 samples = 6
 [params]

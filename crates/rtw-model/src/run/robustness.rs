@@ -41,7 +41,7 @@
 
 use crate::options::Options;
 use crate::options::TerrainOptions;
-use crate::outcome::{Outcome, Robustness};
+use crate::outcome::{Label, Outcome, PhaseSurvival, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::N;
@@ -96,6 +96,32 @@ impl SettledGait<'_> {
         (0..H50_POSITIONS)
             .map(|i| self.meet_step_at(h, self.phase_edge(i), work))
             .collect()
+    }
+
+    /// How the gait meets a step of `h` at each of the [`H50_POSITIONS`]
+    /// edge positions over one step: the shares that survive and that fail
+    /// by each kind (a point of the survival curve).
+    pub(crate) fn survival_at(&self, h: f64, work: &mut Work) -> PhaseSurvival {
+        // Counted, then divided: each share is exactly k / 20.
+        let mut count = [0u32; 5];
+        for i in 0..H50_POSITIONS {
+            let (o, survived) = self.meet_step_at(h, self.phase_edge(i), work);
+            count[match o.label {
+                _ if survived => 0,
+                Label::Collapse => 1,
+                Label::Stall => 2,
+                Label::Skip | Label::Walk | Label::Crawl => 3,
+                Label::Diverged => 4,
+            }] += 1;
+        }
+        let share = |k: usize| f64::from(count[k]) / H50_POSITIONS as f64;
+        PhaseSurvival {
+            survived: share(0),
+            collapse: share(1),
+            stall: share(2),
+            other_gait: share(3),
+            diverged: share(4),
+        }
     }
 
     /// Do at least half of the edge positions survive a step of `h`? The
@@ -182,6 +208,8 @@ pub(crate) fn measure(
         .robustness
         .step_down_h50
         .then(|| largest_height(phys.length, |h| s.half_survive(h, &mut work)).0);
+    let step_down_at = (options.robustness.step_down_at > 0.0)
+        .then(|| s.survival_at(options.robustness.step_down_at, &mut work));
     let gsn = options.robustness.gsn.then(|| {
         crate::cycles::robustness::gsn::settled_cycle(params, options, rtw, y, &mut work)
             .map_or(f64::NAN, |(map, orbit)| {
@@ -207,6 +235,7 @@ pub(crate) fn measure(
         step_down_max,
         step_down_fail,
         step_down_h50,
+        step_down_at,
         gsn,
         steps_to_fall,
         mfpt,
@@ -260,7 +289,6 @@ pub(crate) fn every_phase(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::outcome::Label;
     use crate::run::recorder::with_end_state;
     use crate::run::settled::SURVIVAL_STEPS;
 

@@ -77,7 +77,9 @@ class Outcome:
     wall_time_s: float
     # Only when the options ask for them (docs/robustness.md), after the
     # columns: step_down_max (robustness.step_down), step_down_h50
-    # (robustness.step_down_h50), gsn (robustness.gsn), steps_to_fall…
+    # (robustness.step_down_h50), step_down_survival, step_down_collapse,
+    # step_down_stall, step_down_other_gait and step_down_diverged
+    # (robustness.step_down_at), gsn (robustness.gsn), steps_to_fall…
     # (robustness.steps_to_fall), mfpt, mfpt_lo, mfpt_hi and fall_rate
     # (robustness.mfpt), all float | None; read them with getattr or to_dict().
     def to_dict(self) -> dict[str, Any]: ...

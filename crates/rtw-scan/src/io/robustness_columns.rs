@@ -49,7 +49,7 @@ pub(crate) fn append<R>(
             .iter()
             .map(|r| {
                 measured(r)
-                    .and_then(|m| (c.get)(&m))
+                    .and_then(|m| c.value(&m))
                     // A measure that could not be computed (NaN) is null;
                     // an infinite one is measured (an MFPT whose interval
                     // is open above) and stays infinite.

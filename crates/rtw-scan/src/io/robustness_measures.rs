@@ -4,7 +4,7 @@
 //! (`scan_rows`) both list them from here, in this order.
 
 use rtw_model::options::RobustnessOptions;
-use rtw_model::outcome::Robustness;
+use rtw_model::outcome::{PhaseSurvival, Robustness};
 
 /// One optional column: the measure that switches it on and its value.
 pub(crate) struct RobustnessColumn {
@@ -12,7 +12,25 @@ pub(crate) struct RobustnessColumn {
     pub(crate) unit: &'static str,
     pub(crate) description: &'static str,
     pub(crate) on: fn(&RobustnessOptions) -> bool,
-    pub(crate) get: fn(&Robustness) -> Option<f64>,
+    get: Get,
+}
+
+/// Where a column's value is.
+enum Get {
+    /// A measure of the gait.
+    Measure(fn(&Robustness) -> Option<f64>),
+    /// A share of the survival curve's point, `robustness.step_down_at`.
+    Phase(fn(&PhaseSurvival) -> f64),
+}
+
+impl RobustnessColumn {
+    /// The column's value in `m`, if measured.
+    pub(crate) fn value(&self, m: &Robustness) -> Option<f64> {
+        match self.get {
+            Get::Measure(get) => get(m),
+            Get::Phase(share) => m.step_down_at.as_ref().map(share),
+        }
+    }
 }
 
 /// Every optional column, in the order they follow the scan's columns.
@@ -24,7 +42,7 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
                       ahead of its front-most grounded tip (docs/robustness.md); null unless \
                       stable; only with robustness.step_down = true",
         on: |r| r.step_down,
-        get: |m| m.step_down_max,
+        get: Get::Measure(|m| m.step_down_max),
     },
     RobustnessColumn {
         name: "step_down_h50",
@@ -33,8 +51,35 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
                       spread over one step of the gait survive (docs/robustness.md); null unless \
                       stable; only with robustness.step_down_h50 = true",
         on: |r| r.step_down_h50,
-        get: |m| m.step_down_h50,
+        get: Get::Measure(|m| m.step_down_h50),
     },
+    phase_share(
+        "step_down_survival",
+        "share of 20 edge positions spread over one step of the gait at which it survives a step \
+         down of robustness.step_down_at m (a point of its survival curve, docs/robustness.md); \
+         null unless stable; only with robustness.step_down_at > 0",
+        |p| p.survived,
+    ),
+    phase_share(
+        "step_down_collapse",
+        "share of the 20 edge positions at which that step down ends in a collapse",
+        |p| p.collapse,
+    ),
+    phase_share(
+        "step_down_stall",
+        "share of the 20 edge positions at which that step down ends in a stall",
+        |p| p.stall,
+    ),
+    phase_share(
+        "step_down_other_gait",
+        "share of the 20 edge positions from which the gait walks on in another gait",
+        |p| p.other_gait,
+    ),
+    phase_share(
+        "step_down_diverged",
+        "share of the 20 edge positions at which the run over that step down fails numerically",
+        |p| p.diverged,
+    ),
     RobustnessColumn {
         name: "gsn",
         unit: "1",
@@ -42,7 +87,7 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
                       floor drop (docs/robustness.md); null unless stable or where it cannot be \
                       computed; only with robustness.gsn = true",
         on: |r| r.gsn,
-        get: |m| m.gsn,
+        get: Get::Measure(|m| m.gsn),
     },
     RobustnessColumn {
         name: "steps_to_fall",
@@ -52,7 +97,7 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
                       steps_to_fall_censored > 0; docs/robustness.md); null unless stable; only \
                       with robustness.steps_to_fall = true",
         on: |r| r.steps_to_fall,
-        get: |m| m.steps_to_fall.map(|s| s.mean),
+        get: Get::Measure(|m| m.steps_to_fall.map(|s| s.mean)),
     },
     RobustnessColumn {
         name: "steps_to_fall_lo",
@@ -60,21 +105,21 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
         description: "lower end of the 95 % interval of steps_to_fall (normal, mean - 1.96 \
                       standard errors, cut at 0)",
         on: |r| r.steps_to_fall,
-        get: |m| m.steps_to_fall.map(|s| s.lo),
+        get: Get::Measure(|m| m.steps_to_fall.map(|s| s.lo)),
     },
     RobustnessColumn {
         name: "steps_to_fall_hi",
         unit: "steps",
         description: "upper end of the 95 % interval of steps_to_fall",
         on: |r| r.steps_to_fall,
-        get: |m| m.steps_to_fall.map(|s| s.hi),
+        get: Get::Measure(|m| m.steps_to_fall.map(|s| s.hi)),
     },
     RobustnessColumn {
         name: "steps_to_fall_censored",
         unit: "trials",
         description: "how many of the robustness.trials Monte Carlo trials never fell",
         on: |r| r.steps_to_fall,
-        get: |m| m.steps_to_fall.map(|s| f64::from(s.censored)),
+        get: Get::Measure(|m| m.steps_to_fall.map(|s| f64::from(s.censored))),
     },
     RobustnessColumn {
         name: "mfpt",
@@ -85,14 +130,14 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
                       counted; docs/robustness.md); null unless stable; only with \
                       robustness.mfpt = true",
         on: |r| r.mfpt,
-        get: |m| m.mfpt.map(|s| s.mfpt),
+        get: Get::Measure(|m| m.mfpt.map(|s| s.mfpt)),
     },
     RobustnessColumn {
         name: "mfpt_lo",
         unit: "steps",
         description: "lower end of the 95 % interval of mfpt",
         on: |r| r.mfpt,
-        get: |m| m.mfpt.map(|s| s.lo),
+        get: Get::Measure(|m| m.mfpt.map(|s| s.lo)),
     },
     RobustnessColumn {
         name: "mfpt_hi",
@@ -100,7 +145,7 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
         description: "upper end of the 95 % interval of mfpt (inf when the fall rate's interval \
                       reaches 0)",
         on: |r| r.mfpt,
-        get: |m| m.mfpt.map(|s| s.hi),
+        get: Get::Measure(|m| m.mfpt.map(|s| s.hi)),
     },
     RobustnessColumn {
         name: "fall_rate",
@@ -108,9 +153,25 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
         description: "per-step fall probability in the quasi-stationary regime on the rough \
                       slope, 1 / mfpt",
         on: |r| r.mfpt,
-        get: |m| m.mfpt.map(|s| s.fall_rate),
+        get: Get::Measure(|m| m.mfpt.map(|s| s.fall_rate)),
     },
 ];
+
+/// A column of the survival curve's point (`robustness.step_down_at`): one
+/// share of its [`PhaseSurvival`], picked by `share`.
+const fn phase_share(
+    name: &'static str,
+    description: &'static str,
+    share: fn(&PhaseSurvival) -> f64,
+) -> RobustnessColumn {
+    RobustnessColumn {
+        name,
+        unit: "1",
+        description,
+        on: |r| r.step_down_at > 0.0,
+        get: Get::Phase(share),
+    }
+}
 
 /// The optional columns `on` picks.
 pub(crate) fn picked(

@@ -527,7 +527,7 @@ pub(crate) fn robustness_entries(
 ) -> Vec<(&'static str, Option<f64>)> {
     let measured = r.outcome.and_then(|o| o.robustness);
     picked(|c| (c.on)(asked))
-        .map(|c| (c.name, measured.as_ref().and_then(|m| (c.get)(m))))
+        .map(|c| (c.name, measured.as_ref().and_then(|m| c.value(m))))
         .collect()
 }
 

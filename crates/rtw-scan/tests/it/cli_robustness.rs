@@ -57,6 +57,56 @@ fn step_down_h50_is_in_the_json_row_only_when_asked_for() {
     );
 }
 
+/// A point of the survival curve: its five shares only when a height is
+/// asked for, each a multiple of 1/20 adding up to 1; nothing else in the
+/// row changes; a step the walk cannot miss (twice its largest) is not
+/// survived everywhere, one it walks over at its best phase (a tenth of
+/// it) is; a negative or non-finite height is refused naming the key and
+/// its range.
+#[test]
+fn step_down_at_gives_the_shares_of_the_phases_by_outcome() {
+    const KEYS: [&str; 5] = [
+        "step_down_survival",
+        "step_down_collapse",
+        "step_down_stall",
+        "step_down_other_gait",
+        "step_down_diverged",
+    ];
+    let flat = json(&[]);
+    for k in KEYS {
+        assert!(flat.get(k).is_none(), "{flat}");
+    }
+    let top = json(&["--set", "robustness.step_down=true"])["step_down_max"]
+        .as_f64()
+        .unwrap();
+    let at = |h: f64| json(&["--set", &format!("robustness.step_down_at={h}")]);
+    let (low, high) = (at(0.1 * top), at(2.0 * top));
+    for v in [&low, &high] {
+        let shares: Vec<f64> = KEYS.iter().map(|k| v[k].as_f64().unwrap()).collect();
+        for s in &shares {
+            assert_eq!((s * 20.0).round(), s * 20.0, "{v}");
+        }
+        assert!((shares.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{v}");
+        for (key, value) in flat.as_object().unwrap() {
+            if key != "wall_time_s" {
+                assert_eq!(&v[key], value, "{key}");
+            }
+        }
+    }
+    assert_eq!(low["step_down_survival"].as_f64(), Some(1.0), "{low}");
+    assert!(high["step_down_survival"].as_f64().unwrap() < 1.0, "{high}");
+    for bad in ["-0.1", "nan", "inf"] {
+        run_err(
+            &[
+                &FIG7A[..],
+                &["--set", &format!("robustness.step_down_at={bad}")],
+            ]
+            .concat(),
+            &["robustness.step_down_at", "in [0, 1000]"],
+        );
+    }
+}
+
 #[test]
 fn terrain_options_run_over_a_step_and_are_validated() {
     let flat = json(&[]);
