@@ -289,6 +289,10 @@ NS = {"bifurcation": "neimark sacker"}
 P2 = "up, branch 2 (period 2)*"
 
 PINS: list[Pin] = [
+    # docs/performance.md: the per-core target's events, from the Hot path table.
+    Pin(PERF, rf"\(Fig\. 7\(a\): {N} events in {N} steps, the Hot path table\)",
+        [Rx("results/bench/page.md", rf"^\| RHS evaluations / steps / rejected / events \| [^|]* / {N} \|"),
+         Rx("results/bench/page.md", rf"^\| RHS evaluations / steps / rejected / events \| [\d  ]+ / {N} /")]),
     # docs/performance.md: the work-precision benchmark.
     Pin(PERF, rf"the Fig\. 7\(a\) walk's reference f_w is {N} Hz",
         [Rx(BENCH, rf"^Reference: \*\*walk\*\*, f_w {N} Hz", "Fig. 7(a) walk")]),
