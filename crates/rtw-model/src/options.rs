@@ -40,6 +40,7 @@ use serde::{Deserialize, Serialize};
 mod robustness;
 mod seed;
 mod terrain;
+pub(crate) use robustness::MFPT_BATCHES_DEFAULT;
 pub use robustness::RobustnessOptions;
 pub use terrain::TerrainOptions;
 pub(crate) use terrain::{Face, Over};
@@ -547,5 +548,24 @@ mod tests {
         r.mfpt = false;
         r.sigma = 0.0;
         r.validate().unwrap();
+    }
+
+    #[test]
+    fn the_mfpt_s_batches_are_bounded_and_named() {
+        let mut r = RobustnessOptions {
+            mfpt: true,
+            ..RobustnessOptions::default()
+        };
+        assert_eq!(r.mfpt_batches, 6);
+        for bad in [0, 1, 3001, u32::MAX] {
+            r.mfpt_batches = bad;
+            let e = r.validate().unwrap_err();
+            assert_eq!(e.field, "robustness.mfpt_batches");
+            assert!(e.to_string().contains("[2, 3000]"), "{e}");
+        }
+        for good in [2, 3000] {
+            r.mfpt_batches = good;
+            r.validate().unwrap();
+        }
     }
 }

@@ -8,11 +8,13 @@ use rtw_model::outcome::{MeanFirstPassage, StepsToFall};
 use rtw_model::{Options, Params, simulate};
 
 /// Fig. 7(a)'s stable gait on the rough slope of `sigma`: plain Monte
-/// Carlo of `trials` runs capped at `max_steps`, and the MFPT.
+/// Carlo of `trials` runs capped at `max_steps`, and the MFPT (its cloud
+/// in `mfpt_batches` batches).
 fn monte_carlo_and_mfpt(
     sigma: f64,
     trials: u32,
     max_steps: u32,
+    mfpt_batches: u32,
 ) -> (StepsToFall, MeanFirstPassage) {
     let o = Options {
         robustness: RobustnessOptions {
@@ -21,6 +23,7 @@ fn monte_carlo_and_mfpt(
             sigma,
             trials,
             max_steps,
+            mfpt_batches,
             ..RobustnessOptions::default()
         },
         ..Options::default()
@@ -33,9 +36,30 @@ fn monte_carlo_and_mfpt(
     (mc, m)
 }
 
+/// The MFPT of Fig. 7(a)'s gait on the rough slope of `sigma`, its cloud
+/// in `mfpt_batches` batches.
+fn mfpt_alone(sigma: f64, mfpt_batches: u32) -> MeanFirstPassage {
+    let o = Options {
+        robustness: RobustnessOptions {
+            mfpt: true,
+            sigma,
+            mfpt_batches,
+            ..RobustnessOptions::default()
+        },
+        ..Options::default()
+    };
+    let m = simulate(&Params::fig7a(), &o)
+        .robustness
+        .unwrap()
+        .mfpt
+        .unwrap();
+    eprintln!("MFPT ({mfpt_batches} batches) {m:?}");
+    m
+}
+
 #[test]
 fn the_mfpt_agrees_with_uncensored_monte_carlo_where_falls_are_frequent() {
-    let (mc, m) = monte_carlo_and_mfpt(0.05, 200, 20_000);
+    let (mc, m) = monte_carlo_and_mfpt(0.05, 200, 20_000, 6);
     assert_eq!(mc.censored, 0, "{mc:?}");
     assert!(m.mfpt <= 200.0, "{m:?}");
     // The two 95 % intervals overlap.
@@ -67,19 +91,30 @@ fn the_mfpt_is_a_function_of_the_seed_and_refused_on_the_flat_slope() {
 
 /// Where falls are rare (σ = 3 cm: thousands of steps) plain Monte Carlo
 /// run to the fall is still affordable for a test, and the MFPT's interval
-/// (open above when the cloud counts few falls) must hold it. At the default
-/// roughness (σ = 1 cm) Fig. 7(a)'s walk falls too rarely for either: 69 of
-/// 100 trials walk 20 000 steps, and the MFPT is a lower bound of about
-/// 3 200 steps. (Before a tip put on a face at its foot was watched for
-/// its return there, such tips slid through the lower patch, and the walk
-/// "collapsed" within about 500 steps at σ = 1 cm.)
+/// (open above when the cloud counts few falls) must hold it. Ten times the
+/// batches (`robustness.mfpt_batches`, ten times the walker-steps) close
+/// the interval there, and it still holds the Monte Carlo. At the default
+/// roughness (σ = 1 cm) Fig. 7(a)'s walk falls too rarely for either: none
+/// of 100 trials falls within 20 000 steps, and the MFPT is a lower bound
+/// of about 3 200 steps. (Before a tip put on a face at its foot was
+/// watched for its return there, such tips slid through the lower patch,
+/// and the walk "collapsed" within about 500 steps at σ = 1 cm.)
 #[test]
 fn the_mfpt_holds_uncensored_monte_carlo_where_falls_are_rare() {
-    let (mc, m) = monte_carlo_and_mfpt(0.03, 50, 200_000);
+    let (mc, m) = monte_carlo_and_mfpt(0.03, 50, 200_000, 6);
     assert_eq!(mc.censored, 0, "{mc:?}");
     assert!(mc.mean > 1000.0, "{mc:?}");
     assert!(
         m.lo <= mc.hi && mc.lo <= m.hi,
         "Monte Carlo {mc:?} vs MFPT {m:?}"
+    );
+    let deep = mfpt_alone(0.03, 60);
+    // Each batch is 2 880 steps of the walker: 16 walkers through 60 steps
+    // of burn-in, then their 32 copies through the 60 counted steps.
+    assert_eq!(deep.steps, 60 * (16 * 60 + 32 * 60), "{deep:?}");
+    assert!(deep.hi.is_finite(), "{deep:?}");
+    assert!(
+        deep.lo <= mc.hi && mc.lo <= deep.hi,
+        "Monte Carlo {mc:?} vs MFPT of 60 batches {deep:?}"
     );
 }

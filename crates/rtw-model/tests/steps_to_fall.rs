@@ -50,6 +50,34 @@ fn the_flat_slope_never_trips_the_fig7a_walk_and_a_rough_one_does_quickly() {
     assert!(rough.hi < 60.0, "{rough:?}");
 }
 
+/// The work budget (`max_steps`, integrator steps before a run is declared
+/// diverged) is sized for the flat run; a trial of many more steps must not
+/// run out of it and count as a fall. With the default budget (5 × 10⁶)
+/// every trial of Fig. 7(a) longer than about 2.4 × 10⁵ steps of the gait
+/// "fell" there (`simulate` of Fig. 7(a) with `--set terrain.roughness=0.02
+/// --set t_max=250000 --set stop_when_settled=false` ends `work_budget` at
+/// 60 234 s, 2.4 × 10⁵ steps). Here the budget is cut to
+/// 20 000 integrator steps, which the flat run needs a fraction of, and the
+/// trials of 2 000 gait steps need about twice.
+#[test]
+fn a_long_trial_is_not_felled_by_the_work_budget_of_the_flat_run() {
+    let mut o = Options {
+        max_steps: 20_000,
+        ..Options::default()
+    };
+    o.robustness = RobustnessOptions {
+        steps_to_fall: true,
+        sigma: 0.0,
+        trials: 2,
+        max_steps: 2_000,
+        ..RobustnessOptions::default()
+    };
+    let out = simulate(&Params::fig7a(), &o);
+    assert!(out.label.is_stable(), "{out:?}");
+    let s = out.robustness.unwrap().steps_to_fall.unwrap();
+    assert_eq!((s.mean, s.censored), (2_000.0, 2), "{s:?}");
+}
+
 #[test]
 fn bad_monte_carlo_settings_are_refused_naming_the_field() {
     let bad = |f: fn(&mut RobustnessOptions)| {

@@ -25,3 +25,5 @@ def test_a_bad_roughness_raises_naming_the_key() -> None:
         rtw.simulate(*FIG7A, options={"terrain.roughness": -1})
     with pytest.raises(ValueError, match=r"robustness\.trials: 1 is invalid"):
         rtw.simulate(*FIG7A, options={"robustness.trials": 1})
+    with pytest.raises(ValueError, match=r"robustness\.mfpt_batches: 3001 is invalid: must be in \[2, 3000\]"):
+        rtw.simulate(*FIG7A, options={"robustness.mfpt": True, "robustness.mfpt_batches": 3001})

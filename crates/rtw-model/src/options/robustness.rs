@@ -48,12 +48,22 @@ pub struct RobustnessOptions {
     /// cloud.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub mfpt: bool,
+    /// Batches of the MFPT's cloud, each 2 880 steps of the walker of which
+    /// 1 920 are counted: the cost, and how deep an MFPT its interval
+    /// closes for (about a fifth of the counted steps; docs/robustness.md).
+    #[serde(skip_serializing_if = "is_default_mfpt_batches")]
+    pub mfpt_batches: u32,
 }
 
 /// The default roughness of `steps_to_fall` (m).
 pub(crate) const SIGMA_DEFAULT: f64 = 0.01;
 const TRIALS_DEFAULT: u32 = 20;
 const MAX_STEPS_DEFAULT: u32 = 100;
+/// The MFPT's batches by default (`MFPT_SETTINGS`, run/mfpt.rs).
+pub(crate) const MFPT_BATCHES_DEFAULT: u32 = 6;
+/// Most batches of the MFPT: 3 000 take 8.6 × 10⁶ steps of the walker, the
+/// same bound of a sample's cost as the Monte Carlo's 10⁷.
+const MFPT_BATCHES_MAX: u32 = 3000;
 /// Most steps of the flat gait the rough-slope trials of one sample may
 /// take together (`trials × max_steps`).
 const MAX_TRIAL_STEPS: f64 = 1e7;
@@ -74,6 +84,10 @@ fn is_default_max_steps(v: &u32) -> bool {
     *v == MAX_STEPS_DEFAULT
 }
 
+fn is_default_mfpt_batches(v: &u32) -> bool {
+    *v == MFPT_BATCHES_DEFAULT
+}
+
 impl Default for RobustnessOptions {
     fn default() -> Self {
         Self {
@@ -86,6 +100,7 @@ impl Default for RobustnessOptions {
             trials: TRIALS_DEFAULT,
             max_steps: MAX_STEPS_DEFAULT,
             mfpt: false,
+            mfpt_batches: MFPT_BATCHES_DEFAULT,
         }
     }
 }
@@ -104,8 +119,9 @@ impl RobustnessOptions {
     /// Refuses a step-down height outside [0, 1000] m, a roughness outside
     /// [0, 1000] m (or 0 with `mfpt`: on the
     /// flat slope the walker never falls), fewer than 2 or more than
-    /// 100000 trials, a censoring step count outside [1, 1000000], or more
-    /// than 10⁷ steps in all (`trials × max_steps`).
+    /// 100000 trials, a censoring step count outside [1, 1000000], more
+    /// than 10⁷ steps in all (`trials × max_steps`), or MFPT batches outside
+    /// [2, 3000].
     pub fn validate(&self) -> Result<(), ParamError> {
         check(
             "robustness.step_down_at",
@@ -132,6 +148,12 @@ impl RobustnessOptions {
             f64::from(self.trials),
             "in [2, 100000]",
             |v| (2.0..=1e5).contains(&v),
+        )?;
+        check(
+            "robustness.mfpt_batches",
+            f64::from(self.mfpt_batches),
+            "in [2, 3000] (batches of the MFPT's cloud, 2880 steps of the walker each)",
+            |v| (2.0..=f64::from(MFPT_BATCHES_MAX)).contains(&v),
         )?;
         check(
             "robustness.max_steps",

@@ -36,15 +36,16 @@
 //! not climb before them: at Fig. 7(a) and σ = 1 cm the splitting gave
 //! 5171 [2537, ∞] steps against plain Monte Carlo's 495 [422, 568]
 //! (docs/robustness.md; measured while a tip put on a face at its foot
-//! could slide through the lower patch, which made most of those falls). Counting has a fixed cost and no score; beyond
-//! about a fifth of its counted walker-steps its interval opens above.
+//! could slide through the lower patch, which made most of those falls). Counting has a cost fixed by its batches
+//! (`robustness.mfpt_batches`) and no score; beyond about a fifth of its
+//! counted walker-steps its interval opens above.
 //!
 //! **The score** (the splitting's levels, kept so that the walker can be
 //! split) is the distance of the centre of mass's velocity from the
 //! settled gait's at the same phase (every step starts a flat step after
 //! it), in units of the gait's mean speed.
 
-use crate::options::{Options, RobustnessOptions, TerrainOptions};
+use crate::options::{MFPT_BATCHES_DEFAULT, Options, RobustnessOptions, TerrainOptions};
 use crate::outcome::{FailureDetail, MeanFirstPassage};
 use crate::plant::geometry::SPOKES;
 use crate::plant::rtw::Rtw;
@@ -55,8 +56,9 @@ use hybrid_ode::Work;
 use hybrid_ode::metastable::{FallRate, MfptOptions, Rng, Walker, mfpt};
 use std::cell::RefCell;
 
-/// The estimator's settings for the RTW (besides the seed, `terrain.seed`):
-/// 6 batches of a Fleming–Viot cloud; 16 walkers take 60 steps onto the
+/// The estimator's settings for the RTW (besides the seed, `terrain.seed`,
+/// and the batches, `robustness.mfpt_batches`): by default 6 batches of a
+/// Fleming–Viot cloud; 16 walkers take 60 steps onto the
 /// rough slope, and their 32 copies 60 more whose falls are counted
 /// (11 520 walker-steps counted, 17 280 taken: what the paper scan's stable
 /// gaits cost is measured by `scripts/mfpt_cost.sh`,
@@ -75,7 +77,7 @@ use std::cell::RefCell;
 pub const MFPT_SETTINGS: MfptOptions = MfptOptions {
     fall_rate: FallRate::Counting,
     seed: 0,
-    batches: 6,
+    batches: MFPT_BATCHES_DEFAULT as usize,
     burn_in: 60,
     sample_steps: 60,
     replicas: 32,
@@ -213,6 +215,7 @@ pub(crate) fn mean_first_passage(
         &start,
         &MfptOptions {
             seed: terrain.seed,
+            batches: r.mfpt_batches as usize,
             ..MFPT_SETTINGS
         },
     );

@@ -38,9 +38,11 @@ pub(crate) fn steps_to_fall(
     terrain: TerrainOptions,
 ) -> StepsToFall {
     let max_steps = f64::from(r.max_steps);
+    let t_trial = steps_to_time(max_steps, flat, t_max);
     let options = Options {
-        t_max: steps_to_time(max_steps, flat, t_max),
+        t_max: t_trial,
         stop_when_settled: false,
+        max_steps: trial_work_budget(settled_options.max_steps, t_trial, t_max),
         ..*settled_options
     };
     let steps: Vec<f64> = (0..r.trials)
@@ -62,6 +64,17 @@ pub(crate) fn steps_to_fall(
     summarize(&steps, max_steps)
 }
 
+/// The work budget of a trial of `t_trial` seconds: `max_steps` is sized
+/// for the flat run of `t_max`, and a trial many times longer gets as much
+/// per second of the run, so that its length alone never ends it as
+/// diverged (and counts as a fall). With the default budget a trial of
+/// Fig. 7(a) ran out of it after about 2.4 × 10⁵ steps of the gait.
+fn trial_work_budget(max_steps: u64, t_trial: f64, t_max: f64) -> u64 {
+    let scale = if t_max > 0.0 { t_trial / t_max } else { 1.0 };
+    // `as` saturates at u64::MAX.
+    (max_steps as f64 * scale.max(1.0)).ceil() as u64
+}
+
 /// The censored mean of `steps` (each at most `max_steps`), its normal 95 %
 /// interval and how many were censored.
 fn summarize(steps: &[f64], max_steps: f64) -> StepsToFall {
@@ -81,6 +94,14 @@ fn summarize(steps: &[f64], max_steps: f64) -> StepsToFall {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_trial_s_work_budget_grows_with_its_length_and_never_shrinks() {
+        assert_eq!(trial_work_budget(5_000_000, 60.0, 60.0), 5_000_000);
+        assert_eq!(trial_work_budget(5_000_000, 30.0, 60.0), 5_000_000);
+        assert_eq!(trial_work_budget(5_000_000, 6000.0, 60.0), 500_000_000);
+        assert_eq!(trial_work_budget(u64::MAX, 1e9, 1.0), u64::MAX);
+    }
 
     #[test]
     fn the_summary_is_the_censored_mean_with_a_normal_interval() {

@@ -82,6 +82,14 @@ fn rough_terrain_options_run_and_are_validated() {
             "robustness.trials=1",
             "simulation.robustness.trials: 1 is invalid",
         ),
+        (
+            "robustness.mfpt_batches=1",
+            "simulation.robustness.mfpt_batches: 1 is invalid: must be in [2, 3000]",
+        ),
+        (
+            "robustness.mfpt_batches=3001",
+            "simulation.robustness.mfpt_batches: 3001 is invalid: must be in [2, 3000]",
+        ),
     ] {
         run_err(
             &[&FIG7A[..], &["--set", set]].concat(),
