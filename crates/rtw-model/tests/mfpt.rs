@@ -4,8 +4,20 @@
 //! (`steps_to_fall`) capped far beyond any of them, so uncensored.
 
 use rtw_model::options::RobustnessOptions;
-use rtw_model::outcome::{MeanFirstPassage, StepsToFall};
+use rtw_model::outcome::{MeanFirstPassage, Robustness, StepsToFall};
 use rtw_model::{Options, Params, simulate};
+
+/// The robustness measures `robustness` asks for, of Fig. 7(a)'s stable
+/// gait.
+fn fig7a(robustness: RobustnessOptions) -> Robustness {
+    let o = Options {
+        robustness,
+        ..Options::default()
+    };
+    let out = simulate(&Params::fig7a(), &o);
+    assert!(out.label.is_stable(), "{out:?}");
+    out.robustness.unwrap()
+}
 
 /// Fig. 7(a)'s stable gait on the rough slope of `sigma`: plain Monte
 /// Carlo of `trials` runs capped at `max_steps`, and the MFPT (its cloud
@@ -16,21 +28,15 @@ fn monte_carlo_and_mfpt(
     max_steps: u32,
     mfpt_batches: u32,
 ) -> (StepsToFall, MeanFirstPassage) {
-    let o = Options {
-        robustness: RobustnessOptions {
-            mfpt: true,
-            steps_to_fall: true,
-            sigma,
-            trials,
-            max_steps,
-            mfpt_batches,
-            ..RobustnessOptions::default()
-        },
-        ..Options::default()
-    };
-    let out = simulate(&Params::fig7a(), &o);
-    assert!(out.label.is_stable(), "{out:?}");
-    let r = out.robustness.unwrap();
+    let r = fig7a(RobustnessOptions {
+        mfpt: true,
+        steps_to_fall: true,
+        sigma,
+        trials,
+        max_steps,
+        mfpt_batches,
+        ..RobustnessOptions::default()
+    });
     let (mc, m) = (r.steps_to_fall.unwrap(), r.mfpt.unwrap());
     eprintln!("Monte Carlo {mc:?}\nMFPT {m:?}");
     (mc, m)
@@ -39,20 +45,14 @@ fn monte_carlo_and_mfpt(
 /// The MFPT of Fig. 7(a)'s gait on the rough slope of `sigma`, its cloud
 /// in `mfpt_batches` batches.
 fn mfpt_alone(sigma: f64, mfpt_batches: u32) -> MeanFirstPassage {
-    let o = Options {
-        robustness: RobustnessOptions {
-            mfpt: true,
-            sigma,
-            mfpt_batches,
-            ..RobustnessOptions::default()
-        },
-        ..Options::default()
-    };
-    let m = simulate(&Params::fig7a(), &o)
-        .robustness
-        .unwrap()
-        .mfpt
-        .unwrap();
+    let m = fig7a(RobustnessOptions {
+        mfpt: true,
+        sigma,
+        mfpt_batches,
+        ..RobustnessOptions::default()
+    })
+    .mfpt
+    .unwrap();
     eprintln!("MFPT ({mfpt_batches} batches) {m:?}");
     m
 }

@@ -36,9 +36,10 @@
 //! not climb before them: at Fig. 7(a) and σ = 1 cm the splitting gave
 //! 5171 [2537, ∞] steps against plain Monte Carlo's 495 [422, 568]
 //! (docs/robustness.md; measured while a tip put on a face at its foot
-//! could slide through the lower patch, which made most of those falls). Counting has a cost fixed by its batches
-//! (`robustness.mfpt_batches`) and no score; beyond about a fifth of its
-//! counted walker-steps its interval opens above.
+//! could slide through the lower patch, which made most of those falls).
+//! Counting has a cost fixed by its batches (`robustness.mfpt_batches`) and
+//! no score; beyond about a fifth of its counted walker-steps its interval
+//! opens above.
 //!
 //! **The score** (the splitting's levels, kept so that the walker can be
 //! split) is the distance of the centre of mass's velocity from the

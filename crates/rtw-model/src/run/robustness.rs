@@ -89,9 +89,7 @@ impl SettledGait<'_> {
     }
 
     /// The runs over a step of `h` with its edge at each of the
-    /// [`H50_POSITIONS`] positions over one step of the gait (module doc):
-    /// the survival curve and its failures by kind, which the tests print.
-    #[cfg(test)]
+    /// [`H50_POSITIONS`] positions over one step of the gait (module doc).
     pub(crate) fn over_every_phase(&self, h: f64, work: &mut Work) -> Vec<(Outcome, bool)> {
         (0..H50_POSITIONS)
             .map(|i| self.meet_step_at(h, self.phase_edge(i), work))
@@ -104,8 +102,7 @@ impl SettledGait<'_> {
     pub(crate) fn survival_at(&self, h: f64, work: &mut Work) -> PhaseSurvival {
         // Counted, then divided: each share is exactly k / 20.
         let mut count = [0u32; 5];
-        for i in 0..H50_POSITIONS {
-            let (o, survived) = self.meet_step_at(h, self.phase_edge(i), work);
+        for (o, survived) in self.over_every_phase(h, work) {
             count[match o.label {
                 _ if survived => 0,
                 Label::Collapse => 1,

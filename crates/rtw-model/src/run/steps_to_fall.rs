@@ -69,10 +69,10 @@ pub(crate) fn steps_to_fall(
 /// per second of the run, so that its length alone never ends it as
 /// diverged (and counts as a fall). With the default budget a trial of
 /// Fig. 7(a) ran out of it after about 2.4 × 10⁵ steps of the gait.
+/// (`t_max > 0`, as `Options::validate` requires.)
 fn trial_work_budget(max_steps: u64, t_trial: f64, t_max: f64) -> u64 {
-    let scale = if t_max > 0.0 { t_trial / t_max } else { 1.0 };
     // `as` saturates at u64::MAX.
-    (max_steps as f64 * scale.max(1.0)).ceil() as u64
+    (max_steps as f64 * (t_trial / t_max).max(1.0)).ceil() as u64
 }
 
 /// The censored mean of `steps` (each at most `max_steps`), its normal 95 %
