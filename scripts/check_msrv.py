@@ -45,6 +45,11 @@ def main() -> int:
         for rv, name, v in too_new:
             print(f"check_msrv: {name} {v} needs Rust {rv} > rust-version {declared} (Cargo.toml)", file=sys.stderr)
         return 1
+    # The README tells a new user which Rust to get: it must name this minimum.
+    readme = (ROOT / "README.md").read_text()
+    if f"Rust {declared} or newer" not in readme:
+        print(f"check_msrv: README.md does not say 'Rust {declared} or newer' (Cargo.toml rust-version)", file=sys.stderr)
+        return 1
     top = needs[0] if needs else ("none", "-", "-")
     print(f"check_msrv: rust-version {declared} covers every dependency (highest: {top[1]} {top[2]} needs {top[0]})")
     return 0

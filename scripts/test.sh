@@ -16,6 +16,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+echo "== the Rust toolchain is new enough (scripts/check_toolchain.sh)"
+./scripts/check_toolchain.sh
+
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
 
