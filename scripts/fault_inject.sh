@@ -35,8 +35,8 @@ echo "fault_inject: seed $seed (FAULT_SEED=$seed ./scripts/fault_inject.sh repla
 
 # The test build (fake-sim feature: RTW_SCAN_PAUSE, part 4); the same
 # binary `cargo test` builds, and the physics as in a plain build.
-cargo build --release -q -p rtw-scan --features fake-sim
-bin=$PWD/target/release/rtw-scan
+cargo build --release -q -p rtw-scan --features fake-sim --bin rtw-scan-test
+bin=$PWD/target/release/rtw-scan-test
 ./scripts/venv.sh >/dev/null
 py=.venv/bin/python
 config=configs/test/fault.toml

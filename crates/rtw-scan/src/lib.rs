@@ -33,7 +33,8 @@
 //! itself shows nothing on a terminal. What watches a scan, and what stops
 //! it, are passed to it ([`scan::Progress`], a stop flag). The deterministic
 //! stand-in simulator `fake` (hidden flag `--fake-sim`) exists only with the
-//! `fake-sim` feature, which the crate's own tests turn on.
+//! `fake-sim` feature, which the crate's own tests turn on; they run it as
+//! the binary `rtw-scan-test`, which a plain build never writes.
 //!
 //! ## Usage
 //!

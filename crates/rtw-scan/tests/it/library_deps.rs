@@ -43,12 +43,14 @@ fn the_terminal_crates_come_only_with_the_cli_feature() {
         assert!(cli.contains(&format!("dep:{name}").as_str()), "{cli:?}");
     }
     let bins = m["bin"].as_array().unwrap();
+    // Every binary needs the command line (the test binary `fake-sim` too).
     for bin in bins {
-        assert_eq!(
-            bin.get("required-features").map(ToString::to_string),
-            Some(r#"["cli"]"#.to_string()),
-            "{bin:?}"
-        );
+        let needs: Vec<&str> = bin
+            .get("required-features")
+            .and_then(toml::Value::as_array)
+            .map(|a| a.iter().filter_map(toml::Value::as_str).collect())
+            .unwrap_or_default();
+        assert!(needs.contains(&"cli"), "{bin:?}");
     }
 }
 
@@ -76,5 +78,41 @@ fn the_library_s_users_take_it_without_the_cli_feature() {
             "{user}: {dep}"
         );
         assert!(dep.get("default-features").is_none(), "{user}: {dep}");
+    }
+}
+
+/// The tests run `rtw-scan-test`, the command built with `fake-sim`, whose
+/// name a plain build never writes: a user's `cargo run --release -p
+/// rtw-scan` beside the test command re-links `target/release/rtw-scan`, and
+/// a test that ran that file would meet a binary without `--fake-sim`. The
+/// test binary must require the feature, and no test may name the plain one.
+#[test]
+fn the_tests_run_a_binary_that_a_plain_build_never_overwrites() {
+    let m = manifest("Cargo.toml");
+    let bins = m["bin"].as_array().expect("[[bin]] targets");
+    let test_bin = bins
+        .iter()
+        .find(|b| b["name"].as_str() == Some("rtw-scan-test"))
+        .expect("a [[bin]] named rtw-scan-test");
+    let needs: Vec<&str> = test_bin["required-features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(toml::Value::as_str)
+        .collect();
+    assert!(
+        needs.contains(&"fake-sim"),
+        "rtw-scan-test must require fake-sim: {needs:?}"
+    );
+    let plain = concat!("CARGO_BIN_EXE_", "rtw-scan\"");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it");
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            !text.contains(plain),
+            "{} runs the plain rtw-scan binary, which a build beside the tests can replace: use common::bin()",
+            path.display()
+        );
     }
 }
