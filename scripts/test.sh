@@ -68,6 +68,8 @@ echo "== the quickstart notebook, executed (scripts/run_notebook.sh)"
 ./scripts/run_notebook.sh
 echo "== every command README.md and docs/*.md document, run as written in a temporary folder (scripts/check_doc_commands.py)"
 .venv/bin/python scripts/check_doc_commands.py
+echo "== the documentation site: built with every warning an error, every local link and anchor checked, its first page rendered in headless Chromium (scripts/docs_site.sh)"
+./scripts/docs_site.sh
 echo "== every Markdown table row in README.md, docs/ and results/ has its header's cells (scripts/check_markdown_tables.py)"
 .venv/bin/python scripts/check_markdown_tables.py
 echo "== every number the docs' prose quotes from a results file is the file's (scripts/check_doc_numbers.py)"

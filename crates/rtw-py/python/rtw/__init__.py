@@ -181,7 +181,7 @@ def simulate(
             arguments (or, in that order, by position).
         config: take the ``[simulation]`` options of this config: a file,
             TOML text, or a dict of its tables (:data:`Config`).
-        variant: then layer this variant file's (configs/variants/*.toml).
+        variant: then layer this variant file's (``configs/variants/*.toml``).
         options: then these options (docs/model.md §9), by dotted key
             (``{"contact.mu": 0.8}``) or nested (``{"contact": {"mu": 0.8}}``);
             values are bool, int, float, str, or lists of them.
@@ -570,7 +570,7 @@ def design(
     (docs/design.md).
 
     Args:
-        config: the search's config (a TOML file, configs/design/*.toml).
+        config: the search's config (a TOML file, ``configs/design/*.toml``).
         out: the search's folder: its files are written there as the CLI
             writes them, and an interrupted search of the same config resumes
             from them. Without it the search runs in memory.
