@@ -172,3 +172,27 @@ def test_the_atlas_page_draws_in_chromium_without_errors(atlas_page) -> None:
         assert shown == len(data["images"])
     finally:
         driver.quit()
+
+
+@pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason="needs chromium and chromium-driver "
+                    "(scripts/test.sh installs them as root)")
+def test_a_search_without_speed_phi_draws_no_speed_chart_and_says_why(search_dir, tmp_path) -> None:
+    """A search whose config has no speed_phi measured no speed: the page
+    must not draw an empty "speed at φ = ?" chart, and says what to set."""
+    from test_report_browser import no_console_errors, timing
+
+    out = tmp_path / "search.html"
+    assert rtw.report(search_dir, out=out, progress=False) == out
+    assert all(s["settings"].get("speed_phi") is None for s in _data(out.read_text())["searches"])
+    t = timing()
+    driver = t.open_chromium()
+    try:
+        driver.get(out.as_uri())
+        t.wait_ready(driver)
+        no_console_errors(driver)
+        drawn = driver.execute_script("const el = document.getElementById('atlas-speed'); return !!(el && el.data)")
+        assert not drawn, "a speed chart was drawn for a search that measured no speed"
+        note = driver.execute_script("return document.getElementById('atlas-speed-note').textContent")
+        assert "speed_phi" in note
+    finally:
+        driver.quit()

@@ -29,7 +29,19 @@ async function main(D) {
     };
   }), { xaxis: { title: { text: UNIT.slope_range } }, yaxis: { title: { text: title } }, margin: { t: 20 } }, cfg);
   const phis = [...new Set(searches.map((s) => s.settings.speed_phi).filter((v) => v !== null && v !== undefined))];
-  await atlas("speed", "atlas-speed", `speed at φ = ${phis.join(", ") || "?"} [m/s]`);
+  if (phis.length > 0) {
+    await atlas("speed", "atlas-speed", `speed at φ = ${phis.join(", ")} [m/s]`);
+  } else {
+    // No search here measured a speed: an empty chart would read as "no
+    // design moves"; say instead what would measure one.
+    const el = document.getElementById("atlas-speed");
+    const note = document.createElement("p");
+    note.id = "atlas-speed-note";
+    note.className = "note";
+    note.textContent = "No speed chart: no search here measured a speed (set speed_phi in its config to measure "
+      + "each reported design's speed at that slope).";
+    el.replaceWith(note);
+  }
   await atlas("phi_min", "atlas-phimin", UNIT.phi_min);
   mark("first-view");
 
