@@ -285,7 +285,7 @@ mod tests {
     use crate::scan::fixtures::{CFG, fake_sim};
     use crate::scan::partial::chunks_on_disk;
     use crate::scan::progress::Silent;
-    use arrow::array::{Array, AsArray, RecordBatch};
+    use arrow_array::{Array, RecordBatch, cast::AsArray};
     use rtw_model::Label;
     use rtw_model::outcome::FailureDetail;
     use rtw_model::{Options, Params};
@@ -307,10 +307,10 @@ mod tests {
     fn rows_without_wall_time(path: &Path) -> RecordBatch {
         let input = parquet::open(path, 1 << 20).unwrap();
         let batches: Vec<RecordBatch> = input.reader.map(|b| b.unwrap()).collect();
-        let b = arrow::compute::concat_batches(&schema(), &batches).unwrap();
+        let b = arrow_select::concat::concat_batches(&schema(), &batches).unwrap();
         let i = b.schema().index_of("wall_time_s").unwrap();
         let mut cols = b.columns().to_vec();
-        cols[i] = std::sync::Arc::new(arrow::array::Float64Array::from(vec![0.0; b.num_rows()]));
+        cols[i] = std::sync::Arc::new(arrow_array::Float64Array::from(vec![0.0; b.num_rows()]));
         RecordBatch::try_new(schema(), cols).unwrap()
     }
 
@@ -633,7 +633,7 @@ mod tests {
         assert!(meta["rtw.wall_time_s"].parse::<f64>().unwrap() > 0.0);
         let i = b.schema().index_of("wall_time_s").unwrap();
         let mut cols = b.columns().to_vec();
-        cols[i] = std::sync::Arc::new(arrow::array::Float64Array::from(vec![0.0; b.num_rows()]));
+        cols[i] = std::sync::Arc::new(arrow_array::Float64Array::from(vec![0.0; b.num_rows()]));
         let b = RecordBatch::try_new(schema(), cols).unwrap();
         assert_eq!(
             b,

@@ -426,14 +426,14 @@ fn samples_file_has_the_documented_columns_and_metadata() {
     let schema = b[0].schema();
     assert_eq!(
         schema.field_with_name("outcome").unwrap().data_type(),
-        &arrow::datatypes::DataType::Dictionary(
-            Box::new(arrow::datatypes::DataType::Int32),
-            Box::new(arrow::datatypes::DataType::Utf8)
+        &arrow_schema::DataType::Dictionary(
+            Box::new(arrow_schema::DataType::Int32),
+            Box::new(arrow_schema::DataType::Utf8)
         )
     );
     assert_eq!(
         schema.field_with_name("alpha").unwrap().data_type(),
-        &arrow::datatypes::DataType::Float64
+        &arrow_schema::DataType::Float64
     );
     // The data dictionary travels in the file: every column has a unit and a
     // description in its Arrow field metadata.
@@ -539,7 +539,7 @@ fn summary_and_cluster_commands_redo_the_steps_from_the_file() {
 
 #[test]
 fn cluster_assignments_name_every_failure_once_and_match_the_summary() {
-    use arrow::array::{AsArray, Float64Array, Int64Array, StringArray};
+    use arrow_array::{Float64Array, Int64Array, StringArray, cast::AsArray};
     use std::collections::BTreeMap;
     let dir = tempfile::tempdir().unwrap();
     let cfg = write_config(dir.path(), "c.toml", &paper_like(150, 4));
@@ -1024,7 +1024,7 @@ fn fake_scan(dir: &Path, samples: u64, seed: u64) -> std::path::PathBuf {
 /// compressed with `codec` (pyarrow's default is snappy), the key-value
 /// metadata kept (pyarrow keeps it).
 fn rewrite_as_another_tool(src: &Path, dest: &Path, codec: parquet::basic::Compression) {
-    use arrow::datatypes::{DataType, Field, Schema};
+    use arrow_schema::{DataType, Field, Schema};
     use parquet::arrow::ArrowWriter;
     use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
     use parquet::file::properties::WriterProperties;
@@ -1061,9 +1061,9 @@ fn rewrite_as_another_tool(src: &Path, dest: &Path, codec: parquet::basic::Compr
             .columns()
             .iter()
             .zip(schema.fields())
-            .map(|(c, f)| arrow::compute::cast(c, f.data_type()).unwrap())
+            .map(|(c, f)| arrow_cast::cast(c, f.data_type()).unwrap())
             .collect();
-        w.write(&arrow::array::RecordBatch::try_new(schema.clone(), cols).unwrap())
+        w.write(&arrow_array::RecordBatch::try_new(schema.clone(), cols).unwrap())
             .unwrap();
     }
     w.close().unwrap();

@@ -4,8 +4,8 @@
 //! is tested with the fake simulator in `tests/cli.rs`.
 
 use crate::common::*;
-use arrow::array::AsArray;
-use arrow::datatypes::Float64Type;
+use arrow_array::cast::AsArray;
+use arrow_array::types::Float64Type;
 
 const FIG7A: [&str; 13] = [
     "simulate", "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta",

@@ -2,7 +2,7 @@
 //! determinism, resume, shards, and where the new samples fall.
 
 use crate::common::*;
-use arrow::array::{Array, Float64Array, Int64Array};
+use arrow_array::{Array, Float64Array, Int64Array};
 use std::path::Path;
 
 /// A slice in (alpha, phi) where the fake simulator's labels are: stall for

@@ -496,7 +496,7 @@ fn fake_shards(dir: &Path, cfg: &str) -> std::path::PathBuf {
     sharded
 }
 
-type Column = arrow::array::ArrayRef;
+type Column = arrow_array::ArrayRef;
 type Metadata = std::collections::BTreeMap<String, String>;
 
 /// `samples`' rows with column `col` changed by `edit` and its metadata by
@@ -512,11 +512,11 @@ fn forge(
     let input = rtw_scan::io::open(samples, 1 << 20).unwrap();
     let mut m = input.metadata.clone();
     meta(&mut m);
-    let batch: arrow::array::RecordBatch = input.reader.map(|b| b.unwrap()).next().unwrap();
+    let batch: arrow_array::RecordBatch = input.reader.map(|b| b.unwrap()).next().unwrap();
     let i = batch.schema().index_of(col).unwrap();
     let mut cols = batch.columns().to_vec();
     cols[i] = edit(cols[i].clone());
-    let batch = arrow::array::RecordBatch::try_new(batch.schema(), cols).unwrap();
+    let batch = arrow_array::RecordBatch::try_new(batch.schema(), cols).unwrap();
     let kv = m
         .into_iter()
         .map(|(k, v)| rtw_scan::io::kv(&k, v))
@@ -525,10 +525,10 @@ fn forge(
 }
 
 /// `edit` applied to the values of a column of Arrow type `T`.
-fn values<T: arrow::datatypes::ArrowPrimitiveType>(
+fn values<T: arrow_array::types::ArrowPrimitiveType>(
     edit: impl FnOnce(&mut Vec<T::Native>),
 ) -> impl FnOnce(Column) -> Column {
-    use arrow::array::{AsArray, PrimitiveArray};
+    use arrow_array::{PrimitiveArray, cast::AsArray};
     move |c| {
         let mut v = c.as_primitive::<T>().values().to_vec();
         edit(&mut v);
@@ -538,7 +538,7 @@ fn values<T: arrow::datatypes::ArrowPrimitiveType>(
 
 /// `edit` applied to a `Float64` column.
 fn floats(edit: impl FnOnce(&mut Vec<f64>)) -> impl FnOnce(Column) -> Column {
-    values::<arrow::datatypes::Float64Type>(edit)
+    values::<arrow_array::types::Float64Type>(edit)
 }
 
 #[test]
@@ -790,14 +790,14 @@ fn ids_and_numbers_a_reader_relies_on_are_checked_in_every_file() {
         &samples,
         &file("dup.parquet"),
         "sample_id",
-        values::<arrow::datatypes::Int64Type>(|v| v[5] = 4),
+        values::<arrow_array::types::Int64Type>(|v| v[5] = 4),
         |_| {},
     );
     forge(
         &samples,
         &file("neg.parquet"),
         "sample_id",
-        values::<arrow::datatypes::Int64Type>(|v| v[0] = -1),
+        values::<arrow_array::types::Int64Type>(|v| v[0] = -1),
         |_| {},
     );
     let nan = floats(|v| v[3] = f64::NAN);

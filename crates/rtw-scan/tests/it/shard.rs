@@ -5,7 +5,7 @@
 //! message naming the shard, before anything is written.
 
 use crate::common::*;
-use arrow::array::{Array, ArrayRef, Int64Array, RecordBatch};
+use arrow_array::{Array, ArrayRef, Int64Array, RecordBatch};
 use rtw_scan::io as output;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -400,7 +400,7 @@ fn rewrite_part(
     let input = output::open(path, 1 << 20).unwrap();
     let mut m = input.metadata.clone();
     let batches: Vec<RecordBatch> = input.reader.map(|b| b.unwrap()).collect();
-    let b = arrow::compute::concat_batches(&output::schema(), &batches).unwrap();
+    let b = arrow_select::concat::concat_batches(&output::schema(), &batches).unwrap();
     let col = b.column(0).as_any().downcast_ref::<Int64Array>().unwrap();
     let mut v: Vec<i64> = col.values().to_vec();
     ids(&mut v);
