@@ -6,6 +6,8 @@ library makes them."""
 from __future__ import annotations
 
 import inspect
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -153,3 +155,19 @@ def test_settle_steps_is_checked_once_naming_it_its_range_and_the_value(value, s
     with pytest.raises(ValueError) as e:
         rtw.limit_cycle(**FIG7A, phi=0.15, settle_steps=value)
     assert str(e.value) == f"settle_steps: {shown} is invalid: must be an integer in [1, 10000000]"
+
+
+def test_an_absurd_count_raises_in_python_it_does_not_abort_it() -> None:
+    # The report's density grids, one per group of a byte's values: a count
+    # sized their allocation, which aborted the interpreter.
+    code = "from rtw import _rtw\ntry:\n    _rtw.density_grid(b'', 10**15, b'', b'')\nexcept ValueError as e:\n    print(e)\n"
+    o = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert (o.returncode, o.stdout.strip()) == (0, "groups: 1000000000000000 is invalid: must be at most 256 (a group "
+                                                   "is one byte)"), o.stderr[-2000:]
+
+
+@pytest.mark.parametrize("value", ["1.96", b"1.96", None, True])
+def test_wilson_z_takes_numbers_only_naming_it(value) -> None:
+    with pytest.raises(ValueError) as e:
+        rtw.wilson(3, 10, value)
+    assert str(e.value) == f"z: {value!r} is invalid: must be a number"

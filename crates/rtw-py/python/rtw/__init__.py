@@ -527,7 +527,7 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
     Raises:
         ValueError: ``k`` > ``n``; OverflowError: a negative count.
     """
-    return _rtw.wilson(k, n, z)
+    return _rtw.wilson(k, n, number("z", z))
 
 
 def read_scan(path: str | os.PathLike[str]) -> pyarrow.Table:
