@@ -26,6 +26,7 @@ use pyo3::types::{PyBool, PyDict, PyInt, PyTuple};
 use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
+use rtw_scan::config::count::count_usize;
 use rtw_scan::config::layers::{
     load_layered, parse_layered, simulation_options, simulation_options_of,
 };
@@ -305,14 +306,16 @@ fn limit_cycle(
     config: Option<Bound<'_, PyAny>>,
     variant: Option<PathBuf>,
     options: Option<Bound<'_, PyDict>>,
-    settle_steps: usize,
+    settle_steps: Bound<'_, PyAny>,
 ) -> PyResult<LimitCycle> {
     let (params, options) = inputs(values, config, variant, options.as_ref())?;
-    if !(1..=MAX_SETTLE_STEPS).contains(&settle_steps) {
-        return Err(PyValueError::new_err(format!(
-            "settle_steps: {settle_steps} is invalid: must be an integer >= 1 and at most {MAX_SETTLE_STEPS}"
-        )));
-    }
+    let settle_steps = count_usize(
+        "settle_steps",
+        &digits(&settle_steps)?,
+        1..=MAX_SETTLE_STEPS,
+        "",
+    )
+    .map_err(value_error)?;
     let cycle = CycleOptions {
         settle_steps,
         ..CycleOptions::default()

@@ -1,5 +1,6 @@
 //! The objects `rtw` returns: `Outcome`, `LimitCycle`, `Modes`. Frozen,
-//! compared by value, with a `repr` and `to_dict()`; their fields are read
+//! compared by their results (never by what a run measured of the machine:
+//! [`MEASURED`]), with a `repr` and `to_dict()`; their fields are read
 //! from rtw-scan's and rtw-model's definitions, and `_rtw.pyi` is checked
 //! against them by tests/test_types.py.
 
@@ -13,6 +14,12 @@ use std::sync::LazyLock;
 
 /// The columns of a scan row (rtw-scan's `COLUMNS` table), in order.
 static COLUMNS: LazyLock<Vec<ColumnKind>> = LazyLock::new(|| row_columns().collect());
+
+/// The columns a run measures of the machine, not of the model: two identical
+/// runs differ in them, so `==` of a result, and of a table of rows, skips
+/// them. (The work counts, `steps` to `events`, are the integrator's and
+/// the same on every run.)
+pub(crate) const MEASURED: [&str; 1] = ["wall_time_s"];
 
 /// Each column's position in a row, by name.
 static POSITION: LazyLock<HashMap<&'static str, usize>> = LazyLock::new(|| {
@@ -40,7 +47,6 @@ static POSITION: LazyLock<HashMap<&'static str, usize>> = LazyLock::new(|| {
 /// (``LimitCycle.period``); the two can differ for one walk
 /// (docs/data-dictionary.md).
 #[pyclass(frozen, eq, module = "rtw", name = "Outcome")]
-#[derive(PartialEq)]
 pub(crate) struct Outcome {
     values: Vec<Value>,
     /// The robustness measures the run was asked for (`step_down_max`),
@@ -55,6 +61,17 @@ impl Outcome {
             values: row.columns,
             robustness: row.robustness,
         }
+    }
+}
+
+impl PartialEq for Outcome {
+    /// The same results: every column but the [`MEASURED`] ones.
+    fn eq(&self, other: &Self) -> bool {
+        self.robustness == other.robustness
+            && COLUMNS
+                .iter()
+                .zip(self.values.iter().zip(&other.values))
+                .all(|(c, (a, b))| MEASURED.contains(&c.name) || a == b)
     }
 }
 
@@ -327,12 +344,29 @@ impl Modes {
     }
 }
 
-/// A pyarrow table as a field: compared with pyarrow's `==` (`Table.equals`).
+/// A pyarrow table as a field: compared with pyarrow's `==` (`Table.equals`)
+/// without its [`MEASURED`] columns, so that two identical studies are equal.
 pub(crate) struct TableField(pub(crate) Py<PyAny>);
+
+impl TableField {
+    /// The table without the columns that measure the machine.
+    fn results<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let table = self.0.bind(py);
+        let names: Vec<String> = table.getattr("column_names")?.extract()?;
+        let measured: Vec<&str> = MEASURED
+            .into_iter()
+            .filter(|m| names.iter().any(|n| n == m))
+            .collect();
+        table.call_method1("drop_columns", (measured,))
+    }
+}
 
 impl PartialEq for TableField {
     fn eq(&self, other: &Self) -> bool {
-        Python::attach(|py| self.0.bind(py).eq(other.0.bind(py)).unwrap_or(false))
+        Python::attach(|py| match (self.results(py), other.results(py)) {
+            (Ok(a), Ok(b)) => a.eq(b).unwrap_or(false),
+            _ => false,
+        })
     }
 }
 

@@ -59,6 +59,13 @@ pub(crate) fn density_grid(
     x: &[u8],
     y: &[u8],
 ) -> PyResult<Vec<Vec<u32>>> {
+    // A group is a byte: more grids than its values count nothing, and a
+    // count from the caller must not size an allocation that aborts Python.
+    if groups > 256 {
+        return Err(PyValueError::new_err(format!(
+            "groups: {groups} is invalid: must be at most 256 (a group is one byte)"
+        )));
+    }
     if group.len() != x.len() || x.len() != y.len() {
         return Err(PyValueError::new_err(format!(
             "group, x, y: {}, {} and {} rows: must be one byte for each row",

@@ -78,6 +78,48 @@ def test_results_are_frozen_compared_by_value_and_shown() -> None:
             assert (period, residual) == (1, lc.residual)
 
 
+SEARCH = """name = "small"
+seed = 2
+budget = 20
+batch = 4
+objectives = ["slope_range"]
+report = 1
+[box]
+rho = [1.0, 5.0]
+alpha = [0.0, 0.4]
+fn = [1.5, 5.0]
+zeta = [0.05, 0.1]
+[slopes]
+from = 0.05
+to = 0.3
+grid = 0.05
+tol = 0.01
+verify_grid = 0.025
+"""
+
+
+def test_equal_is_the_same_result_never_the_same_timing(tmp_path) -> None:
+    # Two identical runs: their results, not their wall times (machine-dependent).
+    a, b = rtw.simulate(**FIG7A), rtw.simulate(**FIG7A)
+    assert a == b and not a != b
+    assert a != rtw.simulate(**{**FIG7A, "phi": 0.16})
+    assert a != rtw.simulate(**FIG7A, t_max=10.0)
+    design = {k: v for k, v in FIG7A.items() if k != "phi"}
+    k = dict(**design, phi_from=0.14, phi_to=0.2)
+    p, q = rtw.profile(**k), rtw.profile(**k)
+    assert p.table.column("wall_time_s") != q.table.column("wall_time_s")  # what == must not see
+    assert p == q and not p != q
+    assert p != rtw.profile(**{**k, "phi_to": 0.21})
+    assert p != rtw.profile(**k, t_max=15.0)
+    cfg = tmp_path / "search.toml"
+    cfg.write_text(SEARCH)
+    assert rtw.design(cfg, progress=False) == rtw.design(cfg, threads=1, progress=False)
+    cfg.write_text(SEARCH.replace("seed = 2", "seed = 3"))
+    other = rtw.design(cfg, progress=False)
+    cfg.write_text(SEARCH)
+    assert other != rtw.design(cfg, progress=False)
+
+
 def test_options_are_typed_values_dotted_or_nested() -> None:
     dotted = rtw.simulate(**FIG7A, options={"contact.mu": 0.9, "t_max": 5.0})
     nested = rtw.simulate(**FIG7A, options={"contact": {"mu": 0.9}}, t_max=5)

@@ -28,13 +28,13 @@ per value.
 
 from __future__ import annotations
 
-import numbers
 import os
 import warnings
 from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from . import _rtw
+from ._checks import flag, number
 from ._progress import Progress
 from ._rtw import FAILURE_LABELS, LABELS, STABLE_LABELS, Z95, DesignSearch, LimitCycle, Modes, Outcome, Profile
 from .report import report
@@ -112,10 +112,7 @@ class Design:
 
     def __post_init__(self) -> None:
         for name in _INPUTS:
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, numbers.Real):
-                raise ValueError(f"{name}: {v!r} is invalid: must be a number")
-            object.__setattr__(self, name, float(v))
+            object.__setattr__(self, name, number(name, getattr(self, name)))
 
 
 _INPUTS = tuple(f.name for f in fields(Design))
@@ -338,7 +335,8 @@ def limit_cycle(
     ``rtw-scan bifurcation`` does at each value).
 
     Args:
-        settle_steps: steps iterated before looking for the period.
+        settle_steps: steps iterated before looking for the period, an
+            integer in [1, 10000000].
         design, config, variant, options, more: as for :func:`simulate`.
 
     Raises:
@@ -347,8 +345,6 @@ def limit_cycle(
             did not converge), with the reason.
     """
     values = _design("limit_cycle", design, more)
-    if isinstance(settle_steps, bool) or not isinstance(settle_steps, int) or settle_steps < 1:
-        raise ValueError(f"settle_steps: {settle_steps!r} is invalid: must be an integer >= 1")
     return _rtw.limit_cycle(
         values, config, _path(variant), _options(options, more), settle_steps
     )
@@ -399,7 +395,7 @@ def basin(
     values = _design("basin", design, more)
     with Progress(progress, "rtw.basin", "points") as report:
         return _rtw.basin(
-            values, config, _path(variant), _options(options, more), x, y, steps, float(tol), threads, report
+            values, config, _path(variant), _options(options, more), x, y, steps, number("tol", tol), threads, report
         )
 
 
@@ -459,10 +455,10 @@ def profile(
         config,
         _path(variant),
         _options(options, more),
-        float(phi_from),
-        float(phi_to),
-        float(tol),
-        float(grid),
+        number("phi_from", phi_from),
+        number("phi_to", phi_to),
+        number("tol", tol),
+        number("grid", grid),
         threads,
     )
 
@@ -517,7 +513,9 @@ def label(
     Raises:
         ValueError: an option is invalid (named, with its range).
     """
-    return _rtw.label(nlsp, tlsp, flight_steps, triple_steps, _options(options, more))
+    shares = [number(k, v) for k, v in zip(("nlsp", "tlsp", "flight_steps", "triple_steps"),
+                                           (nlsp, tlsp, flight_steps, triple_steps))]
+    return _rtw.label(*shares, _options(options, more))
 
 
 def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
@@ -529,7 +527,7 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
     Raises:
         ValueError: ``k`` > ``n``; OverflowError: a negative count.
     """
-    return _rtw.wilson(k, n, z)
+    return _rtw.wilson(k, n, number("z", z))
 
 
 def read_scan(path: str | os.PathLike[str]) -> pyarrow.Table:
@@ -595,6 +593,6 @@ def design(
     """
     with Progress(progress, "rtw.design", "runs") as report:
         return _rtw.design(
-            os.fspath(config), _path(out), _path(variant), _options(options, {}), threads, bool(force), report
+            os.fspath(config), _path(out), _path(variant), _options(options, {}), threads, flag("force", force), report
         )
 

@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterable, Sequence
 
 from . import _rtw
+from ._checks import flag
 from ._progress import Progress
 from ._rtw import FAILURE_LABELS, LABELS, failure_clusters
 
@@ -453,7 +454,7 @@ def report(directory: str | os.PathLike[str], out: str | os.PathLike[str] | None
         raise ReportError(f"per_outcome: {per_outcome!r} is invalid: must be an integer in [0, 10]")
     samples = _sample_ids(samples)
     outputs = list(DEFAULT_OUTPUTS) if outputs is None else _column_names(outputs)
-    check_out(out, force)
+    check_out(out, flag("force", force))
     plotly_js = _plotly_bundle()
     tell = Progress(progress, "rtw.report", "gaits")
 

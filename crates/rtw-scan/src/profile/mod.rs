@@ -132,16 +132,24 @@ impl Settings {
                 Num(from)
             );
         }
+        // The ends were typed in decimal and rounded to binary64, each by up to
+        // half an ulp of itself, so their difference can miss the span as typed
+        // by far more than an ulp of the span (0.16 − 0.14 is 0.01999999999999999):
+        // the bounds are the span as typed, the shortest decimal within that
+        // rounding, and its MAX_GRID_POINTS-th part, each met to a few ulps.
         let span = to - from;
-        let finest = span / MAX_GRID_POINTS;
-        if !(grid.is_finite() && grid >= finest && grid <= span) {
+        let typed = shortest_within(span, (from.abs() + to.abs()) * f64::EPSILON);
+        let widest = span.max(typed);
+        let finest = widest / MAX_GRID_POINTS;
+        let ulps = 4.0 * f64::EPSILON;
+        if !(grid.is_finite() && grid >= finest * (1.0 - ulps) && grid <= widest * (1.0 + ulps)) {
             bail!(
                 "{}: {} is invalid: must be in [{}, {}] rad (at most {} slopes over {}..{}, at \
                  least two)",
                 names.grid,
                 Num(grid),
-                Num(finest),
-                Num(span),
+                Num(shortest_within(finest, finest * ulps)),
+                Num(typed),
                 MAX_GRID_POINTS,
                 names.from,
                 names.to
@@ -189,6 +197,15 @@ impl Settings {
             })
             .collect()
     }
+}
+
+/// The shortest decimal within `within` of `x` (`x` itself if none is
+/// shorter): how a bound computed from typed values reads as typed.
+fn shortest_within(x: f64, within: f64) -> f64 {
+    (0..17)
+        .filter_map(|digits| format!("{x:.digits$e}").parse::<f64>().ok())
+        .find(|v| (v - x).abs() <= within)
+        .unwrap_or(x)
 }
 
 /// A design's slope profile: every simulated slope in φ order, the label
@@ -453,5 +470,31 @@ mod tests {
         let g = s.coarse();
         assert_eq!(g.len(), 5);
         assert!(g.windows(2).all(|w| w[1] - w[0] <= 0.03));
+    }
+
+    #[test]
+    fn a_grid_as_wide_as_the_range_as_typed_is_one_cell_and_the_bounds_read_as_typed() {
+        // 0.16 − 0.14 is 0.01999999999999999 in binary64: the typed 0.02 is the span.
+        let s = fig7a(0.14, 0.16, 0.02);
+        assert_eq!(s.coarse(), [0.14, 0.16]);
+        // The finest grid, 1e5 cells, as the message shows it.
+        let design = [0.8, 2.5, 0.125, 3.269, 0.0514];
+        let finest = Settings::parse(design, 0.14, 0.16, 1e-9, 2e-7, None, &Names::CLI).unwrap();
+        assert_eq!(finest.coarse().len(), 100_001);
+        for grid in [0.021, 1.9e-7] {
+            let e = Settings::parse(design, 0.14, 0.16, 1e-9, grid, None, &Names::CLI).unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "--grid: {} is invalid: must be in [2e-7, 0.02] rad (at most 100000 slopes \
+                     over --from..--to, at least two)",
+                    Num(grid)
+                )
+            );
+        }
+        // The ends' rounding is an ulp of each end, not of the span: 1.501 − 1.5 is
+        // 500 ulps of the span below 0.001.
+        let s = fig7a(1.5, 1.501, 0.001);
+        assert_eq!(s.coarse(), [1.5, 1.501]);
     }
 }
