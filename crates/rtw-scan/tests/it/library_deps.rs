@@ -104,6 +104,15 @@ fn the_tests_run_a_binary_that_a_plain_build_never_overwrites() {
         needs.contains(&"fake-sim"),
         "rtw-scan-test must require fake-sim: {needs:?}"
     );
+    // With two binaries, `cargo run --release -p rtw-scan` (the README's
+    // main command) must still know which one to run.
+    assert_eq!(
+        table(&m, "package")
+            .get("default-run")
+            .and_then(toml::Value::as_str),
+        Some("rtw-scan"),
+        "rtw-scan's [package] needs default-run = \"rtw-scan\""
+    );
     let plain = concat!("CARGO_BIN_EXE_", "rtw-scan\"");
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it");
     for entry in std::fs::read_dir(&dir).unwrap() {
