@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A basin-of-attraction slice of the Fig. 7(a) walk (docs/robustness.md,
+# A basin-of-attraction slice of the Fig. 7(a) walk (docs/robustness-gsn.md,
 # "A basin-of-attraction slice"): rod a's angular velocity ω_a (offsets
 # −40…40 rad/s) against rod b's angle θ_b (offsets −1.2…0.8 rad), 41 × 41
 # points, each iterated at most 60 steps on the step map, then the PNG.

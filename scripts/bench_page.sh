@@ -10,7 +10,7 @@
 #     2-thread scans;
 #   - SciPy: scripts/scipy_side_by_side.py 16.
 # Records the day, the machine and the load average with the numbers. Then
-# run `.venv/bin/python scripts/readme_tables.py docs/performance.md`.
+# run `.venv/bin/python scripts/readme_tables.py docs/performance.md docs/performance-scipy.md`.
 #
 #   ./scripts/bench_page.sh [RUNS]
 set -euo pipefail

@@ -202,7 +202,11 @@ SEG = "results/continuation/segments.md"
 PLANE = "results/continuation/plane/summary.md"
 PERF = "docs/performance.md"
 LC = "docs/limit-cycles.md"
-ROB = "docs/robustness.md"
+CONTD = "docs/continuation.md"
+ROB_STEP = "docs/robustness-step-down.md"
+ROB_GSN = "docs/robustness-gsn.md"
+ROB_ROUGH = "docs/robustness-rough.md"
+ROB_STUDY = "docs/robustness-study.md"
 REF = "docs/refine.md"
 README = "README.md"
 RS = "results/robustness/summary.md"
@@ -350,56 +354,56 @@ PINS: list[Pin] = [
          bif(B0, "phi to", 1, label="skip", period="1", stable="yes"),
          bif_line(B0, "period 1 → none", rf"{N}\+{N}i \(\|μ\| = [\d.]+, complex pair")]),
     Pin(LC, rf"For φ ≥ {N} at s = 0 this sweep's map stops", [bif(B0, "phi from", 1, label="failure")]),
-    # Continuation of the Fig. 7(a) walk (results/continuation/summary.md).
-    Pin(LC, rf"the s = 0 skip's {N} s of wall time",
+    # docs/continuation.md: continuation of the Fig. 7(a) walk (results/continuation/summary.md).
+    Pin(CONTD, rf"the s = 0 skip's {N} s of wall time",
         [Rx(CONT, rf"from the period-1 gait at phi = 0\.34 \(max\|μ\| [^)]*\);[^\n]*; {N} s$")]),
-    Pin(LC, rf"--curve-to 3\.9`: 3 min 55 s of CPU, {N} s of wall time",
+    Pin(CONTD, rf"--curve-to 3\.9`: 3 min 55 s of CPU, {N} s of wall time",
         [Rx(CONT, rf"from the period-1 gait at phi = 0\.15 \(max\|μ\| [^)]*\);[^\n]*; {N} s$")]),
-    Pin(LC, rf"stable from φ ≈ {N} up to its \*\*period doubling at φ = {N}\*\* \(multiplier {N}\)",
+    Pin(CONTD, rf"stable from φ ≈ {N} up to its \*\*period doubling at φ = {N}\*\* \(multiplier {N}\)",
         [walk("stable on", 0, branch="1"), walk("value", **PD),
          Rx(CONT, rf"^\| 0 \| period doubling \| [\d.]+ \| {N}\+0\.0000i \|", WALK)]),
-    Pin(LC, rf"where the attractor sweep above goes from period 1 to period 2 between φ = {N} and {N}\.",
+    Pin(CONTD, rf"where the attractor sweep of limit-cycles\.md goes from period 1 to period 2 between φ = {N} and {N}\.",
         [Rx(BIF, rf"^- period 1 → 2 between phi = {N} and {N};", B1)]),
-    Pin(LC, rf"\(max \|μ\| up to {N}\) to φ = {N}\.",
+    Pin(CONTD, rf"\(max \|μ\| up to {N}\) to φ = {N}\.",
         [Col("results/continuation/phi-fig7a.parquet", "floquet_max", "branch", 0, "max"),
          walk("values", 1, branch="0")]),
-    Pin(LC, rf"turns near φ = {N} \(flagged a fold, but with its critical multiplier at {N}:",
+    Pin(CONTD, rf"turns near φ = {N} \(flagged a fold, but with its critical multiplier at {N}:",
         [walk("value", bifurcation="fold"), walk("critical multiplier", bifurcation="fold")]),
-    Pin(LC, rf"is stable from {N} to its end at {N}\. The period doubling",
+    Pin(CONTD, rf"is stable from {N} to its end at {N}\. The period doubling",
         [walk("stable on", 0, period="2"), walk("stable on", 1, period="2")]),
-    Pin(LC, rf"between {N} and {N} the period-1 and the period-2 walk are both stable",
+    Pin(CONTD, rf"between {N} and {N} the period-1 and the period-2 walk are both stable",
         [walk("stable on", 0, period="2"), walk("value", **PD)]),
-    Pin(LC, rf"jumps to period 2 at {N} instead of passing", [bif(B1, "phi from", label="walk", period="2")]),
-    Pin(LC, rf"The branches end \({N}, {N} and {N}, \"no continuation\"\)",
+    Pin(CONTD, rf"jumps to period 2 at {N} instead of passing", [bif(B1, "phi from", label="walk", period="2")]),
+    Pin(CONTD, rf"The branches end \({N}, {N} and {N}, \"no continuation\"\)",
         [walk("values", 1, branch="1"), walk("values", 1, branch="0"), walk("values", 1, branch="2")]),
     # Through the changes of mode sequence (results/continuation/segments.md).
-    Pin(LC, rf"step frequency within {N} relative; the table there\)",
+    Pin(CONTD, rf"step frequency within {N} relative; the table there\)",
         [Cell(SEG, "L = 0.8 against", "max rel. Δ step frequency", {}, agg="max")]),
-    Pin(LC, rf"past the corner at φ = {N} where the sweep is stable \(its {N} values from φ = 0\.19875 to 0\.207, "
+    Pin(CONTD, rf"past the corner at φ = {N} where the sweep is stable \(its {N} values from φ = 0\.19875 to 0\.207, "
         rf"the step frequency within {N} relative\)",
         [seg("0.8", "at", way=P2, segment="0"),
          Cell(SEG, "L = 0.8 against", "sweep values compared", {"way": P2}, agg="sum"),
          Cell(SEG, "L = 0.8 against", "max rel. Δ step frequency", {"way": P2}, agg="max")]),
-    Pin(LC, rf"turns back at φ = {N}, its multiplier at {N}\)",
+    Pin(CONTD, rf"turns back at φ = {N}, its multiplier at {N}\)",
         [seg("0.8", "at", end="fold"), seg("0.8", "max\\|μ\\| before → after", part=0, end="fold")]),
-    Pin(LC, rf"L = 0\.8 going down at φ = {N}, where", [seg("0.8", "at", way="down", end="gait lost")]),
-    Pin(LC, rf"winds back and forth over φ = {N}–{N} through its {N} segments",
+    Pin(CONTD, rf"L = 0\.8 going down at φ = {N}, where", [seg("0.8", "at", way="down", end="gait lost")]),
+    Pin(CONTD, rf"winds back and forth over φ = {N}–{N} through its {N} segments",
         [seg("0.7", "at", agg="min", way=P2), seg("0.7", "at", agg="max", way=P2),
          seg("0.7", "segment", agg="count", way=P2)]),
     # The period-doubling curve in (φ, f_n) and its brute-force check.
-    Pin(LC, rf"from \({N}, {N} Hz\), where its continuation stops",
+    Pin(CONTD, rf"from \({N}, {N} Hz\), where its continuation stops",
         [walk("last point", 0, curve="1"), walk("last point", 1, curve="1")]),
-    Pin(LC, rf"diagram's doubling to \({N}, {N} Hz\)\.", [walk("last point", 0, curve="0"), walk("last point", 1, curve="0")]),
-    Pin(LC, rf"limit cycle solved \({N} s of wall time\)", [Rx(PLANE, rf"^- wall time: {N} s")]),
-    Pin(LC, rf"unresolved within a column \(f_n = {N} here\)",
+    Pin(CONTD, rf"diagram's doubling to \({N}, {N} Hz\)\.", [walk("last point", 0, curve="0"), walk("last point", 1, curve="0")]),
+    Pin(CONTD, rf"limit cycle solved \({N} s of wall time\)", [Rx(PLANE, rf"^- wall time: {N} s")]),
+    Pin(CONTD, rf"unresolved within a column \(f_n = {N} here\)",
         [Cell(CONT, PLANE_CHECK, "fn", {"curve crosses at phi": "* (open)"})]),
-    Pin(LC, rf"\(f_n = {N} has two at φ = {N} and {N}, well before the band\)",
+    Pin(CONTD, rf"\(f_n = {N} has two at φ = {N} and {N}, well before the band\)",
         [Cell(CONT, PLANE_CHECK, "fn", {"agrees": "yes (2 period-2*"}),
          Cell(CONT, PLANE_CHECK, "scan: stable period-2 walk", {"agrees": "yes (2 period-2*"}, part=0),
          Cell(CONT, PLANE_CHECK, "scan: stable period-2 walk", {"agrees": "yes (2 period-2*"}, part=1)]),
-    Pin(LC, rf"where that band is known \({N}–{N}\)", [walk("stable on", 0, period="2"), walk("value", **PD)]),
+    Pin(CONTD, rf"where that band is known \({N}–{N}\)", [walk("stable on", 0, period="2"), walk("value", **PD)]),
     # The s = 0 skip on the touch-and-go section.
-    Pin(LC, rf"stable only in two narrow windows, {N}–{N} and {N}–{N}, between a period doubling at {N} and "
+    Pin(CONTD, rf"stable only in two narrow windows, {N}–{N} and {N}–{N}, between a period doubling at {N} and "
         rf"Neimark–Sacker points at {N}, {N}–{N}, {N} and {N} \(and one at {N} on the unstable branch\)",
         [tag("stable on", 0, branch="1"), tag("stable on", 1, branch="1"),
          tag("stable on", 0, branch="0"), tag("stable on", 1, branch="0"),
@@ -407,76 +411,76 @@ PINS: list[Pin] = [
          tag("value", nth=1, branch="1", **NS), tag("value", nth=0, branch="1", **NS),
          tag("value", nth=0, branch="0", **NS), tag("value", nth=1, branch="0", **NS),
          tag("value", nth=2, branch="0", **NS), tag("value", nth=2, branch="1", **NS)]),
-    # docs/robustness.md: the robustness study (results/robustness/summary.md) and its run times.
-    Pin(ROB, rf"over its {N} stable gaits, median {N} m \(skips {N} m, walks {N} m, crawls {N} m\), 10th percentile "
+    # docs/robustness-*.md: the robustness study (results/robustness/summary.md) and its run times.
+    Pin(ROB_STEP, rf"over its {N} stable gaits, median {N} m \(skips {N} m, walks {N} m, crawls {N} m\), 10th percentile "
         rf"{N} m; {N} reach the 16 L cap \({N} m\); `step_down_h50` equals `step_down_max` for {N} of them",
         [Rx(RS, rf"^step_down_max over these {N} stable gaits: median {N} m \(skips {N} m, walks {N} m, crawls {N} m\), "
             rf"10th percentile {N} m; {N} at the 16 L cap \({N} m\); step_down_h50 equals step_down_max for {N}\.$",
             PAPER)]),
-    Pin(ROB, rf"\*\*The scans took\*\* {N} s \(the map\) and {N} s \(the paper scan\)",
+    Pin(ROB_STUDY, rf"\*\*The scans took\*\* {N} s \(the map\) and {N} s \(the paper scan\)",
         [Rx(RS, rf"^- map scan \(all measures\): {N} s", "Run times"),
          Rx(RS, rf"^- paper scan \(all measures\): {N} s", "Run times")]),
-    Pin(ROB, rf"took {N} s for the map and {N} s for the paper scan on 2 shared cores",
+    Pin(ROB_ROUGH, rf"took {N} s for the map and {N} s for the paper scan on 2 shared cores",
         [Rx(RS, rf"^- map scan \(all measures\): {N} s", "Run times"),
          Rx(RS, rf"^- paper scan \(all measures\): {N} s", "Run times")]),
     # The study over three draws of the ground (results/robustness/summary.md, "Paper: over terrain seeds").
-    Pin(ROB, rf"and both again at the two other seeds {N} s",
+    Pin(ROB_STUDY, rf"and both again at the two other seeds {N} s",
         [Rx(RS, rf"^- both scans at 2 more terrain seeds \(steps to fall and mfpt\): {N} s", "Run times")]),
-    Pin(ROB, rf"the GSN's Somers' D is {N} ± {N} and its Tobit slope {N} ± {N} decades per SD; Floquet max \|μ\|'s "
+    Pin(ROB_STUDY, rf"the GSN's Somers' D is {N} ± {N} and its Tobit slope {N} ± {N} decades per SD; Floquet max \|μ\|'s "
         rf"Somers' D \+{N} ± {N}, `step_down_max`'s \+{N} ± {N} and `step_down_h50`'s \+{N} ± {N}\.",
         [Rx(RS, rf"^\| GSN \| (?:[^|p]*censored\) \| ){{3}}{P} ± {N} \|$", PSEEDS),
          Rx(RS, rf"^\| GSN \| (?:[^|]*, p [^|]*\| ){{3}}{P} ± {N} \|$", PSEEDS)]
         + [Rx(RS, rf"^\| {m} \| (?:[^|p]*censored\) \| ){{3}}{P} ± {N} \|$", PSEEDS)
            for m in (r"Floquet max \\\|μ\\\|", r"step_down_max \(m\)", r"step_down_h50 \(m\)")]),
-    Pin(ROB, rf"the GSN's is {N}, {N} and {N} \({N} ± {N}\)",
+    Pin(ROB_STUDY, rf"the GSN's is {N}, {N} and {N} \({N} ± {N}\)",
         [Rx(RS, rf"^\| GSN \| {P} \[[^|]*\(\d+ gaits\) \| {P} \[[^|]*\(\d+ gaits\) \| {P} \[[^|]*\(\d+ gaits\) \| "
             rf"{P} ± {N} \|$", PSEEDS)]),
-    Pin(ROB, rf"seed 100's MFPTs correlate {P} with them over the {N} gaits finite at both, {N} of the {N} inside seed 0's "
+    Pin(ROB_STUDY, rf"seed 100's MFPTs correlate {P} with them over the {N} gaits finite at both, {N} of the {N} inside seed 0's "
         rf"interval, and whether any fall is counted agrees for {N} of the {N} stable gaits; seed 200's {P} over {N}, "
         rf"{N} of the {N}, and {N} of the {N}",
         [Rx(RS, rf"^\| seed {s} against seed 0 \| {P} \({N}\) \| {N} of {N} \| {N} of {N} \|$", PSEEDS)
          for s in (100, 200)]),
-    Pin(ROB, rf"Spearman {N} \[{N}, {P}\] on the {N} with a finite MFPT, Somers' D {N} \[{N}, {N}\] on the {N} with "
+    Pin(ROB_STUDY, rf"Spearman {N} \[{N}, {P}\] on the {N} with a finite MFPT, Somers' D {N} \[{N}, {N}\] on the {N} with "
         rf"the censored ones, and in the Tobit model {N} decades less MFPT per standard deviation of its rank "
         rf"\(likelihood ratio p = {N}\)",
         [paper_row("GSN"), Rx(RS, rf"^Spearman's ρ on the {N} gaits", PRC),
          Rx(RS, rf"^\| GSN \| [^|]* \| {P} \[{P}, {P}\] \|", PRC),
          Rx(RS, rf"no fall seen \({N} gaits, \d+ censored\)", PRC),
          Rx(RS, rf"^\| GSN alone \| -([\d.]+) \[[^|]*\| [^|]*\| [^|]*, {N} \|$", PT)]),
-    Pin(ROB, rf"max \|μ\| barely does, the other way \(Spearman \+{N} \[{N}, \+{N}\]; Tobit slope \+{N}, likelihood "
+    Pin(ROB_STUDY, rf"max \|μ\| barely does, the other way \(Spearman \+{N} \[{N}, \+{N}\]; Tobit slope \+{N}, likelihood "
         rf"ratio p = {N}\)", [paper_row(r"Floquet max \|μ\|"), tobit(r"Floquet max \|μ\|")]),
-    Pin(ROB, rf"\(`step_down_max` {P} \[{P}, {P}\], `step_down_h50` {P} \[{P}, {P}\] on the common gaits\), and over "
+    Pin(ROB_STUDY, rf"\(`step_down_max` {P} \[{P}, {P}\], `step_down_h50` {P} \[{P}, {P}\] on the common gaits\), and over "
         rf"all {N} gaits with a finite MFPT they correlate \+{N} and \+{N}",
         [paper_row("step_down_max (m)"), paper_row("step_down_h50 (m)"),
          Rx(RS, rf"^\| MFPT \| {N} finite", PW), Rx(RS, rf"^\| step_down_max \(m\) \|.*\| {P} \[[^]]*\] \(\d+\) \|$", PRC),
          Rx(RS, rf"^\| step_down_h50 \(m\) \|.*\| {P} \[[^]]*\] \(\d+\) \|$", PRC)]),
-    Pin(ROB, rf"On the map \({N} common gaits? with a finite MFPT, {N} with the censored ones, all of them censored\) "
+    Pin(ROB_STUDY, rf"On the map \({N} common gaits? with a finite MFPT, {N} with the censored ones, all of them censored\) "
         rf"nothing is ranked",
         [Rx(RS, rf"^Spearman's ρ on the {N} gaits", MRC), Rx(RS, rf"no fall seen \({N} gaits, \d+ censored\)", MRC)]),
-    Pin(ROB, rf"ranks the gaits as the MFPT does \(\+{N} \[\+{N}, \+{N}\] on the common gaits, \+{N} over the {N}\)",
+    Pin(ROB_STUDY, rf"ranks the gaits as the MFPT does \(\+{N} \[\+{N}, \+{N}\] on the common gaits, \+{N} over the {N}\)",
         [paper_row("steps_to_fall (Monte Carlo, censored at max_steps)"),
          alone("steps_to_fall (Monte Carlo, censored at max_steps)")]),
-    Pin(ROB, rf"\(φ: \+{N} over the {N} gaits; f_n \+{N};",
+    Pin(ROB_STUDY, rf"\(φ: \+{N} over the {N} gaits; f_n \+{N};",
         [Rx(RS, rf"^\| φ \(rad\) \| {P} \[", "Paper: the inputs"), Rx(RS, rf"^\| MFPT \| {N} finite", PW),
          Rx(RS, rf"^\| f_n \(Hz\) \| {P} \[", "Paper: the inputs")]),
-    Pin(ROB, rf"{N} gaits had no fall counted \({N} skips, {N} walks, {N} crawls?\)",
+    Pin(ROB_STUDY, rf"{N} gaits had no fall counted \({N} skips, {N} walks, {N} crawls?\)",
         [Rx(RS, rf"^\| \| no fall counted \({N}\)", PTEN),
          Rx(RS, rf"^Gaits: no fall counted skip {N}, walk {N}, crawl {N};", PTEN)]),
-    Pin(ROB, rf"\(φ median {N} against {N}, Mann–Whitney p = {N}\), with a smaller α \({N} against {N}, p = {N}\)",
+    Pin(ROB_STUDY, rf"\(φ median {N} against {N}, Mann–Whitney p = {N}\), with a smaller α \({N} against {N}, p = {N}\)",
         [Rx(RS, rf"^\| {x} \| {N} \[[^\]]*\](?: \(\d+ defined\))? \| {N} \[[^\]]*\] \| {N} \|$", PTEN) for x in (r"φ \(rad\)", "α")]),
-    Pin(ROB, rf"\(`step_down_max` median {N} m against {N} m, p = {N}\) and their GSN smaller \({N} against {N}, p = {N}\); "
+    Pin(ROB_STUDY, rf"\(`step_down_max` median {N} m against {N} m, p = {N}\) and their GSN smaller \({N} against {N}, p = {N}\); "
         rf"Floquet max \|μ\| is defined for {N} of them and the GSN for {N}",
         [Rx(RS, rf"^\| {x} \| {N} \[[^\]]*\](?: \(\d+ defined\))? \| {N} \[[^\]]*\] \| {N} \|$", PTEN) for x in (r"step_down_max \(m\)", "GSN")]
         + [Rx(RS, rf"^\| {x} \| [^|(]*\({N} defined\)", PTEN) for x in (r"Floquet max \\\|μ\\\|", "GSN")]),
-    Pin(ROB, rf"The crawls have the smallest MFPTs \(median {N} steps\)",
+    Pin(ROB_STUDY, rf"The crawls have the smallest MFPTs \(median {N} steps\)",
         [Cell(RS, "Paper: by gait", "median MFPT", {"gait": "crawl"})]),
-    Pin(ROB, rf"Of the paper scan's {N} stable gaits, {N} have a finite MFPT, {N} of them with an interval open above "
+    Pin(ROB_STUDY, rf"Of the paper scan's {N} stable gaits, {N} have a finite MFPT, {N} of them with an interval open above "
         rf"\(few falls counted\), and {N} no fall counted at all .* For {N} of the {N} the Monte Carlo",
         [Rx(RS, rf"^## The paper scan \(configs/paper\.toml\): {N} stable gaits"),
          Rx(RS, rf"^\| MFPT \| {N} finite", PW),
          Rx(RS, rf"^\| MFPT \| \d+ finite \({N} of them with mfpt_hi = ∞, the interval open above\); {N} with no fall", PW),
          Rx(RS, rf"trials fall for {N} of them", PAPER), Rx(RS, rf"^No fall was counted for {N} stable gaits", PAPER)]),
-    Pin(ROB, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[119, 215\]",
+    Pin(ROB_STUDY, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[119, 215\]",
         [Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "Fig. 7(a)"})]),
     Pin("docs/design.md", rf"the `robust` search found at that slope \(a walker, α {N} and f_n {N} Hz\)",
         [Cell(ATLAS, "Winners", "α", {"role": "robust-1"}), Cell(ATLAS, "Winners", "f_n", {"role": "robust-1"})]),
@@ -492,13 +496,13 @@ PINS: list[Pin] = [
     Pin("docs/design.md", rf"the robust winner as rounded there goes {N} steps at seed 0",
         [Rx(ATLAS, rf"the robust winner as rounded in the table: {N} steps at seed 0")]),
     # The survival curves of scripts/step_down_curve.py.
-    Pin(ROB, rf"the crawl's `step_down_max`, {N} m, is a fifth of its `step_down_h50`",
+    Pin(ROB_STEP, rf"the crawl's `step_down_max`, {N} m, is a fifth of its `step_down_h50`",
         [Rx(CURVE, rf"^`step_down_max` {N} m \(the best phase\)", "crawl")]),
-    Pin(ROB, rf"the skip's `step_down_h50`, {N} m, is where its ladder first found `S < ½` \(at a height just "
+    Pin(ROB_STEP, rf"the skip's `step_down_h50`, {N} m, is where its ladder first found `S < ½` \(at a height just "
         rf"above it\), though `S` is {N} at 0\.2 m",
         [Rx(CURVE, rf"`step_down_h50` {N} m;", "skip"), Rx(CURVE, rf"^\| 0\.2000 \| [\d.]+ \| {N} \|", "skip")]),
     # The MFPT over the map (results/robustness/map/samples.parquet and the summary).
-    Pin(ROB, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and {N} steps, closed intervals, the Monte Carlo's {N} and {N} "
+    Pin(ROB_STUDY, rf"φ 0\.08 with f_n 4\.25–4\.5 Hz \({N} and {N} steps, closed intervals, the Monte Carlo's {N} and {N} "
         rf"beside them\)\. {N} of the {N} stable gaits have no fall counted, across the whole map; {N} have a finite "
         rf"MFPT, {N} of them with an interval open above",
         [Col(MAPS, "mfpt", "phi", 0.08, "min"), Col(MAPS, "mfpt", "phi", 0.08, "min", {"fn": 4.25}),
@@ -508,7 +512,7 @@ PINS: list[Pin] = [
          Rx(RS, rf"^\| MFPT \| {N} finite", MW),
          Rx(RS, rf"^\| MFPT \| \d+ finite \({N} of them", MW)]),
     # The cost of the MFPT on the map (results/robustness/mfpt_cost-robustness-map.txt).
-    Pin(ROB, rf"{N} s for the map's {N} designs \({N} stable gaits\) on 2 threads; per stable gait a median of {N} s "
+    Pin(ROB_ROUGH, rf"{N} s for the map's {N} designs \({N} stable gaits\) on 2 threads; per stable gait a median of {N} s "
         rf"and a mean of {N} s of one thread \(90 % below {N} s, the slowest {N} s\); {P} s per decade of MFPT over the "
         rf"{N} gaits with a finite MFPT \(log–log slope {P}; Spearman {P}\)",
         [Rx(MCOST, rf"^wall times: [^;]*; median {N} s"), Rx(MCOST, rf"^stable gaits: \d+ of {N};"),
@@ -516,31 +520,31 @@ PINS: list[Pin] = [
          Rx(MCOST, rf"{P} s per decade of MFPT"), Rx(MCOST, rf"^time against log10 MFPT over the {N} finite"),
          Rx(MCOST, rf"log-log slope {P}"), Rx(MCOST, rf"Spearman {P}$")]),
     # The cost of the MFPT on the paper scan (results/robustness/mfpt_cost.txt).
-    Pin(ROB, rf"The scan took a median of {N} s of wall time and \*\*{N} s of CPU\*\*: on 2 idle cores at perfect "
+    Pin(ROB_ROUGH, rf"The scan took a median of {N} s of wall time and \*\*{N} s of CPU\*\*: on 2 idle cores at perfect "
         rf"scaling that is \*\*{N} minutes,",
         [Rx(PCOST, rf"^wall times: [^;]*; median {N} s"), Rx(PCOST, rf"^CPU times [^;]*; median {N} s"),
          Rx(PCOST, rf"half of it {N} min")]),
-    Pin(ROB, rf"Its {N} stable gaits took a median of {N} s and a mean of {N} s of one thread each \(90 % below {N} s, "
+    Pin(ROB_ROUGH, rf"Its {N} stable gaits took a median of {N} s and a mean of {N} s of one thread each \(90 % below {N} s, "
         rf"the slowest {N} s\)",
         [Rx(PCOST, rf"^stable gaits: {N} of"), Rx(PCOST, rf"median {N} s, mean {N} s, 90 % {N} s, max {N} s;")]),
-    Pin(ROB, rf"not by its MFPT \({P} s per decade of MFPT, log–log slope {P}; Spearman {P}\)",
+    Pin(ROB_ROUGH, rf"not by its MFPT \({P} s per decade of MFPT, log–log slope {P}; Spearman {P}\)",
         [Rx(PCOST, rf"{P} s per decade of MFPT"), Rx(PCOST, rf"log-log slope {P}"), Rx(PCOST, rf"Spearman {P}$")]),
-    Pin(ROB, rf"from {N} s for MFPT 10–100 \({N} gaits\) to {N} s for 10⁴–10⁵ \({N}\); the {N} gaits with no fall "
+    Pin(ROB_ROUGH, rf"from {N} s for MFPT 10–100 \({N} gaits\) to {N} s for 10⁴–10⁵ \({N}\); the {N} gaits with no fall "
         rf"counted take {N} s",
         [Rx(PCOST, rf"10–100: {N} s \({N}\)"), Rx(PCOST, rf"10000–100000: {N} s \({N}\)"),
          Rx(PCOST, rf"no fall seen: [\d.]+ s \({N}\)$"), Rx(PCOST, rf"no fall seen: {N} s \(\d+\)$")]),
     # The basin of the Fig. 7(a) walk (results/robustness/basin_fig7a.{txt,parquet}).
-    Pin(ROB, rf"the walk's own ω_a = {N} rad/s, θ_b = {N} rad\): {N} points return, {N} fail and {N} start with a tip in "
+    Pin(ROB_GSN, rf"the walk's own ω_a = {N} rad/s, θ_b = {N} rad\): {N} points return, {N} fail and {N} start with a tip in "
         rf"the ground; none survives",
         [Rx(BASIN, rf"omega_a = {N}, theta_b = {N}$"),
          Rx(BASIN, rf"points: returns {N}, survives 0, fails {N}, infeasible {N}$")]),
-    Pin(ROB, rf"come back within 1e-3 in 23 to {N} steps \(median {N}; the fixed point itself in {N}\)",
+    Pin(ROB_GSN, rf"come back within 1e-3 in 23 to {N} steps \(median {N}; the fixed point itself in {N}\)",
         [Col(BASIN_ROWS, "steps", "outcome", "returns", agg) for agg in ("max", "median", "min")]),
-    Pin(ROB, rf"Every failure is a `collapse` \(`rod_down`\) in the first step \({N}\) or the second \({N}\)",
+    Pin(ROB_GSN, rf"Every failure is a `collapse` \(`rod_down`\) in the first step \({N}\) or the second \({N}\)",
         [Col(BASIN_ROWS, "steps", "outcome", "fails", "count", {"steps": k, "failure": "rod_down"}) for k in (0, 1)]),
-    Pin(ROB, rf"its largest multiplier, {N}, predicts", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
-    Pin(ROB, rf"Fig\. 7\(a\) \(a period-1 walk, largest Floquet multiplier {N}\)", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
-    Pin(ROB, rf"\(41 × 41 = {N} points, ≤ 60 steps\) took {N} s on the 2 worker threads of this shared machine \(load "
+    Pin(ROB_GSN, rf"its largest multiplier, {N}, predicts", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
+    Pin(ROB_GSN, rf"Fig\. 7\(a\) \(a period-1 walk, largest Floquet multiplier {N}\)", [Rx(BASIN, rf"max \|mu\| {N}\)")]),
+    Pin(ROB_GSN, rf"\(41 × 41 = {N} points, ≤ 60 steps\) took {N} s on the 2 worker threads of this shared machine \(load "
         rf"average about 19 at the time; {N} ms of wall-clock per point",
         [Rx(BASIN, rf"^{N} points:"), Rx(BASIN, rf"^{N} s \({N} ms per point")]),
     # docs/refine.md: the refinement benchmark (results/refine/summary.md).

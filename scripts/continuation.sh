@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The continuation diagrams of docs/limit-cycles.md -> results/continuation/:
+# The continuation diagrams of docs/continuation.md -> results/continuation/:
 #   1. the Fig. 7(a) walk continued in φ, stable and unstable, its bifurcations,
 #      the period-2 branch born at its period doubling, and that period doubling
 #      continued in (φ, f_n): rtw-scan continuation --curve fn

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cost of the mean first-passage time (docs/robustness.md, "Cost of the
+# The cost of the mean first-passage time (docs/robustness-rough.md, "Cost of the
 # MFPT"): the paper scan (configs/paper.toml, all 1000 samples; the MFPT is
 # computed for its stable gaits) with only `robustness.mfpt=true`, at the
 # default roughness (robustness.sigma, 1 cm), on 2 threads, RUNS times

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # How deep an MFPT rtw gives an interval for, and whether the counted MFPT
-# holds plain Monte Carlo there (docs/robustness.md, "Mean first-passage
+# holds plain Monte Carlo there (docs/robustness-rough.md, "Mean first-passage
 # time", "Deeper MFPTs at a cost"): Fig. 7(a)'s walk on the rough slope of
 # SIGMA, two ways, over SEEDS draws each:
 #   - the counted MFPT with `robustness.mfpt_batches=BATCHES` (2 880 steps

@@ -53,7 +53,7 @@ fi
 ./scripts/figures.sh
 ./scripts/bifurcation.sh >/dev/null
 # After the attractor sweep it draws under its diagram, before readme_tables.py
-# copies its tables into docs/limit-cycles.md.
+# copies its tables into docs/continuation.md.
 ./scripts/continuation.sh >/dev/null
 ./scripts/basin.sh >/dev/null
 ./scripts/robustness_study.sh >/dev/null

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The cost of the robustness measures: the paper scan plain, with
 # robustness.step_down=true, and with step_down and gsn, one thread each, in
-# one run (docs/robustness.md, "Cost"). Writes into a temporary directory only.
+# one run (docs/robustness-step-down.md, "Cost"). Writes into a temporary directory only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p rtw-scan

@@ -1,4 +1,4 @@
-"""The robustness study's tables and figures (docs/robustness.md), from the
+"""The robustness study's tables and figures (docs/robustness-study.md), from the
 scans scripts/robustness_study.sh makes: the (φ, f_n) map around Fig. 7(a)
 and the paper scan, every stable gait with Floquet max |μ|, the gait
 sensitivity norm, step_down_max, step_down_h50, the Monte Carlo steps to
@@ -8,7 +8,7 @@ The same scans with the rough slope drawn from other terrain seeds, in
 OUT/seed*/map and OUT/seed*/paper (only their MFPT and steps to fall are
 read), give each statistic of the MFPT at each draw and its spread.
 
-Writes OUT/summary.md (every number docs/robustness.md quotes from the
+Writes OUT/summary.md (every number docs/robustness-study.md quotes from the
 study), OUT/map-mfpt.png, OUT/map.png and OUT/paper.png.
 
     .venv/bin/python scripts/robustness_study.py results/robustness [--times "NAME=TEXT;..."]
@@ -239,7 +239,7 @@ def tobit_table(scan: Scan) -> list[str]:
 
 
 def step_down_line(scan: Scan) -> list[str]:
-    """step_down_max over the stable gaits, as docs/robustness.md quotes it."""
+    """step_down_max over the stable gaits, as docs/robustness-step-down.md quotes it."""
     v, lab = scan.s("step_down_max"), scan.labels()
     ok = np.isfinite(v)
     cap = 16 * float(scan.config["params"]["length"])

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The robustness study of docs/robustness.md -> results/robustness/, every
+# The robustness study of docs/robustness-study.md -> results/robustness/, every
 # measure on one population:
 #   1. the (φ, f_n) map around Fig. 7(a), configs/robustness-map.toml (9 × 9),
 #   2. the paper scan (configs/paper.toml, all 1000 samples; the measures are

@@ -1,5 +1,5 @@
 """The survival curve of a step down over every phase, for four gaits of
-docs/robustness.md: the Fig. 7(a) walk and a walk, a skip and a crawl of
+docs/robustness-step-down.md: the Fig. 7(a) walk and a walk, a skip and a crawl of
 the paper scan (samples 44, 515 and 560 of results/robustness/paper).
 
 For each gait, `rtw-scan simulate --set robustness.step_down=true
@@ -8,7 +8,7 @@ best phase) and `step_down_h50`; then, at stated heights (0.01 m, 0.2 m and
 0.25 to 2 times `step_down_max`), `--set robustness.step_down_at=H` gives
 the share of the 20 edge positions over one step that survive, and the
 shares that fail by kind. Writes results/robustness/step_down_curve.md
-(docs/robustness.md copies its tables).
+(docs/robustness-step-down.md copies its tables).
 
     .venv/bin/python scripts/step_down_curve.py [OUT.md]
 """

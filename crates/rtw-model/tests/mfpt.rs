@@ -1,4 +1,4 @@
-//! The RTW's mean first-passage time (docs/robustness.md, "Mean
+//! The RTW's mean first-passage time (docs/robustness-rough.md, "Mean
 //! first-passage time") against plain Monte Carlo run to the fall where
 //! that is affordable: the same rough slopes, the Monte Carlo trials
 //! (`steps_to_fall`) capped far beyond any of them, so uncensored.

@@ -1,4 +1,4 @@
-//! The RTW on a rough slope (docs/robustness.md): a roughness of 0 is the
+//! The RTW on a rough slope (docs/robustness-rough.md): a roughness of 0 is the
 //! flat slope bit for bit, and a rough ground is a pure function of its seed.
 
 use rtw_model::options::TerrainOptions;

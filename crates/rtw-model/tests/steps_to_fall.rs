@@ -1,4 +1,4 @@
-//! Mean steps to fall on seeded rough slopes (docs/robustness.md): a pure
+//! Mean steps to fall on seeded rough slopes (docs/robustness-rough.md): a pure
 //! function of the seed, censored on the flat slope, short on rough ground.
 
 use rtw_model::options::RobustnessOptions;

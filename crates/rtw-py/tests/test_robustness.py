@@ -66,7 +66,7 @@ def test_a_scan_has_the_step_down_column_only_when_asked_for() -> None:
 
 
 def test_gsn_only_when_asked_for() -> None:
-    # The gait sensitivity norm (docs/robustness.md): the same key and value
+    # The gait sensitivity norm (docs/robustness-gsn.md): the same key and value
     # as `rtw-scan simulate --set robustness.gsn=true --json`.
     flat = rtw.simulate(*FIG7A)
     assert "gsn" not in flat.to_dict()

@@ -1,5 +1,5 @@
 """The rough slope and the Monte Carlo steps to fall from Python: the same
-keys, values and errors as `rtw-scan simulate --set` (docs/robustness.md)."""
+keys, values and errors as `rtw-scan simulate --set` (docs/robustness-rough.md)."""
 
 from __future__ import annotations
 

@@ -101,7 +101,7 @@ fn is_default_patch(v: &f64) -> bool {
 /// is a face a foot can meet (docs/model.md §4), so shorter patches put more
 /// faces in its way: at Fig. 7(a) the walk's mean steps to fall is 31–50 on
 /// 0.2 m patches and 73–92 (mostly censored at 100) on 0.8 m patches at
-/// roughnesses from 1 mm to 5 cm (docs/robustness.md).
+/// roughnesses from 1 mm to 5 cm (docs/robustness-rough.md).
 pub const PATCH_DEFAULT: f64 = 0.8;
 
 impl Default for TerrainOptions {

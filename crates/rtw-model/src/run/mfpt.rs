@@ -1,5 +1,5 @@
 //! The mean first-passage time of a stable gait on a rough slope
-//! (docs/robustness.md, "Mean first-passage time"): the RTW as a
+//! (docs/robustness-rough.md, "Mean first-passage time"): the RTW as a
 //! step-to-step stochastic walker for [`hybrid_ode::metastable`].
 //!
 //! **The ground.** The rough slope of the steps to fall: patches
@@ -35,8 +35,9 @@
 //! and a score of its state (the centre of mass's velocity, below) does
 //! not climb before them: at Fig. 7(a) and σ = 1 cm the splitting gave
 //! 5171 [2537, ∞] steps against plain Monte Carlo's 495 [422, 568]
-//! (docs/robustness.md; measured while a tip put on a face at its foot
-//! could slide through the lower patch, which made most of those falls).
+//! (CHANGELOG.md, "The MFPT's estimators tried and dropped"; measured
+//! while a tip put on a face at its foot could slide through the lower
+//! patch, which made most of those falls).
 //! Counting has a cost fixed by its batches (`robustness.mfpt_batches`) and
 //! no score; beyond about a fifth of its counted walker-steps its interval
 //! opens above.
@@ -67,7 +68,7 @@ use std::cell::RefCell;
 ///
 /// The burn-in is long because the fall rate still rises after 20 steps
 /// (measured before the leak at a face's foot was closed,
-/// docs/robustness.md): at Fig. 7(a) and σ = 5 cm, counting steps 20–80 gave
+/// docs/robustness-rough.md): at Fig. 7(a) and σ = 5 cm, counting steps 20–80 gave
 /// `1/fall_rate` = 164, steps 100–200 gave 98 and 200–400 102, and the
 /// MFPT from the start 174 against plain Monte Carlo's 132 [121, 144];
 /// with 60 steps of burn-in it is 132. Half the walkers take it because

@@ -1,4 +1,4 @@
-//! Mean steps to fall on a rough slope (docs/robustness.md), Byl and
+//! Mean steps to fall on a rough slope (docs/robustness-rough.md), Byl and
 //! Tedrake's mean first-passage time by Monte Carlo.
 //!
 //! The settled gait (the state its stable flat run ended in, as for the

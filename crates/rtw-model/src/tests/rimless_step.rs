@@ -1,6 +1,6 @@
 //! McGeer's rimless wheel over a step down, on the hybrid engine with the
 //! RTW's terrain ([`TerrainOptions`]), against the closed form derived in
-//! docs/robustness.md ("The rimless wheel on a step down").
+//! docs/robustness-step-down.md ("The rimless wheel on a step down").
 //!
 //! The wheel: a point-mass hub on spokes of length `l`, `2α` apart, on a
 //! slope `γ`. State `[θ, θ̇]`, `θ` the stance spoke's angle from the vertical
@@ -152,7 +152,7 @@ fn wheel(h: f64) -> Wheel {
     }
 }
 
-/// The closed forms of docs/robustness.md for wheel `w` on a step `h`.
+/// The closed forms of docs/robustness-step-down.md for wheel `w` on a step `h`.
 struct ClosedForm {
     /// McGeer's fixed point on the flat slope.
     omega_star: f64,
@@ -253,7 +253,7 @@ fn the_step_down_map_is_the_closed_form() {
 
 /// The largest step down after which the wheel still rolls on: the stance
 /// foot's normal force `m (g cos θ − l θ̇²)` stays positive through the fall
-/// (docs/robustness.md). With energy conserved in stance,
+/// (docs/robustness-step-down.md). With energy conserved in stance,
 /// `θ̇² = ω*² + 2 (g/l)(cos θ₀ − cos θ)`, it is least at the landing angle
 /// `θ₁ = γ + α + δ`, so the wheel flies off a step with
 /// `cos θ₁ < (ω*² l/g + 2 cos θ₀) / 3`.
@@ -319,7 +319,7 @@ fn a_step_just_ahead_of_the_landing_foot_is_a_riser_hit() {
     assert_eq!(s.end, Some(Event::Riser));
 }
 
-/// The wheel's gait sensitivity norm in closed form (docs/robustness.md,
+/// The wheel's gait sensitivity norm in closed form (docs/robustness-gsn.md,
 /// "The gait sensitivity norm"), indicator the post-impact rate (the wheel's
 /// speed), input the drop met by the next landing: `y_0 = b`,
 /// `y_k = c^{2(k−1)} r`, `GSN² = b² + r² / (1 − c⁴)`.

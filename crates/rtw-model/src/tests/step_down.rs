@@ -1,4 +1,4 @@
-//! The RTW over a step down (docs/robustness.md): the flat slope is
+//! The RTW over a step down (docs/robustness-step-down.md): the flat slope is
 //! untouched by the terrain, and the largest survivable step down is a
 //! boundary of direct simulation.
 
@@ -41,7 +41,7 @@ fn a_step_met_on_the_way_changes_the_run() {
 /// At 0.8× the reported height the gait survives; the first failure above
 /// it is within the bisection's tolerance (5 %). At 1.25× the Fig. 7(a)
 /// walk survives again: survival is not monotone for drops of several rod
-/// lengths (docs/robustness.md), which the test records rather than hides.
+/// lengths (docs/robustness-step-down.md), which the test records rather than hides.
 #[test]
 fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
     let p = Params::fig7a();
@@ -63,7 +63,7 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
         h > 0.0 && fail > h && fail <= 1.05 * h + 1e-3 * p.length,
         "{h} {fail}"
     );
-    // The value docs/robustness.md quotes (a regression pin of this model,
+    // The value docs/robustness-step-down.md quotes (a regression pin of this model,
     // not a reference): the doc and the binary must agree.
     assert!(
         (h - 2.4286).abs() < 1e-4,
@@ -90,7 +90,7 @@ fn the_fig7a_walk_survives_0_8_of_its_largest_step_down_and_fails_just_above() {
 /// through `simulate`, all twenty positions, where the bracketing stops at
 /// ten survivors or eleven failures). Prints the survival curve at stated
 /// heights (0.01 m, 0.2 m, and 0.5, 0.8, 1.0 × `step_down_max`) and the
-/// failures by kind (docs/robustness.md quotes them); the curve's shares
+/// failures by kind (docs/robustness-step-down.md quotes them); the curve's shares
 /// must be the runs' own, and no run may end at a riser.
 #[test]
 fn the_fig7a_walk_survives_half_the_phases_at_its_step_down_h50() {

@@ -368,7 +368,7 @@ def basin(
     The design's gait is solved on the step map; two section coordinates
     are offset from its fixed point over a grid, every other one held, and
     each point is iterated up to ``steps`` steps and classified
-    (``returns``, ``survives``, ``fails``, ``infeasible``; docs/robustness.md).
+    (``returns``, ``survives``, ``fails``, ``infeasible``; docs/robustness-gsn.md).
 
     Args:
         x, y: the grid's axes, ``"COORD:FROM:TO:POINTS"`` with COORD one of

@@ -277,7 +277,7 @@ pub(crate) fn designs_schema() -> arrow_schema::SchemaRef {
 }
 
 /// Every evaluation as a table: the columns of `search.parquet`
-/// (docs/results-on-disk.md).
+/// (docs/results-other-commands.md).
 pub fn search_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
     let rows: Vec<Line> = evals
         .iter()

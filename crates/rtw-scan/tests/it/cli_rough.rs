@@ -1,5 +1,5 @@
 //! `rtw-scan simulate` on a rough slope and with the Monte Carlo steps to
-//! fall (docs/robustness.md), with the real simulator.
+//! fall (docs/robustness-rough.md), with the real simulator.
 
 use crate::common::*;
 

@@ -1,7 +1,7 @@
 //! A branch continued through its mode-sequence changes, segment by
 //! segment: each segment's corrector refuses any point whose mode sequence
 //! is not the segment's, and each segment ends where [`locate_end`] names
-//! the change (docs/limit-cycles.md).
+//! the change (docs/continuation.md).
 
 use crate::cycles::branches::continuation::StepMapFamily;
 use crate::cycles::branches::nonsmooth::*;

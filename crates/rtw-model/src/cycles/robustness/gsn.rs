@@ -1,6 +1,6 @@
 //! The gait sensitivity norm (Hobbelen & Wisse, IEEE T-RO 23(6), 2007): how
 //! strongly a gait's step-to-step indicators answer a change of floor height
-//! (docs/robustness.md, "The gait sensitivity norm").
+//! (docs/robustness-gsn.md, "The gait sensitivity norm").
 //!
 //! **The system.** The step map at the gait's fixed point, linearised with
 //! the floor height as its input:
@@ -653,7 +653,7 @@ pub(crate) mod tests {
         }
     }
 
-    /// McGeer's rimless wheel (docs/robustness.md): state (θ⁺, ω⁺) after an
+    /// McGeer's rimless wheel (docs/robustness-gsn.md): state (θ⁺, ω⁺) after an
     /// impact, indicator the rate after the next impact (its speed), input
     /// the drop met by the next landing. Its linearisation at the fixed
     /// point is in closed form, and so is its impulse response: `y_0 = b`,
