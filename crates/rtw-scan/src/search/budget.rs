@@ -73,11 +73,7 @@ pub fn check(s: &SearchSettings, options: &Options) -> Result<()> {
     if generation <= allowed {
         return Ok(());
     }
-    let mut ways = vec![format!(
-        "budget at least {} ({} per sub-search)",
-        generation * rounds(s),
-        generation
-    )];
+    let mut ways = Vec::new();
     if allowed / per >= 2 {
         ways.push(format!("batch in [2, {}]", allowed / per));
     }
@@ -94,7 +90,7 @@ pub fn check(s: &SearchSettings, options: &Options) -> Result<()> {
         "budget: {} is invalid for this search: one generation of batch = {} designs costs at \
          least {generation} simulations ({per} a design: the coarse grid of slopes.grid = {} over \
          [{}, {}]{}), more than the budget{} and than {GENERATION_ALLOWANCE}, the most a \
-         generation may spend past it: must be {}",
+         generation may spend past it: must be at least {}{}",
         s.budget,
         s.batch,
         Num(s.grid),
@@ -110,7 +106,12 @@ pub fn check(s: &SearchSettings, options: &Options) -> Result<()> {
         } else {
             ""
         },
-        ways.join(", or ")
+        generation * rounds(s),
+        if ways.is_empty() {
+            String::new()
+        } else {
+            format!(", or set {}", ways.join(", or "))
+        }
     )
 }
 

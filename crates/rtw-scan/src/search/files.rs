@@ -364,7 +364,7 @@ pub fn stored(
              replaced; the same config, --set and --variant as there resume it; choose another \
              folder, or pass --force",
             out.display(),
-            differences(&theirs, &ours).join("; ")
+            super::identity::differences(&theirs, &ours).join("; ")
         );
     }
     // The same settings, but perhaps not the same numbers: an evaluation is
@@ -387,69 +387,6 @@ pub fn stored(
         evals.extend(evaluations_of(s, &batch?).with_context(|| format!("{}", path.display()))?);
     }
     Ok(evals)
-}
-
-/// What differs between the stored search's identity `theirs` and this
-/// one's `ours` ([`identity`]): each setting and each model option, named
-/// with both values (`budget 600 there, 300 here`, `contact.mu 0.5 there,
-/// 0.3 here`).
-fn differences(theirs: &serde_json::Value, ours: &serde_json::Value) -> Vec<String> {
-    use std::collections::BTreeMap;
-    fn flat(prefix: &str, v: &toml::Value, out: &mut BTreeMap<String, String>) {
-        match v {
-            toml::Value::Table(t) => {
-                for (k, v) in t {
-                    let key = if prefix.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{prefix}.{k}")
-                    };
-                    flat(&key, v, out);
-                }
-            }
-            v => {
-                out.insert(prefix.to_string(), v.to_string());
-            }
-        }
-    }
-    let options = |v: &serde_json::Value| {
-        let mut out = BTreeMap::new();
-        if let Some(t) = v["options"]
-            .as_str()
-            .and_then(|t| t.parse::<toml::Table>().ok())
-        {
-            flat("", &toml::Value::Table(t), &mut out);
-        }
-        out
-    };
-    let settings = |v: &serde_json::Value| -> BTreeMap<String, String> {
-        v["settings"]
-            .as_object()
-            .map(|m| m.iter().map(|(k, v)| (k.clone(), v.to_string())).collect())
-            .unwrap_or_default()
-    };
-    let mut d = Vec::new();
-    for (what, there, here) in [
-        ("", settings(theirs), settings(ours)),
-        ("simulation.", options(theirs), options(ours)),
-    ] {
-        let keys: std::collections::BTreeSet<&String> = there.keys().chain(here.keys()).collect();
-        for k in keys {
-            let (a, b) = (there.get(k), here.get(k));
-            if a != b {
-                let none = "none".to_string();
-                d.push(format!(
-                    "{what}{k} {} there, {} here",
-                    a.unwrap_or(&none),
-                    b.unwrap_or(&none)
-                ));
-            }
-        }
-    }
-    if d.is_empty() {
-        d.push("the same settings and options, written otherwise".into());
-    }
-    d
 }
 
 /// The evaluations of a batch of `search.parquet`'s rows.

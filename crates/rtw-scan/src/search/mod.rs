@@ -28,6 +28,7 @@ pub mod check;
 mod cmaes;
 mod fall_model;
 pub mod files;
+mod identity;
 mod propose;
 pub mod read;
 mod settings;
