@@ -464,3 +464,32 @@ fn ctrl_c_stops_a_search_saying_what_it_kept_and_the_same_command_goes_on() {
     assert!(kept > 0);
     assert!(err.contains(&format!("{kept} designs")), "{kept}: {err}");
 }
+
+#[test]
+fn two_sensitivity_analyses_into_one_file_the_second_is_refused_naming_the_first() {
+    // The lock is every writing study's, not the search's and the
+    // profile's only: one more of them, through the binary.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(dir.path(), "scan.toml", &paper_like(5000, 3));
+    let scan = dir.path().join("scan");
+    fake_run_ok(&cfg, &scan, &[]);
+    let out = dir.path().join("idx.parquet");
+    let args = |n: &'static str| -> Vec<&str> {
+        vec![
+            "sensitivity",
+            s(&scan),
+            "--resamples",
+            n,
+            "--out",
+            s(&out),
+            "--quiet",
+        ]
+    };
+    let mut first = spawn(&args("10000"));
+    wait_for(&mut first, &dir.path().join(".idx.parquet.lock"));
+    let pid = first.id().to_string();
+    run_err(&args("100"), &[&format!("another rtw-scan (PID {pid})")]);
+    assert!(first.wait().unwrap().success());
+    let about: serde_json::Value = serde_json::from_str(&meta(&out, "rtw.sensitivity")).unwrap();
+    assert_eq!(about["resamples"].as_u64(), Some(10000), "{about}");
+}
