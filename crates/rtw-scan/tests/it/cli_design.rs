@@ -434,7 +434,7 @@ fn a_design_folder_with_two_builds_files_is_refused_naming_both() {
 }
 
 #[test]
-fn ctrl_c_stops_a_search_saying_what_it_kept_and_the_same_command_goes_on() {
+fn ctrl_c_stops_a_search_saying_what_it_kept_and_how_to_go_on() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = tiny(dir.path(), "i", 3000, "");
     let out = dir.path().join("out");
