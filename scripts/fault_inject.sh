@@ -22,6 +22,12 @@
 #      of theirs: the earlier file stays byte for byte or is replaced whole
 #      by the uninterrupted result, and no temporary file is left after a
 #      SIGTERM;
+#   8. a design search killed at random points: each evaluation it stored is
+#      the uninterrupted search's of that index, and the same command
+#      finishes with its every row (search.parquet, designs.parquet); a slope
+#      profile killed over an earlier profile of its own keeps it whole or
+#      replaces it by the uninterrupted one (FAULT_ONLY=design runs this part
+#      alone, in a few seconds);
 # and every result is compared row by row (scripts/compare_scans.py) with an
 # uninterrupted run. The random points come from a seed, printed (set
 # FAULT_SEED to replay one). Exits non-zero if any finished row was lost or
@@ -71,6 +77,19 @@ finished_rows() {
   echo "$n"
 }
 
+# same_table A B: the two Parquet files hold equal tables (no timing column).
+same_table() {
+  "$py" - "$1" "$2" <<'PY' || return 1
+import sys, pyarrow.parquet as pq
+a, b = (pq.read_table(f).to_pandas() for f in sys.argv[1:3])
+sys.exit(0 if a.equals(b) else 1)  # NaN where NaN (an index not estimable)
+PY
+}
+
+# sleep_ms MS
+sleep_ms() { sleep "$(printf '%d.%03d' $(($1 / 1000)) $(($1 % 1000)))"; }
+
+if [ "${FAULT_ONLY:-}" != design ]; then
 "$bin" "${scan[@]}" --out "$work/ref" >/dev/null || fail "the uninterrupted run failed"
 
 # 1. Kills at random points, each followed by a resumed run that is killed in turn.
@@ -315,13 +334,6 @@ done
 # result of its own at --out: that file is never lost, never left part
 # written, and either kept byte for byte or replaced by the whole new result
 # (the same rows as an uninterrupted run's).
-same_table() {
-  "$py" - "$1" "$2" <<'PY' || return 1
-import sys, pyarrow.parquet as pq
-a, b = (pq.read_table(f).to_pandas() for f in sys.argv[1:3])
-sys.exit(0 if a.equals(b) else 1)  # NaN where NaN (an index not estimable)
-PY
-}
 kill_study() { # WHAT OUT ARGS...: kills `rtw-scan ARGS` four times over OUT
   local what=$1 out=$2 i sig delay_ms before
   shift 2
@@ -356,5 +368,122 @@ kill_study() { # WHAT OUT ARGS...: kills `rtw-scan ARGS` four times over OUT
 mkdir -p "$work/studies"
 kill_study sensitivity "$work/ref/indices.parquet" sensitivity "$work/ref" --resamples 2000
 kill_study basin "$work/studies/basin.parquet" basin --x omega_a:-40:40:9 --y theta_b:-1.2:0.8:9 --steps 60 --threads 2
+fi
+
+# 8. A design search killed at random instants (SIGKILL and SIGTERM
+# alternately), each followed by the same command, killed in turn: each
+# evaluation it stored is the uninterrupted search's of that index, and the
+# last run ends with its every row. A tiny search (the paper's box, slopes
+# [0.05, 0.3] on a 0.05 grid: about a second).
+design=$work/design.toml
+cat >"$design" <<'TOML'
+name = "fault"
+seed = 3
+budget = 300
+batch = 4
+report = 2
+objectives = ["slope_range"]
+[box]
+rho = [1.0, 5.0]
+alpha = [0.0, 0.4]
+fn = [1.5, 5.0]
+zeta = [0.05, 0.1]
+[slopes]
+from = 0.05
+to = 0.3
+grid = 0.05
+tol = 0.01
+verify_grid = 0.025
+TOML
+"$bin" design "$design" --out "$work/design-ref" --threads 2 --quiet >/dev/null ||
+  fail "the uninterrupted design search failed"
+# kept_of REF PART: each of PART's rows is REF's row of the same index (a
+# search stopped inside a generation keeps the designs that finished).
+kept_of() {
+  "$py" - "$1" "$2" <<'PY' || return 1
+import sys, pyarrow.parquet as pq
+ref, part = (pq.read_table(f).to_pandas() for f in sys.argv[1:3])
+ok = part["index"].is_unique and part["index"].isin(ref["index"]).all()
+if ok:
+    mine = ref.set_index("index").loc[part["index"]].reset_index()
+    ok = mine[list(part.columns)].equals(part)
+sys.exit(0 if ok else 1)
+PY
+}
+rows_of() { "$py" -c "import sys, pyarrow.parquet as pq; print(pq.read_metadata(sys.argv[1]).num_rows)" "$1"; }
+out=$work/design-killed
+for i in 1 2 3 4; do
+  sig=KILL
+  [ $((i % 2)) -eq 0 ] && sig=TERM
+  delay_ms=$((100 + RANDOM % 1500))
+  "$bin" design "$design" --out "$out" --threads 2 --quiet >/dev/null 2>&1 &
+  pid=$!
+  sleep_ms "$delay_ms"
+  kill -s "$sig" "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  faults=$((faults + 1))
+  n=0
+  if [ -e "$out/search.parquet" ]; then
+    kept_of "$work/design-ref/search.parquet" "$out/search.parquet" ||
+      fail "design kill $i (SIG$sig): a stored evaluation is not the uninterrupted search's"
+    n=$(rows_of "$out/search.parquet")
+  fi
+  if [ "$sig" = TERM ] && ls -A "$out" 2>/dev/null | grep -q '\.tmp$'; then
+    fail "design kill $i (SIGTERM): temporary files left: $(ls -A "$out")"
+  fi
+  echo "fault_inject: design kill $i (SIG$sig after ${delay_ms} ms): $n evaluations kept, each the uninterrupted search's"
+done
+"$bin" design "$design" --out "$out" --threads 2 --quiet >/dev/null || fail "the design search after the kills failed"
+for f in search.parquet designs.parquet; do
+  same_table "$work/design-ref/$f" "$out/$f" ||
+    fail "design search killed and resumed: $f differs from the uninterrupted search's"
+done
+! ls -A "$out" | grep -q '\.tmp$' || fail "design search after the kills: temporary files left"
+
+# A slope profile killed at random instants over an earlier profile of its
+# own at --out: that file is kept byte for byte, or replaced by the whole
+# uninterrupted profile (its rows, timing aside, and its profile's JSON; a
+# profile has no scan config, which compare_scans.py requires).
+same_profile() {
+  "$py" - "$1" "$2" <<'PY' || return 1
+import sys, pyarrow.parquet as pq
+a, b = (pq.read_table(f) for f in sys.argv[1:3])
+key = b"rtw.profile"
+same_json = len({pq.read_metadata(f).metadata[key] for f in sys.argv[1:3]}) == 1
+rows = [t.drop_columns(["wall_time_s"]).to_pandas() for t in (a, b)]
+sys.exit(0 if same_json and rows[0].equals(rows[1]) else 1)
+PY
+}
+profile=(profile --length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --from 0.05 --to 0.3
+  --grid 2e-4 --tol 1e-4 --threads 2 --quiet)
+"$bin" "${profile[@]}" --out "$work/profile-ref.parquet" >/dev/null || fail "the uninterrupted profile failed"
+mkdir -p "$work/profile"
+out=$work/profile/p.parquet
+cp "$work/profile-ref.parquet" "$out"
+for i in 1 2 3 4; do
+  sig=KILL
+  [ $((i % 2)) -eq 0 ] && sig=TERM
+  delay_ms=$((50 + RANDOM % 900))
+  before=$(cksum <"$out")
+  "$bin" "${profile[@]}" --out "$out" >/dev/null 2>&1 &
+  pid=$!
+  sleep_ms "$delay_ms"
+  kill -s "$sig" "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  faults=$((faults + 1))
+  [ -f "$out" ] || fail "profile kill $i (SIG$sig): its earlier result is gone"
+  if [ "$(cksum <"$out")" != "$before" ]; then
+    same_profile "$work/profile-ref.parquet" "$out" ||
+      fail "profile kill $i (SIG$sig): $out changed, and not to the whole profile"
+  fi
+  if [ "$sig" = TERM ] && ls -A "$work/profile" | grep -q '\.tmp$'; then
+    fail "profile kill $i (SIGTERM): temporary files left: $(ls -A "$work/profile")"
+  fi
+  echo "fault_inject: profile kill $i (SIG$sig after ${delay_ms} ms): the earlier profile kept whole"
+done
+rm "$out"
+"$bin" "${profile[@]}" --out "$out" >/dev/null || fail "the profile after the kills failed"
+same_profile "$work/profile-ref.parquet" "$out" ||
+  fail "profile after the kills: other rows than the uninterrupted profile's"
 
 echo "fault_inject: passed: $faults faults injected (seed $seed); no finished row was lost or changed"

@@ -64,7 +64,7 @@ def test_design_refuses_what_the_cli_refuses_in_its_words(tmp_path) -> None:
     bad = _config(tmp_path, CONFIG.replace("budget = 300", "budget = 0"))
     cli = cli_error("design", bad, "--quiet")
     py = python_error(lambda: rtw.design(bad, progress=False))
-    assert "budget: 0 is invalid: must be in [1, 10000000]" in cli
+    assert "budget: 0 is invalid: must be an integer in [1, 10000000]" in cli
     assert py == cli
     cfg = _config(tmp_path)
     out = tmp_path / "out"

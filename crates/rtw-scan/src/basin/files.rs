@@ -12,6 +12,7 @@ use crate::io::metadata::{
 };
 use crate::io::parquet;
 use crate::io::table::{self, Column, Get, column};
+use crate::scan::lock::Lock;
 use crate::scan::progress::Progress;
 use anyhow::Result;
 use arrow_array::RecordBatch;
@@ -216,6 +217,7 @@ pub fn run_to_files(
     cancel: &AtomicBool,
     progress: &dyn Progress,
 ) -> Result<(Basin, Vec<BasinPoint>, f64)> {
+    let _lock = Lock::for_result(out, &format!("writing the basin slice {}", out.display()))?;
     check_output(out, force)?;
     let cycle = CycleOptions::default();
     let t0 = Instant::now();

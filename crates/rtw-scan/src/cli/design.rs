@@ -2,14 +2,15 @@
 //! flags into its settings and prints what it returns).
 
 use super::progress::StderrProgress;
-use super::signal::STOP;
+use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use super::simulate::ModelArgs;
-use crate::scan::workers::parse_threads;
+use crate::scan::workers::{Stopped, parse_threads};
 use crate::search::{SearchSettings, files};
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::Ordering;
 
 #[derive(Args, Debug)]
 pub(super) struct DesignArgs {
@@ -44,14 +45,30 @@ pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
         .out
         .unwrap_or_else(|| PathBuf::from("runs/design").join(&settings.name));
     let progress = StderrProgress::unless(a.quiet);
-    let (search, reported) = files::run_to_files(
+    // A first signal stops the designs in flight; every finished design is
+    // in OUT/search.parquet, and the same command resumes from them.
+    GRACEFUL.store(true, Ordering::SeqCst);
+    let done = files::run_to_files(
         &settings, &options, threads, &out, a.force, &progress, &STOP,
-    )?;
+    );
+    let (search, reported) = match done {
+        Err(e) if e.downcast_ref::<Stopped>().is_some() && STOP.load(Ordering::SeqCst) => {
+            let kept = files::stored(&out, &settings, &options, false).map_or(0, |k| k.len());
+            eprintln!(
+                "rtw-scan: interrupted: {kept} designs kept in {}; the same command resumes \
+                 the search from them",
+                files::search_path(&out).display()
+            );
+            return Ok(ExitCode::from(EXIT_INTERRUPTED));
+        }
+        done => done?,
+    };
     print!("{}", files::markdown(&search, &reported));
     eprintln!(
-        "rtw-scan: {} designs ({} simulations) written to {}",
+        "rtw-scan: {} designs ({} simulations, budget {}) written to {}",
         search.evaluations.len(),
         search.runs(),
+        settings.budget,
         out.display()
     );
     Ok(ExitCode::SUCCESS)

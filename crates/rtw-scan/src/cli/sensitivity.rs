@@ -3,7 +3,6 @@
 
 use super::progress::StderrProgress;
 use super::signal::STOP;
-use crate::scan::progress::Progress;
 use crate::sensitivity::{self, Index, Settings};
 use anyhow::Result;
 use clap::Args;
@@ -47,12 +46,8 @@ pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
         .out
         .clone()
         .unwrap_or_else(|| scan.with_file_name("indices.parquet"));
-    sensitivity::check_out(&out, &scan, a.force)?;
     let progress = StderrProgress::study(a.quiet, "sensitivity: bootstrap resamples");
-    let analysis = sensitivity::analyse_file(&scan, &settings, &STOP, &progress);
-    progress.finish(analysis.is_ok());
-    let analysis = analysis?;
-    sensitivity::write(&out, &analysis)?;
+    let analysis = sensitivity::analyse_to_file(&scan, &out, &settings, a.force, &STOP, &progress)?;
     if a.json {
         let all: Vec<_> = analysis.indices.iter().map(json).collect();
         println!("{}", serde_json::to_string_pretty(&all)?);

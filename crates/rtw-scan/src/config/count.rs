@@ -22,6 +22,23 @@ pub fn count(name: &str, text: &str, range: RangeInclusive<u64>, note: &str) -> 
     }
 }
 
+/// [`count`] of a config's value: a TOML integer, or an integer's digits
+/// in quotes (TOML's integers stop at 2⁶³ − 1, a seed's range does not);
+/// any other value is refused in the same words, as written.
+pub fn count_value(
+    name: &str,
+    value: &toml::Value,
+    range: RangeInclusive<u64>,
+    note: &str,
+) -> Result<u64> {
+    let text = match value {
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::String(s) => s.clone(),
+        v => v.to_string(),
+    };
+    count(name, &text, range, note)
+}
+
 /// [`count`] for a setting held in a `usize` (a length, a thread count):
 /// `range` must fit in one, as every range of rtw's does on 64-bit targets.
 pub fn count_usize(
@@ -58,5 +75,17 @@ mod tests {
             );
         }
         assert_eq!(count_usize("n", "3", 2..=3, "").unwrap(), 3);
+        let v = |t: &str| t.parse::<toml::Table>().unwrap()["k"].clone();
+        let big = v("k = \"18446744073709551615\"");
+        assert_eq!(count_value("k", &big, 0..=u64::MAX, "").unwrap(), u64::MAX);
+        for (bad, shown) in [("k = -1", "-1"), ("k = 2.5", "2.5"), ("k = \"x\"", "x")] {
+            let e = count_value("k", &v(bad), 0..=9, "")
+                .unwrap_err()
+                .to_string();
+            assert_eq!(
+                e,
+                format!("k: {shown} is invalid: must be an integer in [0, 9]")
+            );
+        }
     }
 }

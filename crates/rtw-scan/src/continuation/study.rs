@@ -10,6 +10,7 @@
 use super::{Continuation, files, segments, summary};
 use crate::files::FileSet;
 use crate::io::destination::summary_path;
+use crate::scan::lock::Lock;
 use crate::scan::progress::Progress;
 use anyhow::{Result, bail};
 use std::path::Path;
@@ -40,6 +41,7 @@ pub fn run_to_files(
     progress: &dyn Progress,
 ) -> Result<String> {
     check_through(through)?;
+    let _lock = Lock::for_result(out, &format!("writing the diagram {}", out.display()))?;
     files::check_outputs(out, force)?;
     if through > 0 {
         segments::check_output(out, force)?;

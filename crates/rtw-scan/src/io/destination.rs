@@ -75,6 +75,15 @@ pub(crate) fn check_outputs(
     Ok(())
 }
 
+/// Whether `path` (a regular file: refused otherwise before) begins with
+/// Parquet's magic bytes.
+fn starts_as_parquet(path: &Path) -> bool {
+    let mut magic = [0u8; 4];
+    std::fs::File::open(path)
+        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut magic))
+        .is_ok_and(|()| &magic == b"PAR1")
+}
+
 /// Most bytes of a summary (Markdown or JSON) read back to tell whose it is:
 /// rtw-scan's are a few kB.
 pub(crate) const SUMMARY_MAX_BYTES: u64 = 16_000_000;
@@ -124,6 +133,11 @@ fn check_destination_of(
     let names =
         |s: &Schema| -> Vec<String> { s.fields().iter().map(|f| f.name().clone()).collect() };
     let found = match open(dest, 1) {
+        // A Parquet file whose footer fails its checks is named as such,
+        // with why, not as a file of another format.
+        Err(e) if starts_as_parquet(dest) => {
+            format!("a Parquet file rtw-scan cannot trust ({e:#})")
+        }
         Err(_) => "a file that is not a Parquet file".to_string(),
         Ok(input) => match FileKind::of(&input.metadata) {
             Some(k) if k == kind => match schema {

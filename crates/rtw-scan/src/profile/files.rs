@@ -13,6 +13,7 @@ use crate::io::metadata::{
 };
 use crate::io::parquet;
 use crate::io::scan_rows::schema_for;
+use crate::scan::lock::Lock;
 use crate::scan::progress::Progress;
 use anyhow::Result;
 use rtw_model::{Label, Options};
@@ -55,6 +56,7 @@ pub fn run_to_files(
     progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Result<Profile> {
+    let _lock = Lock::for_result(out, &format!("writing the profile {}", out.display()))?;
     check_outputs(out, options, force)?;
     let t0 = Instant::now();
     let profile = super::run(settings, options, progress, cancel)?;

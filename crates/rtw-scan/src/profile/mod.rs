@@ -15,6 +15,7 @@
 //! narrower than the grid spacing whose two ends have one label is not seen:
 //! the grid is the profile's resolution, the tolerance its precision.
 
+pub mod cost;
 pub(crate) mod files;
 mod locate;
 
@@ -360,7 +361,14 @@ pub fn run(
     cancel: &AtomicBool,
 ) -> Result<Profile> {
     let pool = worker_pool(settings.threads)?;
+    progress.stage("profile: the coarse grid's slopes");
     progress.start(settings.coarse().len() as u64);
+    // After the start, so that a bar shows it too.
+    let (said, warning) = cost::of_profile(settings, options);
+    progress.note(&said);
+    if let Some(w) = warning {
+        progress.warn(&w);
+    }
     let profile = pool
         .install(|| profile_here(settings, options, progress, cancel))
         .ok_or_else(|| anyhow!(Stopped))?;

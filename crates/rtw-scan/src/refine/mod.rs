@@ -31,6 +31,7 @@ use crate::io::scan_rows::label_index;
 use crate::io::table::{f64_column, label_column};
 use crate::sampling::Sampling;
 use crate::scan::checkpoint::is_complete;
+use crate::scan::lock::Lock;
 use crate::scan::one::Simulator;
 use crate::scan::progress::Progress;
 use crate::scan::run::{RunSettings, RunStatus, run_scan_with};
@@ -352,6 +353,7 @@ pub fn refine(
     drop(input);
     let axes = uniform_axes(&cfg)?;
     let combined = r.dir.join("refine").join("samples.parquet");
+    let _lock = Lock::for_result(&combined, &format!("refining {}", r.dir.display()))?;
     check_destination(&combined, FileKind::Scan, &[&base], "DIR", r.run.force)?;
     let ours = Identity::of(r, &base_hash);
     if !r.run.force {

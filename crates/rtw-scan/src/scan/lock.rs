@@ -22,9 +22,32 @@ impl Lock {
         dest.with_file_name(format!(".{name}.lock"))
     }
 
+    /// Takes the lock of the result `dest` of a study that writes (its
+    /// folder made first), held until the study's files are in: every
+    /// study that writes takes it, so a second writer of one result is
+    /// refused, naming the first, where it would replace the first's files
+    /// or mix its own among them. `doing` as for [`Lock::acquire`].
+    pub(crate) fn for_result(dest: &Path, doing: &str) -> Result<Self> {
+        if let Some(dir) = dest.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create the folder {}", dir.display()))?;
+        }
+        Self::acquire_then(dest, doing, "")
+    }
+
     /// Takes the lock of `dest`, or says which process holds it; `doing`
     /// says what the holder is doing ("running this scan in DIR").
     pub(crate) fn acquire(dest: &Path, doing: &str) -> Result<Self> {
+        Self::acquire_then(
+            dest,
+            doing,
+            "; what it leaves unfinished, --resume finishes",
+        )
+    }
+
+    /// [`Lock::acquire`], the refusal ending in `then` (what to do after
+    /// the holder is stopped).
+    fn acquire_then(dest: &Path, doing: &str, then: &str) -> Result<Self> {
         use std::io::Write;
         let path = Self::path_for(dest);
         loop {
@@ -58,7 +81,7 @@ impl Lock {
                     let pid = if pid.is_empty() { "?" } else { pid };
                     bail!(
                         "another rtw-scan (PID {pid}) is {doing} (it holds {}): wait for it to \
-                         finish, or stop it (kill -INT {pid}); what it leaves unfinished, --resume finishes",
+                         finish, or stop it (kill -INT {pid}){then}",
                         path.display()
                     );
                 }

@@ -23,6 +23,7 @@ use crate::io::metadata::{
 };
 use crate::io::parquet;
 use crate::io::table::{self, Column, Get, column};
+use crate::scan::lock::Lock;
 use crate::scan::progress::Progress;
 use anyhow::{Context, Result, bail};
 use arrow_array::RecordBatch;
@@ -355,14 +356,15 @@ pub fn stored(
         if force {
             return Ok(Vec::new());
         }
-        let name = serde_json::from_str::<serde_json::Value>(&json)
-            .ok()
-            .and_then(|v| v["settings"]["name"].as_str().map(str::to_string))
-            .unwrap_or_default();
+        let theirs = serde_json::from_str::<serde_json::Value>(&json).unwrap_or_default();
+        let name = theirs["settings"]["name"].as_str().unwrap_or_default();
+        let ours: serde_json::Value = serde_json::from_str(&identity(s, options)?)?;
         bail!(
-            "--out {}: holds the search {name:?} of other settings or options: it would be \
-             replaced; choose another folder, or pass --force",
+            "--out {}: holds the search {name:?} of other settings or options ({}): it would be \
+             replaced; the same config, --set and --variant as there resume it; choose another \
+             folder, or pass --force",
             out.display(),
+            super::identity::differences(&theirs, &ours).join("; ")
         );
     }
     // The same settings, but perhaps not the same numbers: an evaluation is
@@ -495,6 +497,13 @@ pub fn run_to_files(
     progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Result<(Search, Vec<Reported>)> {
+    // Refused before anything is made or read.
+    super::budget::check(s, options)?;
+    let main = search_path(out);
+    let _lock = Lock::for_result(
+        &main,
+        &format!("running a design search into {}", out.display()),
+    )?;
     check_outputs(out, force)?;
     let earlier = stored(out, s, options, force)?;
     if !earlier.is_empty() {
@@ -504,9 +513,7 @@ pub fn run_to_files(
             search_path(out).display()
         ));
     }
-    std::fs::create_dir_all(out)?;
     let t0 = Instant::now();
-    let main = search_path(out);
     let mut write = |evals: &[Evaluation]| -> Result<()> {
         parquet::write_file(
             &main,

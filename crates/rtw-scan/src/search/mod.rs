@@ -23,10 +23,12 @@
 //! and the earlier evaluations only, so a search resumed from its stored
 //! evaluations replays them and goes on exactly as the uninterrupted one.
 
+pub mod budget;
 pub mod check;
 mod cmaes;
 mod fall_model;
 pub mod files;
+mod identity;
 mod propose;
 pub mod read;
 mod settings;
@@ -36,7 +38,7 @@ pub use settings::{INPUTS, Method, Objective, SearchSettings};
 
 use crate::config::params::checked_params;
 use crate::profile::{self, Profile, Settings as ProfileSettings};
-use crate::scan::progress::Progress;
+use crate::scan::progress::{Progress, Silent};
 use crate::scan::workers::{Stopped, worker_pool};
 use anyhow::{Result, anyhow, bail};
 use propose::Proposer;
@@ -214,15 +216,6 @@ fn score(s: &SearchSettings, round: u64, values: &[f64]) -> f64 {
     a.min(b) + AUGMENT * (a + b)
 }
 
-/// Counts a profile's runs as units of the search's progress.
-struct Runs<'a>(&'a dyn Progress);
-
-impl Progress for Runs<'_> {
-    fn computed(&self, _: Label) {
-        self.0.advanced();
-    }
-}
-
 /// The profile settings of design `x` over the search's slopes at `grid`.
 fn profile_settings(s: &SearchSettings, x: &[f64; 4], grid: f64) -> Result<ProfileSettings> {
     let [rho, alpha, f_n, zeta] = *x;
@@ -308,18 +301,6 @@ fn judge(
     e
 }
 
-/// The options of a design's profile and its run at `speed_phi`: the
-/// config's model without the robustness measures, which cost seconds a
-/// run and only the `mfpt` objective's run needs.
-fn without_measures(options: &Options) -> Options {
-    let mut o = *options;
-    o.robustness.step_down = false;
-    o.robustness.gsn = false;
-    o.robustness.steps_to_fall = false;
-    o.robustness.mfpt = false;
-    o
-}
-
 /// The label and `value` of design `params` run at `phi` under `options`;
 /// `None` when stopped.
 fn run_at(
@@ -327,54 +308,48 @@ fn run_at(
     phi: f64,
     options: &Options,
     value: impl Fn(&rtw_model::Outcome) -> Option<f64>,
-    progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Option<(Label, Option<f64>)> {
     let row = profile::run_at_slope(params, phi, options, cancel)?;
-    progress.advanced();
     Some((row.label(), row.outcome.as_ref().and_then(value)))
 }
 
 /// Design `x` evaluated: its profile on `grid`, the run at `speed_phi` and
-/// the MFPT at `mfpt_phi` (those asked for), on the pool the caller
-/// installed; `None` when stopped.
+/// the MFPT at `mfpt_phi` (those asked for), under the options
+/// [`budget::check`] checked, on the pool the caller installed; `None`
+/// when stopped.
 fn evaluate(
     s: &SearchSettings,
     options: &Options,
     x: [f64; 4],
     grid: f64,
-    progress: &dyn Progress,
     cancel: &AtomicBool,
 ) -> Option<(Evaluation, Profile)> {
-    let plain = without_measures(options);
+    let plain = budget::plain(options);
     let ps = profile_settings(s, &x, grid).expect("the box's designs are valid");
-    let p = profile::profile_here(&ps, &plain, &Runs(progress), cancel)?;
+    let p = profile::profile_here(&ps, &plain, &Silent, cancel)?;
     let at_speed = match s.speed_phi {
-        Some(phi) => Some(run_at(
-            ps.design,
-            phi,
-            &plain,
-            |o| Some(o.speed),
-            progress,
-            cancel,
-        )?),
+        Some(phi) => Some(run_at(ps.design, phi, &plain, |o| Some(o.speed), cancel)?),
         None => None,
     };
     let at_mfpt = match s.mfpt_phi {
         Some(phi) => {
-            let mut o = plain;
-            o.robustness.mfpt = true;
+            let o = budget::with_mfpt(options);
             let mfpt = |out: &rtw_model::Outcome| Some(out.robustness?.mfpt?.mfpt);
-            Some(run_at(ps.design, phi, &o, mfpt, progress, cancel)?)
+            Some(run_at(ps.design, phi, &o, mfpt, cancel)?)
         }
         None => None,
     };
     Some((judge(s, x, &p, at_speed, at_mfpt), p))
 }
 
-/// Runs the search of `s` under `options` (checked), every generation's
-/// designs profiled in parallel on `threads` workers, each run counted in
-/// `progress` (its total the budget). `earlier` are evaluations stored by
+/// Runs the search of `s` under `options`, every generation's designs
+/// profiled in parallel on `threads` workers. Before any work the options
+/// of its runs and its budget are checked ([`budget::check`]) and its cost
+/// estimated ([`budget::said`]: a note, and a warning above the bounds);
+/// `progress` counts each generation's designs against its batch (a stage
+/// per generation, naming the simulations spent of the budget), and is
+/// told what was spent at the end. `earlier` are evaluations stored by
 /// an interrupted run of the same settings: they are taken as they are, not
 /// run again. After each generation `stored` gets every evaluation so far.
 /// Setting `cancel` stops it within moments with the error [`Stopped`],
@@ -388,14 +363,14 @@ pub fn run(
     cancel: &AtomicBool,
     stored: &mut dyn FnMut(&[Evaluation]) -> Result<()>,
 ) -> Result<Search> {
+    budget::check(s, options)?;
+    let (said, warning) = budget::said(s, options)?;
+    if let Some(w) = warning {
+        progress.warn(&w);
+    }
     let pool = worker_pool(threads)?;
     let earlier: BTreeMap<u64, &Evaluation> = earlier.iter().map(|e| (e.index, e)).collect();
-    progress.start(s.budget);
-    for e in earlier.values() {
-        for _ in 0..e.runs.min(s.budget) {
-            progress.advanced();
-        }
-    }
+    let mut said = Some(said);
     let rounds = if s.method == Method::Cmaes {
         s.weights
     } else {
@@ -408,6 +383,21 @@ pub fn run(
         let mut proposer = Proposer::new(s, round);
         let mut generation = 0;
         while spent < until {
+            progress.stage(&format!(
+                "design search{}, generation {} ({spent} of {} simulations spent): designs",
+                if rounds > 1 {
+                    format!(" (weight {} of {rounds})", round + 1)
+                } else {
+                    String::new()
+                },
+                generation + 1,
+                s.budget
+            ));
+            progress.start(s.batch);
+            // After the start, so that a bar shows it too.
+            if let Some(said) = said.take() {
+                progress.note(&said);
+            }
             let drawn: Vec<(Vec<f64>, Option<f64>)> =
                 (0..s.batch).map(|_| proposer.propose(s.avoid)).collect();
             let first = evaluations.len() as u64;
@@ -419,14 +409,16 @@ pub fn run(
                         let index = first + k as u64;
                         let x = s.design_at(u);
                         if let Some(e) = earlier.get(&index) {
+                            progress.advanced();
                             return Some((*e).clone());
                         }
-                        let (mut e, _) = evaluate(s, options, x, s.grid, progress, cancel)?;
+                        let (mut e, _) = evaluate(s, options, x, s.grid, cancel)?;
                         e.index = index;
                         e.round = round;
                         e.generation = generation;
                         e.p_fall = *p;
                         e.score = e.feasible().then(|| score(s, round, &e.values));
+                        progress.advanced();
                         Some(e)
                     })
                     .collect()
@@ -446,6 +438,7 @@ pub fn run(
                     }
                 }
             }
+            progress.finish(!stopped);
             if stopped {
                 evaluations.extend(results.into_iter().flatten());
                 stored(&evaluations)?;
@@ -460,11 +453,31 @@ pub fn run(
             generation += 1;
         }
     }
-    progress.finish(true);
-    Ok(Search {
+    let search = Search {
         settings: s.clone(),
         evaluations,
-    })
+    };
+    progress.note(&spent_note(&search));
+    Ok(search)
+}
+
+/// What a finished search spent against its budget, in words.
+fn spent_note(search: &Search) -> String {
+    let s = &search.settings;
+    let spent = search.runs();
+    let past = if spent > s.budget {
+        format!(
+            ", {} past it: no generation starts once it is spent, and the last one runs whole",
+            spent - s.budget
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "design search: {spent} simulations spent of the budget {} ({} designs){past}",
+        s.budget,
+        search.evaluations.len()
+    )
 }
 
 /// A reported design: its search evaluation and its profile made again on
@@ -516,12 +529,11 @@ pub fn report(
         chosen
             .par_iter()
             .map(|e| {
-                let quiet = crate::scan::progress::Silent;
-                let (mut v, fine) = evaluate(s, options, e.design, s.verify_grid, &quiet, cancel)?;
+                let (mut v, fine) = evaluate(s, options, e.design, s.verify_grid, cancel)?;
                 let checked = match (v.phi_lo, v.phi_hi) {
                     (Some(lo), Some(hi)) => {
                         let params = fine.settings.design;
-                        let c = check::check(params, (lo, hi), &without_measures(options), cancel)?;
+                        let c = check::check(params, (lo, hi), &budget::plain(options), cancel)?;
                         // The interval reported is the checked one.
                         v.phi_lo = Some(c.lo).filter(|x| x.is_finite());
                         v.phi_hi = Some(c.hi).filter(|x| x.is_finite());

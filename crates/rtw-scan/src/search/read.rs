@@ -8,7 +8,7 @@
 //! would refuse; what each file is comes from the metadata rtw-scan wrote
 //! and its columns, never from its name.
 
-use crate::io::metadata::{FileKind, META_DESIGN};
+use crate::io::metadata::{FileKind, META_DESIGN, META_VERSION};
 use crate::io::parquet;
 use anyhow::{Context, Result, bail};
 use arrow_array::RecordBatch;
@@ -134,6 +134,25 @@ fn same_search(files: &[DesignFile]) -> Result<()> {
     }
     if let Some(e) = evaluations.first() {
         for r in reported {
+            // One result never holds two builds' rows: a search's numbers
+            // are what the build that made them computes.
+            let version = |f: &DesignFile| {
+                f.schema
+                    .metadata()
+                    .get(META_VERSION)
+                    .cloned()
+                    .unwrap_or_else(|| "none".into())
+            };
+            let (ve, vr) = (version(e), version(r));
+            if ve != vr {
+                bail!(
+                    "{} (rtw-scan {ve}) and {} (rtw-scan {vr}) were written by different \
+                     rtw-scan versions: one search's folder holds one build's results; run the \
+                     search again, or move one of them",
+                    e.path.display(),
+                    r.path.display()
+                );
+            }
             if r.schema.metadata().get(META_DESIGN) != e.schema.metadata().get(META_DESIGN) {
                 bail!(
                     "{}: its designs are of other settings or options than {}'s search: \

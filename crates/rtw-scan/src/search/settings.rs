@@ -3,6 +3,7 @@
 //! simulations; read from TOML and checked, each refusal naming its key and
 //! the valid range.
 
+use crate::config::count::count_value;
 use crate::profile::{MAX_GRID_POINTS, MIN_TOL};
 use anyhow::{Result, bail};
 use rtw_model::{Label, Num, Param};
@@ -116,12 +117,12 @@ pub struct SearchSettings {
 #[serde(deny_unknown_fields)]
 struct Raw {
     name: String,
-    seed: u64,
-    budget: u64,
+    seed: toml::Value,
+    budget: toml::Value,
     #[serde(default)]
     method: Option<String>,
     #[serde(default)]
-    batch: Option<u64>,
+    batch: Option<toml::Value>,
     objectives: Vec<String>,
     #[serde(default)]
     gait: Option<String>,
@@ -130,7 +131,7 @@ struct Raw {
     #[serde(default)]
     mfpt_phi: Option<f64>,
     #[serde(default)]
-    weights: Option<u64>,
+    weights: Option<toml::Value>,
     #[serde(default)]
     avoid: Option<f64>,
     #[serde(default)]
@@ -139,7 +140,7 @@ struct Raw {
     bounds: RawBox,
     slopes: RawSlopes,
     #[serde(default)]
-    report: Option<u64>,
+    report: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -170,11 +171,12 @@ fn invalid(key: &str, value: impl std::fmt::Display, range: &str) -> anyhow::Err
     anyhow::anyhow!("{key}: {value} is invalid: must be {range}")
 }
 
-fn count(key: &str, v: u64, lo: u64, hi: u64) -> Result<u64> {
-    if (lo..=hi).contains(&v) {
-        Ok(v)
-    } else {
-        Err(invalid(key, v, &format!("in [{lo}, {hi}]")))
+/// The count at `key` (its default when absent), through the project's
+/// one count check ([`count_value`]).
+fn count(key: &str, v: Option<&toml::Value>, default: u64, lo: u64, hi: u64) -> Result<u64> {
+    match v {
+        Some(v) => count_value(key, v, lo..=hi, ""),
+        None => Ok(default),
     }
 }
 
@@ -187,7 +189,14 @@ impl SearchSettings {
 
     /// The settings of a config's text, every key checked.
     pub fn parse(text: &str) -> Result<Self> {
-        let mut table = crate::config::raw::parse_table(text)?;
+        let mut table = crate::config::raw::parse_table(text).map_err(|e| {
+            // TOML's integers stop at 2⁶³ − 1; a larger seed is written in quotes.
+            if format!("{e:#}").contains("too large") {
+                e.context("an integer above 9223372036854775807 (a seed up to 2⁶⁴ − 1) is written in quotes: seed = \"18446744073709551615\"")
+            } else {
+                e
+            }
+        })?;
         // The model's options (`[simulation]`) are the options' first layer
         // (`config::layers::simulation_options` reads them), not settings.
         match table.remove("simulation") {
@@ -204,7 +213,8 @@ impl SearchSettings {
                 "1 to 100 characters"
             ));
         }
-        let budget = count("budget", raw.budget, 1, MAX_BUDGET)?;
+        let seed = count_value("seed", &raw.seed, 0..=u64::MAX, "")?;
+        let budget = count_value("budget", &raw.budget, 1..=MAX_BUDGET, "")?;
         let method = match raw.method.as_deref().unwrap_or("cmaes") {
             "cmaes" => Method::Cmaes,
             "sobol" => Method::Sobol,
@@ -214,7 +224,7 @@ impl SearchSettings {
                 "\"cmaes\" or \"sobol\""
             )),
         };
-        let batch = count("batch", raw.batch.unwrap_or(8), 2, MAX_BATCH)?;
+        let batch = count("batch", raw.batch.as_ref(), 8, 2, MAX_BATCH)?;
         if raw.objectives.is_empty() || raw.objectives.len() > 2 {
             bail!(invalid(
                 "objectives",
@@ -277,8 +287,8 @@ impl SearchSettings {
         };
         let speed_phi = at(Objective::Speed, "speed_phi", raw.speed_phi)?;
         let mfpt_phi = at(Objective::Mfpt, "mfpt_phi", raw.mfpt_phi)?;
-        let weights = match (raw.weights, objectives.len()) {
-            (Some(w), 2) => count("weights", w, 2, MAX_WEIGHTS)?,
+        let weights = match (&raw.weights, objectives.len()) {
+            (Some(w), 2) => count("weights", Some(w), 5, 2, MAX_WEIGHTS)?,
             (None, 2) => 5,
             (Some(_), _) => bail!("weights: only with two objectives"),
             (None, _) => 1,
@@ -356,10 +366,10 @@ impl SearchSettings {
                 )
             ));
         }
-        let report = count("report", raw.report.unwrap_or(20), 1, MAX_REPORT)?;
+        let report = count("report", raw.report.as_ref(), 20, 1, MAX_REPORT)?;
         Ok(Self {
             name: raw.name,
-            seed: raw.seed,
+            seed,
             budget,
             method,
             batch,
@@ -437,7 +447,7 @@ to = 0.4
             (
                 "budget = 1000",
                 "budget = 0",
-                "budget: 0 is invalid: must be in [1, 10000000]",
+                "budget: 0 is invalid: must be an integer in [1, 10000000]",
             ),
             (
                 "objectives = [\"slope_range\"]",
@@ -482,7 +492,7 @@ to = 0.4
             (
                 "seed = 1",
                 "seed = 1\nbatch = 1",
-                "batch: 1 is invalid: must be in [2, 1024]",
+                "batch: 1 is invalid: must be an integer in [2, 1024]",
             ),
             (
                 "seed = 1",

@@ -7,6 +7,7 @@ use crate::bifurcation::summary::{period_str, summary_markdown};
 use crate::bifurcation::sweep::{PointRow, run_sweep};
 use crate::files::write_atomic;
 use crate::io::destination::summary_path;
+use crate::scan::lock::Lock;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -37,6 +38,7 @@ pub fn run_to_files(
     force: bool,
     mut on_value: impl FnMut(&str),
 ) -> Result<SweepFiles> {
+    let _lock = Lock::for_result(out, &format!("writing the sweep {}", out.display()))?;
     check_outputs(out, force)?;
     let t0 = Instant::now();
     let n = sweep.values.len();

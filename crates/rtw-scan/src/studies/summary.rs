@@ -7,6 +7,7 @@ use crate::analysis::report;
 use crate::files;
 use crate::io::destination;
 use crate::io::metadata::{FileKind, META_SCAN_HASH, META_SEED, META_VERSION, kv};
+use crate::scan::lock::Lock;
 use anyhow::{Context, Result, anyhow};
 use std::path::Path;
 
@@ -21,6 +22,9 @@ pub fn summary_to_files(samples: &Path, k: Option<usize>, force: bool) -> Result
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
+    // The scan's own lock: no summary is written beside a scan being
+    // written, and two summaries of one scan do not race.
+    let _lock = Lock::for_result(samples, &format!("writing beside {}", samples.display()))?;
     report::check_summary_target(dir, samples, force)?;
     let summary = report::summarize(samples, k)?;
     report::write_summary(dir, &summary)?;
@@ -54,6 +58,7 @@ pub fn cluster(
     let clusters = data.clusters(Some(k))?;
     let failures = data.failures.seen();
     if let Some(path) = assignments {
+        let _lock = Lock::for_result(path, &format!("writing {}", path.display()))?;
         destination::check_destination(
             path,
             FileKind::Assignments,

@@ -350,7 +350,8 @@ fn search_settings(
     (settings, rtw_model::Options::default())
 }
 
-/// Stops the search (its cancel flag) once `at` simulations are done.
+/// Stops the search (its cancel flag) once `at` designs are evaluated (the
+/// search's progress counts each generation's designs).
 struct StopAfter<'a> {
     done: std::sync::atomic::AtomicU64,
     at: u64,
@@ -384,7 +385,7 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
     let cancel = AtomicBool::new(false);
     let stop = StopAfter {
         done: 0.into(),
-        at: 150,
+        at: 12,
         cancel: &cancel,
     };
     let e = files::run_to_files(&settings, &options, None, &part, false, &stop, &cancel)
@@ -428,7 +429,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     let cancel = AtomicBool::new(false);
     let stop = StopAfter {
         done: 0.into(),
-        at: 40,
+        at: 3,
         cancel: &cancel,
     };
     files::run_to_files(&settings, &options, None, &out, false, &stop, &cancel)

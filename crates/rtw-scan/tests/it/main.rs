@@ -10,6 +10,7 @@ mod common;
 mod cli;
 mod cli_basin;
 mod cli_bifurcation;
+mod cli_design;
 mod cli_physics;
 mod cli_profile;
 mod cli_refine;

@@ -30,7 +30,8 @@ pub use summary::{WIDE, markdown, wide_warning};
 pub use binned::binned;
 
 pub use study::{
-    Analysis, RESAMPLES, Settings, analyse_file, analyse_table, check_out, scan_file, write,
+    Analysis, RESAMPLES, Settings, analyse_file, analyse_table, analyse_to_file, check_out,
+    scan_file, write,
 };
 
 use crate::analysis::report::Z95;

@@ -14,6 +14,7 @@ use crate::io::metadata::{
     FileKind, META_CONFIG, META_CONTENT_HASH, META_SENSITIVITY, VERSION, kv,
 };
 use crate::io::{destination, parquet, scan_files};
+use crate::scan::lock::Lock;
 use crate::scan::progress::Progress;
 use anyhow::{Context, Result, anyhow, bail};
 use arrow_array::RecordBatch;
@@ -255,6 +256,26 @@ pub fn check_out(out: &Path, scan: &Path, force: bool) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The indices of the scan file `scan` ([`analyse_file`]) written to `out`
+/// ([`write`]): the lock of `out` taken and `out` checked ([`check_out`])
+/// before any resample, so a second analysis into one file is refused.
+pub fn analyse_to_file(
+    scan: &Path,
+    out: &Path,
+    settings: &Settings,
+    force: bool,
+    cancel: &AtomicBool,
+    progress: &dyn Progress,
+) -> Result<Analysis> {
+    let _lock = Lock::for_result(out, &format!("writing the indices {}", out.display()))?;
+    check_out(out, scan, force)?;
+    let analysis = analyse_file(scan, settings, cancel, progress);
+    progress.finish(analysis.is_ok());
+    let analysis = analysis?;
+    write(out, &analysis)?;
+    Ok(analysis)
 }
 
 /// Writes the indices of `analysis` to `out` (atomically), their metadata
