@@ -47,7 +47,7 @@ pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
     let (search, reported) = files::run_to_files(
         &settings, &options, threads, &out, a.force, &progress, &STOP,
     )?;
-    print!("{}", files::markdown(&search, &reported));
+    out!("{}", files::markdown(&search, &reported));
     eprintln!(
         "rtw-scan: {} designs ({} simulations) written to {}",
         search.evaluations.len(),

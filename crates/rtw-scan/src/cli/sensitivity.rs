@@ -55,9 +55,9 @@ pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
     sensitivity::write(&out, &analysis)?;
     if a.json {
         let all: Vec<_> = analysis.indices.iter().map(json).collect();
-        println!("{}", serde_json::to_string_pretty(&all)?);
+        outln!("{}", serde_json::to_string_pretty(&all)?);
     } else {
-        print!(
+        out!(
             "{}",
             sensitivity::markdown(analysis.method.name(), &analysis.indices)
         );

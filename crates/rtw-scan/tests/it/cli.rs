@@ -1098,3 +1098,85 @@ fn parquet_files_rewritten_by_other_tools_are_read() {
         assert_eq!(clusters(&f), want_clusters, "{name}");
     }
 }
+
+/// A float flag beyond what a 64-bit float holds is refused with the text
+/// that was typed, as `--set` does, not with the value it would have been
+/// read as (`1e400` as inf, `1e-400` as 0): every float flag of every
+/// subcommand.
+#[test]
+fn a_float_flag_beyond_a_float_is_refused_with_what_was_typed() {
+    let design = [
+        "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta", "0.0514",
+    ];
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            [
+                &["profile"],
+                &design[..],
+                &["--from", "0.1", "--to", "0.2", "--tol", "1e400"],
+            ]
+            .concat(),
+            "1e400",
+        ),
+        (
+            [
+                &["profile"],
+                &design[..],
+                &["--from", "0.1", "--to", "0.2", "--grid", "1e-400"],
+            ]
+            .concat(),
+            "1e-400",
+        ),
+        (
+            [
+                &["profile"],
+                &design[..],
+                &["--from", "-1e400", "--to", "0.2"],
+            ]
+            .concat(),
+            "-1e400",
+        ),
+        (
+            [&["simulate"], &design[..], &["--phi", "1e-400"]].concat(),
+            "1e-400",
+        ),
+        (
+            vec![
+                "simulate", "--length", "1e400", "--rho", "2.5", "--alpha", "0.125", "--fn",
+                "3.269", "--zeta", "0.0514", "--phi", "0.15",
+            ],
+            "1e400",
+        ),
+        (vec!["bifurcation", "--rho", "1e400"], "1e400"),
+        (vec!["bifurcation", "--to", "1e400"], "1e400"),
+        (vec!["continuation", "--ds", "1e-400"], "1e-400"),
+        (
+            vec!["continuation", "--curve", "fn", "--curve-from", "1e400"],
+            "1e400",
+        ),
+        (
+            vec![
+                "basin",
+                "--x",
+                "theta:0:1:2",
+                "--y",
+                "omega:0:1:2",
+                "--out",
+                "b.parquet",
+                "--tol",
+                "1e400",
+            ],
+            "1e400",
+        ),
+    ];
+    for (args, typed) in cases {
+        let o = run(&args);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{args:?} passed:\n{err}");
+        assert!(
+            err.contains(&format!("{typed} is invalid")),
+            "{args:?}: not the text typed, {typed}:\n{err}"
+        );
+        assert!(err.contains("64-bit float"), "{args:?}: no reason:\n{err}");
+    }
+}
