@@ -371,7 +371,14 @@ pub fn refine(
     read_rows(&base, &axes, &mut x, &mut labels)?;
     let mut files = vec![base];
     for (round, n) in (1..).zip(round_sizes(r.budget, r.rounds)) {
-        let unit = propose(&x, &labels, axes.len(), n as usize, r.seed, round);
+        progress.stage(&format!(
+            "round {round} of {}: choosing {n} points among {} candidates by their neighbours in \
+             {} rows",
+            r.rounds,
+            propose::POOL as u64 * n,
+            x.len()
+        ));
+        let unit = propose(&x, &labels, axes.len(), n as usize, r.seed, round, progress);
         let points: Vec<Params> = unit
             .iter()
             .map(|u| {

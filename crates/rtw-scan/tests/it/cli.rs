@@ -1180,3 +1180,45 @@ fn a_float_flag_beyond_a_float_is_refused_with_what_was_typed() {
         assert!(err.contains("64-bit float"), "{args:?}: no reason:\n{err}");
     }
 }
+
+/// Progress in lines (stderr not a terminal) starts with a line at once, not
+/// when the first sample finishes: a run whose samples take 20 s each says
+/// within seconds that it is under way and how much there is to do.
+#[test]
+fn progress_lines_start_before_the_first_sample_finishes() {
+    use std::io::BufRead;
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("slow");
+    let mut child = bin()
+        .args([
+            "run",
+            s(&config("smoke")),
+            "--out",
+            s(&out),
+            "--threads",
+            "1",
+        ])
+        .args(["--fake-sim", "20000"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let err = child.stderr.take().unwrap();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut first = String::new();
+        let _ = std::io::BufReader::new(err).read_line(&mut first);
+        let _ = tx.send((first, Instant::now()));
+    });
+    let t0 = Instant::now();
+    let got = rx.recv_timeout(Duration::from_secs(15));
+    child.kill().ok();
+    child.wait().ok();
+    let (line, at) = got.expect("no progress line within 15 s");
+    let took = at.duration_since(t0);
+    eprintln!("first progress line after {took:?}: {line}");
+    assert!(line.contains("0/6"), "{line}");
+    // 2 s promised; 5 s allowed on a loaded machine (a sample takes 20 s).
+    assert!(took < Duration::from_secs(5), "{took:?}");
+}

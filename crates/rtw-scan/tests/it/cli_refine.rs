@@ -444,3 +444,32 @@ fn a_scan_file_in_refine_is_called_a_scan_s_samples_file() {
         plain
     );
 }
+
+/// Before each round runs, refine says what it is doing: choosing the
+/// round's points among their candidates by the rows so far (with a large
+/// scan, minutes of neighbour search), the candidates counted as they are
+/// scored.
+#[test]
+fn refine_says_it_is_choosing_each_round_s_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(100, 2));
+    let o = run_ok(&[
+        "refine",
+        s(&a),
+        "--budget",
+        "30",
+        "--rounds",
+        "3",
+        "--fake-sim",
+        "0",
+    ]);
+    let err = stderr(&o);
+    for (round, rows) in [(1, 100), (2, 110), (3, 120)] {
+        let want = format!(
+            "round {round} of 3: choosing 10 points among 200 candidates by their neighbours in \
+             {rows} rows"
+        );
+        assert!(err.contains(&want), "no {want:?} in:\n{err}");
+    }
+    assert!(err.contains("/200 (100.0 %)"), "{err}");
+}

@@ -421,3 +421,59 @@ fn simulate_json_has_the_same_keys_however_the_run_failed() {
     assert!(text.contains("[robustness]"), "{text}");
     assert!(text.contains("steps_to_fall_censored"), "{text}");
 }
+
+/// An MFPT with no fall counted is unbounded (mfpt and mfpt_hi infinite),
+/// which is not the MFPT that was not computed: JSON writes the former
+/// `"inf"` and the latter null; Parquet the former inf and the latter null.
+/// Fig. 7(a)'s walk on a slope of σ = 2 mm counts no fall in its batches;
+/// a star too soft to stand (f_n = 0.5 Hz) has no gait, so no MFPT.
+#[test]
+fn an_unbounded_mfpt_is_told_from_a_missing_one_in_json_and_parquet() {
+    use arrow::array::{Array, Float64Array};
+    let mfpt = [
+        "--set",
+        "robustness.mfpt=true",
+        "--set",
+        "robustness.sigma=0.002",
+    ];
+    let j = json(&mfpt);
+    assert_eq!(j["outcome"], "walk", "{j}");
+    assert_eq!(j["fall_rate"], 0.0, "{j}");
+    assert_eq!(j["mfpt"], "inf", "{j}");
+    assert_eq!(j["mfpt_hi"], "inf", "{j}");
+    assert!(j["mfpt_lo"].as_f64().is_some_and(f64::is_finite), "{j}");
+    let mut soft = FIG7A.to_vec();
+    let at = soft.iter().position(|a| *a == "--fn").unwrap();
+    soft[at + 1] = "0.5";
+    let o = run_ok(&[&soft[..], &["--json"], &mfpt[..]].concat());
+    let none: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!(
+        none["mfpt"].is_null() && none["mfpt_hi"].is_null(),
+        "{none}"
+    );
+    // The same two in a scan's file.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(
+        dir.path(),
+        "c.toml",
+        "seed = 1\nsamples = 1\n[params]\nlength = 0.8\nrho = 2.5\nalpha = 0.125\n\
+         fn = { linspace = [0.5, 3.269, 2] }\nzeta = 0.0514\nphi = 0.15\n[simulation]\n\
+         robustness.mfpt = true\nrobustness.sigma = 0.002\n",
+    );
+    let out = dir.path().join("out");
+    run_ok(&["run", &cfg, "--out", s(&out), "--quiet"]);
+    let b = &batches(&out.join("samples.parquet"))[0];
+    let col = |name: &str| {
+        b.column_by_name(name)
+            .unwrap()
+            .as_any()
+            .downcast_ref::<Float64Array>()
+            .unwrap()
+            .clone()
+    };
+    for name in ["mfpt", "mfpt_hi"] {
+        let c = col(name);
+        assert!(c.is_null(0), "{name}: {c:?}");
+        assert_eq!(c.value(1), f64::INFINITY, "{name}: {c:?}");
+    }
+}
