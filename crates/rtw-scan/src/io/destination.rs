@@ -91,26 +91,27 @@ pub(crate) fn output_dir(dir: &Path, flag: &str, holds: &str) -> Result<()> {
     else {
         return make_dir(dir, flag);
     };
-    let named = if at == dir {
-        format!("{flag} {}", dir.display())
+    let named = format!("{flag} {}: cannot create output directory", dir.display());
+    let there = if at == dir {
+        "it".to_string()
     } else {
-        format!("{flag} {}: {}", dir.display(), at.display())
+        at.display().to_string()
     };
     if meta.file_type().is_symlink() {
         return match std::fs::metadata(at) {
             Ok(m) if m.is_dir() => make_dir(dir, flag),
             _ => bail!(
-                "{named}: is a symlink to {}, which is not a directory (nothing is there, or a \
-                 file): rtw-scan does not make what a link points to; remove the link, point it \
-                 at a directory, or choose another {flag}",
+                "{named}: {there} is a symlink to {}, which is not a directory (nothing is there, \
+                 or a file): rtw-scan does not make what a link points to; remove the link, point \
+                 it at a directory, or choose another {flag}",
                 std::fs::read_link(at).map_or_else(|_| "?".into(), |t| t.display().to_string())
             ),
         };
     }
     if !meta.is_dir() {
         bail!(
-            "{named}: is {}, not a directory: {flag} names a directory for {holds}; choose \
-             another path (a new one, or a directory of an earlier run)",
+            "{named}: {there} is {}, not a directory ({flag} names a directory for {holds}); \
+             choose another path (a new one, or a directory of an earlier run)",
             if meta.is_file() {
                 "a regular file"
             } else {
@@ -124,7 +125,7 @@ pub(crate) fn output_dir(dir: &Path, flag: &str, holds: &str) -> Result<()> {
 /// `create_dir_all`, its error naming `dir` and `flag`.
 fn make_dir(dir: &Path, flag: &str) -> Result<()> {
     std::fs::create_dir_all(dir)
-        .with_context(|| format!("{flag} {}: cannot create the directory", dir.display()))
+        .with_context(|| format!("{flag} {}: cannot create output directory", dir.display()))
 }
 
 /// Most bytes of a summary (Markdown or JSON) read back to tell whose it is:
