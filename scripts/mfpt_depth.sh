@@ -99,8 +99,9 @@ def garwood(k: int) -> tuple[float, float]:
     return lo, chi2.ppf(0.975, 2 * k + 2) / 2
 
 
-def fmt(v: float | None) -> str:
-    return "∞" if v is None or v == float("inf") else f"{v:,.0f}".replace(",", " ")
+def fmt(v: float | str | None) -> str:
+    # simulate --json writes an infinite MFPT as "inf".
+    return "∞" if v is None or v in ("inf", float("inf")) else f"{v:,.0f}".replace(",", " ")
 
 
 def per_fall(steps: float, falls: int) -> str:

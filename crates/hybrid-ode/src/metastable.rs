@@ -75,6 +75,13 @@ pub trait Walker {
     /// How far `state` is from the gait, growing toward a fall (any finite
     /// value; the splitting's levels).
     fn score(&self, state: &Self::State) -> f64;
+    /// Whether the estimate is no longer wanted (its caller was
+    /// interrupted): [`mfpt`] reads it before each step of its cloud and of
+    /// its excursions and then returns `None` at once, so that thousands of
+    /// batches do not run on after a Ctrl-C. Never, by default.
+    fn stopped(&self) -> bool {
+        false
+    }
 }
 
 /// A seeded random number generator (SplitMix64): small, fast and the same
@@ -249,8 +256,9 @@ pub fn t95(df: usize) -> f64 {
 }
 
 /// The MFPT of `walker` from the quasi-stationary regime it reaches from
-/// `start` (see the module doc).
-pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
+/// `start` (see the module doc); `None` when the walker [stopped](Walker::stopped)
+/// it part way.
+pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Option<Mfpt> {
     assert!(
         o.batches >= 2 && o.replicas >= 2 && o.sample_steps >= 1,
         "mfpt: at least 2 batches, 2 replicas and 1 sampled step"
@@ -267,7 +275,7 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
             rng.next_u64();
             batch(walker, start, o, &mut rng, &mut steps)
         })
-        .collect();
+        .collect::<Option<_>>()?;
     // Each mean over the batches and the half width of its interval.
     let t = t95(batches.len() - 1);
     let mean_half = |f: fn(&Batch) -> f64| {
@@ -292,7 +300,7 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
     };
     let (head, head_half) = mean_half(|b| b.head);
     let (alive, alive_half) = mean_half(|b| b.alive);
-    Mfpt {
+    Some(Mfpt {
         mfpt: head + alive / p,
         lo: (head - head_half).max(0.0) + (alive - alive_half).max(0.0) / p_hi,
         hi: if p_lo > 0.0 {
@@ -303,7 +311,7 @@ pub fn mfpt<W: Walker>(walker: &W, start: &W::State, o: &MfptOptions) -> Mfpt {
         fall_rate: p,
         fall_rate_interval: (p_lo, p_hi),
         steps,
-    }
+    })
 }
 
 /// What one batch measured.
@@ -326,7 +334,7 @@ fn batch<W: Walker>(
     o: &MfptOptions,
     rng: &mut Rng,
     steps: &mut u64,
-) -> Batch {
+) -> Option<Batch> {
     // Part 1: the Fleming–Viot cloud. Until a walker first falls it is an
     // independent walk from the start (plain Monte Carlo of the burn-in).
     let walkers = if o.burn_in > 0 {
@@ -349,6 +357,9 @@ fn batch<W: Walker>(
             cloud = (0..o.replicas)
                 .map(|j| cloud[j % walkers].clone())
                 .collect();
+        }
+        if walker.stopped() {
+            return None;
         }
         *steps += cloud.len() as u64;
         let next: Vec<Option<W::State>> = cloud.iter().map(|s| walker.step(s, rng)).collect();
@@ -383,12 +394,12 @@ fn batch<W: Walker>(
     let head = head / n;
     let alive = original.iter().filter(|&&a| a).count() as f64 / n;
     if o.fall_rate == FallRate::Counting {
-        return Batch {
+        return Some(Batch {
             fall_rate: falls as f64 / (o.replicas * o.sample_steps) as f64,
             head,
             alive,
             falls,
-        };
+        });
     }
     let mut scores: Vec<f64> = sample.iter().map(|s| s.0).collect();
     scores.sort_by(f64::total_cmp);
@@ -399,13 +410,13 @@ fn batch<W: Walker>(
         .map(|s| &s.1)
         .collect();
     // Part 2: the splitting, and the returns of its first round.
-    let (q, returns) = splitting(walker, &near, level, o, rng, steps);
-    Batch {
+    let (q, returns) = splitting(walker, &near, level, o, rng, steps)?;
+    Some(Batch {
         fall_rate: fall_rate(q, &returns),
         head,
         alive,
         falls,
-    }
+    })
 }
 
 /// The fall rate `p` that solves the renewal equation
@@ -485,14 +496,17 @@ fn go_on<W: Walker>(
     o: &MfptOptions,
     rng: &mut Rng,
     steps: &mut u64,
-) -> Excursion<W::State> {
+) -> Option<Excursion<W::State>> {
     loop {
+        if walker.stopped() {
+            return None;
+        }
         let last = e.states.last().unwrap_or(from);
         *steps += 1;
         match walker.step(last, rng) {
             None => {
                 e.end = End::Fell;
-                return e;
+                return Some(e);
             }
             Some(next) => {
                 let s = walker.score(&next);
@@ -500,7 +514,7 @@ fn go_on<W: Walker>(
                 e.scores.push(s);
                 if s <= level || e.states.len() >= o.max_excursion {
                     e.end = End::Returned;
-                    return e;
+                    return Some(e);
                 }
             }
         }
@@ -517,7 +531,7 @@ fn splitting<W: Walker>(
     o: &MfptOptions,
     rng: &mut Rng,
     steps: &mut u64,
-) -> (f64, Vec<usize>) {
+) -> Option<(f64, Vec<usize>)> {
     let n = o.replicas;
     let empty = || Excursion {
         states: Vec::new(),
@@ -532,7 +546,8 @@ fn splitting<W: Walker>(
                 go_on(walker, near[from], empty(), level, o, rng, steps),
             )
         })
-        .collect();
+        .map(|(from, e)| Some((from, e?)))
+        .collect::<Option<_>>()?;
     let excursion: Vec<usize> = reps
         .iter()
         .filter(|r| r.1.end == End::Returned)
@@ -542,11 +557,11 @@ fn splitting<W: Walker>(
     for _ in 0..o.max_rounds * n {
         let z = reps.iter().map(|r| r.1.top()).fold(f64::INFINITY, f64::min);
         if z == f64::INFINITY {
-            return (weight, excursion);
+            return Some((weight, excursion));
         }
         let (killed, alive): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| reps[i].1.top() <= z);
         if alive.is_empty() {
-            return (0.0, excursion);
+            return Some((0.0, excursion));
         }
         weight *= 1.0 - killed.len() as f64 / n as f64;
         for i in killed {
@@ -566,7 +581,7 @@ fn splitting<W: Walker>(
                         // The cut is the parent's return itself.
                         e
                     } else {
-                        go_on(walker, near[from], e, level, o, rng, steps)
+                        go_on(walker, near[from], e, level, o, rng, steps)?
                     }
                 }
             };
@@ -574,7 +589,7 @@ fn splitting<W: Walker>(
         }
     }
     let fell = reps.iter().filter(|r| r.1.end == End::Fell).count();
-    (weight * fell as f64 / n as f64, excursion)
+    Some((weight * fell as f64 / n as f64, excursion))
 }
 
 #[cfg(test)]
@@ -641,11 +656,11 @@ mod tests {
                 batches: 24,
                 ..MfptOptions::default()
             };
-            let m = mfpt(&l, &top, &o);
+            let m = mfpt(&l, &top, &o).unwrap();
             let (lo, hi) = m.qsd_interval();
             assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
             assert!(hi / lo < 2.0, "{m:?}");
-            assert_eq!(m, mfpt(&l, &top, &o));
+            assert_eq!(Some(m), mfpt(&l, &top, &o));
         }
     }
 
@@ -661,7 +676,7 @@ mod tests {
         // MFPT about 196: the interval is closed and holds it.
         let l = Ladder { up: 0.6, top: 6 };
         let exact = 1.0 / ladder_rate(&l);
-        let m = mfpt(&l, &6, &o);
+        let m = mfpt(&l, &6, &o).unwrap();
         let (lo, hi) = m.qsd_interval();
         assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
         assert!(hi / lo < 1.5, "{m:?}");
@@ -673,7 +688,7 @@ mod tests {
             burn_in_copies: 2,
             ..o
         };
-        let m = mfpt(&l, &6, &halved);
+        let m = mfpt(&l, &6, &halved).unwrap();
         let (lo, hi) = m.qsd_interval();
         assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
         assert!(hi / lo < 1.5, "{m:?}");
@@ -682,7 +697,7 @@ mod tests {
         // no fall or few, and the interval is a lower bound that holds.
         let l = Ladder { up: 0.7, top: 14 };
         let exact = 1.0 / ladder_rate(&l);
-        let m = mfpt(&l, &14, &o);
+        let m = mfpt(&l, &14, &o).unwrap();
         let (lo, hi) = m.qsd_interval();
         assert!(lo <= exact && exact <= hi, "{exact} vs {m:?}");
         assert!(lo > 120_000.0 / 6.0, "{m:?}");

@@ -218,7 +218,7 @@ fn the_estimator_s_mfpt_is_the_chain_s_at_three_roughnesses() {
             sample_steps: 50,
             ..MfptOptions::default()
         };
-        let m = mfpt(&Rough { sigma }, &Rough::omega_star(), &o);
+        let m = mfpt(&Rough { sigma }, &Rough::omega_star(), &o).unwrap();
         let (lo, hi) = m.qsd_interval();
         eprintln!(
             "sigma {sigma}: chain {exact:.4e}, estimator {:.4e} [{lo:.4e}, {hi:.4e}] in {} steps",
@@ -266,7 +266,7 @@ fn counting_the_falls_gives_the_chain_s_mfpt_or_a_lower_bound_of_it() {
             sample_steps: 60,
             ..MfptOptions::default()
         };
-        let m = mfpt(&Rough { sigma }, &Rough::omega_star(), &o);
+        let m = mfpt(&Rough { sigma }, &Rough::omega_star(), &o).unwrap();
         let (lo, hi) = m.qsd_interval();
         eprintln!(
             "sigma {sigma}: chain {exact:.4e}, counting {:.4e} [{lo:.4e}, {hi:.4e}] in {} steps",

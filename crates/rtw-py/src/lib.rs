@@ -59,9 +59,9 @@ const MAX_SETTLE_STEPS: usize = 10_000_000;
 /// allocation that could not be made as `MemoryError`.
 fn value_error(e: anyhow::Error) -> PyErr {
     if e.chain().any(|c| c.is::<TryReserveError>()) {
-        return PyMemoryError::new_err(format!("{e:#}"));
+        return PyMemoryError::new_err(rtw_scan::error_message(&e));
     }
-    PyValueError::new_err(format!("{e:#}"))
+    PyValueError::new_err(rtw_scan::error_message(&e))
 }
 
 /// The six inputs and the layered options (config's `[simulation]`, variant,
@@ -198,7 +198,16 @@ fn simulate(
     options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<Outcome> {
     let (params, options) = inputs(values, config, variant, options.as_ref())?;
-    Ok(Outcome::new(py.detach(|| simulate_row(params, &options))))
+    // Interruptible as the studies are: a run with a robustness measure (an
+    // MFPT of thousands of batches) takes minutes.
+    let row = interruptible(
+        py,
+        |cancel| rtw_model::cancellable(cancel, || simulate_row(params, &options)),
+        || Ok(()),
+    )?;
+    // Cut short without a signal seen here: only a signal sets the flag.
+    row.map(Outcome::new)
+        .ok_or_else(|| PyKeyboardInterrupt::new_err("interrupted"))
 }
 
 /// One run's trace: a `pyarrow.Table` of the `simulate --trace` columns,

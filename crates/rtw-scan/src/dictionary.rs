@@ -34,6 +34,16 @@ pub(crate) fn outputs() -> Vec<ParquetOutput> {
             schema: scan_rows::schema(),
         },
         ParquetOutput {
+            files: "robustness columns of `samples.parquet` (`run` with `robustness.*`)",
+            row: "one sample of a scan, these columns after the ones above, each only when its \
+                  measure is asked for (the same keys follow the columns in `simulate --json` \
+                  and Python's `Outcome`). A measure that is infinite is inf in Parquet, \
+                  `\"inf\"` in JSON (which has no number for it) and `float('inf')` in Python: an \
+                  MFPT with no fall counted has `mfpt` and `mfpt_hi` infinite. Null (JSON null, \
+                  Python `None`) is a measure not computed: no stable gait, or not computable",
+            schema: crate::io::robustness_columns::all_columns_schema(),
+        },
+        ParquetOutput {
             files: "trace file (`simulate --trace FILE`)",
             row: "one recorded instant of a run (every `trace_dt` seconds, or every step)",
             schema: trace::trace_schema(),

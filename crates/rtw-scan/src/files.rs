@@ -183,7 +183,7 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// What a non-regular file is, for messages.
-fn special_kind(ft: std::fs::FileType) -> &'static str {
+pub(crate) fn special_kind(ft: std::fs::FileType) -> &'static str {
     #[cfg(unix)]
     {
         use std::os::unix::fs::FileTypeExt;
@@ -286,4 +286,58 @@ pub(crate) fn read_limited(path: &Path, what: &str, limit: u64) -> Result<Vec<u8
         return Err(too_big(bytes.len() as u64));
     }
     Ok(bytes)
+}
+
+/// An error as one line, each cause after the context that wraps it, as
+/// `{:#}` writes it but saying each thing once: a cause whose text the link
+/// before it already holds is left out (Parquet's `External: No space left
+/// on device (os error 28)` shows its source, the OS's error, which `{:#}`
+/// shows again), and so is a context whose text the error it wraps already
+/// holds (a path given as the context of an error that starts with it).
+/// What the CLI prints after `error:` and what Python raises.
+pub fn error_message(e: &anyhow::Error) -> String {
+    let links: Vec<String> = e.chain().map(|c| c.to_string()).collect();
+    let mut kept: Vec<&str> = Vec::new();
+    for (i, link) in links.iter().enumerate() {
+        let said_before = kept.last().is_some_and(|k| k.contains(link.as_str()));
+        let said_after = links.get(i + 1).is_some_and(|n| n.contains(link.as_str()));
+        if !said_before && !said_after {
+            kept.push(link);
+        }
+    }
+    kept.join(": ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::error_message;
+
+    /// A disk-full error says the OS's message once: Parquet's error that
+    /// wraps it also shows it, and is shown with its source.
+    #[test]
+    fn a_wrapped_os_error_is_said_once() {
+        let os = std::io::Error::from_raw_os_error(28);
+        let e = anyhow::Error::new(parquet::errors::ParquetError::External(Box::new(os)))
+            .context("closing t.parquet");
+        let m = error_message(&e);
+        assert_eq!(m.matches("No space left on device").count(), 1, "{m}");
+        assert!(m.starts_with("closing t.parquet: "), "{m}");
+    }
+
+    /// A context that the error it wraps already names (a path) is not
+    /// said again; one that adds something is kept.
+    #[test]
+    fn a_context_the_error_already_names_is_said_once() {
+        let e = anyhow::anyhow!("s/samples.parquet: column `wall_time_s`, row 2: -1 is invalid")
+            .context("s/samples.parquet");
+        assert_eq!(
+            error_message(&e),
+            "s/samples.parquet: column `wall_time_s`, row 2: -1 is invalid"
+        );
+        let e = anyhow::anyhow!("No such file or directory").context("cannot open c.toml");
+        assert_eq!(
+            error_message(&e),
+            "cannot open c.toml: No such file or directory"
+        );
+    }
 }

@@ -90,6 +90,9 @@ pub use analysis::verified::{
 };
 #[cfg(feature = "cli")]
 pub use cli::main;
+/// An error as a front end shows it: its chain on one line, each thing said
+/// once.
+pub use files::error_message;
 /// For a front end's signal handler, which ends the process without
 /// running destructors: removes every temporary and lock file this process
 /// has open, finishing first a set of files being moved into place.

@@ -1,6 +1,7 @@
 //! Stopping a run part way: [`cancellable`] runs a computation with a stop
 //! flag that every run of the RTW it makes (the flat run and each run of the
-//! robustness measures: the step-down ladder, the rough-slope trials) reads
+//! robustness measures: the step-down ladder, the rough-slope trials, the
+//! MFPT's batches of one-step runs, whose loops read it too) reads
 //! at each step end, and ends at once when it is set. A measure of 10⁵
 //! trials of 10⁶ steps would otherwise finish, hours after a Ctrl-C.
 //!

@@ -171,16 +171,24 @@ impl Walker for RtwWalker<'_, '_> {
         let v = com_velocity(&st.rtw, &st.y);
         (v[0] - self.v_settled[0]).hypot(v[1] - self.v_settled[1]) / self.speed
     }
+
+    /// The stop flag every run reads at its step ends: a stopped step's run
+    /// ends at once, but thousands of batches of them would still take
+    /// minutes, so the estimator's loops read it too.
+    fn stopped(&self) -> bool {
+        crate::run::cancel::requested()
+    }
 }
 
 /// The MFPT of the settled gait `s` on the rough slope of `r.sigma` with
-/// `terrain`'s seed and patch length (see the module doc).
+/// `terrain`'s seed and patch length (see the module doc); `None` when the
+/// computation's stop flag ([`crate::cancellable`]) ended it part way.
 pub(crate) fn mean_first_passage(
     s: &SettledGait<'_>,
     r: &RobustnessOptions,
     terrain: TerrainOptions,
     work: &mut Work,
-) -> MeanFirstPassage {
+) -> Option<MeanFirstPassage> {
     let options = Options {
         t_max: 1.0 / s.flat.f_w_newfoot,
         stop_when_settled: false,
@@ -222,11 +230,12 @@ pub(crate) fn mean_first_passage(
         },
     );
     *work += walker.work.into_inner();
-    MeanFirstPassage {
+    let m = m?;
+    Some(MeanFirstPassage {
         mfpt: m.mfpt,
         lo: m.lo,
         hi: m.hi,
         fall_rate: m.fall_rate,
         steps: m.steps,
-    }
+    })
 }

@@ -224,9 +224,11 @@ pub(crate) fn measure(
             options.terrain,
         )
     });
+    // None also when the stop flag cut it (the result is then refused).
     let mfpt = options.robustness.mfpt.then(|| {
         crate::run::mfpt::mean_first_passage(&s, &options.robustness, options.terrain, &mut work)
     });
+    let mfpt = mfpt.flatten();
     Robustness {
         asked: options.robustness,
         step_down_max,

@@ -26,3 +26,40 @@ fn a_set_flag_stops_the_run_and_an_unset_one_changes_nothing() {
     let again = simulate(&p, &o);
     assert_eq!(format!("{again:?}"), format!("{plain:?}"));
 }
+
+/// The MFPT's batches read the flag too: at Fig. 7(a), σ = 5 cm and its
+/// most batches (3000, minutes of one-step runs), a flag set a moment after
+/// the start ends the computation within seconds and its result is refused.
+#[test]
+fn a_flag_set_during_the_mfpt_s_batches_ends_them() {
+    use crate::options::RobustnessOptions;
+    use std::sync::atomic::Ordering;
+    use std::time::{Duration, Instant};
+    let p = Params::fig7a();
+    let o = Options {
+        robustness: RobustnessOptions {
+            mfpt: true,
+            sigma: 0.05,
+            mfpt_batches: 3000,
+            ..RobustnessOptions::default()
+        },
+        ..Options::default()
+    };
+    let stop = AtomicBool::new(false);
+    let (out, stopped_after) = std::thread::scope(|s| {
+        let flag = &stop;
+        let setter = s.spawn(move || {
+            // Past the flat run (well under a second): inside the batches.
+            std::thread::sleep(Duration::from_secs(2));
+            flag.store(true, Ordering::SeqCst);
+            Instant::now()
+        });
+        let out = cancellable(&stop, || simulate(&p, &o));
+        let done = Instant::now();
+        (out, done.duration_since(setter.join().unwrap()))
+    });
+    assert!(out.is_none(), "the MFPT finished before the flag: {out:?}");
+    eprintln!("flag to return: {stopped_after:?}");
+    // 2 s promised; 5 s allowed on a loaded machine.
+    assert!(stopped_after < Duration::from_secs(5), "{stopped_after:?}");
+}

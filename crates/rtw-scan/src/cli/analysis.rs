@@ -52,9 +52,9 @@ pub(super) fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
         a.force,
     )?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&c.clusters)?);
+        outln!("{}", serde_json::to_string_pretty(&c.clusters)?);
     } else {
-        print!(
+        out!(
             "{}",
             summary::clusters_markdown(c.k, c.clusters.as_ref(), c.failures)
         );
@@ -65,9 +65,9 @@ pub(super) fn cmd_cluster(a: ClusterArgs) -> Result<ExitCode> {
 pub(super) fn cmd_summary(a: SummaryArgs) -> Result<ExitCode> {
     let summary = summary::summary_to_files(&a.samples, a.k.map(NonZeroUsize::get), a.force)?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
-        print!("{}", summary.to_markdown());
+        out!("{}", summary.to_markdown());
     }
     Ok(ExitCode::SUCCESS)
 }

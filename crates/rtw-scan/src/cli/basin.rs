@@ -33,7 +33,7 @@ pub(super) struct BasinArgs {
     )]
     steps: String,
     /// A point returns when its scaled distance to the gait's orbit is at most this.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, value_parser = super::values::float)]
     tol: f64,
     /// Worker threads [default: one per core; at most 4 per core]. The rows do not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
@@ -61,7 +61,7 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     )?;
     let per_point = wall / points.len() as f64;
     let (cx, cy) = slice.centre();
-    println!(
+    outln!(
         "gait: {}, period {} (max |mu| {:.4}), fixed point {} = {cx:.6}, {} = {cy:.6}",
         slice.label.as_str(),
         slice.cycle.period,
@@ -78,8 +78,8 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
         .zip(counts)
         .map(|(o, n)| format!("{o} {n}"))
         .collect();
-    println!("{} points: {}", points.len(), shown.join(", "));
-    println!(
+    outln!("{} points: {}", points.len(), shown.join(", "));
+    outln!(
         "{wall:.1} s ({:.1} ms per point, wall-clock over the worker threads); written to {}",
         1e3 * per_point,
         a.out.display()

@@ -16,22 +16,22 @@ use std::process::ExitCode;
 #[derive(Args, Debug)]
 pub(super) struct ModelArgs {
     /// Base point: rod length L [m] (default: Fig. 7(a)).
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     length: Option<f64>,
     /// Base point: mass per length ρ [kg/m].
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     rho: Option<f64>,
     /// Base point: connection ratio α.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     alpha: Option<f64>,
     /// Base point: eigen-frequency f_n [Hz].
-    #[arg(long = "fn", value_name = "FN")]
+    #[arg(long = "fn", value_name = "FN", value_parser = super::values::float)]
     f_n: Option<f64>,
     /// Base point: damping ratio ζ.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     zeta: Option<f64>,
     /// Base point: slope φ [rad].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::float)]
     phi: Option<f64>,
     /// Take the [simulation] options of this config file.
     #[arg(long, value_name = "FILE")]
@@ -68,10 +68,10 @@ pub(super) struct BifurcationArgs {
     #[arg(long, default_value = "phi")]
     param: String,
     /// First value of the sweep.
-    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02, value_parser = super::values::float)]
     from: f64,
     /// Last value of the sweep (from > to sweeps downwards).
-    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35, value_parser = super::values::float)]
     to: f64,
     /// Number of values, from and to included.
     #[arg(long, default_value_t = 121)]
@@ -126,6 +126,6 @@ pub(super) fn cmd_bifurcation(a: BifurcationArgs) -> Result<ExitCode> {
             written.steps_path.display()
         );
     }
-    print!("{}", written.summary);
+    out!("{}", written.summary);
     Ok(ExitCode::SUCCESS)
 }

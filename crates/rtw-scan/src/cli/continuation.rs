@@ -17,18 +17,18 @@ pub(super) struct ContinuationArgs {
     #[arg(long, default_value = "phi")]
     param: String,
     /// The branches end below this value.
-    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.02, value_parser = super::values::float)]
     from: f64,
     /// The branches end above this value.
-    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.35, value_parser = super::values::float)]
     to: f64,
     #[command(flatten)]
     model: ModelArgs,
     /// First step, in scaled arclength (coordinates over their scales, the input over 0.1·max(1, |start|)).
-    #[arg(long, default_value_t = 0.02)]
+    #[arg(long, default_value_t = 0.02, value_parser = super::values::float)]
     ds: f64,
     /// Largest step, in scaled arclength.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = 0.05, value_parser = super::values::float)]
     ds_max: f64,
     /// Most points per branch.
     #[arg(long, default_value_t = 400)]
@@ -42,10 +42,10 @@ pub(super) struct ContinuationArgs {
     #[arg(long, value_name = "PARAM")]
     curve: Option<String>,
     /// The curves end below this value of the second input.
-    #[arg(long, allow_negative_numbers = true, requires = "curve")]
+    #[arg(long, allow_negative_numbers = true, requires = "curve", value_parser = super::values::float)]
     curve_from: Option<f64>,
     /// The curves end above this value of the second input.
-    #[arg(long, allow_negative_numbers = true, requires = "curve")]
+    #[arg(long, allow_negative_numbers = true, requires = "curve", value_parser = super::values::float)]
     curve_to: Option<f64>,
     /// Also continue the gait's branch through the changes of its mode sequence, up to this many segments
     /// each way, and each period-2 branch on from where its smooth continuation stopped; each change
@@ -112,6 +112,6 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
     });
     let progress = StderrProgress::study(a.quiet, "continuation");
     let md = study::run_to_files(&c, a.through, &out, a.force, &progress)?;
-    print!("{md}");
+    out!("{md}");
     Ok(ExitCode::SUCCESS)
 }

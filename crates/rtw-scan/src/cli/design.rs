@@ -63,7 +63,7 @@ pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
         }
         done => done?,
     };
-    print!("{}", files::markdown(&search, &reported));
+    out!("{}", files::markdown(&search, &reported));
     eprintln!(
         "rtw-scan: {} designs ({} simulations, budget {}) written to {}",
         search.evaluations.len(),

@@ -7,6 +7,22 @@
 //! command tree and the exit codes, `signal` the signal handling, and
 //! `progress` the progress shown on stderr.
 
+/// `print!` to stdout through [`signal::print_out`]: a closed stdout ends
+/// the command quietly (exit 141) instead of a panic. Every command's
+/// output to stdout goes through it or [`outln!`].
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::cli::signal::print_out(format_args!($($arg)*))
+    };
+}
+
+/// `println!` to stdout through [`signal::print_out`] (see [`out!`]).
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::cli::signal::print_out(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 mod analysis;
 mod basin;
 mod bifurcation;
@@ -43,7 +59,8 @@ const EXIT_CODES: &str = "Exit status:\n  \
 or unreadable file, an I/O failure\n  \
     2    bad command line (unknown flag, missing argument)\n  \
     130  interrupted by SIGINT (Ctrl-C), SIGTERM or SIGHUP; a scan keeps its finished chunks (finish it \
-with --resume), any other command leaves no partial file";
+with --resume), any other command leaves no partial file\n  \
+    141  stdout was closed before all was printed (`| head`): the files written are kept";
 
 /// The exit codes of `simulate`, which also fails when the run does not finish.
 const EXIT_CODES_SIMULATE: &str = "Exit status:\n  \
@@ -51,7 +68,8 @@ const EXIT_CODES_SIMULATE: &str = "Exit status:\n  \
     1    error: bad input, a refusal to overwrite (see --force), an oversized trace (see --trace-limit), \
 or a simulation that did not finish (a `diverged` run: numerical failure or panic)\n  \
     2    bad command line\n  \
-    130  interrupted by SIGINT, SIGTERM or SIGHUP (no partial trace is left)";
+    130  interrupted by SIGINT, SIGTERM or SIGHUP (no partial trace is left)\n  \
+    141  stdout was closed before all was printed (`| head`): a trace written is kept";
 
 #[derive(Parser, Debug)]
 #[command(
@@ -236,7 +254,7 @@ pub fn main() -> ExitCode {
         Command::Design(a) => design::cmd_design(a),
     };
     result.unwrap_or_else(|e| {
-        eprintln!("error: {e:#}");
+        eprintln!("error: {}", crate::files::error_message(&e));
         ExitCode::FAILURE
     })
 }

@@ -16,17 +16,17 @@ pub(super) struct ProfileArgs {
     #[command(flatten)]
     design: DesignArgs,
     /// The slope range's start φ [rad].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::float)]
     from: f64,
     /// The slope range's end φ [rad], above --from.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::float)]
     to: f64,
     /// Locate each change of label to a bracket at most this wide [rad], in [1e-9, --grid].
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, value_parser = super::values::float)]
     tol: f64,
     /// The coarse grid's spacing [rad] (at most; the range is cut into equal cells): a feature
     /// narrower than it, with one label at both its ends, is not seen.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, value_parser = super::values::float)]
     grid: f64,
     #[command(flatten)]
     options: OptionArgs,
@@ -65,9 +65,9 @@ pub(super) fn cmd_profile(a: ProfileArgs) -> Result<ExitCode> {
         None => profile::run(&settings, &options, &progress, &STOP)?,
     };
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&p.to_json())?);
+        outln!("{}", serde_json::to_string_pretty(&p.to_json())?);
     } else {
-        print!("{}", profile::markdown(&p));
+        out!("{}", profile::markdown(&p));
     }
     if let Some(out) = &a.out {
         eprintln!("rtw-scan: {} slopes written to {}", p.runs(), out.display());

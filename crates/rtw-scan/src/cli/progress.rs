@@ -179,7 +179,11 @@ impl Progress for StderrProgress {
         if let Some(lines) = &self.lines
             && let Ok(mut st) = lines.lock()
         {
-            (st.decile, st.printed) = (0, 0);
+            // A first line at once: a unit of work may take minutes (a
+            // sample with every robustness measure), and until one is done
+            // the command would say nothing.
+            (st.decile, st.printed, st.last) = (0, 0, Instant::now());
+            eprintln!("{}", self.line());
         }
         if self.mode == ProgressMode::Auto && self.lines.is_none() {
             let stage = self.stage.lock().map(|s| s.clone()).unwrap_or_default();

@@ -90,7 +90,7 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
 fn finish(a: &RefineArgs, status: RefineStatus) -> Result<ExitCode> {
     match status {
         RefineStatus::Complete { combined, rows } => {
-            println!(
+            outln!(
                 "rtw-scan: refined: {rows} rows (the scan's and {} new) in {}",
                 a.budget,
                 combined.display()
@@ -99,7 +99,7 @@ fn finish(a: &RefineArgs, status: RefineStatus) -> Result<ExitCode> {
         }
         RefineStatus::Stopped { round, dir, status } => match status {
             RunStatus::Complete { samples, rows, .. } => {
-                println!(
+                outln!(
                     "rtw-scan: round {round}: {rows} rows in {}; when every shard is done: rtw-scan merge {}, \
                      then run refine again",
                     samples.display(),

@@ -146,7 +146,7 @@ fn finish_run(a: &RunArgs, out: &Path, status: RunStatus) -> Result<ExitCode> {
             if let Some(s) = a.shard {
                 // One part is not the scan: the summary comes with `merge`.
                 // (stdout: scripts grep it; it is the command's result.)
-                println!(
+                outln!(
                     "rtw-scan: shard {s}: {rows} rows in {}; when all {} shards are done: rtw-scan merge {}",
                     samples.display(),
                     s.count,
@@ -183,7 +183,7 @@ fn finish_run(a: &RunArgs, out: &Path, status: RunStatus) -> Result<ExitCode> {
 /// the samples file, and printed.
 fn write_and_print_summary(dir: &Path, samples: &Path) -> Result<ExitCode> {
     let summary = scan::write_summary(dir, samples)?;
-    print!("{}", summary.to_markdown());
+    out!("{}", summary.to_markdown());
     Ok(ExitCode::SUCCESS)
 }
 

@@ -50,9 +50,9 @@ pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
     let analysis = sensitivity::analyse_to_file(&scan, &out, &settings, a.force, &STOP, &progress)?;
     if a.json {
         let all: Vec<_> = analysis.indices.iter().map(json).collect();
-        println!("{}", serde_json::to_string_pretty(&all)?);
+        outln!("{}", serde_json::to_string_pretty(&all)?);
     } else {
-        print!(
+        out!(
             "{}",
             sensitivity::markdown(analysis.method.name(), &analysis.indices)
         );

@@ -36,3 +36,34 @@ pub(super) fn install_signal_handler() -> Result<()> {
     })
     .context("cannot install the signal handler")
 }
+
+/// Exit code of a command whose stdout was closed before it finished
+/// writing (`rtw-scan … | head -c 1`): 128 + SIGPIPE, what a shell reports
+/// for a process a closed pipe ended.
+pub(super) const EXIT_STDOUT_CLOSED: i32 = 141;
+
+/// Writes `args` to stdout, as `print!` does, for every command through
+/// [`out!`](super::out) and [`outln!`](super::outln). A closed stdout
+/// (EPIPE) ends the process quietly with [`EXIT_STDOUT_CLOSED`]: what it
+/// prints comes after its files are finished, so they are kept, and its
+/// temporary and lock files are removed, as a signal's exit removes them.
+///
+/// Why not SIGPIPE's default action, which ends a process at its first write
+/// to a closed pipe? It ends it where it stands, with no chance to remove
+/// its temporary files (a write to stdout while a file is half written would
+/// leave it), and it would end Python's process too where the library is
+/// loaded into it. Here the one place that writes stdout decides.
+pub(super) fn print_out(args: std::fmt::Arguments<'_>) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let written = stdout.write_fmt(args).and_then(|()| stdout.flush());
+    let Err(e) = written else {
+        return;
+    };
+    files::remove_live_files();
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        std::process::exit(EXIT_STDOUT_CLOSED);
+    }
+    eprintln!("error: cannot write to stdout: {e}");
+    std::process::exit(1);
+}

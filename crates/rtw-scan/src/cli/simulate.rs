@@ -19,19 +19,19 @@ use std::process::ExitCode;
 #[derive(Args, Debug)]
 pub(super) struct DesignArgs {
     /// Rod length L [m].
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     length: f64,
     /// Mass per length ρ [kg/m].
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     rho: f64,
     /// Connection ratio α, in [0, 0.49].
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     alpha: f64,
     /// Eigen-frequency f_n [Hz].
-    #[arg(long = "fn", value_name = "FN")]
+    #[arg(long = "fn", value_name = "FN", value_parser = super::values::float)]
     f_n: f64,
     /// Damping ratio ζ.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::float)]
     zeta: f64,
 }
 
@@ -85,7 +85,7 @@ pub(super) struct SimulateArgs {
     #[command(flatten)]
     design: DesignArgs,
     /// Slope φ [rad].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::float)]
     phi: f64,
     #[command(flatten)]
     options: OptionArgs,
@@ -150,12 +150,12 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
         );
     }
     if a.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&JsonRow(&row, &options.robustness))?
         );
     } else {
-        print!("{}", to_text(&row, &options.robustness));
+        out!("{}", to_text(&row, &options.robustness));
     }
     if let Some(e) = row.outcome.map(|o| o.energy)
         && e.balance_exceeds_bound()

@@ -36,10 +36,10 @@ pub(super) fn set(assignment: &str) -> Result<(String, toml::Value)> {
     if key.split('.').any(str::is_empty) {
         bail!("--set {assignment:?}: empty key segment in {key:?}");
     }
-    if beyond_f64(value) {
+    if super::values::beyond_f64(value) {
         bail!(
-            "--set {key}: {value} is invalid: beyond the range of a 64-bit float (magnitudes from \
-             2.2e-308 to 1.8e308){}",
+            "--set {key}: {value} is invalid: {}{}",
+            super::values::BEYOND_F64,
             option_range(key).map_or(String::new(), |r| format!("; {key} must be {r}"))
         );
     }
@@ -49,19 +49,6 @@ pub(super) fn set(assignment: &str) -> Result<(String, toml::Value)> {
         .and_then(|mut t| t.remove("v"))
         .unwrap_or_else(|| toml::Value::String(value.to_string()));
     Ok((key.to_string(), parsed))
-}
-
-/// Whether `literal` is a number written beyond what a 64-bit float holds
-/// (`1e400` reads as inf, `1e-400` as 0): TOML refuses it, and taken as a
-/// string it would be refused as "invalid type: string".
-fn beyond_f64(literal: &str) -> bool {
-    let Ok(v) = literal.parse::<f64>() else {
-        return false;
-    };
-    let mantissa = literal.split(['e', 'E']).next().unwrap_or("");
-    let spelled_inf = literal.to_ascii_lowercase().contains("inf");
-    (v.is_infinite() && !spelled_inf)
-        || (v == 0.0 && mantissa.contains(|c: char| ('1'..='9').contains(&c)))
 }
 
 /// The simulation options of `--config`, `--variant` and `--set`

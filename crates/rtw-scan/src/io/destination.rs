@@ -4,7 +4,7 @@
 use crate::files;
 use crate::io::metadata::FileKind;
 use crate::io::parquet::open;
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use arrow_schema::{Schema, SchemaRef};
 use std::path::{Path, PathBuf};
 
@@ -82,6 +82,59 @@ fn starts_as_parquet(path: &Path) -> bool {
     std::fs::File::open(path)
         .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut magic))
         .is_ok_and(|()| &magic == b"PAR1")
+}
+
+/// Makes the output directory `dir` (named by the option `flag` in
+/// messages: `--out`), its parents too, or takes it as it is when it is one
+/// (or a symlink to one). Where something else is — a file, a device, a
+/// symlink that leads nowhere, here or in place of a parent — it is refused,
+/// saying what is there and what to do, rather than with the OS's "File
+/// exists"; nothing there is changed. `holds` says what the directory is
+/// for (`a scan's files`).
+pub(crate) fn output_dir(dir: &Path, flag: &str, holds: &str) -> Result<()> {
+    // The deepest of `dir` and its parents that is there, and what it is.
+    let Some((at, meta)) = dir
+        .ancestors()
+        .filter(|a| !a.as_os_str().is_empty())
+        .find_map(|a| std::fs::symlink_metadata(a).ok().map(|m| (a, m)))
+    else {
+        return make_dir(dir, flag);
+    };
+    let named = format!("{flag} {}: cannot create output directory", dir.display());
+    let there = if at == dir {
+        "it".to_string()
+    } else {
+        at.display().to_string()
+    };
+    if meta.file_type().is_symlink() {
+        return match std::fs::metadata(at) {
+            Ok(m) if m.is_dir() => make_dir(dir, flag),
+            _ => bail!(
+                "{named}: {there} is a symlink to {}, which is not a directory (nothing is there, \
+                 or a file): rtw-scan does not make what a link points to; remove the link, point \
+                 it at a directory, or choose another {flag}",
+                std::fs::read_link(at).map_or_else(|_| "?".into(), |t| t.display().to_string())
+            ),
+        };
+    }
+    if !meta.is_dir() {
+        bail!(
+            "{named}: {there} is {}, not a directory ({flag} names a directory for {holds}); \
+             choose another path (a new one, or a directory of an earlier run)",
+            if meta.is_file() {
+                "a regular file"
+            } else {
+                files::special_kind(meta.file_type())
+            }
+        );
+    }
+    make_dir(dir, flag)
+}
+
+/// `create_dir_all`, its error naming `dir` and `flag`.
+fn make_dir(dir: &Path, flag: &str) -> Result<()> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{flag} {}: cannot create output directory", dir.display()))
 }
 
 /// Most bytes of a summary (Markdown or JSON) read back to tell whose it is:

@@ -31,6 +31,11 @@ pub(crate) fn extend_schema<'a>(
     Arc::new(Schema::new(fields))
 }
 
+/// Every robustness column, alone (the data dictionary's table of them).
+pub(crate) fn all_columns_schema() -> SchemaRef {
+    extend_schema(Arc::new(Schema::empty()), picked(|_| true))
+}
+
 /// `batch` (`rows` in the scan schema) with the robustness columns `asked`
 /// switches on, each row's values read from its `measured` robustness.
 pub(crate) fn append<R>(
@@ -48,15 +53,33 @@ pub(crate) fn append<R>(
         let values: Float64Array = rows
             .iter()
             .map(|r| {
-                measured(r)
-                    .and_then(|m| c.value(&m))
-                    // A measure that could not be computed (NaN) is null;
-                    // an infinite one is measured (an MFPT whose interval
-                    // is open above) and stays infinite.
-                    .filter(|v| !v.is_nan())
+                // A measure that could not be computed (NaN) is null; an
+                // infinite one is measured (an MFPT whose interval is open
+                // above) and stays infinite.
+                kept(measured(r).and_then(|m| c.value(&m)))
             })
             .collect();
         columns.push(Arc::new(values));
     }
     RecordBatch::try_new(extend_schema(batch.schema(), on()), columns).expect("one value per row")
+}
+
+/// A robustness measure as a row's JSON has it: a number; `"inf"` (or
+/// `"-inf"`) when it is measured infinite, which JSON has no number for (an
+/// MFPT with no fall counted: `mfpt` and `mfpt_hi`), as Parquet holds inf;
+/// null only when it was not computed (not asked for this row, no stable
+/// gait, NaN), as Parquet holds null.
+pub(crate) fn json_value(v: Option<f64>) -> serde_json::Value {
+    match v {
+        Some(v) if v.is_infinite() => (if v > 0.0 { "inf" } else { "-inf" }).into(),
+        Some(v) => serde_json::Number::from_f64(v).map_or(serde_json::Value::Null, Into::into),
+        None => serde_json::Value::Null,
+    }
+}
+
+/// A robustness measure as a row's values hold it ([`super::scan_rows::Value`],
+/// what Python's `Outcome` gives): NaN (not computed) is `None`, an infinite
+/// measure stays infinite, as in Parquet.
+pub(crate) fn kept(v: Option<f64>) -> Option<f64> {
+    v.filter(|v| !v.is_nan())
 }

@@ -127,8 +127,8 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
         description: "mean first-passage time: expected steps of the flat gait to the fall from \
                       the quasi-stationary regime on seeded rough slopes of roughness \
                       robustness.sigma, uncensored (the falls of a Fleming–Viot cloud, \
-                      counted; docs/robustness.md); null unless stable; only with \
-                      robustness.mfpt = true",
+                      counted; docs/robustness.md); inf (JSON \"inf\") when no fall was \
+                      counted; null unless stable; only with robustness.mfpt = true",
         on: |r| r.mfpt,
         get: Get::Measure(|m| m.mfpt.map(|s| s.mfpt)),
     },
@@ -142,8 +142,8 @@ const ROBUSTNESS_COLUMNS: &[RobustnessColumn] = &[
     RobustnessColumn {
         name: "mfpt_hi",
         unit: "steps",
-        description: "upper end of the 95 % interval of mfpt (inf when the fall rate's interval \
-                      reaches 0)",
+        description: "upper end of the 95 % interval of mfpt (inf, JSON \"inf\", when the fall \
+                      rate's interval reaches 0: the interval is open above)",
         on: |r| r.mfpt,
         get: Get::Measure(|m| m.mfpt.map(|s| s.hi)),
     },

@@ -423,7 +423,8 @@ pub(crate) fn schema_of_files(first: &Schema) -> SchemaRef {
 /// A row as one flat JSON object, keys in column order (`outcome` is the
 /// label string; absent metrics and non-finite floats are `null`), then the
 /// robustness measures its options asked for (the second field): one set
-/// of keys for given options, however the run ended.
+/// of keys for given options, however the run ended; an infinite measure
+/// is `"inf"`, not null ([`super::robustness_columns::json_value`]).
 pub(crate) struct JsonRow<'a>(pub(crate) &'a Row, pub(crate) &'a RobustnessOptions);
 
 impl Serialize for JsonRow<'_> {
@@ -440,15 +441,16 @@ impl Serialize for JsonRow<'_> {
             }
         }
         for (name, value) in robustness_entries(r, self.1) {
-            map.serialize_entry(name, &value.filter(|v| v.is_finite()))?;
+            map.serialize_entry(name, &super::robustness_columns::json_value(value))?;
         }
         map.end()
     }
 }
 
 /// The value of one column of a scan row as `simulate --json` has it: an
-/// absent metric and a non-finite float are `None`; `outcome` is the label's
-/// name. What the Python package's `Outcome` holds, without going through
+/// absent metric and a non-finite float are `None` (of the robustness
+/// measures, only NaN: an infinite one, JSON's `"inf"`, stays infinite);
+/// `outcome` is the label's name. What the Python package's `Outcome` holds, without going through
 /// JSON text.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {

@@ -187,10 +187,19 @@ impl Identity {
             .metadata
             .get(META_REFINE)
             .and_then(|t| serde_json::from_str::<serde_json::Value>(t).ok());
-        let diffs = match &theirs {
-            None => vec!["it is not a refinement's file (no `rtw.refine` metadata)".to_string()],
-            Some(t) => self.differences(t),
+        let Some(theirs) = &theirs else {
+            // A scan's own rows (check_destination let only a scan's file
+            // through): no refinement made it, so none can go on from it.
+            bail!(
+                "{} is a scan's samples file (`rtw-scan run` wrote it; it has no `rtw.refine` \
+                 metadata), not a refinement's file: no refinement can go on from it. Move it \
+                 away (or the folder {}) to refine here ({}), or pass --force to replace it",
+                combined.display(),
+                combined.parent().unwrap_or(Path::new(".")).display(),
+                self.flags()
+            );
         };
+        let diffs = self.differences(theirs);
         if diffs.is_empty() {
             return Ok(());
         }
@@ -364,7 +373,14 @@ pub fn refine(
     read_rows(&base, &axes, &mut x, &mut labels)?;
     let mut files = vec![base];
     for (round, n) in (1..).zip(round_sizes(r.budget, r.rounds)) {
-        let unit = propose(&x, &labels, axes.len(), n as usize, r.seed, round);
+        progress.stage(&format!(
+            "round {round} of {}: choosing {n} points among {} candidates by their neighbours in \
+             {} rows",
+            r.rounds,
+            propose::POOL as u64 * n,
+            x.len()
+        ));
+        let unit = propose(&x, &labels, axes.len(), n as usize, r.seed, round, progress);
         let points: Vec<Params> = unit
             .iter()
             .map(|u| {

@@ -24,6 +24,7 @@
 //! The neighbour search is brute force, O(POOL · n · N · D) per round for N
 //! rows so far (in parallel over the candidates).
 
+use crate::scan::progress::Progress;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -40,7 +41,10 @@ pub(crate) fn neighbours(dims: usize) -> usize {
 }
 
 /// The `n` new points (unit cube, `dims` coordinates each) of round
-/// `round`, from the samples `x` (unit cube) and their labels.
+/// `round`, from the samples `x` (unit cube) and their labels; `progress`
+/// counts the candidates as they are scored (one [`Progress::advanced`]
+/// each, out of a [`Progress::start`] of all of them): with 10⁶ rows a
+/// round's neighbour search takes minutes.
 pub(crate) fn propose(
     x: &[Vec<f64>],
     labels: &[usize],
@@ -48,6 +52,7 @@ pub(crate) fn propose(
     n: usize,
     seed: u64,
     round: u64,
+    progress: &dyn Progress,
 ) -> Vec<Vec<f64>> {
     assert_eq!(x.len(), labels.len(), "one label per sample");
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -55,7 +60,16 @@ pub(crate) fn propose(
     let draw = |rng: &mut ChaCha8Rng| (0..dims).map(|_| rng.random::<f64>()).collect::<Vec<_>>();
     let pool: Vec<Vec<f64>> = (0..POOL * n).map(|_| draw(&mut rng)).collect();
     let k = neighbours(dims).min(x.len());
-    let scores: Vec<f64> = pool.par_iter().map(|c| score(x, labels, c, k)).collect();
+    progress.start(pool.len() as u64);
+    let scores: Vec<f64> = pool
+        .par_iter()
+        .map(|c| {
+            let s = score(x, labels, c, k);
+            progress.advanced();
+            s
+        })
+        .collect();
+    progress.finish(true);
     let mut order: Vec<usize> = (0..pool.len()).filter(|&i| scores[i] > 0.0).collect();
     order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]).then(a.cmp(&b)));
     let explore = ((n as f64) * EXPLORE_SHARE).ceil() as usize;
@@ -115,6 +129,7 @@ fn nearest(x: &[Vec<f64>], c: &[f64], k: usize) -> Vec<(f64, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scan::progress::Silent;
 
     /// A two-label problem in the unit square: label 1 inside the disc of
     /// radius 0.3 around (0.5, 0.5), 0 outside.
@@ -137,10 +152,14 @@ mod tests {
     fn same_rows_and_seed_give_the_same_points() {
         let x = uniform(300, 1);
         let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
-        let a = propose(&x, &l, 2, 50, 7, 1);
-        assert_eq!(a, propose(&x, &l, 2, 50, 7, 1));
-        assert_ne!(a, propose(&x, &l, 2, 50, 8, 1), "the seed matters");
-        assert_ne!(a, propose(&x, &l, 2, 50, 7, 2), "the round matters");
+        let a = propose(&x, &l, 2, 50, 7, 1, &Silent);
+        assert_eq!(a, propose(&x, &l, 2, 50, 7, 1, &Silent));
+        assert_ne!(a, propose(&x, &l, 2, 50, 8, 1, &Silent), "the seed matters");
+        assert_ne!(
+            a,
+            propose(&x, &l, 2, 50, 7, 2, &Silent),
+            "the round matters"
+        );
     }
 
     #[test]
@@ -148,20 +167,20 @@ mod tests {
         let x = uniform(200, 2);
         let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
         for n in [0, 1, 9, 10, 57, 1000] {
-            let p = propose(&x, &l, 2, n, 3, 1);
+            let p = propose(&x, &l, 2, n, 3, 1, &Silent);
             assert_eq!(p.len(), n);
             assert!(p.iter().flatten().all(|v| (0.0..=1.0).contains(v)));
         }
         // One label only: no boundary, every point explores.
         let one = vec![0; x.len()];
-        assert_eq!(propose(&x, &one, 2, 20, 3, 1).len(), 20);
+        assert_eq!(propose(&x, &one, 2, 20, 3, 1, &Silent).len(), 20);
     }
 
     #[test]
     fn new_points_lie_near_the_label_change() {
         let x = uniform(400, 3);
         let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
-        let p = propose(&x, &l, 2, 100, 5, 1);
+        let p = propose(&x, &l, 2, 100, 5, 1, &Silent);
         let explore = (100.0 * EXPLORE_SHARE).ceil() as usize;
         let (near, far) = p.split_at(100 - explore);
         // Uniform points lie at a mean distance ~0.15 from the circle; the
@@ -202,7 +221,7 @@ mod tests {
         let mut x = uniform(100, 4);
         for round in 1..=4 {
             let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
-            x.extend(propose(&x, &l, 2, 100, 11, round));
+            x.extend(propose(&x, &l, 2, 100, 11, round, &Silent));
         }
         let refined = error(&x);
         let random = error(&uniform(500, 4));

@@ -202,8 +202,11 @@ impl<'a> Checkpoint<'a> {
     /// rtw-scan did not make.
     fn start(&self, chunk_size: usize) -> Result<usize> {
         let partial = &self.layout.partial;
-        std::fs::create_dir_all(partial)
-            .with_context(|| format!("cannot create {}", partial.display()))?;
+        crate::io::destination::output_dir(
+            partial,
+            "--out",
+            "a run's unfinished chunks (rtw-scan makes it)",
+        )?;
         crate::pause_at("manifest");
         let manifest = Manifest {
             version: VERSION.into(),

@@ -47,7 +47,7 @@ use crate::scan::sample::Sampler;
 use crate::scan::shard::Shard;
 use crate::scan::workers::{Jobs, worker_pool};
 use ::parquet::file::metadata::KeyValue;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::collections::BTreeSet;
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
@@ -192,8 +192,7 @@ pub(crate) fn run_scan_with(
 /// of this very result left.
 fn claim_output(layout: &Layout, cfg: &ScanConfig, settings: &RunSettings) -> Result<Lock> {
     let out = &settings.out_dir;
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("cannot create output directory {}", out.display()))?;
+    crate::io::destination::output_dir(out, "--out", "a scan's files")?;
     let lock = Lock::acquire(
         &layout.samples,
         &format!("writing {}", layout.samples.display()),

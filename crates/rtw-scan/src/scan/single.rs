@@ -36,7 +36,7 @@ pub fn simulate_row(params: Params, options: &Options) -> RowValues {
         columns: values(&row),
         robustness: robustness_entries(&row, &options.robustness)
             .into_iter()
-            .map(|(k, v)| (k, Value::Float(v.filter(|v| v.is_finite()))))
+            .map(|(k, v)| (k, Value::Float(crate::io::robustness_columns::kept(v))))
             .collect(),
     }
 }

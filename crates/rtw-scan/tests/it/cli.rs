@@ -1098,3 +1098,127 @@ fn parquet_files_rewritten_by_other_tools_are_read() {
         assert_eq!(clusters(&f), want_clusters, "{name}");
     }
 }
+
+/// A float flag beyond what a 64-bit float holds is refused with the text
+/// that was typed, as `--set` does, not with the value it would have been
+/// read as (`1e400` as inf, `1e-400` as 0): every float flag of every
+/// subcommand.
+#[test]
+fn a_float_flag_beyond_a_float_is_refused_with_what_was_typed() {
+    let design = [
+        "--length", "0.8", "--rho", "2.5", "--alpha", "0.125", "--fn", "3.269", "--zeta", "0.0514",
+    ];
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            [
+                &["profile"],
+                &design[..],
+                &["--from", "0.1", "--to", "0.2", "--tol", "1e400"],
+            ]
+            .concat(),
+            "1e400",
+        ),
+        (
+            [
+                &["profile"],
+                &design[..],
+                &["--from", "0.1", "--to", "0.2", "--grid", "1e-400"],
+            ]
+            .concat(),
+            "1e-400",
+        ),
+        (
+            [
+                &["profile"],
+                &design[..],
+                &["--from", "-1e400", "--to", "0.2"],
+            ]
+            .concat(),
+            "-1e400",
+        ),
+        (
+            [&["simulate"], &design[..], &["--phi", "1e-400"]].concat(),
+            "1e-400",
+        ),
+        (
+            vec![
+                "simulate", "--length", "1e400", "--rho", "2.5", "--alpha", "0.125", "--fn",
+                "3.269", "--zeta", "0.0514", "--phi", "0.15",
+            ],
+            "1e400",
+        ),
+        (vec!["bifurcation", "--rho", "1e400"], "1e400"),
+        (vec!["bifurcation", "--to", "1e400"], "1e400"),
+        (vec!["continuation", "--ds", "1e-400"], "1e-400"),
+        (
+            vec!["continuation", "--curve", "fn", "--curve-from", "1e400"],
+            "1e400",
+        ),
+        (
+            vec![
+                "basin",
+                "--x",
+                "theta:0:1:2",
+                "--y",
+                "omega:0:1:2",
+                "--out",
+                "b.parquet",
+                "--tol",
+                "1e400",
+            ],
+            "1e400",
+        ),
+    ];
+    for (args, typed) in cases {
+        let o = run(&args);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{args:?} passed:\n{err}");
+        assert!(
+            err.contains(&format!("{typed} is invalid")),
+            "{args:?}: not the text typed, {typed}:\n{err}"
+        );
+        assert!(err.contains("64-bit float"), "{args:?}: no reason:\n{err}");
+    }
+}
+
+/// Progress in lines (stderr not a terminal) starts with a line at once, not
+/// when the first sample finishes: a run whose samples take 20 s each says
+/// within seconds that it is under way and how much there is to do.
+#[test]
+fn progress_lines_start_before_the_first_sample_finishes() {
+    use std::io::BufRead;
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("slow");
+    let mut child = bin()
+        .args([
+            "run",
+            s(&config("smoke")),
+            "--out",
+            s(&out),
+            "--threads",
+            "1",
+        ])
+        .args(["--fake-sim", "20000"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let err = child.stderr.take().unwrap();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut first = String::new();
+        let _ = std::io::BufReader::new(err).read_line(&mut first);
+        let _ = tx.send((first, Instant::now()));
+    });
+    let t0 = Instant::now();
+    let got = rx.recv_timeout(Duration::from_secs(15));
+    child.kill().ok();
+    child.wait().ok();
+    let (line, at) = got.expect("no progress line within 15 s");
+    let took = at.duration_since(t0);
+    eprintln!("first progress line after {took:?}: {line}");
+    assert!(line.contains("0/6"), "{line}");
+    // 2 s promised; 5 s allowed on a loaded machine (a sample takes 20 s).
+    assert!(took < Duration::from_secs(5), "{took:?}");
+}

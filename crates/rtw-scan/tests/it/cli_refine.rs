@@ -411,3 +411,65 @@ fn a_round_carries_its_points_so_a_rerun_replays_them_and_sensitivity_refuses_th
         &["refined", "not draws", "a/samples.parquet"],
     );
 }
+
+/// A scan's own samples file copied into `DIR/refine/` is named for what it
+/// is, a scan's samples file and not a refinement's, and the advice is what
+/// can be done: move it away or pass --force, not "keep it and go on from
+/// it", which no refinement can.
+#[test]
+fn a_scan_file_in_refine_is_called_a_scan_s_samples_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(60, 4));
+    std::fs::create_dir_all(a.join("refine")).unwrap();
+    let plain = std::fs::read(a.join("samples.parquet")).unwrap();
+    std::fs::write(a.join("refine/samples.parquet"), &plain).unwrap();
+    let o = run_err(
+        &[
+            "refine",
+            s(&a),
+            "--budget",
+            "30",
+            "--rounds",
+            "3",
+            "--fake-sim",
+            "0",
+        ],
+        &["a scan's samples file", "not a refinement's", "--force"],
+    );
+    let err = stderr(&o);
+    assert!(!err.contains("another refinement's rows"), "{err}");
+    assert!(!err.contains("goes on from it"), "{err}");
+    assert_eq!(
+        std::fs::read(a.join("refine/samples.parquet")).unwrap(),
+        plain
+    );
+}
+
+/// Before each round runs, refine says what it is doing: choosing the
+/// round's points among their candidates by the rows so far (with a large
+/// scan, minutes of neighbour search), the candidates counted as they are
+/// scored.
+#[test]
+fn refine_says_it_is_choosing_each_round_s_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = scan(dir.path(), "a", &slice(100, 2));
+    let o = run_ok(&[
+        "refine",
+        s(&a),
+        "--budget",
+        "30",
+        "--rounds",
+        "3",
+        "--fake-sim",
+        "0",
+    ]);
+    let err = stderr(&o);
+    for (round, rows) in [(1, 100), (2, 110), (3, 120)] {
+        let want = format!(
+            "round {round} of 3: choosing 10 points among 200 candidates by their neighbours in \
+             {rows} rows"
+        );
+        assert!(err.contains(&want), "no {want:?} in:\n{err}");
+    }
+    assert!(err.contains("/200 (100.0 %)"), "{err}");
+}

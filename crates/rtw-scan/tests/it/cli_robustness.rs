@@ -313,6 +313,72 @@ fn the_first_interrupt_stops_a_long_robustness_sample_within_seconds() {
     assert!(!out.join("samples.parquet").exists());
 }
 
+/// The first Ctrl-C stops an MFPT in flight too, whose batches are many
+/// one-step runs: a grid of two samples, the first a star too soft to stand
+/// (f_n = 0.5 Hz: no gait, no MFPT, a finished chunk at once), the second
+/// Fig. 7(a)'s gait with the MFPT at its most batches (3000, minutes), is
+/// stopped within seconds of SIGINT, exits 130 and keeps the first chunk.
+#[test]
+fn the_first_interrupt_stops_an_mfpt_of_many_batches_within_seconds() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(
+        dir.path(),
+        "c.toml",
+        "seed = 1\nsamples = 1\n[params]\nlength = 0.8\nrho = 2.5\nalpha = 0.125\n\
+         fn = { linspace = [0.5, 3.269, 2] }\nzeta = 0.0514\nphi = 0.15\n[simulation]\n\
+         robustness.mfpt = true\nrobustness.sigma = 0.05\nrobustness.mfpt_batches = 3000\n",
+    );
+    let out = dir.path().join("out");
+    let chunk = out.join(".partial/chunk-00000.parquet");
+    let mut child = bin()
+        .args(["run", &cfg, "--out", s(&out), "--threads", "1", "--quiet"])
+        .args(["--chunk-size", "1"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    while !chunk.exists() {
+        if t0.elapsed() > Duration::from_secs(30) || child.try_wait().unwrap().is_some() {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("the first chunk did not appear");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // The second sample's flat run takes well under a second; its MFPT runs.
+    std::thread::sleep(Duration::from_secs(2));
+    assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+    let ok = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok);
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        if t0.elapsed() > Duration::from_secs(30) {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("still running 30 s after the first interrupt");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let took = t0.elapsed();
+    eprintln!("SIGINT to exit: {took:?}");
+    let err = std::io::read_to_string(child.stderr.take().unwrap()).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    // 2 s promised; 5 s allowed on a loaded machine.
+    assert!(took < Duration::from_secs(5), "{took:?}");
+    assert!(chunk.exists(), "the finished chunk was not kept");
+    assert!(!out.join("samples.parquet").exists());
+}
+
 /// `simulate --json` has one schema for given options: the scan row's
 /// columns, then the robustness measures asked for, null where a run has
 /// none, however it ended. A star too soft to stand (f_n = 0.5 Hz, φ = 0.02:
@@ -354,4 +420,60 @@ fn simulate_json_has_the_same_keys_however_the_run_failed() {
     let text = stdout(&o);
     assert!(text.contains("[robustness]"), "{text}");
     assert!(text.contains("steps_to_fall_censored"), "{text}");
+}
+
+/// An MFPT with no fall counted is unbounded (mfpt and mfpt_hi infinite),
+/// which is not the MFPT that was not computed: JSON writes the former
+/// `"inf"` and the latter null; Parquet the former inf and the latter null.
+/// Fig. 7(a)'s walk on a slope of σ = 2 mm counts no fall in its batches;
+/// a star too soft to stand (f_n = 0.5 Hz) has no gait, so no MFPT.
+#[test]
+fn an_unbounded_mfpt_is_told_from_a_missing_one_in_json_and_parquet() {
+    use arrow::array::{Array, Float64Array};
+    let mfpt = [
+        "--set",
+        "robustness.mfpt=true",
+        "--set",
+        "robustness.sigma=0.002",
+    ];
+    let j = json(&mfpt);
+    assert_eq!(j["outcome"], "walk", "{j}");
+    assert_eq!(j["fall_rate"], 0.0, "{j}");
+    assert_eq!(j["mfpt"], "inf", "{j}");
+    assert_eq!(j["mfpt_hi"], "inf", "{j}");
+    assert!(j["mfpt_lo"].as_f64().is_some_and(f64::is_finite), "{j}");
+    let mut soft = FIG7A.to_vec();
+    let at = soft.iter().position(|a| *a == "--fn").unwrap();
+    soft[at + 1] = "0.5";
+    let o = run_ok(&[&soft[..], &["--json"], &mfpt[..]].concat());
+    let none: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!(
+        none["mfpt"].is_null() && none["mfpt_hi"].is_null(),
+        "{none}"
+    );
+    // The same two in a scan's file.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(
+        dir.path(),
+        "c.toml",
+        "seed = 1\nsamples = 1\n[params]\nlength = 0.8\nrho = 2.5\nalpha = 0.125\n\
+         fn = { linspace = [0.5, 3.269, 2] }\nzeta = 0.0514\nphi = 0.15\n[simulation]\n\
+         robustness.mfpt = true\nrobustness.sigma = 0.002\n",
+    );
+    let out = dir.path().join("out");
+    run_ok(&["run", &cfg, "--out", s(&out), "--quiet"]);
+    let b = &batches(&out.join("samples.parquet"))[0];
+    let col = |name: &str| {
+        b.column_by_name(name)
+            .unwrap()
+            .as_any()
+            .downcast_ref::<Float64Array>()
+            .unwrap()
+            .clone()
+    };
+    for name in ["mfpt", "mfpt_hi"] {
+        let c = col(name);
+        assert!(c.is_null(0), "{name}: {c:?}");
+        assert_eq!(c.value(1), f64::INFINITY, "{name}: {c:?}");
+    }
 }

@@ -291,3 +291,46 @@ fn a_scan_larger_than_the_free_space_is_refused_unless_forced() {
     let o = fake_run(&small, &dir.path().join("s"), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// An output directory where something else is (a device, a plain file, a
+/// dangling `.partial` link) is refused saying what is there and what to
+/// do, not with the OS's "File exists (os error 17)"; nothing is changed.
+#[test]
+fn an_output_directory_that_is_not_one_is_refused_saying_what_is_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = config("smoke");
+    let cfg = s(&cfg);
+    let o = fake_run(cfg, Path::new("/dev/null"), &[]);
+    let err = stderr(&o);
+    assert!(!o.status.success());
+    for needle in [
+        "--out /dev/null",
+        "character device",
+        "not a directory",
+        "choose",
+    ] {
+        assert!(err.contains(needle), "no {needle:?} in:\n{err}");
+    }
+    assert!(!err.contains("os error 17"), "{err}");
+    let plain = dir.path().join("plainfile");
+    std::fs::write(&plain, "notes").unwrap();
+    let o = fake_run(cfg, &plain, &[]);
+    let err = stderr(&o);
+    assert!(!o.status.success());
+    for needle in ["plainfile", "a regular file", "not a directory", "choose"] {
+        assert!(err.contains(needle), "no {needle:?} in:\n{err}");
+    }
+    assert!(!err.contains("os error 17"), "{err}");
+    assert_eq!(std::fs::read(&plain).unwrap(), b"notes");
+    let out = dir.path().join("r");
+    std::fs::create_dir(&out).unwrap();
+    std::os::unix::fs::symlink("/nonexistent/rtw", out.join(".partial")).unwrap();
+    let o = fake_run(cfg, &out, &[]);
+    let err = stderr(&o);
+    assert!(!o.status.success());
+    for needle in [".partial", "symlink", "/nonexistent/rtw", "remove"] {
+        assert!(err.contains(needle), "no {needle:?} in:\n{err}");
+    }
+    assert!(!err.contains("os error 17"), "{err}");
+    assert!(is_symlink(&out.join(".partial")));
+}

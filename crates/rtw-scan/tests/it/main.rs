@@ -21,6 +21,7 @@ mod cli_sensitivity;
 mod default_variant;
 mod destinations;
 mod library_deps;
+mod pipes;
 mod reliability;
 mod shard;
 mod template;
