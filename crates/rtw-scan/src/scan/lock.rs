@@ -28,9 +28,10 @@ impl Lock {
     /// refused, naming the first, where it would replace the first's files
     /// or mix its own among them. `doing` as for [`Lock::acquire`].
     pub(crate) fn for_result(dest: &Path, doing: &str) -> Result<Self> {
+        // A file, a device or a dangling symlink where the folder goes is
+        // refused saying what is there, not with the OS's "File exists".
         if let Some(dir) = dest.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("cannot create the folder {}", dir.display()))?;
+            crate::io::destination::output_dir(dir, "--out", "the study's files")?;
         }
         Self::acquire_then(dest, doing, "")
     }

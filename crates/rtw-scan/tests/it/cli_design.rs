@@ -493,3 +493,25 @@ fn two_sensitivity_analyses_into_one_file_the_second_is_refused_naming_the_first
     let about: serde_json::Value = serde_json::from_str(&meta(&out, "rtw.sensitivity")).unwrap();
     assert_eq!(about["resamples"].as_u64(), Some(10000), "{about}");
 }
+
+/// A search's `--out` that is not a folder — a device, a plain file — is
+/// refused saying what is there and what to do, as `run` and `profile`
+/// refuse theirs, not with the OS's "File exists (os error 17)"; the file is
+/// left as it was.
+#[test]
+fn a_search_folder_that_is_a_device_or_a_file_is_refused_saying_what_is_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = tiny(dir.path(), "t", 60, "");
+    run_err(
+        &["design", &cfg, "--out", "/dev/null", "--quiet"],
+        &["--out /dev/null", "a character device, not a directory"],
+    );
+    let plain = write(dir.path(), "plainfile", "a user's file\n");
+    let out = run_err(
+        &["design", &cfg, "--out", &plain, "--quiet"],
+        &["a regular file, not a directory", "choose another path"],
+    );
+    let err = stderr(&out);
+    assert!(!err.contains("os error 17"), "{err}");
+    assert_eq!(std::fs::read_to_string(&plain).unwrap(), "a user's file\n");
+}
