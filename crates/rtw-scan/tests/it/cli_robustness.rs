@@ -429,7 +429,7 @@ fn simulate_json_has_the_same_keys_however_the_run_failed() {
 /// a star too soft to stand (f_n = 0.5 Hz) has no gait, so no MFPT.
 #[test]
 fn an_unbounded_mfpt_is_told_from_a_missing_one_in_json_and_parquet() {
-    use arrow::array::{Array, Float64Array};
+    use arrow_array::{Array, Float64Array};
     let mfpt = [
         "--set",
         "robustness.mfpt=true",
