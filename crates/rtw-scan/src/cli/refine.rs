@@ -97,6 +97,13 @@ fn finish(a: &RefineArgs, status: RefineStatus) -> Result<ExitCode> {
             );
             Ok(ExitCode::SUCCESS)
         }
+        RefineStatus::Interrupted { round } => {
+            eprintln!(
+                "rtw-scan: interrupted while choosing the points of round {round}: the finished \
+                 rounds are kept; finish with the same command"
+            );
+            Ok(ExitCode::from(EXIT_INTERRUPTED))
+        }
         RefineStatus::Stopped { round, dir, status } => match status {
             RunStatus::Complete { samples, rows, .. } => {
                 outln!(

@@ -80,6 +80,12 @@ pub enum RefineStatus {
         /// How its scan ended.
         status: RunStatus,
     },
+    /// Stopped while choosing round `round`'s points, before its scan
+    /// began: the finished rounds are kept, and the same command goes on.
+    Interrupted {
+        /// The round (1-based).
+        round: u64,
+    },
 }
 
 /// Most new samples of a refinement: a round holds its pool of
@@ -380,7 +386,18 @@ pub fn refine(
             propose::POOL as u64 * n,
             x.len()
         ));
-        let unit = propose(&x, &labels, axes.len(), n as usize, r.seed, round, progress);
+        let Some(unit) = propose(
+            &x,
+            &labels,
+            axes.len(),
+            n as usize,
+            r.seed,
+            round,
+            progress,
+            stop,
+        ) else {
+            return Ok(RefineStatus::Interrupted { round });
+        };
         let points: Vec<Params> = unit
             .iter()
             .map(|u| {

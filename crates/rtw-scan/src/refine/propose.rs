@@ -28,6 +28,7 @@ use crate::scan::progress::Progress;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The share of a round's points that are uniform draws (exploration).
 pub(crate) const EXPLORE_SHARE: f64 = 0.1;
@@ -44,7 +45,9 @@ pub(crate) fn neighbours(dims: usize) -> usize {
 /// `round`, from the samples `x` (unit cube) and their labels; `progress`
 /// counts the candidates as they are scored (one [`Progress::advanced`]
 /// each, out of a [`Progress::start`] of all of them): with 10⁶ rows a
-/// round's neighbour search takes minutes.
+/// round's neighbour search takes minutes, so it reads `stop` before each
+/// candidate and gives `None` (no points) once it is set.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn propose(
     x: &[Vec<f64>],
     labels: &[usize],
@@ -53,7 +56,8 @@ pub(crate) fn propose(
     seed: u64,
     round: u64,
     progress: &dyn Progress,
-) -> Vec<Vec<f64>> {
+    stop: &AtomicBool,
+) -> Option<Vec<Vec<f64>>> {
     assert_eq!(x.len(), labels.len(), "one label per sample");
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(round);
@@ -64,11 +68,20 @@ pub(crate) fn propose(
     let scores: Vec<f64> = pool
         .par_iter()
         .map(|c| {
+            // A stopped search skips the rest: each score is a pass over
+            // every row, and the round's points are not wanted any more.
+            if stop.load(Ordering::Relaxed) {
+                return 0.0;
+            }
             let s = score(x, labels, c, k);
             progress.advanced();
             s
         })
         .collect();
+    if stop.load(Ordering::SeqCst) {
+        progress.finish(false);
+        return None;
+    }
     progress.finish(true);
     let mut order: Vec<usize> = (0..pool.len()).filter(|&i| scores[i] > 0.0).collect();
     order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]).then(a.cmp(&b)));
@@ -81,7 +94,7 @@ pub(crate) fn propose(
     while out.len() < n {
         out.push(draw(&mut rng));
     }
-    out
+    Some(out)
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {
@@ -131,6 +144,50 @@ mod tests {
     use super::*;
     use crate::scan::progress::Silent;
 
+    /// `propose` never stopped.
+    fn proposed(
+        x: &[Vec<f64>],
+        labels: &[usize],
+        dims: usize,
+        n: usize,
+        seed: u64,
+        round: u64,
+        progress: &dyn Progress,
+    ) -> Vec<Vec<f64>> {
+        propose(
+            x,
+            labels,
+            dims,
+            n,
+            seed,
+            round,
+            progress,
+            &AtomicBool::new(false),
+        )
+        .expect("not stopped")
+    }
+
+    /// A stopped round scores no candidate and proposes no point: with 10⁶
+    /// rows its neighbour search would otherwise run on for minutes after
+    /// a Ctrl-C.
+    #[test]
+    fn a_stopped_round_scores_nothing_and_proposes_nothing() {
+        use std::sync::atomic::AtomicU64;
+        struct Count(AtomicU64);
+        impl Progress for Count {
+            fn computed(&self, _: rtw_model::Label) {}
+            fn advanced(&self) {
+                self.0.fetch_add(1, Ordering::SeqCst);
+            }
+        }
+        let x = uniform(200, 1);
+        let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
+        let count = Count(AtomicU64::new(0));
+        let stop = AtomicBool::new(true);
+        assert!(propose(&x, &l, 2, 50, 7, 1, &count, &stop).is_none());
+        assert_eq!(count.0.load(Ordering::SeqCst), 0, "candidates were scored");
+    }
+
     /// A two-label problem in the unit square: label 1 inside the disc of
     /// radius 0.3 around (0.5, 0.5), 0 outside.
     fn disc(p: &[f64]) -> usize {
@@ -152,12 +209,16 @@ mod tests {
     fn same_rows_and_seed_give_the_same_points() {
         let x = uniform(300, 1);
         let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
-        let a = propose(&x, &l, 2, 50, 7, 1, &Silent);
-        assert_eq!(a, propose(&x, &l, 2, 50, 7, 1, &Silent));
-        assert_ne!(a, propose(&x, &l, 2, 50, 8, 1, &Silent), "the seed matters");
+        let a = proposed(&x, &l, 2, 50, 7, 1, &Silent);
+        assert_eq!(a, proposed(&x, &l, 2, 50, 7, 1, &Silent));
         assert_ne!(
             a,
-            propose(&x, &l, 2, 50, 7, 2, &Silent),
+            proposed(&x, &l, 2, 50, 8, 1, &Silent),
+            "the seed matters"
+        );
+        assert_ne!(
+            a,
+            proposed(&x, &l, 2, 50, 7, 2, &Silent),
             "the round matters"
         );
     }
@@ -167,20 +228,20 @@ mod tests {
         let x = uniform(200, 2);
         let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
         for n in [0, 1, 9, 10, 57, 1000] {
-            let p = propose(&x, &l, 2, n, 3, 1, &Silent);
+            let p = proposed(&x, &l, 2, n, 3, 1, &Silent);
             assert_eq!(p.len(), n);
             assert!(p.iter().flatten().all(|v| (0.0..=1.0).contains(v)));
         }
         // One label only: no boundary, every point explores.
         let one = vec![0; x.len()];
-        assert_eq!(propose(&x, &one, 2, 20, 3, 1, &Silent).len(), 20);
+        assert_eq!(proposed(&x, &one, 2, 20, 3, 1, &Silent).len(), 20);
     }
 
     #[test]
     fn new_points_lie_near_the_label_change() {
         let x = uniform(400, 3);
         let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
-        let p = propose(&x, &l, 2, 100, 5, 1, &Silent);
+        let p = proposed(&x, &l, 2, 100, 5, 1, &Silent);
         let explore = (100.0 * EXPLORE_SHARE).ceil() as usize;
         let (near, far) = p.split_at(100 - explore);
         // Uniform points lie at a mean distance ~0.15 from the circle; the
@@ -221,7 +282,7 @@ mod tests {
         let mut x = uniform(100, 4);
         for round in 1..=4 {
             let l: Vec<usize> = x.iter().map(|p| disc(p)).collect();
-            x.extend(propose(&x, &l, 2, 100, 11, round, &Silent));
+            x.extend(proposed(&x, &l, 2, 100, 11, round, &Silent));
         }
         let refined = error(&x);
         let random = error(&uniform(500, 4));

@@ -473,3 +473,75 @@ fn refine_says_it_is_choosing_each_round_s_points() {
     }
     assert!(err.contains("/200 (100.0 %)"), "{err}");
 }
+
+/// A Ctrl-C while a round chooses its points (a pass over every row for
+/// each of its candidates: minutes with many rows) stops refine within
+/// moments, saying that the finished rounds are kept, with exit 130.
+#[test]
+fn a_ctrl_c_while_a_round_chooses_its_points_stops_it_at_once() {
+    use std::io::BufRead;
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    // 40 000 rows and 10 000 new points: 200 000 candidates, each against
+    // every row, far longer than the stop may take.
+    let a = scan(dir.path(), "a", &slice(40_000, 3));
+    let mut child = bin()
+        .args([
+            "refine",
+            s(&a),
+            "--budget",
+            "10000",
+            "--rounds",
+            "1",
+            "--fake-sim",
+            "0",
+        ])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let err = child.stderr.take().unwrap();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(err).lines().map_while(Result::ok) {
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    let mut seen = Vec::new();
+    loop {
+        let line = rx
+            .recv_timeout(Duration::from_secs(60))
+            .expect("refine never said it was choosing the round's points");
+        let choosing = line.contains("choosing");
+        seen.push(line);
+        if choosing {
+            break;
+        }
+    }
+    std::thread::sleep(Duration::from_millis(500));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "refine ended before the interrupt: {seen:?}"
+    );
+    let t0 = Instant::now();
+    std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let status = child.wait().unwrap();
+    let took = t0.elapsed();
+    seen.extend(rx.try_iter());
+    assert_eq!(status.code(), Some(130), "{seen:?}");
+    assert!(
+        took < Duration::from_secs(5),
+        "stopped {took:?} after the interrupt"
+    );
+    assert!(
+        seen.iter()
+            .any(|l| l.contains("interrupted while choosing the points of round 1")),
+        "{seen:?}"
+    );
+    assert!(!a.join("refine").join("samples.parquet").exists());
+}
