@@ -219,7 +219,8 @@ enum Command {
     #[command(
         long_about = "Search the box of designs (ρ, α, f_n, ζ) of CONFIG for those that maximise its objectives \
         (docs/design.md): slope_range (the widest interval of stable slopes, of one gait if `gait` is set), \
-        phi_min (the shallowest stable slope, minimised) or speed (at speed_phi). Each candidate is judged by its \
+        phi_min (the shallowest stable slope, minimised), speed (at speed_phi) or mfpt (the mean first-passage \
+        time at mfpt_phi on a rough slope of robustness.sigma, set with --set). Each candidate is judged by its \
         slope profile (as `profile`); a design with no stable slope falls, and the search learns where designs \
         fall and draws again there rather than scoring a fall. Candidates come from CMA-ES (method = \"cmaes\") \
         or, as the baseline, a Sobol sequence (method = \"sobol\"); two objectives give a Pareto front. Writes \
@@ -314,6 +315,23 @@ mod tests {
             "docs/cli.md lacks:\n{}",
             missing.join("\n")
         );
+    }
+
+    /// `design --help` names every objective a config may ask for.
+    #[test]
+    fn design_help_names_every_objective() {
+        let help = Cli::command()
+            .find_subcommand_mut("design")
+            .expect("a design subcommand")
+            .render_long_help()
+            .to_string();
+        for o in crate::search::Objective::ALL {
+            assert!(
+                help.contains(o.as_str()),
+                "design --help does not name {}",
+                o.as_str()
+            );
+        }
     }
 
     /// One flag for one idea: every subcommand that takes simulation options
