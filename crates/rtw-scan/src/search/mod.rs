@@ -346,7 +346,7 @@ fn evaluate(
 /// Runs the search of `s` under `options`, every generation's designs
 /// profiled in parallel on `threads` workers. Before any work the options
 /// of its runs and its budget are checked ([`budget::check`]) and its cost
-/// estimated ([`budget::said`]: a note, and a warning above the bounds);
+/// estimated (`budget::said`: a note, and a warning above the bounds);
 /// `progress` counts each generation's designs against its batch (a stage
 /// per generation, naming the simulations spent of the budget), and is
 /// told what was spent at the end. `earlier` are evaluations stored by

@@ -259,7 +259,7 @@ pub fn check_out(out: &Path, scan: &Path, force: bool) -> Result<()> {
 }
 
 /// The indices of the scan file `scan` ([`analyse_file`]) written to `out`
-/// ([`write`]): the lock of `out` taken and `out` checked ([`check_out`])
+/// ([`write()`]): the lock of `out` taken and `out` checked ([`check_out`])
 /// before any resample, so a second analysis into one file is refused.
 pub fn analyse_to_file(
     scan: &Path,
