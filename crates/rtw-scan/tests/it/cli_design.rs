@@ -259,17 +259,8 @@ fn a_generation_far_beyond_the_budget_is_refused_naming_its_keys() {
 
 /// The first stderr line of `child` holding `needle`, within `secs`.
 fn first_line_with(child: &mut Child, needle: &str, secs: u64) -> Option<(String, Duration)> {
-    use std::io::BufRead;
     let t0 = Instant::now();
-    let err = child.stderr.take().unwrap();
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        for line in std::io::BufReader::new(err).lines().map_while(Result::ok) {
-            if tx.send(line).is_err() {
-                break;
-            }
-        }
-    });
+    let rx = stderr_lines(child);
     while let Ok(line) = rx.recv_timeout(Duration::from_secs(secs).saturating_sub(t0.elapsed())) {
         if line.contains(needle) {
             return Some((line, t0.elapsed()));

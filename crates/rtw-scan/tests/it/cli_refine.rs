@@ -479,7 +479,6 @@ fn refine_says_it_is_choosing_each_round_s_points() {
 /// moments, saying that the finished rounds are kept, with exit 130.
 #[test]
 fn a_ctrl_c_while_a_round_chooses_its_points_stops_it_at_once() {
-    use std::io::BufRead;
     use std::process::Stdio;
     use std::time::{Duration, Instant};
     let dir = tempfile::tempdir().unwrap();
@@ -500,15 +499,7 @@ fn a_ctrl_c_while_a_round_chooses_its_points_stops_it_at_once() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let err = child.stderr.take().unwrap();
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        for line in std::io::BufReader::new(err).lines().map_while(Result::ok) {
-            if tx.send(line).is_err() {
-                break;
-            }
-        }
-    });
+    let rx = stderr_lines(&mut child);
     let mut seen = Vec::new();
     loop {
         let line = rx

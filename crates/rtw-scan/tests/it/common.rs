@@ -165,3 +165,20 @@ pub fn file_metadata(path: &Path, key: &str) -> String {
         .and_then(|k| k.value.clone())
         .unwrap_or_else(|| panic!("{}: no `{key}` in its metadata", path.display()))
 }
+
+/// The lines `child` (its stderr piped) writes to stderr, as they come:
+/// read on a thread of their own, so that a test can wait for one with a
+/// timeout while the child runs.
+pub fn stderr_lines(child: &mut std::process::Child) -> std::sync::mpsc::Receiver<String> {
+    use std::io::BufRead;
+    let err = child.stderr.take().expect("the child's stderr is piped");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(err).lines().map_while(Result::ok) {
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    rx
+}
