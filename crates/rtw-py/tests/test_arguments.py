@@ -13,28 +13,13 @@ from pathlib import Path
 import pytest
 
 import rtw
+from test_design_search import CONFIG
 
 ROOT = Path(__file__).resolve().parents[3]
 SCAN = ROOT / "results/paper"
 FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514)
-SEARCH = """name = "small"
-seed = 2
-budget = 8
-batch = 4
-objectives = ["slope_range"]
-report = 1
-[box]
-rho = [1.0, 5.0]
-alpha = [0.0, 0.4]
-fn = [1.5, 5.0]
-zeta = [0.05, 0.1]
-[slopes]
-from = 0.05
-to = 0.3
-grid = 0.05
-tol = 0.01
-verify_grid = 0.025
-"""
+# test_design_search's small search, at a budget of 8 simulations and one reported design.
+SEARCH = CONFIG.replace("budget = 300\n", "budget = 8\n").replace("report = 2\n", "report = 1\n")
 NOT_BOOLS = ["no", "", 0, 1, 1.0, None, b"yes", [True]]
 
 

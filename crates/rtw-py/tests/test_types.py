@@ -15,6 +15,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import rtw
+from test_design_search import CONFIG
 from rtw import _rtw
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -78,24 +79,8 @@ def test_results_are_frozen_compared_by_value_and_shown() -> None:
             assert (period, residual) == (1, lc.residual)
 
 
-SEARCH = """name = "small"
-seed = 2
-budget = 20
-batch = 4
-objectives = ["slope_range"]
-report = 1
-[box]
-rho = [1.0, 5.0]
-alpha = [0.0, 0.4]
-fn = [1.5, 5.0]
-zeta = [0.05, 0.1]
-[slopes]
-from = 0.05
-to = 0.3
-grid = 0.05
-tol = 0.01
-verify_grid = 0.025
-"""
+# test_design_search's small search, at a budget of 20 simulations and one reported design.
+SEARCH = CONFIG.replace("budget = 300\n", "budget = 20\n").replace("report = 2\n", "report = 1\n")
 
 
 def test_equal_is_the_same_result_never_the_same_timing(tmp_path) -> None:

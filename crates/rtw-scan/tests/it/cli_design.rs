@@ -440,11 +440,7 @@ fn ctrl_c_stops_a_search_saying_what_it_kept_and_how_to_go_on() {
     ];
     let mut child = spawn(&args);
     wait_for(&mut child, &out.join("search.parquet"));
-    let sent = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(sent.success());
+    interrupt(&mut child, Duration::from_secs(30));
     let done = child.wait_with_output().unwrap();
     assert_eq!(done.status.code(), Some(130));
     let err = stderr(&done);

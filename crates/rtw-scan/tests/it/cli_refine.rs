@@ -249,11 +249,9 @@ fn a_refine_budget_beyond_its_range_is_refused_up_front() {
     assert!(!a.join("refine").exists());
 }
 
-/// Refine's progress counts each round on its own, says which round it is,
-/// and never passes its total (it ran on across rounds: "893/62
-/// (1440.3 %) … ETA 169200271151644288 s").
-#[test]
-fn refine_progress_counts_each_round_and_names_it() {
+/// What refine writes on stderr, progress shown, adding 30 samples in 3
+/// rounds to a scan of 100.
+fn refine_in_three_rounds_stderr() -> String {
     let dir = tempfile::tempdir().unwrap();
     let a = scan(dir.path(), "a", &slice(100, 2));
     let o = run_ok(&[
@@ -266,7 +264,15 @@ fn refine_progress_counts_each_round_and_names_it() {
         "--fake-sim",
         "0",
     ]);
-    let err = stderr(&o);
+    stderr(&o)
+}
+
+/// Refine's progress counts each round on its own, says which round it is,
+/// and never passes its total (it ran on across rounds: "893/62
+/// (1440.3 %) … ETA 169200271151644288 s").
+#[test]
+fn refine_progress_counts_each_round_and_names_it() {
+    let err = refine_in_three_rounds_stderr();
     let mut seen = std::collections::BTreeSet::new();
     for line in err.lines().filter(|l| l.contains(" samples/s")) {
         let round = line
@@ -451,19 +457,7 @@ fn a_scan_file_in_refine_is_called_a_scan_s_samples_file() {
 /// scored.
 #[test]
 fn refine_says_it_is_choosing_each_round_s_points() {
-    let dir = tempfile::tempdir().unwrap();
-    let a = scan(dir.path(), "a", &slice(100, 2));
-    let o = run_ok(&[
-        "refine",
-        s(&a),
-        "--budget",
-        "30",
-        "--rounds",
-        "3",
-        "--fake-sim",
-        "0",
-    ]);
-    let err = stderr(&o);
+    let err = refine_in_three_rounds_stderr();
     for (round, rows) in [(1, 100), (2, 110), (3, 120)] {
         let want = format!(
             "round {round} of 3: choosing 10 points among 200 candidates by their neighbours in \
@@ -480,7 +474,7 @@ fn refine_says_it_is_choosing_each_round_s_points() {
 #[test]
 fn a_ctrl_c_while_a_round_chooses_its_points_stops_it_at_once() {
     use std::process::Stdio;
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let dir = tempfile::tempdir().unwrap();
     // 40 000 rows and 10 000 new points: 200 000 candidates, each against
     // every row, far longer than the stop may take.
@@ -516,13 +510,7 @@ fn a_ctrl_c_while_a_round_chooses_its_points_stops_it_at_once() {
         child.try_wait().unwrap().is_none(),
         "refine ended before the interrupt: {seen:?}"
     );
-    let t0 = Instant::now();
-    std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    let status = child.wait().unwrap();
-    let took = t0.elapsed();
+    let (status, took) = interrupt(&mut child, Duration::from_secs(60));
     seen.extend(rx.try_iter());
     assert_eq!(status.code(), Some(130), "{seen:?}");
     assert!(

@@ -270,7 +270,7 @@ fn a_steps_to_fall_too_costly_to_finish_is_refused_up_front() {
 #[test]
 fn the_first_interrupt_stops_a_long_robustness_sample_within_seconds() {
     use std::process::Stdio;
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let dir = tempfile::tempdir().unwrap();
     let cfg = write(
         dir.path(),
@@ -289,24 +289,7 @@ fn the_first_interrupt_stops_a_long_robustness_sample_within_seconds() {
     // The flat run takes well under a second; the trials then run.
     std::thread::sleep(Duration::from_secs(3));
     assert!(child.try_wait().unwrap().is_none(), "the run ended early");
-    let ok = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap()
-        .success();
-    assert!(ok);
-    let t0 = Instant::now();
-    let status = loop {
-        if let Some(st) = child.try_wait().unwrap() {
-            break st;
-        }
-        if t0.elapsed() > Duration::from_secs(10) {
-            child.kill().ok();
-            child.wait().ok();
-            panic!("still running 10 s after the first interrupt");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let (status, _) = interrupt(&mut child, Duration::from_secs(10));
     let err = std::io::read_to_string(child.stderr.take().unwrap()).unwrap();
     assert_eq!(status.code(), Some(130), "{err}");
     assert!(err.contains("stopping the samples in flight"), "{err}");
@@ -351,25 +334,7 @@ fn the_first_interrupt_stops_an_mfpt_of_many_batches_within_seconds() {
     // The second sample's flat run takes well under a second; its MFPT runs.
     std::thread::sleep(Duration::from_secs(2));
     assert!(child.try_wait().unwrap().is_none(), "the run ended early");
-    let ok = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap()
-        .success();
-    assert!(ok);
-    let t0 = Instant::now();
-    let status = loop {
-        if let Some(st) = child.try_wait().unwrap() {
-            break st;
-        }
-        if t0.elapsed() > Duration::from_secs(30) {
-            child.kill().ok();
-            child.wait().ok();
-            panic!("still running 30 s after the first interrupt");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    let took = t0.elapsed();
+    let (status, took) = interrupt(&mut child, Duration::from_secs(30));
     eprintln!("SIGINT to exit: {took:?}");
     let err = std::io::read_to_string(child.stderr.take().unwrap()).unwrap();
     assert_eq!(status.code(), Some(130), "{err}");

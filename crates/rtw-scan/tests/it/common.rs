@@ -182,3 +182,29 @@ pub fn stderr_lines(child: &mut std::process::Child) -> std::sync::mpsc::Receive
     });
     rx
 }
+
+/// Sends SIGINT to `child` (as Ctrl-C does) and waits for it to end, at
+/// most `limit`: past it the child is killed and the test fails. Its exit
+/// status, and how long after the signal it ended.
+pub fn interrupt(
+    child: &mut std::process::Child,
+    limit: std::time::Duration,
+) -> (std::process::ExitStatus, std::time::Duration) {
+    let sent = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success(), "kill -INT {}: {sent}", child.id());
+    let t0 = std::time::Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            return (status, t0.elapsed());
+        }
+        if t0.elapsed() > limit {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("still running {limit:?} after the interrupt");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
