@@ -48,17 +48,30 @@ LAYERS = {
         {"cycles", "modal"},
         {"run"},
     ],
-    "rtw-scan": [
+    "rtw-engine": [
         {"hash", "files", "sizes"},
         {"sampling"},
         {"config"},
         {"io"},
         {"scan"},
-        {"analysis", "bifurcation", "continuation", "refine", "studies"},
+        {"analysis"},
+        {"entry", "fake"},
+    ],
+    "rtw-studies": [
+        {"bifurcation", "continuation", "refine", "sensitivity"},
         {"basin", "profile"},
         {"search"},
-        {"dictionary", "fake"},
-        {"cli"},
+        {"dictionary"},
+    ],
+    # The command line: the parsers of flag values and the terminal first,
+    # then the subcommands (a subcommand borrows another's flags: `basin`
+    # and `continuation` take `bifurcation`'s, `design` and `profile`
+    # `simulate`'s).
+    "rtw-scan": [
+        {"values", "signal", "progress"},
+        {"validate"},
+        {"simulate", "bifurcation"},
+        {"analysis", "basin", "continuation", "design", "profile", "refine", "run", "sensitivity"},
     ],
 }
 IDENT = r"[A-Za-z_][A-Za-z0-9_]*"

@@ -6,8 +6,10 @@ Usage: scripts/public_items.sh [--list]   (fresh rustdoc output, then this)
 
 A public item is anything a user of the crate can name by a path, as
 rustdoc documents it: each module, struct, enum, trait, function, constant,
-static and type alias (one page each; an item reachable by two paths, e.g.
-re-exported, counts once), plus each inherent method and associated constant
+static and type alias, one per path that names it (rustdoc's pages: an
+item re-exported under a second path with a page of its own counts twice,
+since a user can name it both ways; one re-exported as a link, once; two
+items of one name in two modules, twice), plus each inherent method and associated constant
 of those types (not trait implementations, not struct fields or enum
 variants, which are parts of their type). `pub` items that rustdoc does not
 reach (inside `pub(crate)` modules) are not public and are not counted.
@@ -62,6 +64,10 @@ def count(doc, crate, listing):
             kind, name = f[: -len(".html")].split(".", 1)
             if kind not in KINDS:
                 continue
+            # Keyed by the path that names it, not the bare name: a
+            # `run_to_files` in five modules is five items.
+            path = os.path.dirname(rel).replace(os.sep, "::")
+            name = f"{path}::{name}" if path else name
             with open(os.path.join(dirpath, f), encoding="utf-8") as fh:
                 html = fh.read()
             if "<title>Redirection" in html:
@@ -84,7 +90,7 @@ def main():
         i = args.index("--doc")
         doc = args[i + 1]
         del args[i : i + 2]
-    for c in args or ["rtw_model", "hybrid_ode"]:
+    for c in args or ["hybrid_ode", "rtw_model", "rtw_engine", "rtw_studies", "rtw_scan"]:
         count(doc, c.replace("-", "_"), listing)
 
 

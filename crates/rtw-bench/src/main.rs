@@ -13,10 +13,10 @@ use rtw_bench::{
     Events, ScanDiff, ScanPoint, compare_scans, event_state_error, full, median, state_error,
     touchdown_time_error,
 };
+use rtw_engine::config;
+use rtw_engine::scan::sample::Sampler;
 use rtw_model::Method;
 use rtw_model::{Label, Options, Outcome, Params, simulate, simulate_traced};
-use rtw_scan::config;
-use rtw_scan::scan::sample::Sampler;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

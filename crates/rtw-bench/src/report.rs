@@ -2,9 +2,9 @@
 //! default chosen by measurement) and the work–precision SVG.
 
 use super::*;
-use rtw_scan::config::variant_line;
+use rtw_engine::config::variant_line;
 
-/// The model of `o`, from its `rtw.variant` line (`rtw_scan::config::variant_line`):
+/// The model of `o`, from its `rtw.variant` line (`rtw_engine::config::variant_line`):
 /// its name where its model (the line before ` method=`) is the default's or
 /// the literal model's, and the line itself. The report states the model each
 /// part ran at from the options it used, so that nothing it calls the default

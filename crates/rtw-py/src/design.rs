@@ -6,8 +6,8 @@
 //! `rtw-scan run` computes for that file.
 
 use anyhow::{Result, anyhow};
-use rtw_scan::config::{self, ScanConfig};
-use rtw_scan::sampling::Sampling;
+use rtw_engine::config::{self, ScanConfig};
+use rtw_engine::sampling::Sampling;
 
 /// The design keys of one `rtw.scan` call (`None`: the config's own).
 pub(crate) struct DesignKeys {

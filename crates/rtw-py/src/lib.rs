@@ -23,19 +23,19 @@ use options::{PyConfig, PyOverrides};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt, PyTuple};
+use rtw_engine::config::count::count_usize;
+use rtw_engine::config::layers::{
+    load_layered, parse_layered, simulation_options, simulation_options_of,
+};
+use rtw_engine::config::params::checked_params;
+use rtw_engine::io::{TraceNames, parse_size};
+use rtw_engine::scan::progress::Counter;
+use rtw_engine::scan::scan_batch;
+use rtw_engine::scan::single::{simulate_row, simulate_traced};
+use rtw_engine::scan::workers::{Stopped, parse_threads};
 use rtw_model::cycles::{CycleOptions, StepMap};
 use rtw_model::outcome::{ContactFractions, StepShares};
 use rtw_model::{Label, Options, Params, Physical, modal};
-use rtw_scan::config::count::count_usize;
-use rtw_scan::config::layers::{
-    load_layered, parse_layered, simulation_options, simulation_options_of,
-};
-use rtw_scan::config::params::checked_params;
-use rtw_scan::io::{TraceNames, parse_size};
-use rtw_scan::scan::progress::Counter;
-use rtw_scan::scan::scan_batch;
-use rtw_scan::scan::single::{simulate_row, simulate_traced};
-use rtw_scan::scan::workers::{Stopped, parse_threads};
 use std::collections::TryReserveError;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -59,9 +59,9 @@ const MAX_SETTLE_STEPS: usize = 10_000_000;
 /// allocation that could not be made as `MemoryError`.
 fn value_error(e: anyhow::Error) -> PyErr {
     if e.chain().any(|c| c.is::<TryReserveError>()) {
-        return PyMemoryError::new_err(rtw_scan::error_message(&e));
+        return PyMemoryError::new_err(rtw_engine::error_message(&e));
     }
-    PyValueError::new_err(rtw_scan::error_message(&e))
+    PyValueError::new_err(rtw_engine::error_message(&e))
 }
 
 /// The six inputs and the layered options (config's `[simulation]`, variant,
@@ -385,7 +385,7 @@ fn label(
 /// them; `None` when there are fewer failures than the config's k.
 #[pyfunction]
 fn failure_clusters(py: Python<'_>, path: PathBuf) -> PyResult<Option<Vec<(u64, usize)>>> {
-    py.detach(|| rtw_scan::failure_clusters(&path))
+    py.detach(|| rtw_engine::failure_clusters(&path))
         .map_err(value_error)
 }
 
@@ -399,7 +399,7 @@ fn wilson(k: u64, n: u64, z: f64) -> PyResult<(f64, f64)> {
             "k: {k} is invalid: must be at most n ({n})"
         )));
     }
-    Ok(rtw_scan::wilson(k, n, z))
+    Ok(rtw_engine::wilson(k, n, z))
 }
 
 /// Label names in `Label::ALL`'s order, those for which `keep` holds.
@@ -418,7 +418,7 @@ fn label_names(keep: fn(Label) -> bool) -> Vec<&'static str> {
 #[pyfunction]
 #[pyo3(signature = (dims, n, seed=None))]
 fn sobol_points(dims: usize, n: u64, seed: Option<u64>) -> PyResult<Vec<Vec<f64>>> {
-    use rtw_scan::sampling::{SOBOL_MAX_DIMS, Sobol};
+    use rtw_engine::sampling::{SOBOL_MAX_DIMS, Sobol};
     if !(1..=SOBOL_MAX_DIMS).contains(&dims) {
         return Err(PyValueError::new_err(format!(
             "dims: {dims} is invalid: must be in [1, {SOBOL_MAX_DIMS}]"
@@ -455,7 +455,7 @@ fn sensitivity<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use arrow_pyarrow::FromPyArrow;
-    use rtw_scan::sensitivity as sa;
+    use rtw_studies::sensitivity as sa;
     let seed = seed.as_ref().map(digits).transpose()?;
     let settings =
         sa::Settings::parse(&digits(&resamples)?, seed.as_deref(), "").map_err(value_error)?;
@@ -493,7 +493,7 @@ fn sensitivity<'py>(
 #[pyfunction]
 fn read_scan<'py>(py: Python<'py>, path: PathBuf) -> PyResult<(Bound<'py, PyAny>, Vec<PathBuf>)> {
     let scan = py
-        .detach(|| rtw_scan::read_scan_table(&path))
+        .detach(|| rtw_engine::read_scan_table(&path))
         .map_err(value_error)?;
     Ok((tables(py, scan.batches, scan.schema)?, scan.files))
 }
@@ -515,7 +515,7 @@ type ScanFolder<'py> = (
 #[pyfunction]
 fn read_scan_folder<'py>(py: Python<'py>, path: PathBuf) -> PyResult<ScanFolder<'py>> {
     let folder = py
-        .detach(|| rtw_scan::read_scan_folder(&path))
+        .detach(|| rtw_engine::read_scan_folder(&path))
         .map_err(value_error)?;
     let scan = folder.scan;
     Ok((
@@ -536,7 +536,7 @@ fn read_indices<'py>(
     rows: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (batches, schema) = py
-        .detach(|| rtw_scan::read_indices(&path, &scan, rows))
+        .detach(|| rtw_engine::read_indices(&path, &scan, rows))
         .map_err(value_error)?;
     tables(py, batches, schema)
 }
@@ -577,8 +577,8 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "FAILURE_LABELS",
         PyTuple::new(m.py(), label_names(Label::is_failure))?,
     )?;
-    m.add("Z95", rtw_scan::Z95)?;
+    m.add("Z95", rtw_engine::Z95)?;
     geometry::register(m)?;
-    m.add("__version__", rtw_scan::VERSION)?;
+    m.add("__version__", rtw_engine::VERSION)?;
     Ok(())
 }

@@ -5,7 +5,7 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use rtw_scan::config::layers::{ConfigSource, Overrides};
+use rtw_engine::config::layers::{ConfigSource, Overrides};
 
 /// The options of one call: dotted keys (`{"contact.mu": 0.8}`) and nested
 /// dicts (`{"contact": {"mu": 0.8}}`) alike, flattened to their dotted leaf

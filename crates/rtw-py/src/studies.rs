@@ -10,12 +10,14 @@ use crate::{
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rtw_scan::basin::{Settings as BasinSettings, slice_table};
-use rtw_scan::config::layers::simulation_options;
-use rtw_scan::profile::{Names as ProfileNames, Settings as ProfileSettings, run as run_profile};
-use rtw_scan::scan::progress::Counter;
-use rtw_scan::scan::workers::parse_threads;
-use rtw_scan::search::{self, SearchSettings};
+use rtw_engine::config::layers::simulation_options;
+use rtw_engine::scan::progress::Counter;
+use rtw_engine::scan::workers::parse_threads;
+use rtw_studies::basin::{Settings as BasinSettings, slice_table};
+use rtw_studies::profile::{
+    Names as ProfileNames, Settings as ProfileSettings, run as run_profile,
+};
+use rtw_studies::search::{self, SearchSettings};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicU64;
 

@@ -7,8 +7,8 @@
 use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyComplex, PyDict, PyString, PyTuple};
-use rtw_scan::io::{ColumnKind, Kind, Value, row_columns};
-use rtw_scan::scan::single::RowValues;
+use rtw_engine::io::{ColumnKind, Kind, Value, row_columns};
+use rtw_engine::scan::single::RowValues;
 use std::collections::HashMap;
 use std::sync::LazyLock;
 
@@ -437,7 +437,7 @@ fields_class! {
 }
 
 impl Profile {
-    pub(crate) fn new(p: &rtw_scan::profile::Profile, table: Py<PyAny>) -> Self {
+    pub(crate) fn new(p: &rtw_studies::profile::Profile, table: Py<PyAny>) -> Self {
         let widest = p.widest();
         Self {
             intervals: GaitIntervals(

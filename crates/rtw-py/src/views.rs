@@ -1,5 +1,5 @@
 //! The report's views of a large scan, aggregated in rtw-scan
-//! (`rtw_scan::views`): Python only packs them into the page.
+//! (`rtw_engine::views`): Python only packs them into the page.
 
 use arrow_pyarrow::{FromPyArrow, Table};
 use pyo3::exceptions::PyValueError;
@@ -30,7 +30,7 @@ pub(crate) fn scan_views<'py>(
         .map_err(|e| PyValueError::new_err(format!("table: not a pyarrow table: {e}")))?
         .into_inner();
     let v = py
-        .detach(|| rtw_scan::views::views(&batches, &columns, (&x, &y), sample, seed))
+        .detach(|| rtw_engine::views::views(&batches, &columns, (&x, &y), sample, seed))
         .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
     let out = PyDict::new(py);
     let labels: Vec<&str> = Label::ALL.iter().map(|l| l.as_str()).collect();
@@ -43,8 +43,8 @@ pub(crate) fn scan_views<'py>(
     out.set_item("columns", cols)?;
     out.set_item("density", v.density)?;
     out.set_item("sample", v.sample)?;
-    out.set_item("code_bins", rtw_scan::views::CODE_BINS)?;
-    out.set_item("code_none", rtw_scan::views::CODE_NONE)?;
+    out.set_item("code_bins", rtw_engine::views::CODE_BINS)?;
+    out.set_item("code_none", rtw_engine::views::CODE_NONE)?;
     Ok(out)
 }
 
@@ -74,5 +74,5 @@ pub(crate) fn density_grid(
             y.len()
         )));
     }
-    Ok(rtw_scan::views::density(group, groups, x, y))
+    Ok(rtw_engine::views::density(group, groups, x, y))
 }

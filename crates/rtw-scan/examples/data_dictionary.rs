@@ -2,5 +2,5 @@
 //! its type, unit and meaning, from the same schemas the files carry.
 //! `cargo run -p rtw-scan --example data_dictionary > docs/data-dictionary.md`
 fn main() {
-    print!("{}", rtw_scan::dictionary::markdown());
+    print!("{}", rtw_studies::dictionary::markdown());
 }

@@ -1,125 +1,357 @@
-//! # rtw-scan
+//! # rtw-scan: the command line
 //!
-//! Seeded, parallel parameter scans of the RTW model (`rtw-model`), streamed
-//! to Parquet, with outcome statistics and failure clustering. The binary
-//! `rtw-scan` is a thin shell over `main` (the `cli` feature).
-//!
-//! The folders are the layers, each using only the ones above it in this
-//! table (and `hash`, the fixed hash functions):
-//!
-//! | module | role |
-//! |---|---|
-//! | `files` | the file system's primitives: temporary files renamed into place, bounded reads, cleanup on a signal |
-//! | `sizes` | byte counts read from text (`2GB`) and written for people |
-//! | [`sampling`] | the sampling designs: draw → unit-cube point (random, Sobol, Halton, LHS, grid, Saltelli) |
-//! | [`config`] | TOML → validated [`config::ScanConfig`]: schema, variant and `--set` layers, the parameter vocabulary, hashing |
-//! | [`io`] | column tables; Parquet written atomically with a content hash and read back checked; traces, assignments |
-//! | [`scan`] | sample ids → parameters → rows: parallel chunks, resume, shards, progress, locks |
-//! | `analysis` | k-means of the failures, shares with Wilson intervals, summary files |
-//! | `refine` | refinement rounds: where a round samples (candidates whose nearest samples' labels disagree) and each round run as a scan of stored points |
-//! | `bifurcation` | one parameter swept, following the attractor on the step map: its files and summary |
-//! | `basin` | a slice of a gait's basin of attraction: its grid points in parallel, its Parquet file |
-//! | [`profile`] | a design's slope profile: its gait along φ, each change of label located by bisection, its stable intervals |
-//! | [`search`] | design search: the design of a box that walks on the widest range of slopes, the shallowest slope or fastest, by CMA-ES over slope profiles with falls a learned constraint; a Pareto front of two objectives |
-//! | `continuation` | a gait's branch followed in one input (stable and unstable), its bifurcations, the period-2 branches born there, fold and period-doubling curves in two inputs |
-//! | [`studies`] | the public entry point of each study computed above (a scan and its merge, its summary and clusters, refinement, a bifurcation sweep, continuation), which the command line calls and only prints |
-//! | [`dictionary`] | every Parquet column's unit and meaning (docs/data-dictionary.md) |
-//! | `cli` | the `run`, `merge`, `simulate`, `bifurcation`, `continuation`, `cluster`, `summary` subcommands; the progress bar and the signal handler (the `cli` feature only) |
-//!
-//! The public API is what the binary, `rtw-bench` and the tests use; the
-//! rest is private to the crate. The command line (`cli`, with clap, ctrlc
-//! and indicatif) is the default `cli` feature, which only the binary needs:
-//! the library's users (rtw-py, rtw-bench) leave it out, and the library
-//! itself shows nothing on a terminal. What watches a scan, and what stops
-//! it, are passed to it ([`scan::Progress`], a stop flag). The deterministic
-//! stand-in simulator `fake` (hidden flag `--fake-sim`) exists only with the
-//! `fake-sim` feature, which the crate's own tests turn on; they run it as
-//! the binary `rtw-scan-test`, which a plain build never writes.
-//!
-//! ## Usage
-//!
-//! ```text
-//! rtw-scan run configs/paper.toml [--out DIR] [--threads N] [--resume] [--shard K/N]
-//! rtw-scan merge DIR
-//! rtw-scan simulate --length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15 \
-//!     [--config FILE] [--set contact.mu=0.8]... [--json] [--trace trace.parquet]
-//! rtw-scan cluster results/paper/samples.parquet [--k 3] [--json]
-//! rtw-scan summary results/paper/samples.parquet [--json]
-//! ```
-//!
-//! `run` writes `DIR/samples.parquet`, `DIR/summary.json` and
-//! `DIR/summary.md` (default `DIR`: `runs/<scan name>/`). The
-//! Parquet file is checked from Python (pandas, polars, pyarrow) by
-//! `scripts/check_parquet.py`.
+//! A thin layer in named stages: clap arguments (each
+//! subcommand family's `…Args`, raw text) → `validate` (flag text → typed,
+//! checked values: `--set KEY=VALUE` → typed overrides) and `values` (the
+//! parsers of single flag values) → calls into the libraries' entries
+//! (`rtw_engine::entry` for a scan, `rtw_studies` for the other studies), which
+//! take only typed values; a handler prints what they return. This file holds the
+//! command tree and the exit codes, `signal` the signal handling, and
+//! `progress` the progress shown on stderr.
 
-#![warn(missing_docs)]
+/// `print!` to stdout through [`signal::print_out`]: a closed stdout ends
+/// the command quietly (exit 141) instead of a panic. Every command's
+/// output to stdout goes through it or [`outln!`].
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::signal::print_out(format_args!($($arg)*))
+    };
+}
 
-pub(crate) mod analysis;
-pub mod basin;
-pub(crate) mod bifurcation;
-#[cfg(test)]
-#[path = "../build_id.rs"]
-mod build_id;
-#[cfg(feature = "cli")]
-mod cli;
-pub mod config;
-pub(crate) mod continuation;
-pub mod dictionary;
-#[cfg(any(test, feature = "fake-sim"))]
-pub(crate) mod fake;
-pub(crate) mod files;
-pub(crate) mod hash;
-pub mod io;
-pub mod profile;
-pub(crate) mod refine;
-pub mod sampling;
-pub mod scan;
-pub mod search;
-pub(crate) mod sizes;
-pub mod studies;
-/// Sobol sensitivity indices of a scan's outputs (`rtw-scan sensitivity`).
-pub use analysis::sensitivity;
-pub use analysis::views;
+/// `println!` to stdout through [`signal::print_out`] (see [`out!`]).
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::signal::print_out(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
 
-pub use analysis::report::{Z95, failure_clusters, wilson};
-/// A scan read whole and verified; its sensitivity indices checked as its own.
-pub use analysis::scan_table::{ScanTable, read_indices, read_scan_table};
-/// A scan's folder read for a report: the files beside the scan only when they are its own.
-pub use analysis::verified::{
-    Assignments, ScanFolder, read_assignments, read_scan_folder, read_summary,
-};
-#[cfg(feature = "cli")]
-pub use cli::main;
-/// An error as a front end shows it: its chain on one line, each thing said
-/// once.
-pub use files::error_message;
-/// For a front end's signal handler, which ends the process without
-/// running destructors: removes every temporary and lock file this process
-/// has open, finishing first a set of files being moved into place.
-pub use files::remove_live_files;
-/// The version every file rtw-scan writes records (`rtw.version`): rows of
-/// two versions never end up in one result, and a study never resumes from
-/// another version's rows (docs/results-on-disk.md, "Versions").
-pub use io::metadata::VERSION;
+mod analysis;
+mod basin;
+mod bifurcation;
+mod continuation;
+mod design;
+mod profile;
+mod progress;
+mod refine;
+mod run;
+mod sensitivity;
+mod signal;
+mod simulate;
+mod validate;
+mod values;
 
-/// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in
-/// the environment, a run says `paused at POINT` on stderr and waits there a
-/// minute, so that the tests and `scripts/fault_inject.sh` can kill it at
-/// exactly that step of its end: `manifest` (`.partial` made, its manifest
-/// not yet), `merge` (the scan file half written), `merged` (the scan file
-/// complete, `.partial` whole), `cleanup` (`.partial` partly removed). A
-/// plain build does nothing here. It waits once per process (the merge
-/// passes its point once per file).
-pub(crate) fn pause_at(point: &str) {
-    #[cfg(feature = "fake-sim")]
-    if std::env::var("RTW_SCAN_PAUSE").is_ok_and(|p| p == point) {
-        static PAUSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-        if PAUSED.swap(true, std::sync::atomic::Ordering::SeqCst) {
-            return;
-        }
-        eprintln!("rtw-scan: paused at {point} (RTW_SCAN_PAUSE)");
-        std::thread::sleep(std::time::Duration::from_secs(60));
+use analysis::{ClusterArgs, SummaryArgs};
+use basin::BasinArgs;
+use bifurcation::BifurcationArgs;
+use clap::{Parser, Subcommand};
+use continuation::ContinuationArgs;
+use design::DesignArgs;
+use profile::ProfileArgs;
+use refine::RefineArgs;
+use run::{MergeArgs, RunArgs};
+use sensitivity::SensitivityArgs;
+use signal::install_signal_handler;
+use simulate::SimulateArgs;
+use std::process::ExitCode;
+
+/// The exit codes every command documents in its `--help`.
+const EXIT_CODES: &str = "Exit status:\n  \
+    0    success\n  \
+    1    error: bad input (named with its valid range), a refusal to overwrite (see --force), a corrupt \
+or unreadable file, an I/O failure\n  \
+    2    bad command line (unknown flag, missing argument)\n  \
+    130  interrupted by SIGINT (Ctrl-C), SIGTERM or SIGHUP; a scan keeps its finished chunks (finish it \
+with --resume), any other command leaves no partial file\n  \
+    141  stdout was closed before all was printed (`| head`): the files written are kept";
+
+/// The exit codes of `simulate`, which also fails when the run does not finish.
+const EXIT_CODES_SIMULATE: &str = "Exit status:\n  \
+    0    the simulation finished (whatever its outcome label)\n  \
+    1    error: bad input, a refusal to overwrite (see --force), an oversized trace (see --trace-limit), \
+or a simulation that did not finish (a `diverged` run: numerical failure or panic)\n  \
+    2    bad command line\n  \
+    130  interrupted by SIGINT, SIGTERM or SIGHUP (no partial trace is left)\n  \
+    141  stdout was closed before all was printed (`| head`): a trace written is kept";
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "rtw-scan",
+    version = rtw_engine::VERSION,
+    about = "Seeded, parallel parameter scans of the RTW model, streamed to Parquet, with failure clustering.",
+    long_about = "Seeded, parallel parameter scans of the rimless wheel-like tensegrity (RTW) model, streamed to \
+                  Parquet, with outcome statistics and k-means clustering of the failures.\n\n\
+                  A scan's rows depend only on (seed, sample_id): any thread count, an interrupted and resumed \
+                  run, or a subset gives the same rows."
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scan from a TOML config: writes DIR/samples.parquet, DIR/summary.json, DIR/summary.md.
+    #[command(long_about = "Run a scan from a TOML config.\n\n\
+        Writes DIR/samples.parquet (one row per sample: inputs, derived parameters, outcome, every metric, \
+        integrator work, wall time), DIR/summary.json and DIR/summary.md, and prints the summary. Finished chunks \
+        are kept in DIR/.partial while the run goes on, so an interrupted run (Ctrl-C, kill) loses at most the \
+        chunks in progress (the workers take the samples in order: those of the samples in flight, one per \
+        worker): finish it with --resume. A sample that panics or fails numerically becomes a `diverged` row; \
+        the scan goes on.\n\n\
+        Config keys: seed, samples, name (optional), sampling (random, sobol, halton, lhs, grid or saltelli: the \
+        design of the uniform axes, docs/cli.md); [params] length, rho, alpha, fn, zeta, phi, each a number, \
+        { uniform = [lo, hi] }, { linspace = [lo, hi, n] } or a list [a, b, ...] (grids combine as a product, each \
+        grid point gets `samples` random draws); [cluster] k (default 2), restarts (default 10); [simulation]: \
+        every rtw_model option (t_max, method, rtol, initial.omega, strings.rest_length_ratio, contact.mu, ...): \
+        configs/template.toml has every key with its unit, range and default.\n\n\
+        A run refuses to write into a directory holding another scan's results (another config hash, or \
+        another --shard split) unless --force, and one process at a time writes a result (a lock file names \
+        it). SIGINT, SIGTERM and SIGHUP stop it like Ctrl-C: the samples in flight stop within moments (their \
+        rows are dropped), the finished chunks are kept, exit status 130; a second signal quits at once. Progress goes to stderr, the summary to stdout.",
+        after_help = EXIT_CODES)]
+    Run(RunArgs),
+    /// Merge the shards of a scan (DIR/part-K.parquet from `run --shard K/N`) into DIR/samples.parquet and its summary.
+    #[command(
+        long_about = "Merge the shards of a scan into DIR/samples.parquet, DIR/summary.json and DIR/summary.md.\n\n\
+        The parts DIR/part-K.parquet written by `rtw-scan run CONFIG --shard K/N --out DIR` must all come from one \
+        config (same config hash) and one rtw-scan version, with the same N, every shard 0..N-1 present and their \
+        sample_ids exactly 0..n-1 once each; otherwise merge refuses, naming what is missing or mismatched, and \
+        writes nothing. The merged rows are the rows of a single-machine run of the config. The parts are kept \
+        (polars.scan_parquet(\"DIR/part-*.parquet\") reads them directly). A corrupt part (its rows do not \
+        match their content hash) is refused, and so is a DIR/samples.parquet of another scan unless --force.",
+        after_help = EXIT_CODES
+    )]
+    Merge(MergeArgs),
+    /// Simulate one RTW and print its outcome and every metric.
+    #[command(
+        long_about = "Simulate one RTW and print its outcome and every metric.\n\n\
+        The simulation options come from the [simulation] table of --config (default: the adopted model, docs/model.md §9), \
+        then --variant (a configs/variants/*.toml layered over them), \
+        then the --set overrides, e.g. --set initial.omega=-3 --set contact.mu=0.8 --set strings.slack=true \
+        --set method=dop853. Values are read as TOML values (inf, true, \"text\"); a value that is not one is taken \
+        as a string.",
+        after_help = EXIT_CODES_SIMULATE
+    )]
+    Simulate(SimulateArgs),
+    /// Sweep one parameter with continuation on the step map: recorded steps, period, Floquet multipliers.
+    #[command(
+        long_about = "Sweep one parameter with continuation on the step map (a bifurcation diagram).\n\n\
+        At each value, in order, the map starts from the previous value's last section point (the first value, \
+        and a value where that fails, from the initial state: column `restarted`), runs --transient steps, records \
+        --record steps (post-impact angular velocity of the new stance rod, step time), detects the period, and \
+        solves a periodic gait by Newton for its Floquet multipliers (DOP853, rtol 1e-11). Writes FILE.parquet \
+        (one row per value) and FILE.steps.parquet (one row per recorded step), and prints a summary. The base \
+        point is Fig. 7(a); the simulation options are taken as by `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Bifurcation(BifurcationArgs),
+    /// Continue a gait's limit cycle in one input, stable and unstable: branches, bifurcations, curves in two inputs.
+    #[command(
+        long_about = "Continue a gait's limit cycle in one input by pseudo-arclength continuation on the step map.\n\n\
+        Solves the limit cycle the start (default Fig. 7(a)) settles into, then follows its fixed point of the \
+        step map's period-th power both ways in --param, stable and unstable, over [--from, --to], with Jacobians \
+        from the variational equations. Folds, branch points, period doublings and Neimark–Sacker points are \
+        located on the Floquet multipliers (test functions, bisection); at each period doubling it switches onto \
+        the period-2 branch born there. A branch ends where the fixed point leaves the start's mode pattern \
+        (which feet touch, how): the step map is not smooth there. With --curve P2, each fold and period doubling \
+        of the branches through the start is continued in (--param, P2) over [--curve-from, --curve-to]: the \
+        boundary of the region where the gait exists and is stable. Writes FILE.parquet (one row per branch point \
+        and orbit step), FILE.special.parquet (bifurcations, branch starts and ends), FILE.curve.parquet (with \
+        --curve) and FILE.md, and prints the summary. Options as `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Continuation(ContinuationArgs),
+    /// A slice of a gait's basin of attraction: a grid over two section coordinates, each point iterated and classified.
+    #[command(
+        long_about = "A slice of a gait's basin of attraction on the step map's section (docs/robustness.md).\n\n\
+        Solves the limit cycle the design (default Fig. 7(a)) settles into, then offsets two of its section \
+        coordinates (--x, --y: a rod's θ or ω) over a grid, every other coordinate held at the fixed point's value, \
+        and iterates each point on the step map for at most --steps steps: `returns` when it comes within --tol of \
+        the gait's orbit, `survives` when it takes every step without (the label and period of its last steps say \
+        what it walks in), `fails` when a step fails, `infeasible` when a tip starts below the ground. Writes \
+        FILE.parquet, one row per point (x, y, outcome, label, steps, distance, ...), and prints the counts. \
+        Options as `simulate` (--config, --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Basin(BasinArgs),
+    /// Cluster the failed samples of a finished scan (k-means on standardized α, f_n, φ).
+    #[command(after_help = EXIT_CODES)]
+    Cluster(ClusterArgs),
+    /// Recompute a finished scan's summary: prints it and rewrites summary.json and summary.md beside the file.
+    #[command(after_help = EXIT_CODES)]
+    Summary(SummaryArgs),
+    /// Sobol indices (first-order and total, bootstrap intervals) of a scan's outcome classes and outputs.
+    #[command(
+        long_about = "Sobol indices of a finished scan's outputs to its uniform inputs: each outcome label as an \
+        indicator (failed samples included, never dropped), stable, failure, and speed, f_w and floquet_max \
+        (where every row has one). A scan run with sampling = \"saltelli\" gets first-order and total indices \
+        (SALib's sobol estimators); any other scan the given-data binned first-order index (SALib delta's S1; ST \
+        is NaN). Writes FILE.parquet (output, parameter, S1, S1_conf, ST, ST_conf) and prints a table.",
+        after_help = EXIT_CODES
+    )]
+    Sensitivity(SensitivityArgs),
+    /// Add samples to a finished scan in rounds, where the labels of neighbouring samples disagree.
+    #[command(
+        long_about = "Add --budget samples to a finished scan in --rounds rounds, near the boundaries between \
+        outcome labels (docs/refine.md): each round takes, from a pool of uniform candidates, those whose nearest \
+        samples (unit box of the uniform inputs) disagree most on their label, farthest from any sample first, \
+        with a tenth of its points uniform. \
+        Round r is a deterministic function of the scan's rows, the earlier rounds' rows and --seed, and runs as \
+        an ordinary scan in DIR/refine/round-RRR/ (chunks kept on interruption, --shard and merge as for run); \
+        finished rounds are kept and a repeated command goes on from there. At the end DIR/refine/samples.parquet \
+        holds every row, the new ones with sample_ids after the scan's.",
+        after_help = EXIT_CODES
+    )]
+    Refine(RefineArgs),
+    /// A design's gait along the slope: each change of label located by bisection, the stable intervals per gait.
+    #[command(
+        long_about = "The slope profile of one design: its gait at each slope φ of [--from, --to], every change \
+        of label located to --tol by bisection.\n\n\
+        Simulates the design (the flags of `simulate`) on a grid of slopes at most --grid apart, then halves each \
+        pair of neighbouring slopes whose labels differ until it is at most --tol wide (about log2(grid/tol) runs \
+        per change), the runs of each round in parallel. Prints the stable slope intervals of each gait (walk, \
+        skip, crawl), phi_min (the shallowest stable slope), the widest interval of stable slopes (phi_lo, \
+        phi_hi) and the changes (φ_left, φ_right, label_left, label_right); with --out, writes every simulated \
+        slope (a scan's columns) to FILE.parquet and the summary to FILE.md. Options as `simulate` (--config, \
+        --variant, --set).",
+        after_help = EXIT_CODES
+    )]
+    Profile(ProfileArgs),
+    /// Search a box of designs for the one that walks on the widest range of slopes, the shallowest, or fastest.
+    #[command(
+        long_about = "Search the box of designs (ρ, α, f_n, ζ) of CONFIG for those that maximise its objectives \
+        (docs/design.md): slope_range (the widest interval of stable slopes, of one gait if `gait` is set), \
+        phi_min (the shallowest stable slope, minimised), speed (at speed_phi) or mfpt (the mean first-passage \
+        time at mfpt_phi on a rough slope of robustness.sigma, set with --set). Each candidate is judged by its \
+        slope profile (as `profile`); a design with no stable slope falls, and the search learns where designs \
+        fall and draws again there rather than scoring a fall. Candidates come from CMA-ES (method = \"cmaes\") \
+        or, as the baseline, a Sobol sequence (method = \"sobol\"); two objectives give a Pareto front. Writes \
+        OUT/search.parquet (every evaluation, after each generation: an interrupted search resumes with the same \
+        command), OUT/designs.parquet (the reported designs, each profiled again on the fine grid, phi_lo and \
+        phi_hi their widest stable interval) and OUT/search.md. The model: the config's [simulation] table, then --variant and --set.",
+        after_help = EXIT_CODES
+    )]
+    Design(DesignArgs),
+}
+
+/// Parses the command line, runs it, and turns errors into a message and
+/// exit code 1.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Err(e) = install_signal_handler() {
+        eprintln!("error: {e:#}");
+        return ExitCode::FAILURE;
     }
-    #[cfg(not(feature = "fake-sim"))]
-    let _ = point;
+    let result = match cli.command {
+        Command::Run(a) => run::cmd_run(a),
+        Command::Merge(a) => run::cmd_merge(a),
+        Command::Simulate(a) => simulate::cmd_simulate(a),
+        Command::Bifurcation(a) => bifurcation::cmd_bifurcation(a),
+        Command::Continuation(a) => continuation::cmd_continuation(a),
+        Command::Basin(a) => basin::cmd_basin(a),
+        Command::Cluster(a) => analysis::cmd_cluster(a),
+        Command::Summary(a) => analysis::cmd_summary(a),
+        Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),
+        Command::Refine(a) => refine::cmd_refine(a),
+        Command::Profile(a) => profile::cmd_profile(a),
+        Command::Design(a) => design::cmd_design(a),
+    };
+    result.unwrap_or_else(|e| {
+        eprintln!("error: {}", rtw_engine::files::error_message(&e));
+        ExitCode::FAILURE
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn cli_is_well_formed() {
+        Cli::command().debug_assert();
+    }
+
+    /// docs/cli.md is the flag reference: each subcommand's section names
+    /// every flag it takes (hidden testing flags aside).
+    #[test]
+    fn docs_cli_md_names_every_flag_of_every_subcommand() {
+        let doc = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cli.md"),
+        )
+        .unwrap();
+        let mut missing = Vec::new();
+        for sub in Cli::command().get_subcommands() {
+            let heading = format!("### `rtw-scan {}`", sub.get_name());
+            let Some((_, section)) = doc.split_once(&heading) else {
+                missing.push(format!("a section `{heading}`"));
+                continue;
+            };
+            // The section ends at the next heading of its level or above.
+            let end = ["\n### ", "\n## "]
+                .iter()
+                .filter_map(|h| section.find(h))
+                .min()
+                .unwrap_or(section.len());
+            let section = &section[..end];
+            let shown = sub.get_arguments().filter(|a| {
+                !a.is_hide_set() && !["help", "version"].contains(&a.get_id().as_str())
+            });
+            for arg in shown {
+                // A positional as the help shows it: its value name (an id
+                // may differ from it, to keep clear of a flag's).
+                let name = match arg.get_long() {
+                    Some(long) => format!("`--{long}"),
+                    None => match arg.get_value_names().and_then(|v| v.first()) {
+                        Some(value) => format!("`{value}"),
+                        None => format!("`{}", arg.get_id().as_str().to_uppercase()),
+                    },
+                };
+                if !section.contains(&name) {
+                    missing.push(format!("{}: {name}`", sub.get_name()));
+                }
+            }
+        }
+        assert!(
+            missing.is_empty(),
+            "docs/cli.md lacks:\n{}",
+            missing.join("\n")
+        );
+    }
+
+    /// `design --help` names every objective a config may ask for.
+    #[test]
+    fn design_help_names_every_objective() {
+        let help = Cli::command()
+            .find_subcommand_mut("design")
+            .expect("a design subcommand")
+            .render_long_help()
+            .to_string();
+        for o in rtw_studies::search::Objective::ALL {
+            assert!(
+                help.contains(o.as_str()),
+                "design --help does not name {}",
+                o.as_str()
+            );
+        }
+    }
+
+    /// One flag for one idea: every subcommand that takes simulation options
+    /// takes them the same three ways (config, variant, set).
+    #[test]
+    fn model_options_are_spelled_alike_in_every_subcommand() {
+        for sub in Cli::command().get_subcommands() {
+            // By id: `run` takes its config as its argument, the others as --config.
+            let ids: Vec<&str> = sub.get_arguments().map(|a| a.get_id().as_str()).collect();
+            if ids.contains(&"set") {
+                for flag in ["config", "variant", "set"] {
+                    assert!(
+                        ids.contains(&flag),
+                        "{} takes --set but not --{flag}",
+                        sub.get_name()
+                    );
+                }
+            }
+        }
+    }
 }

@@ -467,7 +467,7 @@ fn samples_file_has_the_documented_columns_and_metadata() {
         .collect();
     assert!(kv["rtw.config"].contains("samples = 20") && kv["rtw.config"].contains("[simulation]"));
     assert_eq!(kv["rtw.seed"], "4");
-    assert_eq!(kv["rtw.version"], rtw_scan::VERSION);
+    assert_eq!(kv["rtw.version"], rtw_engine::VERSION);
     assert!(kv["rtw.variant"].contains("rest_length_ratio=0"));
     assert!(kv.contains_key("rtw.wall_time_s"));
     let rg = meta.row_group(0);

@@ -397,12 +397,16 @@ fn a_search_file_without_its_metadata_hash_is_named_for_what_it_is() {
 
 #[test]
 fn a_design_folder_with_two_builds_files_is_refused_naming_both() {
-    use rtw_scan::io as output;
+    use rtw_engine::io as output;
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let cfg = tiny(dir.path(), "v", 30, "");
     run_ok(&["design", &cfg, "--out", s(&out), "--quiet"]);
-    assert!(rtw_scan::search::read::read_folder(&out).unwrap().is_some());
+    assert!(
+        rtw_studies::search::read::read_folder(&out)
+            .unwrap()
+            .is_some()
+    );
     let path = out.join("designs.parquet");
     let input = output::open(&path, 1 << 20).unwrap();
     let mut m = input.metadata.clone();
@@ -410,7 +414,7 @@ fn a_design_folder_with_two_builds_files_is_refused_naming_both() {
     m.insert("rtw.version".into(), "0.1.0+0000000000000000".into());
     let kv = m.into_iter().map(|(k, v)| output::kv(&k, v)).collect();
     output::write_file(&path, &batches[0], kv).unwrap();
-    let e = match rtw_scan::search::read::read_folder(&out) {
+    let e = match rtw_studies::search::read::read_folder(&out) {
         Err(e) => format!("{e:#}"),
         Ok(_) => panic!("two builds' files read as one result"),
     };
@@ -418,7 +422,7 @@ fn a_design_folder_with_two_builds_files_is_refused_naming_both() {
         "search.parquet",
         "designs.parquet",
         "0.1.0+0000000000000000",
-        rtw_scan::VERSION,
+        rtw_engine::VERSION,
     ] {
         assert!(e.contains(want), "{want:?} not in {e}");
     }

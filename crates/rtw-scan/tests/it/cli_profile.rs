@@ -344,9 +344,9 @@ fn design_config(dir: &std::path::Path, name: &str, extra: &str) -> String {
 fn search_settings(
     dir: &std::path::Path,
     name: &str,
-) -> (rtw_scan::search::SearchSettings, rtw_model::Options) {
+) -> (rtw_studies::search::SearchSettings, rtw_model::Options) {
     let cfg = design_config(dir, name, "");
-    let settings = rtw_scan::search::SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
+    let settings = rtw_studies::search::SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
     (settings, rtw_model::Options::default())
 }
 
@@ -358,7 +358,7 @@ struct StopAfter<'a> {
     cancel: &'a std::sync::atomic::AtomicBool,
 }
 
-impl rtw_scan::scan::Progress for StopAfter<'_> {
+impl rtw_engine::scan::Progress for StopAfter<'_> {
     fn computed(&self, _: rtw_model::Label) {}
     fn advanced(&self) {
         use std::sync::atomic::Ordering;
@@ -370,11 +370,11 @@ impl rtw_scan::scan::Progress for StopAfter<'_> {
 
 #[test]
 fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() {
-    use rtw_scan::search::files;
+    use rtw_studies::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
     let (settings, options) = search_settings(dir.path(), "resume");
-    let quiet = rtw_scan::scan::progress::Silent;
+    let quiet = rtw_engine::scan::progress::Silent;
     let never = AtomicBool::new(false);
     let whole = dir.path().join("whole");
     let (full, reported) =
@@ -420,8 +420,8 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
 /// estimator's, say), and a resume would report them as this build's.
 #[test]
 fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
-    use rtw_scan::io as output;
-    use rtw_scan::search::files;
+    use rtw_engine::io as output;
+    use rtw_studies::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
     let (settings, options) = search_settings(dir.path(), "build");
@@ -441,7 +441,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     let input = output::open(&path, 1 << 20).unwrap();
     let mut meta = input.metadata.clone();
     let batches: Vec<_> = input.reader.map(|b| b.unwrap()).collect();
-    assert_eq!(meta["rtw.version"], rtw_scan::VERSION);
+    assert_eq!(meta["rtw.version"], rtw_engine::VERSION);
     meta.insert("rtw.version".into(), "0.1.0+0000000000000000".into());
     let kv = meta.into_iter().map(|(k, v)| output::kv(&k, v)).collect();
     output::write_file(&path, &batches[0], kv).unwrap();
@@ -451,7 +451,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     for want in [
         "different rtw-scan versions",
         "0.1.0+0000000000000000",
-        rtw_scan::VERSION,
+        rtw_engine::VERSION,
         "--force",
     ] {
         assert!(msg.contains(want), "{want:?} not in {msg}");

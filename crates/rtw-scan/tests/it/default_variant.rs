@@ -7,8 +7,8 @@
 //! rerun of the study that picks another rest length, or a default changed
 //! without rerunning it, fails here.
 
+use rtw_engine::config::layers::{Overrides, simulation_options};
 use rtw_model::Options;
-use rtw_scan::config::layers::{Overrides, simulation_options};
 use std::path::PathBuf;
 
 fn root() -> PathBuf {

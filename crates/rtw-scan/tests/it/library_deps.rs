@@ -1,8 +1,8 @@
-//! The library without its command line: clap, ctrlc and indicatif come
-//! only with the `cli` feature, which only the `rtw-scan` binary needs, and
-//! the crates that use the library (rtw-py, the Python extension; rtw-bench)
-//! take it without that feature. `cargo tree -p rtw-py -e normal` is the
-//! check by hand; this one reads the manifests, so it runs offline and fast.
+//! The crates are the layers (docs/architecture.md): hybrid-ode → rtw-model
+//! → rtw-engine → rtw-studies → {rtw-scan, rtw-py, rtw-bench}. Only the
+//! command (`rtw-scan`) links clap, ctrlc and indicatif. `cargo tree -p
+//! rtw-py -e normal` is the check by hand; this one reads the manifests, so
+//! it runs offline and fast.
 
 use std::path::Path;
 
@@ -21,63 +21,53 @@ fn table<'a>(t: &'a toml::Table, key: &str) -> &'a toml::Table {
 
 const TERMINAL: [&str; 3] = ["clap", "ctrlc", "indicatif"];
 
-#[test]
-fn the_terminal_crates_come_only_with_the_cli_feature() {
-    let m = manifest("Cargo.toml");
-    let deps = table(&m, "dependencies");
-    for name in TERMINAL {
-        let optional = deps
-            .get(name)
-            .and_then(|d| d.get("optional"))
-            .and_then(toml::Value::as_bool);
-        assert_eq!(optional, Some(true), "{name} must be optional");
-    }
-    let features = table(&m, "features");
-    let cli: Vec<&str> = features["cli"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(toml::Value::as_str)
-        .collect();
-    for name in TERMINAL {
-        assert!(cli.contains(&format!("dep:{name}").as_str()), "{cli:?}");
-    }
-    let bins = m["bin"].as_array().unwrap();
-    // Every binary needs the command line (the test binary `fake-sim` too).
-    for bin in bins {
-        let needs: Vec<&str> = bin
-            .get("required-features")
-            .and_then(toml::Value::as_array)
-            .map(|a| a.iter().filter_map(toml::Value::as_str).collect())
-            .unwrap_or_default();
-        assert!(needs.contains(&"cli"), "{bin:?}");
-    }
+/// The dependencies (normal and dev) a manifest names.
+fn names(m: &toml::Table, key: &str) -> Vec<String> {
+    m.get(key)
+        .and_then(toml::Value::as_table)
+        .map(|t| t.keys().cloned().collect())
+        .unwrap_or_default()
 }
 
+/// The layers are crates, and cargo holds their direction: the scan engine
+/// knows neither the studies nor the command line, the studies not the
+/// command line; no library links a terminal crate, and the library's other
+/// users (rtw-py, rtw-bench) build on the libraries, never on the command.
 #[test]
-fn the_library_s_users_take_it_without_the_cli_feature() {
-    let ws = manifest("../../Cargo.toml");
-    let workspace = table(&ws, "workspace");
-    let scan = &table(workspace, "dependencies")["rtw-scan"];
-    assert_eq!(
-        scan.get("default-features").and_then(toml::Value::as_bool),
-        Some(false),
-        "the workspace's rtw-scan dependency: {scan}"
-    );
-    for user in ["../rtw-py/Cargo.toml", "../rtw-bench/Cargo.toml"] {
-        let m = manifest(user);
-        let dep = &table(&m, "dependencies")["rtw-scan"];
-        assert_eq!(
-            dep.get("workspace").and_then(toml::Value::as_bool),
-            Some(true),
-            "{user}: {dep}"
-        );
-        let features = dep.get("features").map(ToString::to_string);
-        assert!(
-            !features.as_deref().unwrap_or("").contains("cli"),
-            "{user}: {dep}"
-        );
-        assert!(dep.get("default-features").is_none(), "{user}: {dep}");
+fn the_libraries_know_no_terminal_and_depend_only_downward() {
+    let layers: [(&str, &[&str]); 4] = [
+        ("../rtw-engine/Cargo.toml", &["rtw-studies", "rtw-scan"]),
+        ("../rtw-studies/Cargo.toml", &["rtw-scan"]),
+        ("../rtw-py/Cargo.toml", &["rtw-scan"]),
+        ("../rtw-bench/Cargo.toml", &["rtw-scan"]),
+    ];
+    for (path, above) in layers {
+        let m = manifest(path);
+        let normal = names(&m, "dependencies");
+        let all: Vec<String> = normal
+            .iter()
+            .cloned()
+            .chain(names(&m, "dev-dependencies"))
+            .collect();
+        for name in above {
+            assert!(
+                !all.iter().any(|d| d == name),
+                "{path} depends on {name}, a layer above it"
+            );
+        }
+        if path.contains("rtw-engine") || path.contains("rtw-studies") || path.contains("rtw-py") {
+            for name in TERMINAL {
+                assert!(
+                    !normal.iter().any(|d| d == name),
+                    "{path} links {name}: only the command line may"
+                );
+            }
+        }
+    }
+    // The command is the one member with the terminal crates.
+    let cli = names(&manifest("Cargo.toml"), "dependencies");
+    for name in TERMINAL {
+        assert!(cli.iter().any(|d| d == name), "rtw-scan lacks {name}");
     }
 }
 

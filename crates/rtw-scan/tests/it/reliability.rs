@@ -91,7 +91,7 @@ fn a_run_into_another_scans_directory_is_refused_unless_forced() {
         err.contains("another scan") && err.contains("--force"),
         "{err}"
     );
-    let hash = |path: &str| rtw_scan::config::load(Path::new(path)).unwrap().hash();
+    let hash = |path: &str| rtw_engine::config::load(Path::new(path)).unwrap().hash();
     assert!(err.contains(&hash(&a)) && err.contains(&hash(&b)), "{err}");
     // --resume with another config: refused likewise.
     let o = fake_run(&b, &out, &["--resume"]);
@@ -509,7 +509,7 @@ fn forge(
     edit: impl FnOnce(Column) -> Column,
     meta: impl FnOnce(&mut Metadata),
 ) {
-    let input = rtw_scan::io::open(samples, 1 << 20).unwrap();
+    let input = rtw_engine::io::open(samples, 1 << 20).unwrap();
     let mut m = input.metadata.clone();
     meta(&mut m);
     let batch: arrow_array::RecordBatch = input.reader.map(|b| b.unwrap()).next().unwrap();
@@ -519,9 +519,9 @@ fn forge(
     let batch = arrow_array::RecordBatch::try_new(batch.schema(), cols).unwrap();
     let kv = m
         .into_iter()
-        .map(|(k, v)| rtw_scan::io::kv(&k, v))
+        .map(|(k, v)| rtw_engine::io::kv(&k, v))
         .collect();
-    rtw_scan::io::write_file(dest, &batch, kv).unwrap();
+    rtw_engine::io::write_file(dest, &batch, kv).unwrap();
 }
 
 /// `edit` applied to the values of a column of Arrow type `T`.
@@ -728,7 +728,7 @@ fn every_committed_result_verifies_as_it_is() {
     parquet_files(&workspace().join("results"), &mut files);
     assert!(files.len() > 50, "{} files", files.len());
     for f in files {
-        let input = rtw_scan::io::open(&f, 1 << 16).unwrap_or_else(|e| panic!("{e:#}"));
+        let input = rtw_engine::io::open(&f, 1 << 16).unwrap_or_else(|e| panic!("{e:#}"));
         assert!(
             input.metadata.contains_key("rtw.content_hash"),
             "{}",
@@ -1036,7 +1036,7 @@ fn a_resume_by_another_rtw_scan_version_is_refused_naming_both() {
     let out = dir.path().join("o");
     interrupted(&cfg, &out);
     // The unfinished run was started by an older rtw-scan.
-    let ours = rtw_scan::VERSION;
+    let ours = rtw_engine::VERSION;
     let manifest = out.join(".partial/manifest.json");
     let text = std::fs::read_to_string(&manifest).unwrap();
     let older = text.replace(
@@ -1076,7 +1076,7 @@ fn a_resume_of_another_config_names_both_and_what_differs() {
     let hash = |cfg: &str, name: &str| {
         let d = dir.path().join(name);
         fake_run_ok(cfg, &d, &[]);
-        rtw_scan::io::open(&d.join("samples.parquet"), 1)
+        rtw_engine::io::open(&d.join("samples.parquet"), 1)
             .unwrap()
             .metadata["rtw.config_hash"]
             .clone()

@@ -6,7 +6,7 @@
 
 use crate::common::*;
 use arrow_array::{Array, ArrayRef, Int64Array, RecordBatch};
-use rtw_scan::io as output;
+use rtw_engine::io as output;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -94,7 +94,7 @@ fn shards_merge_to_the_single_machine_rows() {
         assert_eq!(m["rtw.shard"], format!("{k}/4"));
         assert_eq!(m["rtw.total_rows"], "50");
         assert_eq!(m["rtw.seed"], "5");
-        assert_eq!(m["rtw.version"], rtw_scan::VERSION);
+        assert_eq!(m["rtw.version"], rtw_engine::VERSION);
         assert_eq!(m["rtw.config_hash"], single_meta["rtw.config_hash"]);
         assert_eq!(m["rtw.config"], single_meta["rtw.config"]);
         assert_eq!(m["rtw.config_hash"].len(), 16);

@@ -4,8 +4,8 @@
 //! as the validation reports them, so the template cannot drift from the
 //! schema.
 
+use rtw_engine::config::{self, ClusterConfig, options_from_table};
 use rtw_model::{Options, Param};
-use rtw_scan::config::{self, ClusterConfig, options_from_table};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 

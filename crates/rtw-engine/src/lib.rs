@@ -1,0 +1,86 @@
+//! # rtw-engine
+//!
+//! The scan engine of the RTW model (`rtw-model`), and the guarded path
+//! every study writes through: configs read and checked, seeded parallel
+//! scans streamed to Parquet with resume and shards, locks, files that
+//! appear together or not at all, and what a finished scan says (outcome
+//! shares with intervals, failure clusters). It knows no terminal: what
+//! watches a run ([`scan::Progress`]) and what stops it (a stop flag) are
+//! passed in. The studies built on it are `rtw-studies`'; the `rtw-scan`
+//! command and the Python package are faces over both.
+//!
+//! The folders are the layers, each using only the ones above it in this
+//! table (and `hash`, the fixed hash functions):
+//!
+//! | module | role |
+//! |---|---|
+//! | [`files`] | the file system's primitives: temporary files renamed into place, file sets written together, bounded reads, cleanup on a signal |
+//! | [`sizes`] | byte counts read from text (`2GB`) and written for people |
+//! | [`sampling`] | the sampling designs: draw → unit-cube point (random, Sobol, Halton, LHS, grid, Saltelli) |
+//! | [`config`] | TOML → validated [`config::ScanConfig`]: schema, variant and `--set` layers, the parameter vocabulary, hashing |
+//! | [`io`] | column tables; Parquet written atomically with a content hash and read back checked; traces, assignments; the destination checks |
+//! | [`scan`] | sample ids → parameters → rows: parallel chunks, resume, shards, progress, locks, the worker pool |
+//! | [`analysis`] | k-means of the failures, shares with Wilson intervals, summary files, a scan read whole and verified |
+//! | [`entry`] | the scan's entry points: a scan and its merge, its summary and clusters |
+//!
+//! The stand-in simulator `fake` and the test pauses exist only with the
+//! `fake-sim` feature, which the tests turn on.
+
+#![warn(missing_docs)]
+
+pub mod analysis;
+#[cfg(test)]
+#[path = "../build_id.rs"]
+mod build_id;
+pub mod config;
+pub mod entry;
+#[cfg(any(test, feature = "fake-sim"))]
+pub mod fake;
+pub mod files;
+pub mod hash;
+pub mod io;
+pub mod sampling;
+pub mod scan;
+pub mod sizes;
+pub use analysis::views;
+
+pub use analysis::report::{Z95, failure_clusters, wilson};
+/// A scan read whole and verified; its sensitivity indices checked as its own.
+pub use analysis::scan_table::{ScanTable, read_indices, read_scan_table};
+/// A scan's folder read for a report: the files beside the scan only when they are its own.
+pub use analysis::verified::{
+    Assignments, ScanFolder, read_assignments, read_scan_folder, read_summary,
+};
+/// An error as a front end shows it: its chain on one line, each thing said
+/// once.
+pub use files::error_message;
+/// For a front end's signal handler, which ends the process without
+/// running destructors: removes every temporary and lock file this process
+/// has open, finishing first a set of files being moved into place.
+pub use files::remove_live_files;
+/// The version every file rtw-scan writes records (`rtw.version`): rows of
+/// two versions never end up in one result, and a study never resumes from
+/// another version's rows (docs/results-on-disk.md, "Versions").
+pub use io::metadata::VERSION;
+
+/// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in
+/// the environment, a run says `paused at POINT` on stderr and waits there a
+/// minute, so that the tests and `scripts/fault_inject.sh` can kill it at
+/// exactly that step of its end: `manifest` (`.partial` made, its manifest
+/// not yet), `merge` (the scan file half written), `merged` (the scan file
+/// complete, `.partial` whole), `cleanup` (`.partial` partly removed). A
+/// plain build does nothing here. It waits once per process (the merge
+/// passes its point once per file).
+pub fn pause_at(point: &str) {
+    #[cfg(feature = "fake-sim")]
+    if std::env::var("RTW_SCAN_PAUSE").is_ok_and(|p| p == point) {
+        static PAUSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+        if PAUSED.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            return;
+        }
+        eprintln!("rtw-scan: paused at {point} (RTW_SCAN_PAUSE)");
+        std::thread::sleep(std::time::Duration::from_secs(60));
+    }
+    #[cfg(not(feature = "fake-sim"))]
+    let _ = point;
+}
