@@ -2,14 +2,19 @@
 //! The study is the library's ([`rtw_studies::bifurcation`]); this
 //! parses and prints.
 
+use super::progress::StderrProgress;
+use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use super::validate::simulation_options;
 use anyhow::Result;
 use clap::Args;
 use rtw_engine::config::params::SweepParam;
+use rtw_engine::scan::Run;
+use rtw_engine::scan::workers::Stopped;
 use rtw_model::{Options, Params};
 use rtw_studies::bifurcation::{self, Sweep};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::Ordering;
 
 /// The start of a sweep or a diagram: the base point (default Fig. 7(a))
 /// and the model (`bifurcation` and `continuation` take it alike).
@@ -111,13 +116,19 @@ pub(super) fn cmd_bifurcation(a: BifurcationArgs) -> Result<ExitCode> {
     let out = a
         .out
         .unwrap_or_else(|| Path::new("runs/bifurcation").join(format!("{}.parquet", param.name())));
-    let quiet = a.quiet;
-    let written = bifurcation::run_to_files(&sweep, &out, a.force, |line| {
-        if !quiet {
-            eprintln!("rtw-scan: {line}");
-        }
-    })?;
-    if !quiet {
+    let progress = StderrProgress::study(a.quiet, "bifurcation: values");
+    // A first signal stops the sweep at its value in flight's next step;
+    // nothing is written (the three files appear together or not at all).
+    GRACEFUL.store(true, Ordering::SeqCst);
+    let written =
+        match bifurcation::run_to_files(&sweep, &out, a.force, &Run::new(&progress, &STOP)) {
+            Err(e) if e.downcast_ref::<Stopped>().is_some() && STOP.load(Ordering::SeqCst) => {
+                eprintln!("rtw-scan: interrupted: the sweep stopped; nothing was written");
+                return Ok(ExitCode::from(EXIT_INTERRUPTED));
+            }
+            written => written?,
+        };
+    if !a.quiet {
         eprintln!(
             "rtw-scan: {} values in {}, {} recorded steps in {}",
             written.values,

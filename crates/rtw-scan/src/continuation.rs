@@ -3,13 +3,17 @@
 
 use super::bifurcation::ModelArgs;
 use super::progress::StderrProgress;
+use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use anyhow::Result;
 use clap::Args;
+use rtw_engine::scan::Run;
+use rtw_engine::scan::workers::Stopped;
 use rtw_model::Param;
 use rtw_model::cycles::Section;
 use rtw_studies::continuation::{self as study, Continuation, CurveSettings};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::Ordering;
 
 #[derive(Args, Debug)]
 pub(super) struct ContinuationArgs {
@@ -111,7 +115,16 @@ pub(super) fn cmd_continuation(a: ContinuationArgs) -> Result<ExitCode> {
         Path::new("runs/continuation").join(format!("{}.parquet", param.name()))
     });
     let progress = StderrProgress::study(a.quiet, "continuation");
-    let md = study::run_to_files(&c, a.through, &out, a.force, &progress)?;
+    // A first signal stops the diagram at its model run's next step;
+    // nothing is written (its files appear together or not at all).
+    GRACEFUL.store(true, Ordering::SeqCst);
+    let md = match study::run_to_files(&c, a.through, &out, a.force, &Run::new(&progress, &STOP)) {
+        Err(e) if e.downcast_ref::<Stopped>().is_some() && STOP.load(Ordering::SeqCst) => {
+            eprintln!("rtw-scan: interrupted: the continuation stopped; nothing was written");
+            return Ok(ExitCode::from(EXIT_INTERRUPTED));
+        }
+        md => md?,
+    };
     out!("{md}");
     Ok(ExitCode::SUCCESS)
 }

@@ -12,7 +12,7 @@ use crate::analysis::clusters::{
 };
 use crate::config::variant::ModelChoices;
 use crate::config::{self, ScanConfig};
-use crate::files::{self, write_atomic};
+use crate::files::{self, FileSet};
 use crate::io::destination::SUMMARY_MAX_BYTES;
 use crate::io::metadata::{
     META_CONFIG, META_CONTENT_HASH, META_REFINE, META_VERSION, META_WALL_TIME,
@@ -426,13 +426,17 @@ pub(crate) fn check_summary_target(dir: &Path, samples: &Path, force: bool) -> R
     Ok(())
 }
 
-/// Writes `summary.json` and `summary.md` into `dir`.
+/// Writes `summary.json` and `summary.md` into `dir`, moved into place
+/// together: a reader never meets the JSON of one summary beside the
+/// Markdown of another.
 pub(crate) fn write_summary(dir: &Path, summary: &Summary) -> Result<()> {
-    write_atomic(
+    let mut set = FileSet::default();
+    set.add_bytes(
         &dir.join("summary.json"),
         serde_json::to_string_pretty(summary)?.as_bytes(),
     )?;
-    write_atomic(&dir.join("summary.md"), summary.to_markdown().as_bytes())
+    set.add_bytes(&dir.join("summary.md"), summary.to_markdown().as_bytes())?;
+    set.commit()
 }
 
 fn share_row(s: &Share, paper: bool, bold: bool) -> String {

@@ -30,6 +30,7 @@
 //! range whose ends are valid only yields valid samples.
 
 pub mod axis;
+pub mod choice;
 pub mod count;
 pub mod layers;
 pub mod params;

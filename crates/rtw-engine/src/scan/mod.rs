@@ -21,6 +21,7 @@
 pub(crate) mod batch;
 pub mod checkpoint;
 pub(crate) mod chunks;
+mod context;
 #[cfg(test)]
 mod fixtures;
 pub mod lock;
@@ -36,4 +37,5 @@ pub(crate) mod space;
 pub mod workers;
 
 pub use batch::scan_batch;
+pub use context::Run;
 pub use progress::{Progress, Silent};

@@ -324,3 +324,87 @@ fn continuation_refuses_to_write_over_a_file_it_did_not_make() {
     assert_eq!(std::fs::read(&samples).unwrap(), before);
     assert!(!dir.path().join("d.parquet").exists());
 }
+
+/// Ctrl-C during a study of the step map (`args`, writing `NAME.parquet` in
+/// a folder of its own): it ends within the bound with exit 130, saying
+/// nothing was written, and leaves the folder as it was: no file of the
+/// study, no temporary file, no lock. `started` is a stderr line that shows
+/// the study is under way.
+fn interrupted_leaves_nothing(args: &[&str], started: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("phi.parquet");
+    let mut child = bin()
+        .args(args)
+        .args(["--out", out.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let lines = stderr_lines(&mut child);
+    let t0 = std::time::Instant::now();
+    let mut said = Vec::new();
+    loop {
+        let line = lines
+            .recv_timeout(std::time::Duration::from_secs(120))
+            .unwrap_or_else(|_| panic!("no {started:?} within 120 s: {said:?}"));
+        let found = line.contains(started);
+        said.push(line);
+        if found {
+            break;
+        }
+        assert!(t0.elapsed().as_secs() < 120, "{said:?}");
+    }
+    // The study's contract is 2 s; the bound leaves room for a loaded machine.
+    let (status, took) = interrupt(&mut child, std::time::Duration::from_secs(5));
+    said.extend(lines.try_iter());
+    eprintln!("{}: ended {took:?} after the interrupt", args[0]);
+    assert_eq!(status.code(), Some(130), "{said:?}");
+    assert!(
+        said.iter()
+            .any(|l| l.contains("interrupted") && l.contains("nothing was written")),
+        "{said:?}"
+    );
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
+#[test]
+fn an_interrupted_sweep_stops_at_once_and_writes_nothing() {
+    interrupted_leaves_nothing(
+        &[
+            "bifurcation",
+            "--from",
+            "0.14",
+            "--to",
+            "0.16",
+            "--points",
+            "400",
+            "--transient",
+            "60",
+            "--record",
+            "4",
+        ],
+        "(1/400)",
+    );
+}
+
+#[test]
+fn an_interrupted_continuation_stops_at_once_and_writes_nothing() {
+    interrupted_leaves_nothing(
+        &[
+            "continuation",
+            "--from",
+            "0.02",
+            "--to",
+            "0.4",
+            "--curve",
+            "fn",
+            "--through",
+            "4",
+        ],
+        "continuation",
+    );
+}

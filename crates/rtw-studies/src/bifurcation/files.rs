@@ -9,6 +9,7 @@ use anyhow::Result;
 use arrow_array::RecordBatch;
 use arrow_schema::SchemaRef;
 use rtw_engine::config::variant::ModelChoices;
+use rtw_engine::files::FileSet;
 use rtw_engine::io::destination::{self, Output};
 use rtw_engine::io::metadata::{
     FileKind, META_CYCLE, META_OPTIONS, META_PARAM, META_PARAMS, META_RECORD, META_TRANSIENT,
@@ -275,8 +276,10 @@ pub(crate) fn steps_path(out: &Path) -> PathBuf {
     destination::companion(out, "steps")
 }
 
-/// Writes both files; returns the per-step file's path.
+/// Adds both Parquet files to `set` (moved into place when it commits,
+/// with the summary); returns the per-step file's path.
 pub(crate) fn write(
+    set: &mut FileSet,
     out: &Path,
     sweep: &Sweep,
     points: &[PointRow],
@@ -287,9 +290,9 @@ pub(crate) fn write(
         std::fs::create_dir_all(dir)?;
     }
     let meta = file_metadata(sweep, wall_time_s)?;
-    parquet::write_file(out, &points_batch(sweep, points), meta.clone())?;
+    parquet::add_file(set, out, &points_batch(sweep, points), meta.clone())?;
     let sp = steps_path(out);
-    parquet::write_file(&sp, &steps_batch(sweep, steps), meta)?;
+    parquet::add_file(set, &sp, &steps_batch(sweep, steps), meta)?;
     Ok(sp)
 }
 

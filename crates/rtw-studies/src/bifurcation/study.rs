@@ -6,8 +6,9 @@ use crate::bifurcation::files::{check_outputs, write};
 use crate::bifurcation::summary::{period_str, summary_markdown};
 use crate::bifurcation::sweep::{PointRow, run_sweep};
 use anyhow::Result;
-use rtw_engine::files::write_atomic;
+use rtw_engine::files::FileSet;
 use rtw_engine::io::destination::summary_path;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -29,24 +30,33 @@ pub struct SweepFiles {
 
 /// Runs the sweep into `out` (`FILE.parquet`, one row per value), its
 /// `FILE.steps.parquet` (one row per recorded step) and its summary
-/// `FILE.md`; refuses first, unless `force`, files there that are not a
-/// sweep's. `on_value` hears of each value when it is done, in one line
-/// (`phi = 0.02000 (1/121): walk period 1 …`).
-pub fn run_to_files(
-    sweep: &Sweep,
-    out: &Path,
-    force: bool,
-    mut on_value: impl FnMut(&str),
-) -> Result<SweepFiles> {
+/// `FILE.md`, the three moved into place together; refuses first, unless
+/// `force`, files there that are not a sweep's. `run`'s progress hears of
+/// each value when it is done ([`Progress::advanced`]) with its line
+/// ([`Progress::note`]: `phi = 0.02000 (1/121): walk period 1 …`); its stop
+/// flag ends the sweep with [`Stopped`], nothing written.
+///
+/// [`Progress::advanced`]: rtw_engine::scan::Progress::advanced
+/// [`Progress::note`]: rtw_engine::scan::Progress::note
+/// [`Stopped`]: rtw_engine::scan::workers::Stopped
+pub fn run_to_files(sweep: &Sweep, out: &Path, force: bool, run: &Run) -> Result<SweepFiles> {
     let _lock = Lock::for_result(out, &format!("writing the sweep {}", out.display()))?;
     check_outputs(out, force)?;
     let t0 = Instant::now();
     let n = sweep.values.len();
-    let (points, steps) = run_sweep(sweep, |i, r| on_value(&value_line(sweep, i, n, r)));
+    run.progress.start(n as u64);
+    let swept = run_sweep(sweep, run, |i, r| {
+        run.progress.note(&value_line(sweep, i, n, r));
+        run.progress.advanced();
+    });
+    run.progress.finish(swept.is_ok());
+    let (points, steps) = swept?;
     let wall = t0.elapsed().as_secs_f64();
-    let steps_path = write(out, sweep, &points, &steps, wall)?;
+    let mut set = FileSet::default();
+    let steps_path = write(&mut set, out, sweep, &points, &steps, wall)?;
     let summary = summary_markdown(sweep, &points, wall);
-    write_atomic(&summary_path(out), summary.as_bytes())?;
+    set.add_bytes(&summary_path(out), summary.as_bytes())?;
+    set.commit()?;
     Ok(SweepFiles {
         values: points.len(),
         steps: steps.len(),

@@ -7,6 +7,7 @@ use hybrid_ode::limit;
 use rtw_engine::config::axis::linspace;
 use rtw_engine::config::params::SweepParam;
 use rtw_engine::config::validate_options;
+use rtw_engine::scan::Run;
 use rtw_model::cycles::{
     CycleError, CycleOptions, LimitCycle, SectionPoint, Step, StepError, StepMap,
 };
@@ -311,16 +312,20 @@ fn sweep_point(sweep: &Sweep, value: f64, from: Option<SectionPoint>) -> PointRe
 }
 
 /// The whole sweep, in order (continuation is sequential), calling
-/// `progress(i, row)` after each value.
+/// `progress(i, row)` after each value; [`Stopped`] as soon as `run`'s stop
+/// flag is set (the value in flight ends at its model run's next step).
+///
+/// [`Stopped`]: rtw_engine::scan::workers::Stopped
 pub(crate) fn run_sweep(
     sweep: &Sweep,
+    run: &Run,
     mut progress: impl FnMut(usize, &PointRow),
-) -> (Vec<PointRow>, Vec<StepRow>) {
+) -> Result<(Vec<PointRow>, Vec<StepRow>)> {
     let mut points = Vec::with_capacity(sweep.values.len());
     let mut step_rows = Vec::new();
     let mut carry = None;
     for (i, &value) in sweep.values.iter().enumerate() {
-        let r = sweep_point(sweep, value, carry);
+        let r = run.cancellable(|| sweep_point(sweep, value, carry))?;
         step_rows.extend(r.steps.iter().enumerate().map(|(k, s)| StepRow {
             value,
             k,
@@ -333,12 +338,14 @@ pub(crate) fn run_sweep(
         points.push(r.row);
         carry = r.next;
     }
-    (points, step_rows)
+    Ok((points, step_rows))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rtw_engine::scan::workers::Stopped;
+    use std::sync::atomic::AtomicBool;
 
     #[test]
     fn bad_bounds_name_the_flag_and_the_range() {
@@ -394,7 +401,8 @@ mod tests {
         )
         .unwrap();
         sweep.cycle.newton_max_iter = 8;
-        let (points, steps) = run_sweep(&sweep, |_, _| {});
+        let go = AtomicBool::new(false);
+        let (points, steps) = run_sweep(&sweep, &Run::silent(&go), |_, _| {}).unwrap();
         assert_eq!(points.len(), 2);
         assert!(!points[0].restarted && !points[1].restarted);
         // By hand: the first value from the initial state ...
@@ -431,5 +439,33 @@ mod tests {
             (row.period, row.floquet_max),
             (points[1].period, points[1].floquet_max)
         );
+    }
+
+    /// A stop flag set after the first value ends the sweep there, with
+    /// `Stopped`: the second value's runs end at their next step.
+    #[test]
+    fn a_stop_flag_ends_the_sweep_with_stopped() {
+        let sweep = Sweep::new(
+            SweepParam::parse("phi").unwrap(),
+            0.15,
+            0.16,
+            3,
+            Params::fig7a(),
+            Options::default(),
+            20,
+            6,
+        )
+        .unwrap();
+        let stop = AtomicBool::new(false);
+        let mut seen = 0;
+        let t0 = std::time::Instant::now();
+        let e = run_sweep(&sweep, &Run::silent(&stop), |_, _| {
+            seen += 1;
+            stop.store(true, std::sync::atomic::Ordering::SeqCst);
+        })
+        .unwrap_err();
+        assert!(e.downcast_ref::<Stopped>().is_some(), "{e:#}");
+        assert_eq!(seen, 1, "the sweep went on past its stop");
+        assert!(t0.elapsed().as_secs() < 60);
     }
 }

@@ -11,8 +11,8 @@ use super::{Continuation, files, segments, summary};
 use anyhow::{Result, bail};
 use rtw_engine::files::FileSet;
 use rtw_engine::io::destination::summary_path;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
-use rtw_engine::scan::progress::Progress;
 use std::path::Path;
 use std::time::Instant;
 
@@ -30,16 +30,19 @@ pub fn check_through(through: usize) -> Result<()> {
 
 /// Runs the diagram `c` into `out` and its companions (refusing, unless
 /// `force`, files that are not a diagram's), with up to `through` segments
-/// each way (0: none); returns the summary written to `FILE.md`. `progress`
-/// sees two stages: the diagram (one unit), then the directions followed
-/// through the mode changes (a unit each).
+/// each way (0: none); returns the summary written to `FILE.md`. `run`'s
+/// progress sees two stages: the diagram (one unit), then the directions
+/// followed through the mode changes (a unit each); its stop flag ends the
+/// study at its model run's next step with
+/// [`Stopped`](rtw_engine::scan::workers::Stopped), nothing written.
 pub fn run_to_files(
     c: &Continuation,
     through: usize,
     out: &Path,
     force: bool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<String> {
+    let progress = run.progress;
     check_through(through)?;
     let _lock = Lock::for_result(out, &format!("writing the diagram {}", out.display()))?;
     files::check_outputs(out, force)?;
@@ -49,7 +52,7 @@ pub fn run_to_files(
     let t0 = Instant::now();
     progress.stage("continuation: the branches through the start");
     progress.start(1);
-    let result = super::run(c);
+    let result = run.cancellable(|| super::run(c)).and_then(|r| r);
     if result.is_ok() {
         progress.advanced();
     }
@@ -68,9 +71,9 @@ pub fn run_to_files(
     let dirs = if through > 0 {
         rtw_engine::pause_at("continuation-segments");
         progress.stage("continuation --through: directions followed");
-        let dirs = segments::run(c, &result.diagram, through, progress);
-        progress.finish(true);
-        Some(dirs)
+        let dirs = run.cancellable(|| segments::run(c, &result.diagram, through, progress));
+        progress.finish(dirs.is_ok());
+        Some(dirs?)
     } else {
         None
     };

@@ -5,6 +5,7 @@
 
 use crate::profile::{MAX_GRID_POINTS, MIN_TOL};
 use anyhow::{Result, bail};
+use rtw_engine::config::choice::{choice, one_of};
 use rtw_engine::config::count::count_value;
 use rtw_model::{Label, Num, Param};
 use serde::{Deserialize, Serialize};
@@ -65,6 +66,12 @@ pub enum Method {
     /// The designs of a scrambled Sobol sequence in the box, in order: the
     /// baseline a search must beat at equal cost.
     Sobol,
+}
+
+impl Method {
+    /// Each method by its name in a config.
+    pub const NAMES: [(&'static str, Method); 2] =
+        [("cmaes", Method::Cmaes), ("sobol", Method::Sobol)];
 }
 
 /// The design inputs a search varies, in the order of its unit box.
@@ -215,32 +222,26 @@ impl SearchSettings {
         }
         let seed = count_value("seed", &raw.seed, 0..=u64::MAX, "")?;
         let budget = count_value("budget", &raw.budget, 1..=MAX_BUDGET, "")?;
-        let method = match raw.method.as_deref().unwrap_or("cmaes") {
-            "cmaes" => Method::Cmaes,
-            "sobol" => Method::Sobol,
-            m => bail!(invalid(
-                "method",
-                format!("{m:?}"),
-                "\"cmaes\" or \"sobol\""
-            )),
-        };
+        let method = choice(
+            "method",
+            raw.method.as_deref().unwrap_or("cmaes"),
+            &Method::NAMES,
+        )?;
         let batch = count("batch", raw.batch.as_ref(), 8, 2, MAX_BATCH)?;
+        let names = Objective::ALL.map(|o| (o.as_str(), o));
         if raw.objectives.is_empty() || raw.objectives.len() > 2 {
             bail!(invalid(
                 "objectives",
                 format!("{:?}", raw.objectives),
-                "one or two of \"slope_range\", \"phi_min\", \"speed\", \"mfpt\""
+                &format!(
+                    "one or two of {}",
+                    one_of(&names).trim_start_matches("one of ")
+                )
             ));
         }
         let mut objectives = Vec::new();
         for (i, o) in raw.objectives.iter().enumerate() {
-            let Some(obj) = Objective::ALL.into_iter().find(|x| x.as_str() == o) else {
-                bail!(invalid(
-                    &format!("objectives[{i}]"),
-                    format!("{o:?}"),
-                    "one of \"slope_range\", \"phi_min\", \"speed\", \"mfpt\""
-                ));
-            };
+            let obj = choice(&format!("objectives[{i}]"), o, &names)?;
             if objectives.contains(&obj) {
                 bail!(invalid(
                     &format!("objectives[{i}]"),
@@ -487,7 +488,7 @@ to = 0.4
             (
                 "seed = 1",
                 "seed = 1\nmethod = \"grid\"",
-                "method: \"grid\" is invalid: must be \"cmaes\" or \"sobol\"",
+                "method: \"grid\" is invalid: must be one of \"cmaes\", \"sobol\"",
             ),
             (
                 "seed = 1",
