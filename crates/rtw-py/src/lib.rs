@@ -251,8 +251,8 @@ fn scan<'py>(
     threads: Option<Bound<'py, PyAny>>,
     progress: Option<Bound<'py, PyAny>>,
     sampling: Option<Bound<'py, PyAny>>,
-    samples: Option<u64>,
-    seed: Option<u64>,
+    samples: Option<Bound<'py, PyAny>>,
+    seed: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let overrides = PyOverrides::new(options.as_ref())?;
     let sampling = match sampling {
@@ -267,8 +267,8 @@ fn scan<'py>(
     };
     let design = DesignKeys {
         sampling,
-        samples,
-        seed,
+        samples: samples.as_ref().map(digits).transpose()?,
+        seed: seed.as_ref().map(digits).transpose()?,
     };
     let cfg = match PyConfig::new(Some(&config))?.expect("given") {
         PyConfig::File(p) => load_layered(&p, variant.as_deref(), overrides.layer()),

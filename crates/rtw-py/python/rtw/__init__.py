@@ -309,10 +309,6 @@ def scan(
         if options is not None:
             raise TypeError("scan() got both set= and options=: give options= only")
         options = set
-    for key, value in (("samples", samples), ("seed", seed)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**63):
-            low = 1 if key == "samples" else 0
-            raise ValueError(f"{key}: {value!r} is invalid: must be an integer >= {low} and below 2^63")
     with tell as report:
         return _rtw.scan(config, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
 
