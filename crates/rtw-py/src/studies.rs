@@ -10,14 +10,16 @@ use crate::{
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use rtw_model::Options;
 use rtw_scan::basin::{Settings as BasinSettings, slice_table};
 use rtw_scan::config::layers::simulation_options;
 use rtw_scan::profile::{Names as ProfileNames, Settings as ProfileSettings, run as run_profile};
 use rtw_scan::scan::progress::Counter;
 use rtw_scan::scan::workers::parse_threads;
-use rtw_scan::search::{self, SearchSettings};
+use rtw_scan::search::{self, Reported, Search, SearchSettings};
+use std::num::NonZeroUsize;
 use std::path::PathBuf;
-use std::sync::atomic::AtomicU64;
+use std::sync::atomic::{AtomicBool, AtomicU64};
 
 /// A slice of the gait's basin of attraction (`rtw-scan basin`): a
 /// `pyarrow.Table` with one row per grid point, the columns of the CLI's
@@ -135,19 +137,7 @@ pub(crate) fn design_search<'py>(
             Some(dir) => search::files::run_to_files(
                 &settings, &options, threads, dir, force, &counter, cancel,
             ),
-            None => search::run(
-                &settings,
-                &options,
-                threads,
-                &[],
-                &counter,
-                cancel,
-                &mut |_| Ok(()),
-            )
-            .and_then(|s| {
-                let r = search::report(&s, &options, threads, &counter, cancel)?;
-                Ok((s, r))
-            }),
+            None => search_in_memory(&settings, &options, threads, &counter, cancel),
         },
         || report(progress.as_ref(), &counter),
     )?
@@ -164,6 +154,22 @@ pub(crate) fn design_search<'py>(
         evaluations.unbind(),
         designs.unbind(),
     ))
+}
+
+/// The search of `s` with no folder: [`search::run`] (nothing stored
+/// between generations), then [`search::report`] of its designs, as
+/// `search::files::run_to_files` chains them around its files. rtw-scan has
+/// no entry for the two without files; this is the one place that chains them.
+fn search_in_memory(
+    s: &SearchSettings,
+    options: &Options,
+    threads: Option<NonZeroUsize>,
+    counter: &Counter,
+    cancel: &AtomicBool,
+) -> anyhow::Result<(Search, Vec<Reported>)> {
+    let found = search::run(s, options, threads, &[], counter, cancel, &mut |_| Ok(()))?;
+    let reported = search::report(&found, options, threads, counter, cancel)?;
+    Ok((found, reported))
 }
 
 /// A design file as Python gets it: its path, its role, its table.
