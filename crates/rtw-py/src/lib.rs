@@ -12,6 +12,7 @@
 mod design;
 mod geometry;
 mod options;
+mod page;
 mod studies;
 mod types;
 mod views;
@@ -563,6 +564,8 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::read_design, m)?)?;
     m.add_function(wrap_pyfunction!(views::scan_views, m)?)?;
     m.add_function(wrap_pyfunction!(views::density_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(page::check_page, m)?)?;
+    m.add_function(wrap_pyfunction!(page::write_page, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;
@@ -578,6 +581,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
         PyTuple::new(m.py(), label_names(Label::is_failure))?,
     )?;
     m.add("Z95", rtw_scan::Z95)?;
+    m.add("PAGE_GENERATOR", page::GENERATOR)?;
     geometry::register(m)?;
     m.add("__version__", rtw_scan::VERSION)?;
     Ok(())
