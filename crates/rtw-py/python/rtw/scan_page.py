@@ -358,22 +358,14 @@ def _header(meta: dict[str, str], summary: dict | None, n: int, counts: Counter,
 
 def pick(scan: Scan, outputs: list[str], per_outcome: int, samples: list[int], tell: Progress) -> Shown:
     """What the page shows of `scan`: the inputs and `outputs` on the
-    parallel coordinates (each a numeric column, else ReportError), every
-    row or, above PLOT_ROWS, rtw-scan's aggregates and stratified sample,
-    the parallel categories, the failure clusters, the gaits of the
-    representative samples (`per_outcome` per outcome, and `samples`; each
-    run again, counted by `tell`, the progress bar), the sensitivity indices and the images."""
-    import pyarrow as pa
-
-    table, config = scan.table, scan.config
+    parallel coordinates, every row or, above PLOT_ROWS, rtw-scan's
+    aggregates and stratified sample, the parallel categories, the failure
+    clusters, the gaits of the representative samples (`per_outcome` per
+    outcome, and `samples`; each run again, counted by `tell`, the progress
+    bar), the sensitivity indices and the images."""
+    table = scan.table
     n = table.num_rows
-    inputs = [c for c in ("length", *INPUTS) if c != "length" or len(set(table["length"].to_pylist())) > 1]
-    for c in outputs:
-        numeric = c in table.column_names and (pa.types.is_integer(table.schema.field(c).type)
-                                               or pa.types.is_floating(table.schema.field(c).type))
-        if not numeric:
-            raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
-    plotted = ["sample_id", *inputs, *[c for c in outputs if c not in inputs]]
+    inputs, plotted = _plotted(table, outputs)
     big = n > PLOT_ROWS
     if big:
         # Too many rows to send one by one: rtw-scan aggregates them (every
@@ -386,18 +378,8 @@ def pick(scan: Scan, outputs: list[str], per_outcome: int, samples: list[int], t
         big_view = None
     # "clusters" is null when there are fewer failures than the config's k.
     centres = ((scan.summary or {}).get("clusters") or {}).get("clusters") or []
-
     failed = [i for i, o in enumerate(rows["outcome"]) if o in FAILURE_LABELS]
-    if scan.found:
-        assign = dict(scan.found[1])
-        how = f"from {scan.found[0].name} (rtw-scan cluster --assignments)"
-    elif centres and failed and len(scan.files) == 1:
-        # rtw-scan's own clustering of the file (the config's k, seed and
-        # restarts), the assignments `rtw-scan cluster --assignments` writes.
-        assign = dict(failure_clusters(scan.files[0]) or [])
-        how = "rtw-scan's clustering of the failures (as `rtw-scan cluster --assignments` writes it)"
-    else:
-        assign, how = {}, "no clusters in summary.json"
+    assign, how = _assignments(scan, centres, failed)
 
     detail = n <= DETAIL_ROWS
     names = [o for o in OUTCOMES if counts.get(o)] + sorted(o for o in counts if o not in OUTCOMES)
@@ -418,28 +400,11 @@ def pick(scan: Scan, outputs: list[str], per_outcome: int, samples: list[int], t
                    {c: clean([min(v for v in rows[c] if v is not None), max(v for v in rows[c] if v is not None)])
                     for c in plotted if any(v is not None for v in rows[c])}),
     }
-    # Parallel categories: the outcome against the binned inputs that matter most (Fig. S4's three).
-    box = config.get("params", {})
-
-    def span(c):
-        u = box.get(c, {}).get("uniform") if isinstance(box.get(c), dict) else None
-        return u if u else data["ranges"][c]
-
-    # Counted over every row (the table's columns when the rows are not all in `rows`).
-    every = rows
-    if big:
-        import numpy as np
-
-        every = {c: table[c] for c in ("alpha", "fn", "phi")}
-        every["outcome"] = np.array(big_view["labels"], dtype=object)[big_view["outcome"]]
-    binned = {c: _bins(every[c], *span(c)) for c in ("alpha", "fn", "phi")}
-    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), every["outcome"]))
     if big:
         data["big"] = _big_page(big_view, names, len(rows["sample_id"]))
         data["big"]["clusters"] = _big_clusters(big_view, table, assign, len(centres))
         data["big"]["failures"] = sum(counts.get(f, 0) for f in FAILURE_LABELS)
-    data["parcats"] = {"dims": ["alpha", "fn", "phi", "outcome"], "order": [binned[c][1] for c in binned] + [names],
-                       "values": [list(k) for k in combos], "counts": list(combos.values())}
+    data["parcats"] = _parcats(scan, rows, big_view, data["ranges"], names)
     data["clusters"] = {"centres": clean(centres), "how": how,
                         "index": [i for i in failed], "cluster": [assign.get(rows["sample_id"][i], -1) for i in failed]}
     picks = _representatives(rows, assign, centres, per_outcome, samples)
@@ -449,6 +414,59 @@ def pick(scan: Scan, outputs: list[str], per_outcome: int, samples: list[int], t
     # The maps in DIR (robustness maps, figures), up to 2 MB each.
     data["images"] = images(scan.base, ("png",), 2_000_000)[0]
     return Shown(data, counts)
+
+
+def _plotted(table: Any, outputs: list[str]) -> tuple[list[str], list[str]]:
+    """The inputs on the parallel coordinates (L only when the scan varies
+    it), and every plotted column: ``sample_id``, the inputs, then
+    `outputs`, each of which must be a numeric column of the scan."""
+    import pyarrow as pa
+
+    inputs = [c for c in ("length", *INPUTS) if c != "length" or len(set(table["length"].to_pylist())) > 1]
+    for c in outputs:
+        numeric = c in table.column_names and (pa.types.is_integer(table.schema.field(c).type)
+                                               or pa.types.is_floating(table.schema.field(c).type))
+        if not numeric:
+            raise ReportError(f"outputs: {c!r} is not a numeric column of the scan (docs/data-dictionary.md)")
+    return inputs, ["sample_id", *inputs, *[c for c in outputs if c not in inputs]]
+
+
+def _assignments(scan: Scan, centres: list[dict], failed: list[int]) -> tuple[dict[int, int], str]:
+    """Each failure's cluster (sample id → cluster index) and where it comes
+    from: the assignments file beside the scan, else rtw-scan's clustering
+    of the scan's one file when summary.json has centres, else none."""
+    if scan.found:
+        return dict(scan.found[1]), f"from {scan.found[0].name} (rtw-scan cluster --assignments)"
+    if centres and failed and len(scan.files) == 1:
+        # rtw-scan's own clustering of the file (the config's k, seed and
+        # restarts), the assignments `rtw-scan cluster --assignments` writes.
+        return (dict(failure_clusters(scan.files[0]) or []),
+                "rtw-scan's clustering of the failures (as `rtw-scan cluster --assignments` writes it)")
+    return {}, "no clusters in summary.json"
+
+
+def _parcats(scan: Scan, rows: dict[str, list], big_view: dict | None, ranges: dict[str, Any],
+             names: list[str]) -> dict[str, Any]:
+    """The parallel categories: the outcome against the binned inputs that
+    matter most (Fig. S4's three), each binned over the config's box (else
+    its range in the rows), counted over every row (the table's columns when
+    the rows are not all in `rows`, a large scan's)."""
+    box = scan.config.get("params", {})
+
+    def span(c):
+        u = box.get(c, {}).get("uniform") if isinstance(box.get(c), dict) else None
+        return u if u else ranges[c]
+
+    every = rows
+    if big_view is not None:
+        import numpy as np
+
+        every = {c: scan.table[c] for c in ("alpha", "fn", "phi")}
+        every["outcome"] = np.array(big_view["labels"], dtype=object)[big_view["outcome"]]
+    binned = {c: _bins(every[c], *span(c)) for c in ("alpha", "fn", "phi")}
+    combos = Counter(zip(*(binned[c][0] for c in ("alpha", "fn", "phi")), every["outcome"]))
+    return {"dims": ["alpha", "fn", "phi", "outcome"], "order": [binned[c][1] for c in binned] + [names],
+            "values": [list(k) for k in combos], "counts": list(combos.values())}
 
 
 def _gaits(scan: Scan, rows: dict[str, list], picks: list[tuple[int, str]], detail: bool,
