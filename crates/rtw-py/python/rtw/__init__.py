@@ -286,7 +286,9 @@ def scan(
             the config's ``samples``.
         seed: the seed of every draw, over the config's ``seed``. With any of
             the three, the rows are those of ``rtw-scan run`` on the config
-            holding them.
+            holding them. ``samples`` and ``seed`` are integers in
+            [0, 2^63 - 1], as a config holds them, then checked as its keys
+            are (``samples`` at least 1).
 
     The rows are held in memory: a scan of more than 1 000 000 rows is
     refused (``ValueError``); run it with ``rtw-scan run CONFIG --out DIR``,
