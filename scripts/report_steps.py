@@ -9,8 +9,9 @@ PLOT_ROWS rows, in Rust); clustering the failures (rtw-scan's k-means, when
 no assignments file is beside the scan); the gaits (a run of each
 representative sample); packing the page (JSON, gzip, base64) and writing
 it; and the rest. Each is
-timed by wrapping the report module's own function, so what is timed is what
-`python -m rtw report` runs (scripts/report_scale.sh).
+timed by wrapping the report modules' own functions (rtw.report, which reads
+and writes; rtw.scan_page, which picks and renders; rtw._page, which packs),
+so what is timed is what `python -m rtw report` runs (scripts/report_scale.sh).
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from collections import defaultdict
 import rtw  # noqa: F401  (loads rtw.report)
 
 report = sys.modules["rtw.report"]
+scan_page = sys.modules["rtw.scan_page"]
+page = sys.modules["rtw._page"]
 spent: dict[str, float] = defaultdict(float)
 
 
@@ -36,21 +39,21 @@ def timed(step: str, f):
 
 
 class Rtw:
-    """rtw.report's `_rtw`, with its reader timed."""
+    """rtw.report's `_rtw`, with its reader and its writer timed."""
 
     def __getattr__(self, name):
         f = getattr(report._rtw_module, name)
-        return timed("read", f) if name == "read_scan_folder" else f
+        step = {"read_scan_folder": "read", "write_page": "pack"}.get(name)
+        return timed(step, f) if step else f
 
 
 report._rtw_module = report._rtw
 report._rtw = Rtw()
-report._big = timed("aggregate", report._big)
-report._big_clusters = timed("aggregate", report._big_clusters)
-report.failure_clusters = timed("clusters", report.failure_clusters)
-report._gait = timed("gaits", report._gait)
-report._b64gz = timed("pack", report._b64gz)
-report.write_page = timed("pack", report.write_page)
+scan_page._big = timed("aggregate", scan_page._big)
+scan_page._big_clusters = timed("aggregate", scan_page._big_clusters)
+scan_page.failure_clusters = timed("clusters", scan_page.failure_clusters)
+scan_page._gait = timed("gaits", scan_page._gait)
+page.b64gz = timed("pack", page.b64gz)
 start = time.perf_counter()
 report.report(sys.argv[1], sys.argv[2], force=True, progress=False)
 total = time.perf_counter() - start

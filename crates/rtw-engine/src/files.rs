@@ -222,7 +222,7 @@ pub fn parquet_files(dir: &Path) -> Result<Vec<PathBuf>> {
 /// a FIFO, a socket). rtw-scan replaces only plain files, through a rename
 /// in their folder; `--force` never overrides this, since replacing a
 /// symlink or a device would destroy what it is, not a result.
-pub(crate) fn refuse_special(dest: &Path, flag: &str) -> Result<()> {
+pub fn refuse_special(dest: &Path, flag: &str) -> Result<()> {
     let named = if flag.is_empty() {
         dest.display().to_string()
     } else {

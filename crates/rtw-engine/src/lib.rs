@@ -72,15 +72,26 @@ pub use io::metadata::VERSION;
 /// plain build does nothing here. It waits once per process (the merge
 /// passes its point once per file).
 pub fn pause_at(point: &str) {
+    pause_unless(point, &std::sync::atomic::AtomicBool::new(false));
+}
+
+/// [`pause_at`] for a study that takes a stop flag: the wait ends as soon as
+/// `stop` is set, so that a test interrupting the study there sees it stop
+/// as it would anywhere else.
+pub fn pause_unless(point: &str, stop: &std::sync::atomic::AtomicBool) {
     #[cfg(feature = "fake-sim")]
     if std::env::var("RTW_SCAN_PAUSE").is_ok_and(|p| p == point) {
+        use std::sync::atomic::Ordering;
         static PAUSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-        if PAUSED.swap(true, std::sync::atomic::Ordering::SeqCst) {
+        if PAUSED.swap(true, Ordering::SeqCst) {
             return;
         }
         eprintln!("rtw-scan: paused at {point} (RTW_SCAN_PAUSE)");
-        std::thread::sleep(std::time::Duration::from_secs(60));
+        let t0 = std::time::Instant::now();
+        while t0.elapsed() < std::time::Duration::from_secs(60) && !stop.load(Ordering::SeqCst) {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
     }
     #[cfg(not(feature = "fake-sim"))]
-    let _ = point;
+    let _ = (point, stop);
 }

@@ -6,15 +6,22 @@
 //! `rtw-scan run` computes for that file.
 
 use anyhow::{Result, anyhow};
+use rtw_engine::config::count::count;
 use rtw_engine::config::{self, ScanConfig};
 use rtw_engine::sampling::Sampling;
 
-/// The design keys of one `rtw.scan` call (`None`: the config's own).
+/// The design keys of one `rtw.scan` call (`None`: the config's own);
+/// `samples` and `seed` as the caller's value reads (`crate::digits`).
 pub(crate) struct DesignKeys {
     pub(crate) sampling: Option<String>,
-    pub(crate) samples: Option<u64>,
-    pub(crate) seed: Option<u64>,
+    pub(crate) samples: Option<String>,
+    pub(crate) seed: Option<String>,
 }
+
+/// The integers a config's `samples` and `seed` can hold: TOML's (the
+/// resolved config is parsed again as TOML), whose own checks of the value
+/// (`samples` at least 1, at most 10^12 rows) come after.
+const TOML_INTEGER: std::ops::RangeInclusive<u64> = 0..=i64::MAX as u64;
 
 impl DesignKeys {
     /// `cfg` with these keys set, validated as a config file is.
@@ -28,11 +35,11 @@ impl DesignKeys {
                 .find(|s| s.name() == name)
                 .ok_or_else(|| invalid_sampling(&format!("{name:?}")))?;
         }
-        if let Some(n) = self.samples {
-            cfg.samples = n;
+        if let Some(n) = &self.samples {
+            cfg.samples = count("samples", n, TOML_INTEGER, "")?;
         }
-        if let Some(s) = self.seed {
-            cfg.seed = s;
+        if let Some(s) = &self.seed {
+            cfg.seed = count("seed", s, TOML_INTEGER, "")?;
         }
         // The resolved config parses back to itself; parsing it checks the new keys.
         config::parse(&cfg.to_toml())

@@ -12,6 +12,7 @@
 mod design;
 mod geometry;
 mod options;
+mod page;
 mod studies;
 mod types;
 mod views;
@@ -251,8 +252,8 @@ fn scan<'py>(
     threads: Option<Bound<'py, PyAny>>,
     progress: Option<Bound<'py, PyAny>>,
     sampling: Option<Bound<'py, PyAny>>,
-    samples: Option<u64>,
-    seed: Option<u64>,
+    samples: Option<Bound<'py, PyAny>>,
+    seed: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let overrides = PyOverrides::new(options.as_ref())?;
     let sampling = match sampling {
@@ -267,8 +268,8 @@ fn scan<'py>(
     };
     let design = DesignKeys {
         sampling,
-        samples,
-        seed,
+        samples: samples.as_ref().map(digits).transpose()?,
+        seed: seed.as_ref().map(digits).transpose()?,
     };
     let cfg = match PyConfig::new(Some(&config))?.expect("given") {
         PyConfig::File(p) => load_layered(&p, variant.as_deref(), overrides.layer()),
@@ -563,6 +564,8 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::read_design, m)?)?;
     m.add_function(wrap_pyfunction!(views::scan_views, m)?)?;
     m.add_function(wrap_pyfunction!(views::density_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(page::check_page, m)?)?;
+    m.add_function(wrap_pyfunction!(page::write_page, m)?)?;
     m.add_class::<Outcome>()?;
     m.add_class::<LimitCycle>()?;
     m.add_class::<Modes>()?;
@@ -578,6 +581,7 @@ fn _rtw(m: &Bound<'_, PyModule>) -> PyResult<()> {
         PyTuple::new(m.py(), label_names(Label::is_failure))?,
     )?;
     m.add("Z95", rtw_engine::Z95)?;
+    m.add("PAGE_GENERATOR", page::GENERATOR)?;
     geometry::register(m)?;
     m.add("__version__", rtw_engine::VERSION)?;
     Ok(())

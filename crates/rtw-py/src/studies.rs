@@ -13,13 +13,15 @@ use pyo3::types::PyDict;
 use rtw_engine::config::layers::simulation_options;
 use rtw_engine::scan::progress::Counter;
 use rtw_engine::scan::workers::parse_threads;
+use rtw_model::Options;
 use rtw_studies::basin::{Settings as BasinSettings, slice_table};
 use rtw_studies::profile::{
     Names as ProfileNames, Settings as ProfileSettings, run as run_profile,
 };
-use rtw_studies::search::{self, SearchSettings};
+use rtw_studies::search::{self, Reported, Search, SearchSettings};
+use std::num::NonZeroUsize;
 use std::path::PathBuf;
-use std::sync::atomic::AtomicU64;
+use std::sync::atomic::{AtomicBool, AtomicU64};
 
 /// A slice of the gait's basin of attraction (`rtw-scan basin`): a
 /// `pyarrow.Table` with one row per grid point, the columns of the CLI's
@@ -137,19 +139,7 @@ pub(crate) fn design_search<'py>(
             Some(dir) => search::files::run_to_files(
                 &settings, &options, threads, dir, force, &counter, cancel,
             ),
-            None => search::run(
-                &settings,
-                &options,
-                threads,
-                &[],
-                &counter,
-                cancel,
-                &mut |_| Ok(()),
-            )
-            .and_then(|s| {
-                let r = search::report(&s, &options, threads, &counter, cancel)?;
-                Ok((s, r))
-            }),
+            None => search_in_memory(&settings, &options, threads, &counter, cancel),
         },
         || report(progress.as_ref(), &counter),
     )?
@@ -166,6 +156,22 @@ pub(crate) fn design_search<'py>(
         evaluations.unbind(),
         designs.unbind(),
     ))
+}
+
+/// The search of `s` with no folder: [`search::run`] (nothing stored
+/// between generations), then [`search::report`] of its designs, as
+/// `search::files::run_to_files` chains them around its files. rtw-scan has
+/// no entry for the two without files; this is the one place that chains them.
+fn search_in_memory(
+    s: &SearchSettings,
+    options: &Options,
+    threads: Option<NonZeroUsize>,
+    counter: &Counter,
+    cancel: &AtomicBool,
+) -> anyhow::Result<(Search, Vec<Reported>)> {
+    let found = search::run(s, options, threads, &[], counter, cancel, &mut |_| Ok(()))?;
+    let reported = search::report(&found, options, threads, counter, cancel)?;
+    Ok((found, reported))
 }
 
 /// A design file as Python gets it: its path, its role, its table.

@@ -105,3 +105,18 @@ def test_design_options_are_checked_with_the_field_and_valid_values() -> None:
     for key, bad in (("samples", -1), ("samples", True), ("seed", -1), ("seed", 2**64), ("seed", 1.5)):
         with pytest.raises(ValueError, match=f"{key}: {bad!r} is invalid: must be an integer"):
             rtw.scan(config, progress=False, **{key: bad})
+
+
+@pytest.mark.parametrize("key, bad", [("samples", -1), ("samples", True), ("samples", 2**63), ("samples", "8"),
+                                      ("seed", -1), ("seed", 2**63), ("seed", 1.5), ("seed", False)])
+def test_design_counts_are_checked_by_the_native_layer_with_their_range(key, bad) -> None:
+    """`samples` and `seed` are counts the native layer reads (rtw-scan's
+    `config::count`): anything but an integer a config can hold is refused
+    naming the key, the value and the range, with no check of Python's."""
+    import inspect
+
+    assert "2**63" not in inspect.getsource(rtw.scan)
+    with pytest.raises(ValueError) as e:
+        rtw.scan(_config("random", 8), progress=False, **{key: bad})
+    shown = repr(bad) if not isinstance(bad, int) or isinstance(bad, bool) else str(bad)
+    assert str(e.value) == f"{key}: {shown} is invalid: must be an integer in [0, 9223372036854775807]"

@@ -61,7 +61,7 @@ def test_a_changed_plotly_bundle_is_refused(tmp_path, monkeypatch):
         (assets / f.name).write_bytes(f.read_bytes())
     js = assets / report_module.PLOTLY_JS
     js.write_bytes(js.read_bytes().replace(b"plotly.js v", b"plotly.js w", 1))
-    monkeypatch.setattr(report_module, "ASSETS", assets)
+    monkeypatch.setattr(sys.modules["rtw._page"], "ASSETS", assets)
     with pytest.raises(ImportError, match="sha256"):
         rtw.report(SCAN, out=tmp_path / "report.html")
     assert not (tmp_path / "report.html").exists()

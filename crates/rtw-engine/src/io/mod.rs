@@ -14,6 +14,7 @@
 //! | `destination` | the refusal to write one kind of file over another |
 //! | `trace` | `simulate --trace` files and their size bound |
 //! | `markdown` | a Markdown table's cell text |
+//! | `page` | a report's HTML page written with the same refusals, atomically |
 //!
 //! Public: what a reader of rtw-scan's files needs, re-exported here.
 
@@ -21,6 +22,7 @@ pub mod content_hash;
 pub mod destination;
 pub mod markdown;
 pub mod metadata;
+pub mod page;
 pub mod parquet;
 pub mod robustness_columns;
 pub(crate) mod robustness_measures;

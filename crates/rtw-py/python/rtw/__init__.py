@@ -286,7 +286,9 @@ def scan(
             the config's ``samples``.
         seed: the seed of every draw, over the config's ``seed``. With any of
             the three, the rows are those of ``rtw-scan run`` on the config
-            holding them.
+            holding them. ``samples`` and ``seed`` are integers in
+            [0, 2^63 - 1], as a config holds them, then checked as its keys
+            are (``samples`` at least 1).
 
     The rows are held in memory: a scan of more than 1 000 000 rows is
     refused (``ValueError``); run it with ``rtw-scan run CONFIG --out DIR``,
@@ -309,10 +311,6 @@ def scan(
         if options is not None:
             raise TypeError("scan() got both set= and options=: give options= only")
         options = set
-    for key, value in (("samples", samples), ("seed", seed)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**63):
-            low = 1 if key == "samples" else 0
-            raise ValueError(f"{key}: {value!r} is invalid: must be an integer >= {low} and below 2^63")
     with tell as report:
         return _rtw.scan(config, _path(variant), _options(options, {}), threads, report, sampling, samples, seed)
 

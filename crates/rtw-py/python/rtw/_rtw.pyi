@@ -24,6 +24,8 @@ LABELS: tuple[str, ...]
 STABLE_LABELS: tuple[str, ...]
 FAILURE_LABELS: tuple[str, ...]
 Z95: float
+# The marker in every page rtw.report writes, by which write_page knows rtw's own.
+PAGE_GENERATOR: str
 # Each spoke (a+, b+, c+, a−, b−, c−) as (rod index, tip sign ±1); each string as its pair of spokes.
 SPOKES: list[tuple[int, int]]
 STRINGS: list[tuple[int, int]]
@@ -219,6 +221,14 @@ def read_scan_folder(
 def read_indices(path: str | os.PathLike[str], scan: Mapping[str, str], rows: int) -> pyarrow.Table: ...
 def read_design(path: str | os.PathLike[str]) -> list[tuple[Path, str, pyarrow.Table]] | None: ...
 def density_grid(group: bytes, groups: int, x: bytes, y: bytes) -> list[list[int]]: ...
+def check_page(path: str | os.PathLike[str], force: bool) -> None:
+    """Refuses ``path`` as the place of a page: a symlink or not a regular
+    file (always), a file without ``PAGE_GENERATOR`` (unless ``force``),
+    a folder that does not exist (``FileNotFoundError``)."""
+    ...
+def write_page(path: str | os.PathLike[str], html: str, force: bool) -> None:
+    """Writes ``html`` at ``path`` atomically, checked as ``check_page`` checks it."""
+    ...
 def scan_views(table: pyarrow.Table, columns: list[str], x: str, y: str, sample: int, seed: int) -> dict[str, Any]:
     """The report's aggregated views of a large scan: ``labels``, ``outcome``
     (bytes), ``columns`` ({name: (range or None, bytes)}), ``density`` (per

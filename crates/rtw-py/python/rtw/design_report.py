@@ -30,8 +30,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from .report import GENERATOR, _b64gz, _clean, _meta, _style, fill, page_assets
-from .report import images as report_images
+from ._page import clean, images, page, style, text_metadata
 
 # Figures and animations inlined up to this size each (the atlas's GIFs are
 # about 0.3 MB); a larger one is named on the page, not carried.
@@ -45,7 +44,7 @@ HEAD = {"rho": "ρ", "alpha": "α", "fn": "f_n", "zeta": "ζ", "phi_lo": "phi_lo
 
 
 def _columns(table) -> dict[str, list]:
-    return {c: _clean(v) for c, v in table.to_pydict().items()}
+    return {c: clean(v) for c, v in table.to_pydict().items()}
 
 
 def _searches(files: list[tuple[Path, str, Any]]) -> tuple[list[dict], list[dict]]:
@@ -54,7 +53,7 @@ def _searches(files: list[tuple[Path, str, Any]]) -> tuple[list[dict], list[dict
     searches: dict[str, dict] = {}
     profiles = []
     for path, role, table in files:
-        meta = _meta(table.schema.metadata)
+        meta = text_metadata(table.schema.metadata)
         if role == "profile":
             about = json.loads(meta["rtw.profile"])
             cols = _columns(table.select(["phi", "outcome", "speed", "f_w"]))
@@ -124,8 +123,7 @@ def design_page(directory: Path, files: list[tuple[Path, str, Any]], plotly_js: 
     from . import __version__
 
     searches, profiles = _searches(files)
-    images, skipped = report_images(directory if directory.is_dir() else directory.parent, ("png", "gif"),
-                                    IMAGE_BYTES)
+    shown, skipped = images(directory if directory.is_dir() else directory.parent, ("png", "gif"), IMAGE_BYTES)
     e = html.escape
     names = ", ".join(s["name"] for s in searches)
     title = f"rtw design report: {names}"
@@ -135,15 +133,5 @@ def design_page(directory: Path, files: list[tuple[Path, str, Any]], plotly_js: 
               "found stable (docs/design.md).</p>")
     if skipped:
         header += f"<p class='note'>Not inlined (over {IMAGE_BYTES / 1e6:.0f} MB): {e(', '.join(skipped))}.</p>"
-    data = {"searches": searches, "profiles": profiles, "images": images, "style": _style()}
-    page, shared = page_assets("design")
-    parts = {
-        **shared,
-        "GENERATOR": GENERATOR,
-        "TITLE": e(title),
-        "HEADER": header,
-        "TABLES": _tables(searches),
-        "PLOTLY": _b64gz(plotly_js),
-        "DATA": _b64gz(json.dumps(_clean(data), separators=(",", ":"), allow_nan=False)),
-    }
-    return fill(page, parts)
+    data = {"searches": searches, "profiles": profiles, "images": shown, "style": style()}
+    return page("design", title, header, data, plotly_js, {"TABLES": _tables(searches)})

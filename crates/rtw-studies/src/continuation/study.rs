@@ -69,7 +69,7 @@ pub fn run_to_files(
         wall,
     );
     let dirs = if through > 0 {
-        rtw_engine::pause_at("continuation-segments");
+        rtw_engine::pause_unless("continuation-segments", run.stop);
         progress.stage("continuation --through: directions followed");
         let dirs = run.cancellable(|| segments::run(c, &result.diagram, through, progress));
         progress.finish(dirs.is_ok());
