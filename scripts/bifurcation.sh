@@ -5,10 +5,10 @@
 # step map, for the default model (its s read from configs/template.toml, which
 # states every default) and for s = 0 (every other option the default's), run
 # side by side, then the plots and summary.md.
-# Sets up the Python venv (.venv, scripts/requirements.txt) and builds rtw-scan.
+# Sets up the Python venv (.venv, scripts/requirements.txt, the package rtw) and builds rtw-scan.
 . "$(dirname "$0")/lib.sh"
 
-rtw_venv
+rtw_install
 out=results/bifurcation
 mkdir -p "$out"
 # The default strings' natural length, for the summary's heading (crates/rtw-scan/tests/it/template.rs

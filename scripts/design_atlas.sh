@@ -22,4 +22,5 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
     echo "design_atlas: $(basename "$c") done" >&2
   done
 fi
+rtw_install
 "$RTW_PY" scripts/design_atlas.py runs/design/search "$OUT"

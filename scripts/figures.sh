@@ -6,7 +6,7 @@
 # Extra arguments go to scripts/figures.py (e.g. --only fig-s3).
 . "$(dirname "$0")/lib.sh"
 
-rtw_venv
+rtw_install
 
 rtw_build
 

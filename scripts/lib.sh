@@ -7,7 +7,8 @@
 #   RTW_PY             the venv's Python, .venv/bin/python
 #   rtw_build [ARGS]   cargo build --release -q ARGS (ARGS default: -p rtw-scan, RTW_BIN)
 #   rtw_venv           .venv (once) with scripts/requirements.txt; needs Python >= 3.11
-#   rtw_install        the package rtw (crates/rtw-py) built and installed into .venv
+#   rtw_install        rtw_venv, then the package rtw (crates/rtw-py) built and installed
+#                      into .venv, once per run (the scripts' labels and statistics are its)
 #   rtw_need CMD...    fails, naming the first CMD that is not on PATH
 #   rtw_die MSG        MSG on stderr, after the script's name; exit 1
 set -euo pipefail
@@ -45,8 +46,12 @@ rtw_venv() {
 }
 
 rtw_install() {
+  # Once per run: a script that calls another (reproduce.sh) installs it for both.
+  [ -z "${RTW_INSTALLED:-}" ] || return 0
+  rtw_venv
   # maturin comes from scripts/requirements.txt (found on PATH in .venv/bin) and
   # builds in the workspace's target/, so an unchanged crate is only relinked.
   PATH="$RTW_ROOT/.venv/bin:$PATH" "$RTW_PY" -m pip install --quiet --disable-pip-version-check \
     --no-build-isolation ./crates/rtw-py
+  export RTW_INSTALLED=1
 }

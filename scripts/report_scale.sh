@@ -17,7 +17,7 @@
 #   ./scripts/report_scale.sh [RUNS]
 . "$(dirname "$0")/lib.sh"
 runs="${1:-3}"
-rtw_venv
+rtw_install
 py=$PWD/$RTW_PY
 rtw_build -p rtw-scan --features fake-sim
 tmp=$(mktemp -d)

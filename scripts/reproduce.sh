@@ -27,7 +27,6 @@
 . "$(dirname "$0")/lib.sh"
 rtw_build -p rtw-scan -p rtw-model --examples --bins
 # The Python scripts call the library through the package (labels, Wilson intervals, the star).
-rtw_venv
 rtw_install
 for c in paper fig-s2 fig-s3; do
   rm -rf "results/$c"
@@ -59,7 +58,6 @@ fi
 "$RTW_PY" scripts/fidelity_report.py >/dev/null
 "$RTW_PY" scripts/reproduction_report.py >/dev/null
 "$RTW_PY" scripts/readme_tables.py
-rtw_install
 "$RTW_PY" -m rtw report results/paper --out results/paper/report.html
 "$RTW_PY" -m rtw report results/sensitivity/saltelli --out results/sensitivity/saltelli/report.html
 echo "reproduce: done (see git status for what changed)"

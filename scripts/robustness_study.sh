@@ -21,10 +21,10 @@
 #      log MFPT, the ten longest-walking designs, map-mfpt.png, map.png,
 #      paper.png and summary.md.
 # `--analyse-only` runs step 5 on the scans already in results/robustness/.
-# Sets up the Python venv (.venv) and builds rtw-scan.
+# Sets up the Python venv (.venv, the package rtw) and builds rtw-scan.
 . "$(dirname "$0")/lib.sh"
 
-rtw_venv
+rtw_install
 out=results/robustness
 mkdir -p "$out"
 if [[ "${1:-}" != "--analyse-only" ]]; then

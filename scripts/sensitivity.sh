@@ -19,5 +19,5 @@ if [ -z "${REPORT_ONLY:-}" ]; then
     "$RTW_BIN" run configs/paper.toml --variant "$f" --out "results/sensitivity/$n" >/dev/null
   done
 fi
-rtw_venv
+rtw_install
 "$RTW_PY" scripts/sensitivity_report.py results/paper results/sensitivity

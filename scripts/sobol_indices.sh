@@ -14,5 +14,5 @@ rtw_build
 rm -rf results/sensitivity/saltelli
 "$RTW_BIN" run configs/sensitivity-saltelli.toml --out results/sensitivity/saltelli >/dev/null
 "$RTW_BIN" sensitivity results/sensitivity/saltelli --out results/sensitivity/indices.parquet >/dev/null
-rtw_venv
+rtw_install
 "$RTW_PY" scripts/sobol_indices_report.py results/sensitivity

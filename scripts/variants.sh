@@ -53,5 +53,5 @@ if [ -z "${REPORT_ONLY:-}" ]; then
   done
 fi
 
-rtw_venv
+rtw_install
 "$RTW_PY" scripts/variants_report.py results/variants
