@@ -6,19 +6,17 @@
 # Writes results/robustness/basin_fig7a.{parquet,png,txt}; the .txt is what
 # rtw-scan printed (counts and the cost per point).
 # Sets up the Python venv (.venv, scripts/requirements.txt) and builds rtw-scan.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 
-./scripts/venv.sh
-cargo build --release -q -p rtw-scan
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+rtw_venv
+rtw_build
 out=results/robustness
 mkdir -p "$out"
 # The Fig. 7(a) design, spelled out; every option the default (s = 0.8875).
 slice=(basin --length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15
   --x omega_a:-40:40:41 --y theta_b:-1.2:0.8:41 --steps 60 --tol 1e-3)
-"$bin" "${slice[@]}" --out "$out/basin_fig7a.parquet" >"$out/basin_fig7a.txt"
-.venv/bin/python scripts/basin.py "$out/basin_fig7a.parquet" \
+"$RTW_BIN" "${slice[@]}" --out "$out/basin_fig7a.parquet" >"$out/basin_fig7a.txt"
+"$RTW_PY" scripts/basin.py "$out/basin_fig7a.parquet" \
   --title "Basin slice of the Fig. 7(a) walk (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514, φ 0.15)"
 cat "$out/basin_fig7a.txt"
 echo "basin: wrote $out/basin_fig7a.{parquet,png,txt}"

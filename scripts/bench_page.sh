@@ -13,12 +13,10 @@
 # run `.venv/bin/python scripts/readme_tables.py docs/performance.md docs/performance-scipy.md`.
 #
 #   ./scripts/bench_page.sh [RUNS]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 runs="${1:-5}"
-./scripts/venv.sh
-cargo build --release -q -p rtw-scan
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+rtw_venv
+rtw_build
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 load() { cut -d' ' -f1-3 /proc/loadavg; }
@@ -36,7 +34,7 @@ load() { cut -d' ' -f1-3 /proc/loadavg; }
   for i in $(seq 1 "$runs"); do
     for t in 1 2; do
       rm -rf "$tmp/scan-$t-$i"
-      /usr/bin/time -f "$t %e %U" -a -o "$tmp/times" "$bin" run configs/paper.toml \
+      /usr/bin/time -f "$t %e %U" -a -o "$tmp/times" "$RTW_BIN" run configs/paper.toml \
         --out "$tmp/scan-$t-$i" --threads "$t" --quiet >/dev/null
     done
   done
@@ -58,11 +56,11 @@ PY
   echo
   echo "## Where the time goes"
   echo
-  .venv/bin/python scripts/time_budget.py $(for i in 1 2 3; do echo "$tmp/scan-2-$i/samples.parquet"; done) \
+  "$RTW_PY" scripts/time_budget.py $(for i in 1 2 3; do echo "$tmp/scan-2-$i/samples.parquet"; done) \
     | sed -n '/^## All/,$p' | tail -n +2
   echo "## SciPy"
   echo
-  .venv/bin/python scripts/scipy_side_by_side.py 16 --rtw "$bin"
+  "$RTW_PY" scripts/scipy_side_by_side.py 16 --rtw "$RTW_BIN"
   echo
   echo "Load average at the end $(load)."
 } >"$tmp/page.md"

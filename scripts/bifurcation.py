@@ -17,7 +17,6 @@ Nothing is recomputed here: every number drawn is read from those files.
 from __future__ import annotations
 
 import argparse
-import sys
 import textwrap
 from pathlib import Path
 
@@ -30,10 +29,9 @@ import polars as pl  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_default_model import model  # noqa: E402
-from figures import DPI  # noqa: E402
-from figures import OUTCOME_COLOR as SCAN_COLOR  # noqa: E402  (the project's label colours)
+from rtw.draw import OUTCOME_COLOR as SCAN_COLOR  # noqa: E402  (the project's label colours)
+
+from rtwscripts import DPI, model  # noqa: E402
 
 # `failure`: the step map stopped (no new foot within its horizon), which the
 # scan's labels have no name for.

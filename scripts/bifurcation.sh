@@ -5,12 +5,10 @@
 # step map, for the default model (its s read from configs/template.toml, which
 # states every default) and for s = 0 (every other option the default's), run
 # side by side, then the plots and summary.md.
-# Sets up the Python venv (.venv, scripts/requirements.txt) and builds rtw-scan.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+# Sets up the Python venv (.venv, scripts/requirements.txt, the package rtw) and builds rtw-scan.
+. "$(dirname "$0")/lib.sh"
 
-./scripts/venv.sh
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+rtw_install
 out=results/bifurcation
 mkdir -p "$out"
 # The default strings' natural length, for the summary's heading (crates/rtw-scan/tests/it/template.rs
@@ -21,17 +19,17 @@ s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)
 sweep=(bifurcation --param phi --from 0.02 --to 0.35 --points 121 --transient 200 --record 48)
 # REPORT_ONLY=1 remakes the figures and summary.md from the committed files.
 if [ -z "${REPORT_ONLY:-}" ]; then
-  cargo build --release -q -p rtw-scan
+  rtw_build
   # The two sweeps are independent (continuation is sequential within each).
-  "$bin" "${sweep[@]}" --out "$out/phi-fig7a.parquet" >/dev/null 2>"$out/phi-fig7a.log" &
+  "$RTW_BIN" "${sweep[@]}" --out "$out/phi-fig7a.parquet" >/dev/null 2>"$out/phi-fig7a.log" &
   a=$!
-  "$bin" "${sweep[@]}" --set strings.rest_length_ratio=0 --out "$out/phi-fig7a-s0.parquet" >/dev/null 2>"$out/phi-fig7a-s0.log" &
+  "$RTW_BIN" "${sweep[@]}" --set strings.rest_length_ratio=0 --out "$out/phi-fig7a-s0.parquet" >/dev/null 2>"$out/phi-fig7a-s0.log" &
   b=$!
   wait "$a"
   wait "$b"
 fi
 
-py=.venv/bin/python
+py=$RTW_PY
 $py scripts/bifurcation.py "$out/phi-fig7a.parquet" \
   --title "φ sweep at Fig. 7(a) (L 0.8, ρ 2.5, α 0.125, f_n 3.269, ζ 0.0514), default model"
 $py scripts/bifurcation.py "$out/phi-fig7a-s0.parquet" \

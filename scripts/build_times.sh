@@ -15,8 +15,7 @@
 # and, per revision, its steps with the crates each compiled or checked (a
 # crate compiled again by a later step was not reused).
 #   ./scripts/build_times.sh REV:LABEL...   # e.g. HEAD:now; ~10 min per revision on two idle cores
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 [ $# -ge 1 ] || { echo "usage: build_times.sh REV:LABEL..." >&2; exit 2; }
 root=$(pwd)
 work=$(mktemp -d /tmp/rtw-build-times.XXXXXX)

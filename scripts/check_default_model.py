@@ -46,7 +46,8 @@ from pathlib import Path
 import pyarrow.parquet as pq
 from PIL import Image
 
-ROOT = Path(__file__).resolve().parent.parent
+from rtwscripts import ROOT, model
+
 CLAIM = re.compile(r"default model|model:? default", re.I)
 # A claim followed by the `rtw.variant` line the result was made with.
 STATED = re.compile(r"default model[,:]?\s*\(?`(rest_length_ratio=[^`]+)`", re.I)
@@ -54,12 +55,6 @@ STATED = re.compile(r"default model[,:]?\s*\(?`(rest_length_ratio=[^`]+)`", re.I
 # of its figures (scripts/continuation.py plane).
 COMPANIONS = (".special", ".curve", ".steps", ".plane", ".segments")
 NAME_CHAR = r"[A-Za-z0-9_-]"
-
-
-def model(variant: str) -> str:
-    """The model part of an `rtw.variant`: everything before the run's
-    integrator settings."""
-    return variant.split(" method=", 1)[0].strip()
 
 
 def variant_of(path: Path) -> str | None:

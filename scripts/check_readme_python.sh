@@ -7,8 +7,7 @@
 # afterwards), so no file of the checkout, nor a `v/` of the user's, is
 # touched; the commands run from the repository's root, as the README's do.
 #   ./scripts/check_readme_python.sh
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/rtw-readme.XXXXXX")"
 trap 'rm -rf "$work"' EXIT

@@ -4,8 +4,7 @@
 # minimum is Cargo.toml's rust-version (nalgebra 0.35 and edition 2024 need
 # it); Debian 12's packaged rustc (1.63) is far older. Called by
 # scripts/test.sh; README.md ("Getting Rust") gives the same advice.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 need=$(sed -n 's/^rust-version = "\([0-9.]*\)"/\1/p' Cargo.toml)
 advice="install rustup (https://rustup.rs) as your own user and run 'rustup default stable'; \
 a system package's older cargo earlier on PATH must come after ~/.cargo/bin (README.md, Getting Rust)"

@@ -13,11 +13,9 @@ Usage: python3 scripts/code_counts.py [--folders]
 """
 
 import os
-import re
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import check_structure as cs  # noqa: E402
+import check_structure as cs  # scripts/ is on sys.path: this file's own folder
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 

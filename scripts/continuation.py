@@ -49,9 +49,7 @@ import polars as pl  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_default_model import model  # noqa: E402
-from figures import DPI  # noqa: E402
+from rtwscripts import DPI, model  # noqa: E402
 
 SYMBOL = {"phi": "φ [rad]", "length": "L [m]", "rho": "ρ [kg/m]", "alpha": "α", "fn": "f_n [Hz]",
           "zeta": "ζ"}

@@ -14,21 +14,19 @@
 # attractor drawn under the diagram. Both continuations run at once (2 cores).
 # Every figure's title names the model of the data it draws, read from the
 # data's rtw.variant (scripts/continuation.py), never from today's template.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 out=results/continuation
 mkdir -p "$out"
-bin=target/release/rtw-scan
 walk=(continuation --param phi --from 0.02 --to 0.35 --curve fn --curve-from 2.9 --curve-to 3.9)
 skip=(continuation --param phi --phi 0.34 --from 0.30 --to 0.38 --set strings.rest_length_ratio=0
       --section touch-and-go)
 # REPORT_ONLY=1 remakes the figures, the check and summary.md from the committed
 # files (as in continuation_segments.sh).
 if [ -z "${REPORT_ONLY:-}" ]; then
-  cargo build --release -q -p rtw-scan
-  "$bin" "${walk[@]}" --out "$out/phi-fig7a.parquet" --force >"$out/phi-fig7a.log" &
+  rtw_build
+  "$RTW_BIN" "${walk[@]}" --out "$out/phi-fig7a.parquet" --force >"$out/phi-fig7a.log" &
   a=$!
-  "$bin" "${skip[@]}" --out "$out/phi-s0-touch-and-go.parquet" --force >"$out/phi-s0.log" &
+  "$RTW_BIN" "${skip[@]}" --out "$out/phi-s0-touch-and-go.parquet" --force >"$out/phi-s0.log" &
   b=$!
   wait "$a"
   wait "$b"
@@ -36,10 +34,10 @@ if [ -z "${REPORT_ONLY:-}" ]; then
   # script (the longest part: SKIP_SEGMENTS=1 leaves it out).
   [ -n "${SKIP_SEGMENTS:-}" ] || ./scripts/continuation_segments.sh
   rm -rf "$out/plane"
-  "$bin" run configs/continuation-plane.toml --out "$out/plane" --quiet >/dev/null
+  "$RTW_BIN" run configs/continuation-plane.toml --out "$out/plane" --quiet >/dev/null
 fi
 
-py=.venv/bin/python
+py=$RTW_PY
 $py scripts/continuation.py diagram "$out/phi-fig7a.parquet" --sweep results/bifurcation/phi-fig7a.parquet \
   --title "The Fig. 7(a) walk continued in φ"
 $py scripts/continuation.py diagram "$out/phi-s0-touch-and-go.parquet" \

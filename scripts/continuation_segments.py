@@ -58,15 +58,11 @@ def way(doc):
 
 
 def model_of(path):
-    """The model a file was made at (scripts/check_default_model.py's `model`
-    of its `rtw.variant`): for FILE.segments.json that of FILE.parquet, which
-    the same run wrote."""
-    from pathlib import Path
-
+    """The model a file was made at (rtwscripts.model of its `rtw.variant`):
+    for FILE.segments.json that of FILE.parquet, which the same run wrote."""
     import pyarrow.parquet as pq
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from check_default_model import model
+    from rtwscripts import model
 
     path = str(path)
     data = path[: -len(".segments.json")] + ".parquet" if path.endswith(".segments.json") else path

@@ -11,16 +11,14 @@
 # Called by ./scripts/continuation.sh; runs the three lengths at once (each
 # continues its directions two at a time, the period-2 ones too), at the default model (as
 # the attractor sweep); the figure's title names the model read from the files' rtw.variant.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 out=results/continuation
 mkdir -p "$out"
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
 through=(continuation --param phi --from 0.05 --to 0.3 --through 8)
-run() { "$bin" "${through[@]}" --length "$1" --out "$out/phi-segments-L$1.parquet" --force >"$out/phi-segments-L$1.log"; }
+run() { "$RTW_BIN" "${through[@]}" --length "$1" --out "$out/phi-segments-L$1.parquet" --force >"$out/phi-segments-L$1.log"; }
 # REPORT_ONLY=1 remakes the figure and segments.md from the committed files.
 if [ -z "${REPORT_ONLY:-}" ]; then
-  cargo build --release -q -p rtw-scan
+  rtw_build
   run 0.7 &
   a=$!
   run 0.8 &
@@ -32,7 +30,7 @@ if [ -z "${REPORT_ONLY:-}" ]; then
   wait "$c"
 fi
 
-py=.venv/bin/python
+py=$RTW_PY
 $py scripts/continuation_segments.py diagram "$out"/phi-segments-L0.{7,8,9}.segments.json \
   --sweep results/bifurcation/phi-fig7a.parquet --out "$out/phi-segments.png" \
   --title "The Fig. 7(a) walk continued in φ through its mode-sequence changes (rtw-scan ${through[*]})"

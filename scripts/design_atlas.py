@@ -44,6 +44,8 @@ import numpy as np  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 from scipy.stats import spearmanr  # noqa: E402
 
+from rtwscripts.labels import STABLE  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 BIN = ROOT / "target/release/rtw-scan"
 FIG7A = {"rho": 2.5, "alpha": 0.125, "fn": 3.269, "zeta": 0.0514}
@@ -67,7 +69,7 @@ def cli(*args: str) -> str:
 def at_speed_phi(d: dict) -> tuple[str, float | None]:
     """The gait at φ = 0.15 and its speed (none unless the gait is stable)."""
     v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json"))
-    stable = v["outcome"] in ("walk", "skip", "crawl")
+    stable = v["outcome"] in STABLE
     return v["outcome"], v.get("speed") if stable else None
 
 
@@ -82,7 +84,7 @@ def mfpt_at_speed_phi(d: dict, seed: int = 0) -> float | None:
     terrain.seed `seed` (none unless stable there)."""
     v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json", "--set", "robustness.mfpt=true",
                        "--set", "robustness.sigma=0.05", "--set", f"terrain.seed={seed}"))
-    return v.get("mfpt") if v["outcome"] in ("walk", "skip", "crawl") else None
+    return v.get("mfpt") if v["outcome"] in STABLE else None
 
 
 def profile(d: dict, out: Path | None = None, span: tuple[float, float, float, float] | None = None) -> dict:

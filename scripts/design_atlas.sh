@@ -8,20 +8,19 @@
 # each interval checked by direct simulation), atlas.png, atlas.md and the
 # animations.
 #   ./scripts/design_atlas.sh [--analyse-only]     # ~5 min on two idle cores
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 OUT=results/design
-B=target/release/rtw-scan
 if [[ "${1:-}" != "--analyse-only" ]]; then
-  cargo build --release --workspace --all-targets --quiet
+  rtw_build
   mkdir -p runs/design
   sed -e 's/^seed = 1/seed = 1\nmethod = "sobol"/' -e 's/^name = "widest"/name = "widest-sobol"/' \
     configs/design/widest.toml > runs/design/widest-sobol.toml
   # robust.toml's [simulation] table sets the MFPT's roughness (5 cm).
   for c in configs/design/widest configs/design/widest-walk configs/design/shallowest configs/design/front \
            configs/design/fig7a configs/design/robust runs/design/widest-sobol; do
-    $B design "$c.toml" --out "runs/design/search/$(basename "$c")" --quiet --force > /dev/null
+    "$RTW_BIN" design "$c.toml" --out "runs/design/search/$(basename "$c")" --quiet --force > /dev/null
     echo "design_atlas: $(basename "$c") done" >&2
   done
 fi
-.venv/bin/python scripts/design_atlas.py runs/design/search "$OUT"
+rtw_install
+"$RTW_PY" scripts/design_atlas.py runs/design/search "$OUT"

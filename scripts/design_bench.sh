@@ -7,12 +7,11 @@
 # objective found within the budget, per seed, with a bootstrap interval of
 # the mean difference, into results/design/bench.md and docs/design.md.
 #   ./scripts/design_bench.sh [--analyse-only]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 SEEDS=${SEEDS:-5}
 CONFIGS=(widest widest-walk shallowest)
 if [[ "${1:-}" != "--analyse-only" ]]; then
-  cargo build --release --workspace --all-targets --quiet
+  rtw_build
   mkdir -p runs/design-bench
   for c in "${CONFIGS[@]}"; do
     for seed in $(seq 1 "$SEEDS"); do
@@ -20,10 +19,10 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
         cfg=runs/design-bench/$c-$method-$seed.toml
         sed -e "s/^seed = .*/seed = $seed\nmethod = \"$method\"/" -e "s/^name = .*/name = \"$c-$method-$seed\"/" \
           "configs/design/$c.toml" > "$cfg"
-        ./target/release/rtw-scan design "$cfg" --out "runs/design-bench/$c-$method-$seed" --quiet --force > /dev/null
+        "$RTW_BIN" design "$cfg" --out "runs/design-bench/$c-$method-$seed" --quiet --force > /dev/null
         echo "$c $method seed $seed done" >&2
       done
     done
   done
 fi
-.venv/bin/python scripts/design_bench.py runs/design-bench "${CONFIGS[@]}"
+"$RTW_PY" scripts/design_bench.py runs/design-bench "${CONFIGS[@]}"

@@ -7,10 +7,9 @@
 # and the first page renders in headless Chromium. Needs the project's .venv
 # with rtw installed (the Python API page is read from the package):
 # ./scripts/test.sh makes both first. Open target/docs-site/docs/index.html.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-./scripts/venv.sh >/dev/null
+. "$(dirname "$0")/lib.sh"
+rtw_venv >/dev/null
 out="${CARGO_TARGET_DIR:-target}/docs-site"
 rm -rf "$out"
 .venv/bin/python -m sphinx -q -W --keep-going -b html -c docs . "$out"
-.venv/bin/python scripts/check_site.py "$out"
+"$RTW_PY" scripts/check_site.py "$out"

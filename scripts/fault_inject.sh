@@ -32,8 +32,7 @@
 # uninterrupted run. The random points come from a seed, printed (set
 # FAULT_SEED to replay one). Exits non-zero if any finished row was lost or
 # changed, or a fault was not handled as promised (docs/results-on-disk.md).
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 
 seed=${FAULT_SEED:-$(( $(date +%s) % 32768 ))}
 RANDOM=$seed
@@ -41,10 +40,10 @@ echo "fault_inject: seed $seed (FAULT_SEED=$seed ./scripts/fault_inject.sh repla
 
 # The test build (fake-sim feature: RTW_SCAN_PAUSE, part 4); the same
 # binary `cargo test` builds, and the physics as in a plain build.
-cargo build --release -q -p rtw-scan --features fake-sim --bin rtw-scan-test
+rtw_build -p rtw-scan --features fake-sim --bin rtw-scan-test
 bin=$PWD/target/release/rtw-scan-test
-./scripts/venv.sh >/dev/null
-py=.venv/bin/python
+rtw_venv >/dev/null
+py=$RTW_PY
 config=configs/test/fault.toml
 work=$(mktemp -d)
 mounted=""

@@ -29,8 +29,10 @@ import polars as pl
 
 import rtw
 
-ROOT = Path(__file__).resolve().parent.parent
-PAPER = {"stable": 73.7, "skip": 35.9, "walk": 32.0, "crawl": 5.8}
+from rtwscripts import ROOT
+from rtwscripts.labels import FAILED, OUTCOMES, STABLE
+from rtwscripts.paper import PAPER
+
 # The paper's own 95 % sampling error on a 1000-sample share near 50 %.
 SAMPLING_PP = 2.8
 V = ROOT / "results" / "variants"
@@ -40,7 +42,6 @@ RUNS = [
     ("settled start, typical step (default rules)", V / "prestress-0.85-settled-mu0.8-slack-steps" / "paper"),
     ("settled start pushing stars that cannot stand, typical step", V / "prestress-0.85-settled-push-mu0.8-slack-steps" / "paper"),
 ]
-STABLE = list(rtw.STABLE_LABELS)
 
 
 def load(d: Path) -> tuple[pl.DataFrame, dict]:
@@ -50,7 +51,7 @@ def load(d: Path) -> tuple[pl.DataFrame, dict]:
 
 def shares(df: pl.DataFrame) -> dict:
     n = df.height
-    out = {k: 100 * df.filter(pl.col("outcome") == k).height / n for k in STABLE + ["collapse", "stall"]}
+    out = {k: 100 * df.filter(pl.col("outcome") == k).height / n for k in STABLE + FAILED}
     out["stable"] = sum(out[k] for k in STABLE)
     return out
 
@@ -67,7 +68,7 @@ def relabel(df: pl.DataFrame, flight=0.01, triple=0.01, flight_steps=0.0, triple
 
 
 def fmt_row(name: str, s: dict, clusters: str) -> str:
-    off = [k for k in ("stable", "skip", "walk", "crawl") if abs(s[k] - PAPER[k]) > SAMPLING_PP]
+    off = [k for k in ("stable", *STABLE) if abs(s[k] - PAPER[k]) > SAMPLING_PP]
     return (
         f"| {name} | {s['stable']:.1f} | {s['skip']:.1f} | {s['walk']:.1f} | {s['crawl']:.1f} | "
         f"{s['collapse']:.1f} / {s['stall']:.1f} | {clusters} | {', '.join(off) or 'none'} |"
@@ -108,7 +109,7 @@ def main() -> None:
     j = before.select("sample_id", pl.col("outcome").alias("before"), pl.col("failure").alias("why_before")).join(
         after.select("sample_id", pl.col("outcome").alias("after"), pl.col("start")), on="sample_id"
     )
-    order = STABLE + ["collapse", "stall", "diverged"]
+    order = OUTCOMES
     lines += [
         "",
         "## Which samples moved where (previous default → default rules)",

@@ -9,7 +9,7 @@ with the Python package (rtw.simulate, rtw.trace) when it is installed,
 else with `rtw-scan simulate --json --trace`. Nothing here recomputes a
 simulation result: every number drawn is read from a file rtw-scan wrote,
 or from a run of the model. The star is drawn by the package's rtw.draw
-(crates/rtw-py/python; importable from the checkout without the native part).
+(the installed package: its labels come from the compiled part).
 
     python scripts/figures.py --bin target/release/rtw-scan [--out results/figures]
 """
@@ -35,12 +35,6 @@ import pyarrow.parquet as pq  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
-try:
-    import rtw.draw  # noqa: F401  (the installed package)
-except ImportError:
-    # The package's pure-Python part, straight from the checkout.
-    sys.path.insert(0, str(ROOT / "crates/rtw-py/python"))
 from rtw.animation import animate  # noqa: E402
 from rtw.draw import (  # noqa: E402
     FAILED,
@@ -56,19 +50,14 @@ from rtw.draw import (  # noqa: E402
     timeline,
 )
 
-DPI = 130
+from rtwscripts import DEFAULT_VARIANT, DPI, ROOT  # noqa: E402
+from rtwscripts.stats import permutation_p, wilson  # noqa: E402
 
 CLUSTER_COLOR = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf")
 KIND_MARKER = {"collapse": "^", "stall": "o"}
 
 # The article's walking example (Fig. 7(a), docs/model.md §1), for the gait gallery.
 FIG7A = dict(length=0.8, rho=2.5, alpha=0.125, fn=3.269, zeta=0.0514, phi=0.15)
-# rtw's default model as a variant file (configs/variants/): the one the gallery's walk is run
-# with, and the one the variant study's selection rule picks (results/variants/summary.json
-# "chosen"; it writes this name as "default" beside it, and
-# crates/rtw-scan/tests/it/default_variant.rs fails unless the two agree and the file gives
-# rtw-model's Options::default()).
-DEFAULT_VARIANT = "prestress-0.8875-settled-mu0.8-slack-steps"
 # Trace sampling for the gait gallery (events are recorded as well).
 TRACE_DT = 0.004
 PARAMS = ("length", "rho", "alpha", "fn", "zeta", "phi")
@@ -129,15 +118,6 @@ def save(fig, out: Path, name: str) -> Path:
     plt.close(fig)
     print(f"figures: wrote {path.relative_to(ROOT) if path.is_relative_to(ROOT) else path}")
     return path
-
-
-def wilson(k: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Wilson score 95 % intervals of k successes in n trials, elementwise:
-    rtw-scan's own (rtw.wilson), as in its summaries."""
-    import rtw
-
-    lo_hi = np.array([rtw.wilson(int(ki), int(ni)) for ki, ni in zip(np.asarray(k), np.asarray(n))]).reshape(-1, 2)
-    return lo_hi[:, 0], lo_hi[:, 1]
 
 
 # -------------------------------------------------------------------- Fig. S2
@@ -324,23 +304,6 @@ def fig_s4(scan: Scan, binary: Path, data_dir: Path, out: Path) -> Path:
 
 
 # ------------------------------------------------------- failure rate (binned)
-
-
-def permutation_p(bins: np.ndarray, failed: np.ndarray, nbins: int, rounds: int, seed: int) -> tuple[float, float]:
-    """χ² of failure against bin, and its permutation p-value (failure labels shuffled)."""
-
-    def chi2(f: np.ndarray) -> float:
-        n = np.bincount(bins, minlength=nbins).astype(float)
-        k = np.bincount(bins, weights=f, minlength=nbins)
-        p = f.mean()
-        expected_k, expected_ok = n * p, n * (1 - p)
-        m = n > 0
-        return float((((k - expected_k) ** 2 / expected_k)[m]).sum() + (((n - k - expected_ok) ** 2 / expected_ok)[m]).sum())
-
-    observed = chi2(failed)
-    rng = np.random.default_rng(seed)
-    more = sum(chi2(rng.permutation(failed)) >= observed for _ in range(rounds))
-    return observed, (more + 1) / (rounds + 1)
 
 
 def failure_rates(scan: Scan, out: Path, nbins: int = 8) -> Path:

@@ -8,15 +8,14 @@
 # under `/usr/bin/time -f "%e %U %M"`. Prints a Markdown table of the medians
 # of peak RSS (MB = 1024 kB: %M counts KiB) and wall time. Set RTW_SCAN to measure another
 # binary (default: target/release/rtw-scan, built first).
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 sizes=("$@")
 [ ${#sizes[@]} -eq 0 ] && sizes=(1k 10k 100k)
-bin=${RTW_SCAN:-target/release/rtw-scan}
+bin=${RTW_SCAN:-$RTW_BIN}
 if [ -z "${RTW_SCAN:-}" ]; then
-  cargo build --release -q -p rtw-scan
+  rtw_build
 fi
-[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (Debian: apt-get install time)" >&2; exit 1; }
+[ -x /usr/bin/time ] || rtw_die "needs /usr/bin/time (Debian: apt-get install time)"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 rounds=3

@@ -14,21 +14,19 @@
 # CPU / 2 is what the run would take on 2 idle cores at perfect scaling.
 #
 #   ./scripts/mfpt_cost.sh [RUNS] [CONFIG]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 runs="${1:-3}"
 config="${2:-configs/paper.toml}"
 name=$(basename "$config" .toml)
 result=results/robustness/mfpt_cost.txt
 [[ "$name" == paper ]] || result="results/robustness/mfpt_cost-$name.txt"
-./scripts/venv.sh
-cargo build --release -q -p rtw-scan
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+rtw_venv
+rtw_build
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for i in $(seq 1 "$runs"); do
   /usr/bin/time -f "%e %U %S" -a -o "$tmp/times" \
-    "$bin" run "$config" --out "$tmp/run$i" --threads 2 --quiet --set robustness.mfpt=true >/dev/null
+    "$RTW_BIN" run "$config" --out "$tmp/run$i" --threads 2 --quiet --set robustness.mfpt=true >/dev/null
 done
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 mkdir -p results/robustness

@@ -21,8 +21,7 @@
 # results/robustness/mfpt_depth_SIGMA.md.
 #
 #   ./scripts/mfpt_depth.sh [SIGMA [BATCHES TRIALS MAX_STEPS [SEEDS]]]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 sigma="${1:-0.02}"
 batches="${2:-3000}"
 trials="${3:-10}"
@@ -34,9 +33,8 @@ if ! [[ $seeds =~ ^[1-9][0-9]*$ ]]; then
   exit 2
 fi
 out="results/robustness/mfpt_depth_$sigma.md"
-./scripts/venv.sh
-cargo build --release -q -p rtw-scan
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+rtw_venv
+rtw_build
 tmp=$(mktemp -d)
 # On any exit, stop the runs still going (each is rtw-scan under time(1)).
 trap 'for j in $(jobs -p); do pkill -P "$j"; done 2>/dev/null; rm -rf "$tmp"' EXIT
@@ -51,7 +49,7 @@ run() {
     keys=(--set robustness.steps_to_fall=true --set robustness.trials="$trials"
       --set robustness.max_steps="$cap" --set terrain.seed="$((k * trials))")
   fi
-  exec /usr/bin/time -f "%e" -o "$tmp/$kind$k.time" "$bin" simulate "${fig7a[@]}" \
+  exec /usr/bin/time -f "%e" -o "$tmp/$kind$k.time" "$RTW_BIN" simulate "${fig7a[@]}" \
     --set robustness.sigma="$sigma" "${keys[@]}" --json >"$tmp/$kind$k.json"
 }
 

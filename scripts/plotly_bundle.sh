@@ -12,8 +12,7 @@
 # scripts/plotly_bundle/package-lock.json, installed by `npm ci` into a
 # temporary directory (nothing runs at install: --ignore-scripts) and built
 # with plotly.js's esbuild settings. Needs node and npm (Node 20 or later).
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 ASSET=crates/rtw-py/python/rtw/report_assets/plotly-rtw.min.js
 write=0
 case "${1:-}" in
@@ -21,7 +20,7 @@ case "${1:-}" in
   "") ;;
   *) echo "plotly_bundle.sh: unknown option ${1}: use --write or nothing" >&2; exit 2 ;;
 esac
-command -v npm >/dev/null || { echo "plotly_bundle.sh: needs node and npm" >&2; exit 1; }
+rtw_need node npm
 tmp=$(mktemp -d /tmp/rtw-plotly-bundle.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
 cp scripts/plotly_bundle/{package.json,package-lock.json,entry.js,build.js} "$tmp"/

@@ -22,7 +22,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 
-LABELS = ["collapse", "stall", "crawl", "walk", "skip", "diverged"]
+from rtwscripts.labels import FAILED, OUTCOMES, STABLE  # noqa: E402
+
+# The gait axis from the bottom: the failures, the stable gaits from the
+# slowest (crawl) up, then whatever else a run can end as (diverged).
+LABELS = [*FAILED, *STABLE[::-1], *(o for o in OUTCOMES if o not in FAILED and o not in STABLE)]
 COLOURS = {
     "walk": "tab:green",
     "skip": "tab:blue",
@@ -63,7 +67,7 @@ def main() -> int:
         f"{profile['runs']} runs, changes to {profile['tol']:g} rad",
         fontsize=9,
     )
-    stable = [i for i, l in enumerate(label) if l in ("walk", "skip", "crawl")]
+    stable = [i for i, l in enumerate(label) if l in STABLE]
     for ax, values, name in ((ax_speed, speed, "speed [m/s]"), (ax_fw, f_w, "step frequency f_w [Hz]")):
         for l in shown:
             idx = [i for i in stable if label[i] == l and values[i] is not None]

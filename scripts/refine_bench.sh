@@ -14,26 +14,24 @@
 #   ./scripts/refine_bench.sh                # ~7 min on two idle cores
 #   ROUNDS=4 ./scripts/refine_bench.sh       # the same budget in other rounds
 #   REPORT_ONLY=1 ./scripts/refine_bench.sh  # re-tabulate
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 OUT=results/refine
 SEEDS=$(seq -s " " 1 16)
 ROUNDS=${ROUNDS:-16}
 if [ -z "${REPORT_ONLY:-}" ]; then
-  cargo build --release -q -p rtw-scan
-  B=target/release/rtw-scan
+  rtw_build
   rm -rf "$OUT/reference" "$OUT"/seed-*
-  $B run configs/refine/reference.toml --out "$OUT/reference" --quiet >/dev/null
+  "$RTW_BIN" run configs/refine/reference.toml --out "$OUT/reference" --quiet >/dev/null
   mkdir -p runs/refine-bench
   for s in $SEEDS; do
     # The start: the reference's slice and model, 100 samples of seed S.
     sed -e "s/^seed = .*/seed = $s/" -e "s/^samples = .*/samples = 100/" \
         -e "s/^name = .*/name = \"refine-start-$s\"/" configs/refine/reference.toml \
         > "runs/refine-bench/start-$s.toml"
-    $B run "runs/refine-bench/start-$s.toml" --out "$OUT/seed-$s" --quiet >/dev/null
-    $B refine "$OUT/seed-$s" --budget 400 --rounds "$ROUNDS" --seed "$s" --quiet
+    "$RTW_BIN" run "runs/refine-bench/start-$s.toml" --out "$OUT/seed-$s" --quiet >/dev/null
+    "$RTW_BIN" refine "$OUT/seed-$s" --budget 400 --rounds "$ROUNDS" --seed "$s" --quiet
   done
 fi
-./scripts/venv.sh
-.venv/bin/python scripts/refine_bench.py "$OUT" $SEEDS > "$OUT/summary.md"
+rtw_venv
+"$RTW_PY" scripts/refine_bench.py "$OUT" $SEEDS > "$OUT/summary.md"
 cat "$OUT/summary.md"

@@ -15,19 +15,17 @@
 # the load average with the numbers.
 #
 #   ./scripts/report_scale.sh [RUNS]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 runs="${1:-3}"
-./scripts/venv.sh
-py=$PWD/.venv/bin/python
-cargo build --release -q -p rtw-scan --features fake-sim
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+rtw_install
+py=$PWD/$RTW_PY
+rtw_build -p rtw-scan --features fake-sim
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 load() { cut -d' ' -f1-3 /proc/loadavg; }
 grep -q '^samples = 1000$' configs/paper.toml
 sed -e 's/^samples = 1000$/samples = 1000000/' configs/paper.toml >"$tmp/million.toml"
-"$bin" run "$tmp/million.toml" --out "$tmp/million" --fake-sim 0 --quiet >/dev/null
+"$RTW_BIN" run "$tmp/million.toml" --out "$tmp/million" --fake-sim 0 --quiet >/dev/null
 start_load=$(load)
 row() { # NAME DIR ROWS: one table row
   local name=$1 dir=$2 rows=$3 i

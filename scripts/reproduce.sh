@@ -24,16 +24,13 @@
 # committed runs instead of rerunning them (REPORT_ONLY=1 ./scripts/variants.sh):
 # every variant file spells out each model choice, so those runs do not depend
 # on rtw's defaults; everything else is rerun.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p rtw-scan -p rtw-model --examples --bins
+. "$(dirname "$0")/lib.sh"
+rtw_build -p rtw-scan -p rtw-model --examples --bins
 # The Python scripts call the library through the package (labels, Wilson intervals, the star).
-./scripts/venv.sh
-PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
-  --no-build-isolation ./crates/rtw-py
+rtw_install
 for c in paper fig-s2 fig-s3; do
   rm -rf "results/$c"
-  target/release/rtw-scan run "configs/$c.toml" --out "results/$c" >/dev/null
+  "$RTW_BIN" run "configs/$c.toml" --out "results/$c" >/dev/null
 done
 if [ -n "${SKIP_VARIANTS:-}" ]; then
   REPORT_ONLY=1 ./scripts/variants.sh >/dev/null
@@ -57,12 +54,10 @@ fi
 ./scripts/continuation.sh >/dev/null
 ./scripts/basin.sh >/dev/null
 ./scripts/robustness_study.sh >/dev/null
-.venv/bin/python scripts/fig_s2_frequencies.py >/dev/null
-.venv/bin/python scripts/fidelity_report.py >/dev/null
-.venv/bin/python scripts/reproduction_report.py >/dev/null
-.venv/bin/python scripts/readme_tables.py
-PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --quiet --disable-pip-version-check \
-  --no-build-isolation ./crates/rtw-py
-.venv/bin/python -m rtw report results/paper --out results/paper/report.html
-.venv/bin/python -m rtw report results/sensitivity/saltelli --out results/sensitivity/saltelli/report.html
+"$RTW_PY" scripts/fig_s2_frequencies.py >/dev/null
+"$RTW_PY" scripts/fidelity_report.py >/dev/null
+"$RTW_PY" scripts/reproduction_report.py >/dev/null
+"$RTW_PY" scripts/readme_tables.py
+"$RTW_PY" -m rtw report results/paper --out results/paper/report.html
+"$RTW_PY" -m rtw report results/sensitivity/saltelli --out results/sensitivity/saltelli/report.html
 echo "reproduce: done (see git status for what changed)"

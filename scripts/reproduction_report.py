@@ -16,19 +16,17 @@ Usage: python scripts/reproduction_report.py
 from __future__ import annotations
 
 import json
-import sys
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import polars as pl
 
-sys.path.insert(0, str(Path(__file__).parent))
-from figures import DEFAULT_VARIANT, STABLE, permutation_p, wilson  # noqa: E402
-from variants_report import PAPER, cluster_regions  # noqa: E402
+from rtwscripts import DEFAULT_VARIANT, ROOT
+from rtwscripts.labels import FAILED, STABLE
+from rtwscripts.paper import PAPER, cluster_regions
+from rtwscripts.stats import permutation_p, wilson
 
-ROOT = Path(__file__).resolve().parent.parent
-FAILED = ["collapse", "stall"]
 
 
 def scan(d: Path) -> pl.DataFrame:

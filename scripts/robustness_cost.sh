@@ -2,18 +2,16 @@
 # The cost of the robustness measures: the paper scan plain, with
 # robustness.step_down=true, and with step_down and gsn, one thread each, in
 # one run (docs/robustness-step-down.md, "Cost"). Writes into a temporary directory only.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p rtw-scan
-bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+. "$(dirname "$0")/lib.sh"
+rtw_build
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 t0=$(date +%s.%N)
-"$bin" run configs/paper.toml --out "$tmp/plain" --threads 1 --quiet >/dev/null
+"$RTW_BIN" run configs/paper.toml --out "$tmp/plain" --threads 1 --quiet >/dev/null
 t1=$(date +%s.%N)
-"$bin" run configs/paper.toml --out "$tmp/step" --threads 1 --quiet --set robustness.step_down=true >/dev/null
+"$RTW_BIN" run configs/paper.toml --out "$tmp/step" --threads 1 --quiet --set robustness.step_down=true >/dev/null
 t2=$(date +%s.%N)
-"$bin" run configs/paper.toml --out "$tmp/gsn" --threads 1 --quiet --set robustness.step_down=true \
+"$RTW_BIN" run configs/paper.toml --out "$tmp/gsn" --threads 1 --quiet --set robustness.step_down=true \
     --set robustness.gsn=true >/dev/null
 t3=$(date +%s.%N)
 python3 - "$t0" "$t1" "$t2" "$t3" <<'PY'

@@ -32,7 +32,7 @@ from scipy import stats  # noqa: E402
 
 from robustness_stats import BOOTSTRAP, SEED, somers_d_ci, spearman, spearman_ci, tobit  # noqa: E402
 
-STABLE = ("skip", "walk", "crawl")
+from rtwscripts.labels import STABLE  # noqa: E402
 # The cheap measures set against the MFPT, in the order of the tables.
 MEASURES = [
     ("floquet_max", "Floquet max \\|μ\\|"),

@@ -21,42 +21,40 @@
 #      log MFPT, the ten longest-walking designs, map-mfpt.png, map.png,
 #      paper.png and summary.md.
 # `--analyse-only` runs step 5 on the scans already in results/robustness/.
-# Sets up the Python venv (.venv) and builds rtw-scan.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+# Sets up the Python venv (.venv, the package rtw) and builds rtw-scan.
+. "$(dirname "$0")/lib.sh"
 
-./scripts/venv.sh
+rtw_install
 out=results/robustness
 mkdir -p "$out"
 if [[ "${1:-}" != "--analyse-only" ]]; then
-  cargo build --release -q -p rtw-scan
-  bin="${CARGO_TARGET_DIR:-target}/release/rtw-scan"
+  rtw_build
   seeds=(100 200)
   rm -rf "$out/map" "$out/paper" "$out"/seed*
   measures=(--set limit_cycle=true --set robustness.step_down=true
     --set robustness.step_down_h50=true --set robustness.gsn=true
     --set robustness.steps_to_fall=true --set robustness.mfpt=true)
   t0=$(date +%s.%N)
-  "$bin" run configs/robustness-map.toml --out "$out/map" --quiet "${measures[@]}" >/dev/null
+  "$RTW_BIN" run configs/robustness-map.toml --out "$out/map" --quiet "${measures[@]}" >/dev/null
   t1=$(date +%s.%N)
-  "$bin" run configs/paper.toml --out "$out/paper" --quiet "${measures[@]}" >/dev/null
+  "$RTW_BIN" run configs/paper.toml --out "$out/paper" --quiet "${measures[@]}" >/dev/null
   t2=$(date +%s.%N)
   for s in "${seeds[@]}"; do
     for c in map paper; do
       config=configs/paper.toml
       [[ $c == map ]] && config=configs/robustness-map.toml
-      "$bin" run "$config" --out "$out/seed$s/$c" --quiet --set terrain.seed="$s" \
+      "$RTW_BIN" run "$config" --out "$out/seed$s/$c" --quiet --set terrain.seed="$s" \
         --set robustness.steps_to_fall=true --set robustness.mfpt=true >/dev/null
     done
   done
   t3=$(date +%s.%N)
   # The survival curves of four gaits at stated heights (a few seconds).
-  .venv/bin/python scripts/step_down_curve.py "$out/step_down_curve.md" >/dev/null
+  "$RTW_PY" scripts/step_down_curve.py "$out/step_down_curve.md" >/dev/null
   threads=$(nproc)
   python3 -c "print(f'map_scan_(all_measures)={$t1 - $t0:.1f} s;paper_scan_(all_measures)={$t2 - $t1:.1f} s;'
     f'both_scans_at_${#seeds[@]}_more_terrain_seeds_(steps_to_fall_and_mfpt)={$t3 - $t2:.1f} s;threads=$threads')" \
     >"$out/times.txt"
 fi
-.venv/bin/python scripts/robustness_stats.py >/dev/null # its self-check against SciPy and a simulated sample
-.venv/bin/python scripts/robustness_study.py "$out" --times "$(cat "$out/times.txt")" >/dev/null
+"$RTW_PY" scripts/robustness_stats.py >/dev/null # its self-check against SciPy and a simulated sample
+"$RTW_PY" scripts/robustness_study.py "$out" --times "$(cat "$out/times.txt")" >/dev/null
 echo "robustness_study: done ($out/summary.md)"

@@ -6,8 +6,7 @@
 # Needs the package installed in the venv (.venv/bin/python -m pip install
 # ./crates/rtw-py) and scripts/requirements.txt (nbclient, ipykernel).
 #   ./scripts/run_notebook.sh [NOTEBOOK]      PYTHON=... to use another interpreter
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 
 python="${PYTHON:-.venv/bin/python}"
 notebook="${1:-docs/examples/quickstart.ipynb}"

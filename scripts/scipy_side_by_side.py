@@ -6,7 +6,7 @@ Usage: scripts/scipy_side_by_side.py [N] [--samples FILE.parquet] [--rtw BIN]
 Takes the first N (default 12) samples of the paper scan (their inputs from
 `results/paper/samples.parquet`), and for each: runs `rtw-scan simulate
 --json` (default model, t_max 20 s, no early stop) and the Python/NumPy port
-of the same model (scripts/rtw_reference.py) with `scipy.integrate.solve_ivp`
+of the same model (scripts/rtwscripts/reference.py) with `scipy.integrate.solve_ivp`
 RK45 and terminal events at rtw's default tolerance (rtol 1e-4, atol 1e-6),
 from rtw's own initial state (its trace at t = 0: the port does not set the
 star down). Prints per sample both labels, both times and RHS counts, then
@@ -20,14 +20,12 @@ import argparse
 import json
 import os
 import subprocess
-import sys
 import tempfile
 import time
 
 import pandas as pd
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import rtw_reference as ref  # noqa: E402
+from rtwscripts import reference as ref
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTOL, ATOL = 1e-4, 1e-6

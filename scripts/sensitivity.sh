@@ -8,17 +8,16 @@
 #
 #   ./scripts/sensitivity.sh                # all (~10-20 s each on 2 cores; t_max 40 twice that)
 #   REPORT_ONLY=1 ./scripts/sensitivity.sh  # re-tabulate
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 if [ -z "${REPORT_ONLY:-}" ]; then
-  cargo build --release -q -p rtw-scan
-  [ -f results/paper/samples.parquet ] || target/release/rtw-scan run configs/paper.toml --out results/paper >/dev/null
+  rtw_build
+  [ -f results/paper/samples.parquet ] || "$RTW_BIN" run configs/paper.toml --out results/paper >/dev/null
   for f in configs/sensitivity/*.toml; do
     n=$(basename "$f" .toml)
     echo "== $n"
     rm -rf "results/sensitivity/$n"
-    target/release/rtw-scan run configs/paper.toml --variant "$f" --out "results/sensitivity/$n" >/dev/null
+    "$RTW_BIN" run configs/paper.toml --variant "$f" --out "results/sensitivity/$n" >/dev/null
   done
 fi
-./scripts/venv.sh
-.venv/bin/python scripts/sensitivity_report.py results/paper results/sensitivity
+rtw_install
+"$RTW_PY" scripts/sensitivity_report.py results/paper results/sensitivity

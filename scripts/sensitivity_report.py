@@ -13,10 +13,8 @@ from pathlib import Path
 
 import polars as pl
 
-sys.path.insert(0, str(Path(__file__).parent))
-from variants_report import PAPER, cluster_regions, distance_pp, fmt  # noqa: E402
-
-OUTCOMES = ["skip", "walk", "crawl", "collapse", "stall", "diverged"]
+from rtwscripts.labels import OUTCOMES
+from rtwscripts.paper import PAPER, cluster_regions, distance_pp, fmt
 
 
 def load(d: Path) -> tuple[dict, pl.DataFrame]:

@@ -9,11 +9,10 @@
 # (229376 runs: about 6 minutes on 2 idle cores). results/sensitivity/ also holds the
 # per-modelling-choice runs of scripts/sensitivity.sh; neither script touches
 # the other's files.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p rtw-scan
+. "$(dirname "$0")/lib.sh"
+rtw_build
 rm -rf results/sensitivity/saltelli
-target/release/rtw-scan run configs/sensitivity-saltelli.toml --out results/sensitivity/saltelli >/dev/null
-target/release/rtw-scan sensitivity results/sensitivity/saltelli --out results/sensitivity/indices.parquet >/dev/null
-./scripts/venv.sh
-.venv/bin/python scripts/sobol_indices_report.py results/sensitivity
+"$RTW_BIN" run configs/sensitivity-saltelli.toml --out results/sensitivity/saltelli >/dev/null
+"$RTW_BIN" sensitivity results/sensitivity/saltelli --out results/sensitivity/indices.parquet >/dev/null
+rtw_install
+"$RTW_PY" scripts/sobol_indices_report.py results/sensitivity

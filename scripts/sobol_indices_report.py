@@ -19,8 +19,10 @@ from pathlib import Path
 import pyarrow.compute as pc
 import pyarrow.parquet as pq
 
+from rtwscripts.labels import FAILED, STABLE
+
 PARAMS = [("rho", "ρ"), ("alpha", "α"), ("fn", "f_n"), ("zeta", "ζ"), ("phi", "φ")]
-OUTPUTS = ["failure", "skip", "walk", "crawl", "collapse", "stall", "speed", "f_w"]
+OUTPUTS = ["failure", *STABLE, *FAILED, "speed", "f_w"]
 CLASSES = OUTPUTS[:6]
 
 

@@ -23,6 +23,8 @@ from pathlib import Path
 
 import pyarrow.parquet as pq
 
+from rtwscripts.labels import STABLE
+
 ROOT = Path(__file__).resolve().parent.parent
 BIN = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release" / "rtw-scan"
 INPUTS = ["length", "rho", "alpha", "fn", "zeta", "phi"]
@@ -42,7 +44,7 @@ def simulate(d: dict, *sets: str) -> dict:
 
 def curve(name: str, d: dict) -> list[str]:
     v = simulate(d, "robustness.step_down=true", "robustness.step_down_h50=true")
-    if v["outcome"] not in ("walk", "skip", "crawl"):
+    if v["outcome"] not in STABLE:
         return [f"### {name}\n", f"Not a stable gait at the default model ({v['outcome']}).\n"]
     top, h50 = v["step_down_max"], v["step_down_h50"]
     md = [f"### {name}\n",

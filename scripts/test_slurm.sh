@@ -15,8 +15,7 @@
 # stopped on exit, whatever happens.
 #
 # Usage: scripts/test_slurm.sh [CONFIG]   (default configs/smoke.toml)
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 if [ "$(id -u)" -ne 0 ]; then
   echo "test_slurm: needs root (it installs Slurm and munge with apt-get and starts their daemons): sudo $0" >&2
   exit 1
@@ -50,12 +49,9 @@ submit_wait() {
   scontrol show job "$id" | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'
 }
 
-cargo build --release -q -p rtw-scan
-export RTW_SCAN=$PWD/target/release/rtw-scan
-if [ ! -x .venv/bin/python ]; then
-  python3 -m venv .venv
-fi
-.venv/bin/pip install --quiet --disable-pip-version-check -r scripts/requirements.txt
+rtw_build
+export RTW_SCAN=$(cd "$(dirname "$RTW_BIN")" && pwd)/rtw-scan
+rtw_venv
 
 work=$(mktemp -d)
 state=$work/slurm
@@ -93,9 +89,9 @@ done
 
 "$RTW_SCAN" run "$config" --out "$work/single" --threads 2 >/dev/null 2>&1 ||
   fail "the single-machine run failed"
-.venv/bin/python scripts/compare_scans.py "$out/samples.parquet" "$work/single/samples.parquet" ||
+"$RTW_PY" scripts/compare_scans.py "$out/samples.parquet" "$work/single/samples.parquet" ||
   fail "the merged file differs from the single-machine run"
-.venv/bin/python scripts/compare_scans.py "$out/part-*.parquet" "$work/single/samples.parquet" ||
+"$RTW_PY" scripts/compare_scans.py "$out/part-*.parquet" "$work/single/samples.parquet" ||
   fail "the parts, read with polars.scan_parquet, differ from the single-machine run"
 
 # A lost shard rerun alone, as docs/cluster.md says (RTW_SHARDS: that array has
@@ -107,7 +103,7 @@ merge_state=$(submit_wait "$work/merge2.out" --dependency=afterok:"$jid" scripts
 [ "$merge_state" = COMPLETED ] ||
   fail "the rerun of shard 2 or its merge failed ($merge_state): $(cat "$work"/rerun-2.out "$work"/merge2.out 2>/dev/null)"
 grep -q "shard 2/$shards" "$work/rerun-2.out" || fail "the rerun did not run shard 2/$shards"
-.venv/bin/python scripts/compare_scans.py "$out/samples.parquet" "$work/single/samples.parquet" ||
+"$RTW_PY" scripts/compare_scans.py "$out/samples.parquet" "$work/single/samples.parquet" ||
   fail "after rerunning shard 2, the merged file differs from the single-machine run"
 
 # A failing task (no such config) makes the merge's dependency impossible:

@@ -13,8 +13,7 @@
 #   ./scripts/variants.sh                      # all variants (~15 s each on 2 cores)
 #   ./scripts/variants.sh literal prestress-0.85
 #   REPORT_ONLY=1 ./scripts/variants.sh        # re-tabulate existing results
-set -euo pipefail
-cd "$(dirname "$0")/.."
+. "$(dirname "$0")/lib.sh"
 
 if [ $# -gt 0 ]; then
   variants=("$@")
@@ -29,8 +28,7 @@ fi
 SEEDS=(7 11 13 17)
 
 if [ -z "${REPORT_ONLY:-}" ]; then
-  cargo build --release -q -p rtw-scan
-  scan=target/release/rtw-scan
+  rtw_build
   # The Fig. 7(a) point (main article; docs/model.md §8).
   fig7a=(--length 0.8 --rho 2.5 --alpha 0.125 --fn 3.269 --zeta 0.0514 --phi 0.15)
   for v in "${variants[@]}"; do
@@ -39,21 +37,21 @@ if [ -z "${REPORT_ONLY:-}" ]; then
     echo "== $v"
     rm -rf "$out"
     mkdir -p "$out"
-    $scan simulate "${fig7a[@]}" --config "$file" --json >"$out/fig7a.json"
-    $scan run configs/fig-s2.toml --variant "$file" --out "$out/fig-s2" >/dev/null
-    $scan run configs/fig-s3.toml --variant "$file" --out "$out/fig-s3" >/dev/null
-    $scan run configs/paper.toml --variant "$file" --out "$out/paper" >/dev/null
+    "$RTW_BIN" simulate "${fig7a[@]}" --config "$file" --json >"$out/fig7a.json"
+    "$RTW_BIN" run configs/fig-s2.toml --variant "$file" --out "$out/fig-s2" >/dev/null
+    "$RTW_BIN" run configs/fig-s3.toml --variant "$file" --out "$out/fig-s3" >/dev/null
+    "$RTW_BIN" run configs/paper.toml --variant "$file" --out "$out/paper" >/dev/null
     mkdir -p "$out/seeds"
     for seed in "${SEEDS[@]}"; do
       tmp=$(mktemp -d)
       # configs/paper.toml with only its seed changed.
       sed "s/^seed = .*/seed = $seed/" configs/paper.toml >"$tmp/paper.toml"
-      $scan run "$tmp/paper.toml" --variant "$file" --out "$tmp/scan" >/dev/null
+      "$RTW_BIN" run "$tmp/paper.toml" --variant "$file" --out "$tmp/scan" >/dev/null
       cp "$tmp/scan/summary.json" "$out/seeds/$seed.json"
       rm -rf "$tmp"
     done
   done
 fi
 
-./scripts/venv.sh
-.venv/bin/python scripts/variants_report.py results/variants
+rtw_install
+"$RTW_PY" scripts/variants_report.py results/variants

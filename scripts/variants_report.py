@@ -22,22 +22,17 @@ import sys
 from pathlib import Path
 
 import polars as pl
+from rtw import Z95
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from figures import DEFAULT_VARIANT, STABLE  # noqa: E402
+from rtwscripts import DEFAULT_VARIANT
+from rtwscripts.labels import FAILED, STABLE
+from rtwscripts.paper import PAPER, cluster_regions, distance_pp, fmt
 
-# docs/model.md §8: supplementary Section 2 (percent of all samples).
-PAPER = {"stable": 73.7, "skip": 35.9, "walk": 32.0, "crawl": 5.8}
-# The paper box's midpoints: a failure cluster "sits at small x" when its
-# centre lies below the midpoint of x's sampled range.
-MID = {"alpha": 0.2, "fn": 3.25, "phi": 0.175}
 # A real floor: rubber on concrete or wood gives a friction coefficient of
 # roughly 0.6-1.0; a gait that needs more than 1 is not physically sensible.
 MU_REAL = 1.0
 # The paper's own numbers are one draw of 1000 samples.
 PAPER_N = 1000
-# Two-sided 95 % normal quantile.
-Z95 = 1.959963984540054
 # Fig. S2: the supplementary says the walking frequency is "very close to" f_n.
 # A variant is admissible when the median over the sweep's stable gaits of
 # steps (new-foot touchdowns) per second over f_n lies in this band.
@@ -67,28 +62,6 @@ def against_paper(mean: float, se: float, paper: float) -> dict:
     half = Z95 * math.sqrt(se**2 + paper_se_pp(paper) ** 2)
     diff = mean - paper
     return {"diff": diff, "ci95": [diff - half, diff + half], "within": abs(diff) <= half}
-
-
-def distance_pp(stable: float, percent: dict) -> float:
-    """The distance of a 1000-sample statistic to the paper's: sum of the
-    absolute differences of stable, skip, walk and crawl (percentage points)."""
-    return abs(stable - PAPER["stable"]) + sum(abs(percent[k] - PAPER[k]) for k in STABLE)
-
-
-def cluster_regions(clusters: list[dict]) -> dict:
-    """Names each k-means cluster by where its centre sits (Fig. S4's two
-    groups): 'collapse region' = small alpha and low f_n, 'barrier region' =
-    small phi (and not the former)."""
-    regions = []
-    for c in clusters:
-        if c["alpha"] < MID["alpha"] and c["fn"] < MID["fn"]:
-            regions.append("collapse region")
-        elif c["phi"] < MID["phi"]:
-            regions.append("barrier region")
-        else:
-            regions.append("elsewhere")
-    both = "collapse region" in regions and "barrier region" in regions
-    return {"regions": regions, "both": both}
 
 
 def one_variant(d: Path) -> dict:
@@ -193,7 +166,7 @@ def seed_stats(summaries: list[dict]) -> dict:
                 "both_clusters": cluster_regions(cl)["both"],
             }
         )
-    keys = ["stable", "skip", "walk", "crawl", "collapse", "stall"]
+    keys = ["stable", *STABLE, *FAILED]
     share = {}
     for k in keys:
         m, se = mean_se([p["percent"][k] for p in per_seed])
@@ -270,12 +243,6 @@ def glance(variants: list[dict], chosen: dict | None, default: str) -> list[str]
             f"{'yes' if not v['not_admissible'] else 'no'} |"
         )
     return out
-
-
-def fmt(x, nd=1):
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return "–"
-    return f"{x:.{nd}f}"
 
 
 def main(root: Path) -> None:
@@ -437,7 +404,7 @@ def main(root: Path) -> None:
             "| share | paper | rtw (mean ± SE) | difference | 95 % interval of the difference | within sampling error |",
             "|---|---:|---:|---:|---|---|",
         ]
-        for k in ("stable", "skip", "walk", "crawl"):
+        for k in ("stable", *STABLE):
             c = sh[k]["paper"]
             lines.append(
                 f"| {k} | {PAPER[k]} ± {paper_se_pp(PAPER[k]):.1f} | {pm(sh[k])} | {c['diff']:+.1f} | "

@@ -13,15 +13,14 @@
 # 0.1 s), so it includes Slurm's scheduling, the merge and the summary; "per task"
 # is a task's rows over its own compute time (the part's rtw.wall_time_s).
 # Prints a Markdown table.
-set -euo pipefail
-cd "$(dirname "$0")/../.."
+. "$(dirname "$0")/../lib.sh"
 config=${1:-configs/paper.toml}
 repeats=${2:-3}
 cpus=$(nproc)
 
-cargo build --release -q -p rtw-scan
-export RTW_SCAN=$PWD/target/release/rtw-scan
-[ -x .venv/bin/python ] || { python3 -m venv .venv && .venv/bin/pip install -q -r scripts/requirements.txt; }
+rtw_build
+export RTW_SCAN=$(cd "$(dirname "$RTW_BIN")" && pwd)/rtw-scan
+rtw_venv
 
 work=$(mktemp -d)
 state=$work/slurm

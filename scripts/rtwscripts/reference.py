@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """An independent Python/NumPy port of rtw's default model, run by SciPy.
 
 Written from docs/model.md (the authority; §1 parameters, §3 strings, §4
