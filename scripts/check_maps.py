@@ -31,10 +31,10 @@ MAPS = [
     ("docs/commands.md", r"^## The commands\n.*?^```sh\n.*?^```", r"^rtw-scan ([a-z][a-z-]*)"),
     # The reference: one heading per subcommand.
     ("docs/cli.md", None, r"^### `rtw-scan ([a-z][a-z-]*)`"),
-    # The layers' tour: each subcommand named as `rtw-scan NAME` where it is built.
-    ("docs/architecture.md", None, r"`rtw-scan ([a-z][a-z-]*)`"),
-    # The crate's module table: the `cli` row names the subcommands it parses.
-    ("crates/rtw-scan/src/lib.rs", r"^//! \| `cli` \|([^\n]*)", r"`([a-z][a-z-]*)`(?! feature)"),
+    # The layers' tour: the command's table, each subcommand and the entry it calls.
+    ("docs/architecture.md", r"^  \| subcommand \|.*?\n((?:  \|[^\n]*\n)+)", r"^  \| `rtw-scan ([a-z][a-z-]*)` \|"),
+    # The command crate's table of subcommands: one row each, its first cell the name.
+    ("crates/rtw-scan/src/lib.rs", r"^//! \| subcommand \|.*?\n((?://! \|[^\n]*\n)+)", r"^//! \| `([a-z][a-z-]*)` \|"),
 ]
 
 

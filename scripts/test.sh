@@ -76,6 +76,8 @@ echo "== every number the docs' prose quotes from a results file is the file's (
 .venv/bin/python scripts/check_doc_numbers.py
 echo "== no file over 600 lines outside its tests, no import cycle (scripts/check_structure.py)"
 .venv/bin/python scripts/check_structure.py
+echo "== the maps of the subcommands (README, docs/commands.md, docs/cli.md, docs/architecture.md, rtw-scan's lib.rs) name every one (scripts/check_maps.py)"
+.venv/bin/python scripts/check_maps.py
 echo "== rust-version covers every dependency (scripts/check_msrv.py)"
 .venv/bin/python scripts/check_msrv.py
 echo "== fault injection: kills, a full disk, corrupt pages (scripts/fault_inject.sh)"

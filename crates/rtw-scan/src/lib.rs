@@ -8,6 +8,23 @@
 //! take only typed values; a handler prints what they return. This file holds the
 //! command tree and the exit codes, `signal` the signal handling, and
 //! `progress` the progress shown on stderr.
+//!
+//! The subcommands:
+//!
+//! | subcommand | file | the library entry it calls |
+//! |---|---|---|
+//! | `run` | `run.rs` | `rtw_engine::entry::scan::{check_outputs, run_scan, write_summary}` |
+//! | `merge` | `run.rs` | `rtw_engine::entry::scan::{merge, write_summary}` |
+//! | `simulate` | `simulate.rs` | `rtw_engine::scan::one::run_one` (the scan's own sample) |
+//! | `summary` | `analysis.rs` | `rtw_engine::entry::summary::summary_to_files` |
+//! | `cluster` | `analysis.rs` | `rtw_engine::entry::summary::cluster` |
+//! | `refine` | `refine.rs` | `rtw_studies::refine::refine` |
+//! | `sensitivity` | `sensitivity.rs` | `rtw_studies::sensitivity::analyse_to_file` |
+//! | `bifurcation` | `bifurcation.rs` | `rtw_studies::bifurcation::run_to_files` |
+//! | `continuation` | `continuation.rs` | `rtw_studies::continuation::run_to_files` |
+//! | `basin` | `basin.rs` | `rtw_studies::basin::run_to_files` |
+//! | `profile` | `profile.rs` | `rtw_studies::profile::run_to_files` |
+//! | `design` | `design.rs` | `rtw_studies::search::files::run_to_files` |
 
 /// `print!` to stdout through [`signal::print_out`]: a closed stdout ends
 /// the command quietly (exit 141) instead of a panic. Every command's

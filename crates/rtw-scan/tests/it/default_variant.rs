@@ -45,7 +45,7 @@ fn the_figures_default_is_the_variant_the_rule_picks() {
     assert_eq!(
         summary_field("default"),
         summary_field("chosen"),
-        "scripts/figures.py's DEFAULT_VARIANT is not the rule's pick"
+        "scripts/rtwscripts/__init__.py's DEFAULT_VARIANT (the figures' default) is not the rule's pick"
     );
 }
 
