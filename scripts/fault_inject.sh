@@ -18,10 +18,10 @@
 #      same command finishes with the uninterrupted refine's rows;
 #   6. continuation --through killed at random points: its four files appear
 #      all together or not at all;
-#   7. sensitivity and basin killed at random points, over an earlier result
-#      of theirs: the earlier file stays byte for byte or is replaced whole
-#      by the uninterrupted result, and no temporary file is left after a
-#      SIGTERM;
+#   7. a bifurcation sweep, sensitivity and basin killed at random points,
+#      over an earlier result of theirs: the earlier files stay byte for byte
+#      or are replaced whole (the sweep's three together), and no temporary
+#      file is left after a SIGTERM;
 #   8. a design search killed at random points: each evaluation it stored is
 #      the uninterrupted search's of that index, and the same command
 #      finishes with its every row (search.parquet, designs.parquet); a slope
@@ -364,6 +364,38 @@ kill_study() { # WHAT OUT ARGS...: kills `rtw-scan ARGS` four times over OUT
   same_table "$work/$what-ref.parquet" "$out" || fail "$what after the kills: other rows"
   ! ls -A "$(dirname "$out")" | grep -q '\.tmp$' || fail "$what after the kills: temporary files left"
 }
+# A bifurcation sweep killed at random instants over an earlier sweep of
+# its own: its three files (the values, the steps, the summary) are one set,
+# kept as they were or replaced together, never a mix of two sweeps.
+sweep_args=(bifurcation --from 0.14 --to 0.16 --points 6 --transient 40 --record 4)
+sdir=$work/sweep
+mkdir -p "$sdir"
+"$bin" "${sweep_args[@]}" --out "$sdir/s.parquet" >/dev/null 2>&1 || fail "the uninterrupted sweep failed"
+for i in 1 2 3 4; do
+  sig=KILL
+  [ $((i % 2)) -eq 0 ] && sig=TERM
+  delay_ms=$((50 + RANDOM % 1500))
+  before=$(for f in s.parquet s.steps.parquet s.md; do cksum <"$sdir/$f"; done)
+  "$bin" "${sweep_args[@]}" --out "$sdir/s.parquet" >/dev/null 2>&1 &
+  pid=$!
+  sleep "$(printf '%d.%03d' $((delay_ms / 1000)) $((delay_ms % 1000)))"
+  kill -s "$sig" "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  faults=$((faults + 1))
+  changed=0
+  k=0
+  for f in s.parquet s.steps.parquet s.md; do
+    k=$((k + 1))
+    [ -f "$sdir/$f" ] || fail "sweep kill $i (SIG$sig): $f is gone"
+    [ "$(cksum <"$sdir/$f")" = "$(sed -n "${k}p" <<<"$before")" ] || changed=$((changed + 1))
+  done
+  [ "$changed" = 0 ] || [ "$changed" = 3 ] || fail "sweep kill $i (SIG$sig): $changed of its 3 files replaced"
+  if [ "$sig" = TERM ] && ls -A "$sdir" | grep -q '\.tmp$'; then
+    fail "sweep kill $i (SIG$sig): temporary files left: $(ls -A "$sdir")"
+  fi
+  echo "fault_inject: bifurcation kill $i (SIG$sig after ${delay_ms} ms): $changed of 3 files replaced, never a part of the set"
+done
+
 mkdir -p "$work/studies"
 kill_study sensitivity "$work/ref/indices.parquet" sensitivity "$work/ref" --resamples 2000
 kill_study basin "$work/studies/basin.parquet" basin --x omega_a:-40:40:9 --y theta_b:-1.2:0.8:9 --steps 60 --threads 2

@@ -8,6 +8,7 @@ use anyhow::Result;
 use clap::Args;
 use rtw_engine::config::params::checked_params;
 use rtw_engine::config::validate_options;
+use rtw_engine::scan::Run;
 use rtw_studies::basin::{self, OUTCOMES, Settings, outcome_index};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -57,7 +58,12 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     let spec = settings.spec;
     let progress = StderrProgress::study(a.quiet, "basin: grid points");
     let (slice, points, wall) = basin::run_to_files(
-        &params, &options, &settings, &a.out, a.force, &STOP, &progress,
+        &params,
+        &options,
+        &settings,
+        &a.out,
+        a.force,
+        &Run::new(&progress, &STOP),
     )?;
     let per_point = wall / points.len() as f64;
     let (cx, cy) = slice.centre();

@@ -15,12 +15,11 @@ use rtw_engine::io::metadata::{
 };
 use rtw_engine::io::parquet;
 use rtw_engine::io::table::{self, Column, Get, column};
+use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
-use rtw_engine::scan::progress::Progress;
 use rtw_model::cycles::{Basin, BasinPoint, CycleOptions, Fate, StepError};
 use rtw_model::{Options, Params};
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// One grid point with what its row shows.
@@ -214,9 +213,9 @@ pub fn run_to_files(
     settings: &crate::basin::Settings,
     out: &Path,
     force: bool,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<(Basin, Vec<BasinPoint>, f64)> {
+    let (cancel, progress) = (run.stop, run.progress);
     let _lock = Lock::for_result(out, &format!("writing the basin slice {}", out.display()))?;
     check_output(out, force)?;
     let cycle = CycleOptions::default();

@@ -117,6 +117,12 @@ impl Observer<N, Rtw> for StepLog {
     }
 
     fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, _: StepEnd<'_, AtState>) -> Flow {
+        // A study stopped from outside (`cancellable`) ends its step maps at
+        // their next step too, as it ends its plain runs: a continuation is
+        // thousands of them.
+        if crate::run::cancel::requested() {
+            return Flow::Stop;
+        }
         self.state_time[rtw.contact_state()] += dense.t1 - dense.t0;
         Flow::Continue
     }
