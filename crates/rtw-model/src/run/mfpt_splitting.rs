@@ -1,0 +1,527 @@
+//! The mean first-passage time of a stable gait on a rough slope by
+//! adaptive multilevel splitting ([`hybrid_ode::splitting`]) with a score
+//! learned where falls are cheap: the second MFPT estimator, whose cost
+//! grows as `log(MFPT)` where counting's grows as the MFPT.
+//!
+//! **The walker** is [`crate::run::mfpt`]'s: the settled gait on the rough
+//! slope of `robustness.sigma`, a step a run of `1 / f_w_newfoot` seconds
+//! before which the patches more than a rod length beyond the furthest tip
+//! are drawn afresh, a fall a failed run or `stall_time` without a
+//! touchdown.
+//!
+//! **The score sees the ground ahead.** A fall is decided by patches already
+//! laid under and just ahead of the walker, which its own state does not
+//! show (CHANGELOG.md, "The MFPT's estimators tried and dropped"). The
+//! score is a function of the *extended* state: the section state and the
+//! kept patches within reach ([`features`]): the rise from the patch under
+//! the furthest tip to the next one (the only patch ahead that is kept),
+//! the rise from the patch under the centre of mass to the one under the
+//! furthest tip, the furthest tip's distance to the next edge, their squares
+//! and products, the centre of mass's velocity relative to the settled
+//! gait's, and its height above the ground under it.
+//!
+//! **The score is learned** (Lucente et al., J. Stat. Mech. 2022; trained at
+//! higher noise and used at lower, Wang, Castellana and Dijkstra, NPG 2021):
+//! plain walks from the settled gait at `train_sigma` (5 cm by default,
+//! where Fig. 7(a) falls every ~150 steps), every state labelled by whether
+//! the walk fell within `horizon` steps of it; a logistic regression on the
+//! standardized features ([`hybrid_ode::logistic`]) gives `P(fall within
+//! horizon steps | extended state)`, whose log-odds is the score. Its AUC
+//! is measured on the held-out walks (every fourth). The splitting is
+//! unbiased for any score; the score sets only its variance.
+//!
+//! **Cost**: the training walks (`train_walks` walks of at most
+//! `train_max_steps` steps) and the splitting's batches, every step counted.
+
+use crate::options::{Options, RobustnessOptions, TerrainOptions};
+use crate::outcome::FailureDetail;
+use crate::plant::geometry::SPOKES;
+use crate::plant::rtw::Rtw;
+use crate::plant::slots::{DISSIPATED, FRICTION, N};
+use crate::run::recorder::run_from;
+use crate::run::settled::SettledGait;
+use hybrid_ode::Work;
+use hybrid_ode::logistic::{Logistic, auc};
+use hybrid_ode::metastable::{Rng, Walker};
+use hybrid_ode::splitting::{Split, SplitOptions, split};
+use std::cell::RefCell;
+
+/// The settings of the RTW's splitting: the score's training and the
+/// splitting's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitSettings {
+    /// The roughness the score is learned at (m); the target's when larger.
+    pub train_sigma: f64,
+    /// Training walks from the settled gait.
+    pub train_walks: usize,
+    /// A training walk stops after this many steps.
+    pub train_max_steps: usize,
+    /// A state's label: the walk fell within this many steps of it.
+    pub horizon: usize,
+    /// The logistic fit's ridge.
+    pub ridge: f64,
+    /// Plain walks at the target roughness (of at most `train_max_steps`
+    /// steps) on which the score's AUC is measured; 0: none.
+    pub target_walks: usize,
+    /// The splitting's settings (its seed is `terrain.seed`'s).
+    pub split: SplitOptions,
+}
+
+/// By default the score learns from 400 walks at 5 cm (~60 000 steps, a few
+/// seconds), and the splitting runs 8 batches of 100 excursions from the
+/// better half of a cloud of 32 walkers (20 steps of burn-in, 20 sampled).
+pub const SPLIT_SETTINGS: SplitSettings = SplitSettings {
+    train_sigma: 0.05,
+    train_walks: 400,
+    train_max_steps: 2000,
+    horizon: 3,
+    ridge: 1e-3,
+    target_walks: 0,
+    split: SplitOptions {
+        seed: 0,
+        batches: 8,
+        replicas: 100,
+        kill: 1,
+        cloud: 32,
+        burn_in: 20,
+        sample_steps: 20,
+        quantile: 0.5,
+        max_excursion: 200,
+        max_iterations: 200_000,
+    },
+};
+
+/// The splitting's MFPT of a gait and what it measured on the way.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SplitMfpt {
+    /// Expected steps to fall from the settled gait meeting the rough slope.
+    pub mfpt: f64,
+    /// Lower end of its 95 % interval.
+    pub mfpt_lo: f64,
+    /// Upper end (infinite when the interval of `p` reaches 0).
+    pub mfpt_hi: f64,
+    /// The per-step fall probability of the regime, `1 / MFPT_A`.
+    pub fall_rate: f64,
+    /// Steps simulated in all: the training walks and the splitting.
+    pub steps: u64,
+    /// The splitting's estimate, with each batch's diagnostics.
+    pub split: Split,
+    /// The learned score.
+    pub score: Logistic,
+    /// The score's AUC on the held-out training walks.
+    pub train_auc: f64,
+    /// The training walks' falls, and their steps.
+    pub train_falls: usize,
+    /// Steps of the training walks.
+    pub train_steps: u64,
+    /// The score's AUC on plain walks at the target roughness, their falls
+    /// and steps (when [`SplitSettings::target_walks`] asked for them).
+    pub target_auc: Option<(f64, usize, u64)>,
+}
+
+/// The walker's state at a step: the system (its contact modes and the
+/// ground, with the patches it has reached), the state, and how long no tip
+/// has touched down.
+#[derive(Clone)]
+pub(crate) struct State {
+    rtw: Rtw,
+    y: [f64; N],
+    quiet: f64,
+    /// No step taken yet: the walker has reached no rough patch.
+    fresh: bool,
+}
+
+/// The number of [`features`].
+pub const FEATURES: usize = 11;
+
+/// The downhill position of the furthest tip of `y`.
+fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
+    let rods = rtw.rods(y);
+    SPOKES
+        .iter()
+        .map(|&(rod, tip)| rtw.body.tip_point(&rods[rod], tip).0[0])
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The centre of mass's velocity (the rods are equal).
+fn com_velocity(rtw: &Rtw, y: &[f64; N]) -> [f64; 2] {
+    let rods = rtw.rods(y);
+    let v = |k: usize| rods.iter().map(|r| r.v[k]).sum::<f64>() / 3.0;
+    [v(0), v(1)]
+}
+
+/// The extended state's features (see the module doc), lengths in rod
+/// lengths `l` and velocities relative to the settled gait's, in units of
+/// its mean speed.
+pub(crate) fn features(st: &State, v_settled: [f64; 2], speed: f64, l: f64) -> [f64; FEATURES] {
+    let t = &st.rtw.terrain;
+    let front = furthest_tip(&st.rtw, &st.y);
+    let com = st.rtw.centre_of_mass(&st.y);
+    let h_front = t.ground(front);
+    // The next patch's first point: the edge after the front (the patches
+    // are `t.patch` long from `t.step_at`).
+    let k = ((front - t.step_at) / t.patch).floor().max(-1.0) + 1.0;
+    let edge = t.step_at + k * t.patch;
+    let h_next = t.ground(edge + 1e-9 * l);
+    let ahead = (h_next - h_front) / l;
+    let under = (h_front - t.ground(com[0])) / l;
+    let gap = (edge - front) / t.patch;
+    let v = com_velocity(&st.rtw, &st.y);
+    let height = (com[1] - t.ground(com[0])) / l;
+    [
+        ahead,
+        under,
+        gap,
+        ahead * ahead,
+        under * under,
+        ahead * gap,
+        ahead * under,
+        (v[0] - v_settled[0]) / speed,
+        (v[1] - v_settled[1]) / speed,
+        height,
+        gap * gap,
+    ]
+}
+
+/// The settled gait as a walker on the rough slope, scored by `score`.
+struct RtwWalker<'a, 'b> {
+    s: &'a SettledGait<'b>,
+    /// One step of the flat gait, never stopped early.
+    options: Options,
+    v_settled: [f64; 2],
+    speed: f64,
+    score: Option<Logistic>,
+    work: RefCell<Work>,
+}
+
+impl RtwWalker<'_, '_> {
+    fn features(&self, st: &State) -> [f64; FEATURES] {
+        features(st, self.v_settled, self.speed, self.s.phys.length)
+    }
+
+    /// The walker at the settled gait meeting the rough slope of `sigma`.
+    fn start(&self, sigma: f64, terrain: TerrainOptions) -> State {
+        let mut rtw = self.s.rtw.clone();
+        rtw.set_terrain(
+            TerrainOptions::rough(sigma, terrain.seed, self.s.edge, terrain.patch),
+            self.s.y,
+        );
+        // The energy dissipated so far is the flat run's, not this one's.
+        let mut y = *self.s.y;
+        y[DISSIPATED] = 0.0;
+        y[FRICTION] = 0.0;
+        State {
+            rtw,
+            y,
+            quiet: 0.0,
+            fresh: true,
+        }
+    }
+}
+
+impl Walker for RtwWalker<'_, '_> {
+    type State = State;
+
+    fn step(&self, st: &State, rng: &mut Rng) -> Option<State> {
+        let mut rtw = st.rtw.clone();
+        // Before its first step the walker stands before the rough slope:
+        // every patch is ahead of it.
+        let reach = if st.fresh {
+            f64::NEG_INFINITY
+        } else {
+            furthest_tip(&rtw, &st.y) + self.s.phys.length
+        };
+        rtw.branch_terrain_beyond(reach, rng.next_u64(), &st.y);
+        let (o, rtw, y) = run_from(
+            self.s.params,
+            &self.options,
+            self.s.phys,
+            rtw,
+            st.y,
+            self.s.flat.start,
+            Work::default(),
+            None,
+        );
+        *self.work.borrow_mut() += o.work;
+        let failed = o.failure.is_some_and(|f| f != FailureDetail::NoProgress);
+        let quiet = if o.touchdowns == 0 {
+            st.quiet + o.t_end
+        } else {
+            0.0
+        };
+        (!failed && quiet < self.options.stall_time).then_some(State {
+            rtw,
+            y,
+            quiet,
+            fresh: false,
+        })
+    }
+
+    /// The learned log-odds of a fall within the horizon (0 before the
+    /// score is learned).
+    fn score(&self, st: &State) -> f64 {
+        self.score
+            .as_ref()
+            .map_or(0.0, |m| m.logit(&self.features(st)))
+    }
+
+    fn stopped(&self) -> bool {
+        crate::run::cancel::requested()
+    }
+}
+
+/// The training set: every state of `walks` plain walks at the walker's
+/// roughness (from `start`), its features and whether the walk fell
+/// within `horizon` steps of it; the walk each row came from; the falls;
+/// the steps. `None` when stopped.
+#[allow(clippy::type_complexity)]
+fn training_set(
+    w: &RtwWalker<'_, '_>,
+    start: &State,
+    set: &SplitSettings,
+    rng: &mut Rng,
+) -> Option<(Vec<Vec<f64>>, Vec<bool>, Vec<usize>, usize, u64)> {
+    let (mut x, mut y, mut walk_of) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut falls, mut steps) = (0, 0u64);
+    for walk in 0..set.train_walks {
+        let mut st = start.clone();
+        let mut rows = Vec::new();
+        let mut fell = false;
+        for _ in 0..set.train_max_steps {
+            if w.stopped() {
+                return None;
+            }
+            steps += 1;
+            match w.step(&st, rng) {
+                Some(next) => {
+                    rows.push(w.features(&next).to_vec());
+                    st = next;
+                }
+                None => {
+                    fell = true;
+                    break;
+                }
+            }
+        }
+        falls += usize::from(fell);
+        let n = rows.len();
+        for (i, r) in rows.into_iter().enumerate() {
+            // Row i is the state after step i + 1; the fall is step n + 1.
+            y.push(fell && n - i <= set.horizon);
+            x.push(r);
+            walk_of.push(walk);
+        }
+    }
+    Some((x, y, walk_of, falls, steps))
+}
+
+/// The MFPT of the settled gait `s` on the rough slope of `r.sigma` with
+/// `terrain`'s seed and patch length, by splitting with the learned score
+/// (see the module doc), with [`SPLIT_SETTINGS`] and `r.mfpt_batches`
+/// batches: the inputs of [`crate::run::mfpt::mean_first_passage`]. `None`
+/// when the stop flag ended it part way or the score could not be fitted.
+pub(crate) fn mean_first_passage_splitting(
+    s: &SettledGait<'_>,
+    r: &RobustnessOptions,
+    terrain: TerrainOptions,
+    work: &mut Work,
+) -> Option<SplitMfpt> {
+    let set = SplitSettings {
+        split: SplitOptions {
+            batches: (r.mfpt_batches as usize).max(2),
+            ..SPLIT_SETTINGS.split
+        },
+        ..SPLIT_SETTINGS
+    };
+    split_with(s, r.sigma, terrain, &set, work)
+}
+
+/// [`mean_first_passage_splitting`] with its settings spelled out.
+pub(crate) fn split_with(
+    s: &SettledGait<'_>,
+    sigma: f64,
+    terrain: TerrainOptions,
+    set: &SplitSettings,
+    work: &mut Work,
+) -> Option<SplitMfpt> {
+    let options = Options {
+        t_max: 1.0 / s.flat.f_w_newfoot,
+        stop_when_settled: false,
+        ..s.options
+    };
+    let mut w = RtwWalker {
+        s,
+        options,
+        v_settled: com_velocity(s.rtw, s.y),
+        speed: if s.flat.speed > 0.0 {
+            s.flat.speed
+        } else {
+            1.0
+        },
+        score: None,
+        work: RefCell::new(Work::default()),
+    };
+    // Learn the score where falls are cheap.
+    let mut rng = Rng::new(Rng::new(terrain.seed ^ 0x7472_6169_6e).next_u64());
+    let train_start = w.start(set.train_sigma.max(sigma), terrain);
+    let trained = training_set(&w, &train_start, set, &mut rng);
+    let Some((x, y, walk_of, train_falls, train_steps)) = trained else {
+        *work += w.work.into_inner();
+        return None;
+    };
+    let held = |i: &usize| walk_of[*i] % 4 == 3;
+    let pick = |keep: bool| -> (Vec<Vec<f64>>, Vec<bool>) {
+        (0..x.len())
+            .filter(|i| held(i) != keep)
+            .map(|i| (x[i].clone(), y[i]))
+            .unzip()
+    };
+    let (fit_x, fit_y) = pick(true);
+    let (held_x, held_y) = pick(false);
+    let Ok(model) = Logistic::fit(&fit_x, &fit_y, set.ridge) else {
+        *work += w.work.into_inner();
+        return None;
+    };
+    let held_scores: Vec<f64> = held_x.iter().map(|r| model.logit(r)).collect();
+    let train_auc = auc(&held_scores, &held_y);
+    w.score = Some(model.clone());
+    // The splitting at the target roughness.
+    let start = w.start(sigma, terrain);
+    let target_auc = if set.target_walks > 0 {
+        let target = SplitSettings {
+            train_walks: set.target_walks,
+            ..*set
+        };
+        let Some((x, y, _, falls, steps)) = training_set(&w, &start, &target, &mut rng) else {
+            *work += w.work.into_inner();
+            return None;
+        };
+        let scores: Vec<f64> = x.iter().map(|r| model.logit(r)).collect();
+        Some((auc(&scores, &y), falls, steps))
+    } else {
+        None
+    };
+    let out = split(
+        &w,
+        &start,
+        &SplitOptions {
+            seed: terrain.seed,
+            ..set.split
+        },
+    );
+    *work += w.work.into_inner();
+    let out = out?;
+    Some(SplitMfpt {
+        mfpt: out.mfpt,
+        mfpt_lo: out.lo,
+        mfpt_hi: out.hi,
+        fall_rate: out.fall_rate,
+        steps: out.steps + train_steps,
+        split: out,
+        score: model,
+        train_auc,
+        train_falls,
+        train_steps,
+        target_auc,
+    })
+}
+
+/// Runs `f` on the settled gait of the stable flat run of `params` under
+/// `options` (`None` when that run is not a stable gait).
+#[cfg(test)]
+pub(crate) fn with_settled<T>(
+    params: &crate::params::Params,
+    options: &Options,
+    f: impl FnOnce(&SettledGait<'_>) -> T,
+) -> Option<T> {
+    let mut flat_options = *options;
+    flat_options.robustness = RobustnessOptions::default();
+    crate::run::recorder::with_end_state(params, &flat_options, |phys, rtw, y, flat| {
+        flat.label.is_stable().then(|| {
+            f(&crate::run::settled::settled(
+                params, options, phys, rtw, y, flat,
+            ))
+        })
+    })
+    .flatten()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn env<T: std::str::FromStr>(name: &str, default: T) -> T {
+        std::env::var(name)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    }
+
+    /// The command-line entry of `scripts/mfpt_split_check.sh`: the
+    /// splitting's MFPT of Fig. 7(a) at `RTW_SPLIT_SIGMA` (m), with
+    /// `RTW_SPLIT_BATCHES`, `RTW_SPLIT_REPLICAS`, `RTW_SPLIT_SEED`, printed
+    /// as one `key=value` line per quantity on stderr.
+    #[test]
+    #[ignore]
+    fn mfpt_split_fig7a() {
+        let sigma: f64 = env("RTW_SPLIT_SIGMA", 0.03);
+        let set = SplitSettings {
+            split: SplitOptions {
+                batches: env("RTW_SPLIT_BATCHES", SPLIT_SETTINGS.split.batches),
+                replicas: env("RTW_SPLIT_REPLICAS", SPLIT_SETTINGS.split.replicas),
+                ..SPLIT_SETTINGS.split
+            },
+            train_walks: env("RTW_SPLIT_TRAIN_WALKS", SPLIT_SETTINGS.train_walks),
+            train_sigma: env("RTW_SPLIT_TRAIN_SIGMA", SPLIT_SETTINGS.train_sigma),
+            horizon: env("RTW_SPLIT_HORIZON", SPLIT_SETTINGS.horizon),
+            target_walks: env("RTW_SPLIT_TARGET_WALKS", 0),
+            train_max_steps: env("RTW_SPLIT_MAX_STEPS", SPLIT_SETTINGS.train_max_steps),
+            ..SPLIT_SETTINGS
+        };
+        let terrain = TerrainOptions {
+            seed: env("RTW_SPLIT_SEED", 0u64),
+            ..TerrainOptions::default()
+        };
+        let t0 = std::time::Instant::now();
+        let m = with_settled(&crate::params::Params::fig7a(), &Options::default(), |s| {
+            split_with(s, sigma, terrain, &set, &mut Work::default())
+        })
+        .flatten()
+        .expect("Fig. 7(a) is a stable gait and the estimate finished");
+        let secs = t0.elapsed().as_secs_f64();
+        let b = &m.split.batches;
+        eprintln!("sigma={sigma}");
+        eprintln!("mfpt={:.6e}", m.mfpt);
+        eprintln!("mfpt_lo={:.6e}", m.mfpt_lo);
+        eprintln!("mfpt_hi={:.6e}", m.mfpt_hi);
+        eprintln!("p={:.6e}", m.split.p);
+        eprintln!("p_lo={:.6e}", m.split.p_interval.0);
+        eprintln!("p_hi={:.6e}", m.split.p_interval.1);
+        eprintln!("returned_steps={:.4}", m.split.returned_steps);
+        eprintln!("fall_steps={:.4}", m.split.fall_steps);
+        eprintln!("steps={}", m.steps);
+        eprintln!("train_steps={}", m.train_steps);
+        eprintln!("train_falls={}", m.train_falls);
+        eprintln!("train_auc={:.4}", m.train_auc);
+        eprintln!("wall_s={secs:.1}");
+        if let Some((a, falls, steps)) = m.target_auc {
+            eprintln!("target_auc={a:.4}");
+            eprintln!("target_falls={falls}");
+            eprintln!("target_steps={steps}");
+        }
+        eprintln!("batch_p={:?}", b.iter().map(|b| b.p).collect::<Vec<_>>());
+        eprintln!(
+            "batch_ancestors={:?}",
+            b.iter().map(|b| b.ancestors).collect::<Vec<_>>()
+        );
+        eprintln!(
+            "batch_iterations={:?}",
+            b.iter().map(|b| b.iterations()).collect::<Vec<_>>()
+        );
+        eprintln!(
+            "batch_fell={:?}",
+            b.iter().map(|b| b.fell).collect::<Vec<_>>()
+        );
+        eprintln!("weights={:?}", m.score.weights);
+    }
+}
