@@ -145,7 +145,12 @@ pub fn auc(scores: &[f64], labels: &[bool]) -> f64 {
     }
     let pos = labels.iter().filter(|&&l| l).count() as f64;
     let neg = labels.len() as f64 - pos;
-    let sum: f64 = rank.iter().zip(labels).filter(|(_, l)| **l).map(|(r, _)| r).sum();
+    let sum: f64 = rank
+        .iter()
+        .zip(labels)
+        .filter(|(_, l)| **l)
+        .map(|(r, _)| r)
+        .sum();
     (sum - pos * (pos + 1.0) / 2.0) / (pos * neg)
 }
 
@@ -159,7 +164,9 @@ mod tests {
     #[test]
     fn a_binary_feature_s_fit_is_the_groups_shares() {
         // Group 0: 3 of 10 positive; group 1: 8 of 10.
-        let x: Vec<Vec<f64>> = (0..20).map(|i| vec![f64::from(u8::from(i >= 10))]).collect();
+        let x: Vec<Vec<f64>> = (0..20)
+            .map(|i| vec![f64::from(u8::from(i >= 10))])
+            .collect();
         let y: Vec<bool> = (0..20).map(|i| (i < 3) || (10..18).contains(&i)).collect();
         let m = Logistic::fit(&x, &y, 0.0).unwrap();
         assert!((m.probability(&[0.0]) - 0.3).abs() < 1e-9, "{m:?}");
@@ -217,7 +224,10 @@ mod tests {
         let y: Vec<bool> = (0..10).map(|i| i >= 5).collect();
         let m = Logistic::fit(&x, &y, 1e-3).unwrap();
         assert!(m.weights.iter().all(|w| w.is_finite()));
-        assert!(m.probability(&[9.0]) > 0.9 && m.probability(&[0.0]) < 0.1, "{m:?}");
+        assert!(
+            m.probability(&[9.0]) > 0.9 && m.probability(&[0.0]) < 0.1,
+            "{m:?}"
+        );
         assert!(Logistic::fit(&[], &[], 0.0).is_err());
     }
 

@@ -223,7 +223,11 @@ pub fn split<W: Walker>(walker: &W, start: &W::State, o: &SplitOptions) -> Optio
     let (tf, tf_half) = mean_half(&of(|b| b.fall_steps));
     // A batch with no fall has no `E[T | fell]`; none at all leaves it 1
     // step, its least, and the MFPT infinite anyway.
-    let (tf, tf_half) = if tf.is_nan() { (1.0, 0.0) } else { (tf, tf_half) };
+    let (tf, tf_half) = if tf.is_nan() {
+        (1.0, 0.0)
+    } else {
+        (tf, tf_half)
+    };
     let tf_lo = (tf - tf_half).max(1.0);
     let mfpt_a = renewal_mfpt(p, tr, tf);
     let a_lo = renewal_mfpt(p_hi, (tr - tr_half).max(1.0), tf_lo);
@@ -322,7 +326,10 @@ impl<S> Excursion<S> {
         if self.fell {
             f64::INFINITY
         } else {
-            self.scores.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+            self.scores
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max)
         }
     }
 
@@ -434,8 +441,7 @@ fn batch<W: Walker>(
             capped = true;
             break;
         }
-        let (killed, alive): (Vec<usize>, Vec<usize>) =
-            (0..n).partition(|&i| reps[i].value() <= z);
+        let (killed, alive): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| reps[i].value() <= z);
         levels.push(z);
         if alive.is_empty() {
             // Every excursion at the level: none climbs above it.
@@ -544,7 +550,11 @@ mod tests {
             };
             let s = split(&l, &top, &o).unwrap();
             let (lo, hi) = s.p_interval;
-            assert!(lo <= exact && exact <= hi, "{exact:e} vs {:?}", s.p_interval);
+            assert!(
+                lo <= exact && exact <= hi,
+                "{exact:e} vs {:?}",
+                s.p_interval
+            );
             assert!(hi / lo < 2.0, "{:?}", s.p_interval);
             // Each batch ends with every excursion fallen, and its levels
             // climb.

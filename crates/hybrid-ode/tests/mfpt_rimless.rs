@@ -20,8 +20,8 @@
 //! estimator estimates; from a given start, `m = (I − Q)⁻¹ 1`.
 
 use hybrid_ode::metastable::{FallRate, MfptOptions, Rng, Walker, mfpt};
-use hybrid_ode::splitting::{SplitOptions, split};
 use hybrid_ode::rimless::RimlessWheel;
+use hybrid_ode::splitting::{SplitOptions, split};
 
 const L: f64 = 1.0;
 const G: f64 = 9.81;
@@ -419,7 +419,10 @@ fn the_splitting_s_error_shrinks_with_replicas() {
             var.sqrt() / s.p,
             (s.mfpt_a - exact).abs() / exact
         );
-        assert!(lo <= exact && exact <= hi, "N {replicas}: {exact} vs [{lo}, {hi}]");
+        assert!(
+            lo <= exact && exact <= hi,
+            "N {replicas}: {exact} vs [{lo}, {hi}]"
+        );
         (var.sqrt() / s.p, hi / lo)
     };
     let (cv_small, width_small) = run(25);
