@@ -45,7 +45,8 @@ for s in "${sigmas[@]}"; do
       nice -n 15 "$tmp/rtw-model-tests" mfpt_split_fig7a --ignored --nocapture \
       >/dev/null 2>"$tmp/$s.txt"; } 2>"$tmp/$s.cpu"
 done
-value() { grep -E "^$2=" "$tmp/$1.txt" | head -1 | cut -d= -f2-; }
+# A quantity a run printed (empty when it did not).
+value() { { grep -E "^$2=" "$tmp/$1.txt" || true; } | head -1 | cut -d= -f2-; }
 {
   echo "# The MFPT by splitting with a learned score: ./scripts/mfpt_split_check.sh $replicas $batches ${sigmas[*]}"
   echo

@@ -208,7 +208,7 @@ pub fn split<W: Walker>(walker: &W, start: &W::State, o: &SplitOptions) -> Optio
     );
     let batches: Vec<SplitBatch> = (0..o.batches)
         .map(|b| {
-            let mut rng = Rng::new(Rng::new(o.seed ^ 0x7370_6c69_74).next_u64() ^ b as u64);
+            let mut rng = Rng::new(Rng::new(o.seed ^ 0x0073_706c_6974).next_u64() ^ b as u64);
             // Decorrelate neighbouring batch seeds.
             rng.next_u64();
             batch(walker, start, o, &mut rng)
