@@ -71,5 +71,20 @@ value() { { grep -E "^$2=" "$tmp/$1.txt" || true; } | head -1 | cut -d= -f2-; }
   for s in "${sigmas[@]}"; do
     echo "| $s | $(value "$s" batch_p) | $(value "$s" batch_ancestors) | $(value "$s" batch_iterations) | $(value "$s" batch_fell) |"
   done
+  echo
+  echo "## How each batch's genealogy narrowed"
+  echo
+  echo "Per batch: the distinct first-iteration ancestors of the $replicas excursions after a quarter, half, three quarters and all of its"
+  echo "iterations; and the levels there (the score, the learned log-odds averaged over the steps), A's level first."
+  echo
+  echo "| σ (m) | ancestors | levels |"
+  echo "|---|---|---|"
+  for s in "${sigmas[@]}"; do
+    echo "| $s | $(value "$s" batch_ancestors_path) | $(value "$s" batch_levels_path) |"
+  done
+  echo
+  echo "At 3 cm, the unsmoothed score's mean quantile among the plain walks' states at 1, 2, 3, 5, 10, 20, 40 and 80 steps"
+  echo "before a fall: $(value 0.03 target_lags)."
+  echo
 } >"$out"
 cat "$out"

@@ -614,7 +614,8 @@ mod tests {
 
     /// The command-line entry of `scripts/mfpt_split_check.sh`: the
     /// splitting's MFPT of Fig. 7(a) at `RTW_SPLIT_SIGMA` (m), with
-    /// `RTW_SPLIT_BATCHES`, `RTW_SPLIT_REPLICAS`, `RTW_SPLIT_SEED`, printed
+    /// `RTW_SPLIT_BATCHES`, `RTW_SPLIT_REPLICAS`, `RTW_SPLIT_SEED` (and the
+    /// other `RTW_SPLIT_*` below, each a field of [`SplitSettings`]), printed
     /// as one `key=value` line per quantity on stderr.
     #[test]
     #[ignore]
@@ -624,6 +625,9 @@ mod tests {
             split: SplitOptions {
                 batches: env("RTW_SPLIT_BATCHES", SPLIT_SETTINGS.split.batches),
                 replicas: env("RTW_SPLIT_REPLICAS", SPLIT_SETTINGS.split.replicas),
+                quantile: env("RTW_SPLIT_QUANTILE", SPLIT_SETTINGS.split.quantile),
+                cloud: env("RTW_SPLIT_CLOUD", SPLIT_SETTINGS.split.cloud),
+                sample_steps: env("RTW_SPLIT_SAMPLE_STEPS", SPLIT_SETTINGS.split.sample_steps),
                 ..SPLIT_SETTINGS.split
             },
             train_walks: env("RTW_SPLIT_TRAIN_WALKS", SPLIT_SETTINGS.train_walks),
@@ -678,6 +682,38 @@ mod tests {
         eprintln!(
             "batch_fell={:?}",
             b.iter().map(|b| b.fell).collect::<Vec<_>>()
+        );
+        // How the genealogy narrowed: the distinct ancestors after a
+        // quarter, half, three quarters and all of each batch's
+        // iterations, and the levels there (A's level first).
+        let at = |b: &hybrid_ode::splitting::SplitBatch, f: usize| {
+            let n = b.ancestors_by_iteration.len();
+            let i = (f * n / 4).clamp(1, n.max(1)) - 1;
+            (
+                b.ancestors_by_iteration.get(i).copied().unwrap_or(0),
+                b.levels.get(i).copied().unwrap_or(f64::NAN),
+            )
+        };
+        eprintln!(
+            "batch_ancestors_path={}",
+            b.iter()
+                .map(|b| format!("{:?}", (1..=4).map(|f| at(b, f).0).collect::<Vec<_>>()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        eprintln!(
+            "batch_levels_path={}",
+            b.iter()
+                .map(|b| format!(
+                    "[{:.2}; {}]",
+                    b.level_a,
+                    (1..=4)
+                        .map(|f| format!("{:.2}", at(b, f).1))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+                .collect::<Vec<_>>()
+                .join(" ")
         );
         eprintln!("weights={:?}", m.score.weights);
     }
