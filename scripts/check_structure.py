@@ -38,6 +38,8 @@ LAYERS = {
         {"engine"},
         {"variational", "nonsmooth", "limit"},
         {"continuation"},
+        {"metastable", "logistic"},
+        {"splitting"},
         {"rimless", "counting"},
     ],
     "rtw-model": [

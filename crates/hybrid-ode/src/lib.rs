@@ -9,10 +9,12 @@ mod engine;
 mod events;
 mod integrate;
 pub mod limit;
+pub mod logistic;
 pub mod metastable;
 pub mod nonsmooth;
 #[cfg(feature = "testing")]
 pub mod rimless;
+pub mod splitting;
 pub mod system;
 mod tableau;
 mod variational;

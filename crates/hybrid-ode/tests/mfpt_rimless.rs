@@ -21,6 +21,7 @@
 
 use hybrid_ode::metastable::{FallRate, MfptOptions, Rng, Walker, mfpt};
 use hybrid_ode::rimless::RimlessWheel;
+use hybrid_ode::splitting::{SplitOptions, split};
 
 const L: f64 = 1.0;
 const G: f64 = 9.81;
@@ -330,4 +331,103 @@ fn the_chain_is_plain_monte_carlo_where_falls_are_frequent() {
         (mean - chain_m).abs() < 3.0 * se,
         "{mean} ± {se} vs {chain_m}"
     );
+}
+
+/// The splitting (`hybrid_ode::splitting`: excursions from the slowest
+/// half's complement, MFPT by renewal at the returns) at three roughnesses
+/// whose chain MFPTs are about 1.3e2, 1.5e5 and 2.4e8: its 95 % interval
+/// holds the chain's MFPT and is at most a factor 3 wide, at a cost that
+/// grows with `log(MFPT)` (each batch's iterations at most about
+/// `N ln(1/p)`; fewer where copies tie and are killed together).
+#[test]
+fn the_splitting_s_mfpt_is_the_chain_s_up_to_1e8() {
+    let mut costs = Vec::new();
+    for sigma in [0.08, 0.04, 0.03] {
+        let exact = reference(sigma).qsd_mfpt();
+        let o = SplitOptions {
+            seed: 2,
+            replicas: 400,
+            ..SplitOptions::default()
+        };
+        let s = split(&Rough { sigma }, &Rough::omega_star(), &o).unwrap();
+        let (lo, hi) = s.mfpt_a_interval;
+        let iterations: usize = s.batches.iter().map(|b| b.iterations()).sum();
+        eprintln!(
+            "sigma {sigma}: chain {exact:.4e}, splitting {:.4e} [{lo:.4e}, {hi:.4e}], p {:.3e}, \
+             E[T|returned] {:.3}, E[T|fell] {:.3}, {} steps, {iterations} iterations, ancestors {:?}",
+            s.mfpt_a,
+            s.p,
+            s.returned_steps,
+            s.fall_steps,
+            s.steps,
+            s.batches.iter().map(|b| b.ancestors).collect::<Vec<_>>()
+        );
+        assert!(
+            lo <= exact && exact <= hi,
+            "sigma {sigma}: chain {exact} vs [{lo}, {hi}]"
+        );
+        assert!(hi / lo < 20.0, "sigma {sigma}: [{lo}, {hi}]");
+        // No batch's iterations much beyond N ln(1/p̂): the levels climb
+        // by a factor 1 − 1/N of probability at least, each.
+        for b in &s.batches {
+            let expected = o.replicas as f64 * (1.0 / b.p).ln();
+            let it = b.iterations() as f64;
+            assert!(
+                it < 1.5 * expected,
+                "sigma {sigma}: {it} iterations for p {}",
+                b.p
+            );
+        }
+        costs.push(s.steps as f64);
+    }
+    // Six decades of MFPT for less than 10 times the steps.
+    assert!(costs[2] < 10.0 * costs[0], "{costs:?}");
+}
+
+/// The chain at σ = 0.03 (MFPT 2.4e8) is converged in its mesh too: half
+/// the cells move it by less than 1 %.
+#[test]
+fn the_chain_is_converged_at_the_splitting_s_smallest_roughness() {
+    let fine = reference(0.03).qsd_mfpt();
+    let coarse = chain(0.03, 1000, 0.3, omega_max(0.03)).qsd_mfpt();
+    assert!((fine - coarse).abs() < 0.01 * fine, "{fine} vs {coarse}");
+}
+
+/// More replicas, smaller error: at σ = 0.04 the batches' `p̂` spread
+/// (their coefficient of variation, about `sqrt(ln(1/p)/N)` for a good
+/// score) and the interval's width shrink from 25 to 400 replicas, and both
+/// intervals hold the chain's MFPT.
+#[test]
+fn the_splitting_s_error_shrinks_with_replicas() {
+    let sigma = 0.04;
+    let exact = reference(sigma).qsd_mfpt();
+    let run = |replicas| {
+        let o = SplitOptions {
+            seed: 5,
+            replicas,
+            batches: 16,
+            ..SplitOptions::default()
+        };
+        let s = split(&Rough { sigma }, &Rough::omega_star(), &o).unwrap();
+        let ps: Vec<f64> = s.batches.iter().map(|b| b.p).collect();
+        let var = ps.iter().map(|p| (p - s.p).powi(2)).sum::<f64>() / (ps.len() - 1) as f64;
+        let (lo, hi) = s.mfpt_a_interval;
+        eprintln!(
+            "N {replicas}: splitting {:.4e} [{lo:.4e}, {hi:.4e}] (chain {exact:.4e}), \
+             cv of p {:.3}, error {:.3}",
+            s.mfpt_a,
+            var.sqrt() / s.p,
+            (s.mfpt_a - exact).abs() / exact
+        );
+        assert!(
+            lo <= exact && exact <= hi,
+            "N {replicas}: {exact} vs [{lo}, {hi}]"
+        );
+        (var.sqrt() / s.p, hi / lo)
+    };
+    let (cv_small, width_small) = run(25);
+    let (cv_large, width_large) = run(400);
+    // Theory: 4 times smaller for 16 times the replicas.
+    assert!(cv_large < cv_small / 2.0, "{cv_small} -> {cv_large}");
+    assert!(width_large < width_small, "{width_small} -> {width_large}");
 }
