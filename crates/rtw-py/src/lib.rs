@@ -30,6 +30,7 @@ use rtw_engine::config::layers::{
 };
 use rtw_engine::config::params::checked_params;
 use rtw_engine::io::{TraceNames, parse_size};
+use rtw_engine::scan::Run;
 use rtw_engine::scan::progress::Counter;
 use rtw_engine::scan::scan_batch;
 use rtw_engine::scan::single::{simulate_row, simulate_traced};
@@ -464,7 +465,7 @@ fn sensitivity<'py>(
     let analysis = if let Ok(path) = scan.extract::<PathBuf>() {
         interruptible(
             py,
-            |cancel| sa::analyse_file(&path, &settings, cancel, &counter),
+            |cancel| sa::analyse_file(&path, &settings, &Run::new(&counter, cancel)),
             || report(progress.as_ref(), &counter),
         )?
     } else {
@@ -477,7 +478,7 @@ fn sensitivity<'py>(
             schema.metadata().clone().into_iter().collect();
         interruptible(
             py,
-            |cancel| sa::analyse_table(&metadata, batches, &settings, cancel, &counter),
+            |cancel| sa::analyse_table(&metadata, batches, &settings, &Run::new(&counter, cancel)),
             || report(progress.as_ref(), &counter),
         )?
     }

@@ -11,6 +11,7 @@ use crate::{
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rtw_engine::config::layers::simulation_options;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::progress::Counter;
 use rtw_engine::scan::workers::parse_threads;
 use rtw_model::Options;
@@ -95,7 +96,7 @@ pub(crate) fn profile<'py>(
     let done = AtomicU64::new(0);
     let p = interruptible(
         py,
-        |cancel| run_profile(&settings, &options, &done, cancel),
+        |cancel| run_profile(&settings, &options, &Run::new(&done, cancel)),
         || Ok(()),
     )?
     .map_err(study_error)?;
@@ -137,7 +138,11 @@ pub(crate) fn design_search<'py>(
         py,
         |cancel| match &out {
             Some(dir) => search::files::run_to_files(
-                &settings, &options, threads, dir, force, &counter, cancel,
+                &settings,
+                &options,
+                dir,
+                force,
+                &Run::new(&counter, cancel).on(threads),
             ),
             None => search_in_memory(&settings, &options, threads, &counter, cancel),
         },
@@ -169,8 +174,9 @@ fn search_in_memory(
     counter: &Counter,
     cancel: &AtomicBool,
 ) -> anyhow::Result<(Search, Vec<Reported>)> {
-    let found = search::run(s, options, threads, &[], counter, cancel, &mut |_| Ok(()))?;
-    let reported = search::report(&found, options, threads, counter, cancel)?;
+    let run = Run::new(counter, cancel).on(threads);
+    let found = search::run(s, options, &[], &run, &mut |_| Ok(()))?;
+    let reported = search::report(&found, options, &run)?;
     Ok((found, reported))
 }
 

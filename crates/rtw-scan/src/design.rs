@@ -6,6 +6,7 @@ use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use super::simulate::ModelArgs;
 use anyhow::Result;
 use clap::Args;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::workers::{Stopped, parse_threads};
 use rtw_studies::search::{SearchSettings, files};
 use std::path::PathBuf;
@@ -49,7 +50,11 @@ pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
     // in OUT/search.parquet, and the same command resumes from them.
     GRACEFUL.store(true, Ordering::SeqCst);
     let done = files::run_to_files(
-        &settings, &options, threads, &out, a.force, &progress, &STOP,
+        &settings,
+        &options,
+        &out,
+        a.force,
+        &Run::new(&progress, &STOP).on(threads),
     );
     let (search, reported) = match done {
         Err(e) if e.downcast_ref::<Stopped>().is_some() && STOP.load(Ordering::SeqCst) => {

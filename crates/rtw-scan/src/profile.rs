@@ -7,6 +7,7 @@ use super::signal::STOP;
 use super::simulate::{DesignArgs, OptionArgs};
 use anyhow::Result;
 use clap::Args;
+use rtw_engine::scan::Run;
 use rtw_studies::profile::{self, Names, Settings};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -60,9 +61,10 @@ pub(super) fn cmd_profile(a: ProfileArgs) -> Result<ExitCode> {
     )?;
     let options = a.options.resolve()?;
     let progress = StderrProgress::unless(a.quiet);
+    let run = Run::new(&progress, &STOP);
     let p = match &a.out {
-        Some(out) => profile::run_to_files(&settings, &options, out, a.force, &progress, &STOP)?,
-        None => profile::run(&settings, &options, &progress, &STOP)?,
+        Some(out) => profile::run_to_files(&settings, &options, out, a.force, &run)?,
+        None => profile::run(&settings, &options, &run)?,
     };
     if a.json {
         outln!("{}", serde_json::to_string_pretty(&p.to_json())?);

@@ -5,6 +5,7 @@ use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
 use anyhow::Result;
 use clap::Args;
 use rtw_engine::entry::scan::{DEFAULT_CHUNK_SIZE, RunSettings, RunStatus, Shard};
+use rtw_engine::scan::Run;
 use rtw_engine::scan::workers::check_threads;
 use rtw_studies::refine::{self, Refine, RefineStatus, check_budget};
 use std::num::NonZeroUsize;
@@ -79,11 +80,11 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
         let sim = |p: &_, o: &_| rtw_engine::fake::simulate(p, o, delay);
-        return finish(&a, refine::refine(&r, &sim, &STOP, &progress)?);
+        return finish(&a, refine::refine(&r, &sim, &Run::new(&progress, &STOP))?);
     }
     finish(
         &a,
-        refine::refine(&r, &rtw_model::simulate, &STOP, &progress)?,
+        refine::refine(&r, &rtw_model::simulate, &Run::new(&progress, &STOP))?,
     )
 }
 

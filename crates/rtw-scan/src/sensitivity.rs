@@ -5,6 +5,7 @@ use super::progress::StderrProgress;
 use super::signal::STOP;
 use anyhow::Result;
 use clap::Args;
+use rtw_engine::scan::Run;
 use rtw_studies::sensitivity::{self, Index, Settings};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -47,7 +48,8 @@ pub(super) fn cmd_sensitivity(a: SensitivityArgs) -> Result<ExitCode> {
         .clone()
         .unwrap_or_else(|| scan.with_file_name("indices.parquet"));
     let progress = StderrProgress::study(a.quiet, "sensitivity: bootstrap resamples");
-    let analysis = sensitivity::analyse_to_file(&scan, &out, &settings, a.force, &STOP, &progress)?;
+    let analysis =
+        sensitivity::analyse_to_file(&scan, &out, &settings, a.force, &Run::new(&progress, &STOP))?;
     if a.json {
         let all: Vec<_> = analysis.indices.iter().map(json).collect();
         outln!("{}", serde_json::to_string_pretty(&all)?);

@@ -370,6 +370,7 @@ impl rtw_engine::scan::Progress for StopAfter<'_> {
 
 #[test]
 fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() {
+    use rtw_engine::scan::Run;
     use rtw_studies::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
@@ -377,8 +378,14 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
     let quiet = rtw_engine::scan::progress::Silent;
     let never = AtomicBool::new(false);
     let whole = dir.path().join("whole");
-    let (full, reported) =
-        files::run_to_files(&settings, &options, None, &whole, false, &quiet, &never).unwrap();
+    let (full, reported) = files::run_to_files(
+        &settings,
+        &options,
+        &whole,
+        false,
+        &Run::new(&quiet, &never),
+    )
+    .unwrap();
     assert!(full.evaluations.len() > 8, "{}", full.evaluations.len());
 
     let part = dir.path().join("part");
@@ -388,7 +395,7 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
         at: 12,
         cancel: &cancel,
     };
-    let e = files::run_to_files(&settings, &options, None, &part, false, &stop, &cancel)
+    let e = files::run_to_files(&settings, &options, &part, false, &Run::new(&stop, &cancel))
         .expect_err("stopped");
     assert!(format!("{e:#}").contains("stopped"), "{e:#}");
     let kept = files::stored(&part, &settings, &options, false).unwrap();
@@ -403,7 +410,7 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
         assert_eq!(Some(k), full.evaluations.get(k.index as usize));
     }
     let (resumed, reported2) =
-        files::run_to_files(&settings, &options, None, &part, false, &quiet, &never).unwrap();
+        files::run_to_files(&settings, &options, &part, false, &Run::new(&quiet, &never)).unwrap();
     assert_eq!(resumed.evaluations, full.evaluations);
     assert_eq!(
         reported2.iter().map(|r| &r.verified).collect::<Vec<_>>(),
@@ -421,6 +428,7 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
 #[test]
 fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     use rtw_engine::io as output;
+    use rtw_engine::scan::Run;
     use rtw_studies::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
@@ -432,7 +440,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
         at: 3,
         cancel: &cancel,
     };
-    files::run_to_files(&settings, &options, None, &out, false, &stop, &cancel)
+    files::run_to_files(&settings, &options, &out, false, &Run::new(&stop, &cancel))
         .expect_err("stopped");
     let stored = files::stored(&out, &settings, &options, false).unwrap();
     assert!(!stored.is_empty());

@@ -14,12 +14,11 @@ use rtw_engine::io::metadata::{
 };
 use rtw_engine::io::parquet;
 use rtw_engine::io::scan_rows::schema_for;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
-use rtw_engine::scan::progress::Progress;
 use rtw_model::{Label, Options};
 use std::fmt::Write;
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// The first words of a profile's summary: how a summary rtw-scan wrote is
@@ -53,13 +52,12 @@ pub fn run_to_files(
     options: &Options,
     out: &Path,
     force: bool,
-    progress: &dyn Progress,
-    cancel: &AtomicBool,
+    run: &Run,
 ) -> Result<Profile> {
     let _lock = Lock::for_result(out, &format!("writing the profile {}", out.display()))?;
     check_outputs(out, options, force)?;
     let t0 = Instant::now();
-    let profile = super::run(settings, options, progress, cancel)?;
+    let profile = super::run(settings, options, run)?;
     let wall = t0.elapsed().as_secs_f64();
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;

@@ -23,6 +23,7 @@ use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rtw_engine::config::params::checked_params;
 use rtw_engine::io::scan_rows::{self, Row};
+use rtw_engine::scan::Run;
 use rtw_engine::scan::one::run_one;
 use rtw_engine::scan::progress::Progress;
 use rtw_engine::scan::workers::{Stopped, parse_threads, worker_pool};
@@ -354,12 +355,8 @@ pub(crate) fn run_at_slope(
 /// stops it within moments (every run in flight ends at its next step),
 /// with the error [`Stopped`]. `rtw-scan profile` and `rtw.profile` both
 /// run it.
-pub fn run(
-    settings: &Settings,
-    options: &Options,
-    progress: &dyn Progress,
-    cancel: &AtomicBool,
-) -> Result<Profile> {
+pub fn run(settings: &Settings, options: &Options, run: &Run) -> Result<Profile> {
+    let (progress, cancel) = (run.progress, run.stop);
     let pool = worker_pool(settings.threads)?;
     progress.stage("profile: the coarse grid's slopes");
     progress.start(settings.coarse().len() as u64);

@@ -37,16 +37,15 @@ use rtw_engine::io::parquet::{self, MAX_ROW_GROUP_ROWS, ParquetFile, READ_BATCH_
 use rtw_engine::io::scan_rows::label_index;
 use rtw_engine::io::table::{f64_column, label_column};
 use rtw_engine::sampling::Sampling;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::checkpoint::is_complete;
 use rtw_engine::scan::lock::Lock;
 use rtw_engine::scan::one::Simulator;
-use rtw_engine::scan::progress::Progress;
 use rtw_engine::scan::run::{RunSettings, RunStatus, run_scan_with};
 use rtw_engine::scan::sample::Sampler;
 use rtw_model::{Param, Params};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
 
 /// What to refine, and how.
 #[derive(Clone, Debug)]
@@ -346,12 +345,8 @@ pub(crate) fn round_dir(dir: &Path, round: u64) -> PathBuf {
 }
 
 /// Runs the rounds that are not complete yet, then writes the combined file.
-pub fn refine(
-    r: &Refine,
-    sim: Simulator,
-    stop: &AtomicBool,
-    progress: &dyn Progress,
-) -> Result<RefineStatus> {
+pub fn refine(r: &Refine, sim: Simulator, run: &Run) -> Result<RefineStatus> {
+    let (stop, progress) = (run.stop, run.progress);
     check_budget(r.budget, r.rounds)?;
     let base = r.dir.join("samples.parquet");
     let (input, cfg) = open_scan(&base)?;

@@ -25,11 +25,10 @@ use rtw_engine::io::metadata::{
 };
 use rtw_engine::io::parquet;
 use rtw_engine::io::table::{self, Column, Get, column};
+use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
-use rtw_engine::scan::progress::Progress;
 use rtw_model::Options;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// The evaluations file in `out`.
@@ -491,12 +490,11 @@ pub fn check_outputs(out: &Path, force: bool) -> Result<()> {
 pub fn run_to_files(
     s: &SearchSettings,
     options: &Options,
-    threads: Option<std::num::NonZeroUsize>,
     out: &Path,
     force: bool,
-    progress: &dyn Progress,
-    cancel: &AtomicBool,
+    run: &Run,
 ) -> Result<(Search, Vec<Reported>)> {
+    let progress = run.progress;
     // Refused before anything is made or read.
     super::budget::check(s, options)?;
     let main = search_path(out);
@@ -521,8 +519,8 @@ pub fn run_to_files(
             metadata(s, options, t0.elapsed().as_secs_f64())?,
         )
     };
-    let search = super::run(s, options, threads, &earlier, progress, cancel, &mut write)?;
-    let reported = super::report(&search, options, threads, progress, cancel)?;
+    let search = super::run(s, options, &earlier, run, &mut write)?;
+    let reported = super::report(&search, options, run)?;
     let wall = t0.elapsed().as_secs_f64();
     let mut set = FileSet::default();
     parquet::add_file(

@@ -41,12 +41,12 @@ use anyhow::{Result, anyhow, bail};
 use propose::Proposer;
 use rayon::prelude::*;
 use rtw_engine::config::params::checked_params;
-use rtw_engine::scan::progress::{Progress, Silent};
+use rtw_engine::scan::Run;
+use rtw_engine::scan::progress::Silent;
 use rtw_engine::scan::workers::{Stopped, worker_pool};
 use rtw_model::{Label, Options, Params};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::num::NonZeroUsize;
 use std::sync::atomic::AtomicBool;
 
 /// Standard gravity (m/s²): speeds are scaled by sqrt(g L) to be weighed
@@ -357,12 +357,11 @@ fn evaluate(
 pub fn run(
     s: &SearchSettings,
     options: &Options,
-    threads: Option<NonZeroUsize>,
     earlier: &[Evaluation],
-    progress: &dyn Progress,
-    cancel: &AtomicBool,
+    run: &Run,
     stored: &mut dyn FnMut(&[Evaluation]) -> Result<()>,
 ) -> Result<Search> {
+    let (threads, progress, cancel) = (run.threads, run.progress, run.stop);
     budget::check(s, options)?;
     let (said, warning) = budget::said(s, options)?;
     if let Some(w) = warning {
@@ -499,13 +498,8 @@ pub struct Reported {
 /// spread along the first objective; with one, its `report` best designs,
 /// best first (the finer profile may cut the best one's interval, and a
 /// designer wants the runners-up beside it).
-pub fn report(
-    search: &Search,
-    options: &Options,
-    threads: Option<NonZeroUsize>,
-    progress: &dyn Progress,
-    cancel: &AtomicBool,
-) -> Result<Vec<Reported>> {
+pub fn report(search: &Search, options: &Options, run: &Run) -> Result<Vec<Reported>> {
+    let (threads, progress, cancel) = (run.threads, run.progress, run.stop);
     let s = &search.settings;
     let front = if s.objectives.len() == 1 {
         search.ranked()

@@ -16,6 +16,7 @@ use rtw_engine::io::metadata::{
     FileKind, META_CONFIG, META_CONTENT_HASH, META_SENSITIVITY, VERSION, kv,
 };
 use rtw_engine::io::{destination, parquet, scan_files};
+use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
 use rtw_engine::scan::progress::Progress;
 use std::collections::HashMap;
@@ -115,14 +116,10 @@ fn checked_columns(
 
 /// The indices of the scan file `scan` (or the directory holding it), read
 /// through the verified reader: its content hash, its values and ids, and
-/// not a refine's combined file. Setting `cancel` stops it between two
+/// not a refine's combined file. `run`'s stop flag stops it between two
 /// resamples (the error [`Stopped`](rtw_engine::scan::workers::Stopped)).
-pub fn analyse_file(
-    scan: &Path,
-    settings: &Settings,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
-) -> Result<Analysis> {
+pub fn analyse_file(scan: &Path, settings: &Settings, run: &Run) -> Result<Analysis> {
+    let (cancel, progress) = (run.stop, run.progress);
     let scan = scan_file(scan);
     let (input, cfg) = open_scan(&scan)?;
     // The scan refined is the folder holding `refine/` (its combined file
@@ -158,9 +155,9 @@ pub fn analyse_table(
     metadata: &HashMap<String, String>,
     batches: Vec<RecordBatch>,
     settings: &Settings,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<Analysis> {
+    let (cancel, progress) = (run.stop, run.progress);
     let what = Path::new("the table");
     let text = metadata.get(META_CONFIG).ok_or_else(|| {
         anyhow!(
@@ -266,13 +263,12 @@ pub fn analyse_to_file(
     out: &Path,
     settings: &Settings,
     force: bool,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<Analysis> {
     let _lock = Lock::for_result(out, &format!("writing the indices {}", out.display()))?;
     check_out(out, scan, force)?;
-    let analysis = analyse_file(scan, settings, cancel, progress);
-    progress.finish(analysis.is_ok());
+    let analysis = analyse_file(scan, settings, run);
+    run.progress.finish(analysis.is_ok());
     let analysis = analysis?;
     write(out, &analysis)?;
     Ok(analysis)
