@@ -1,4 +1,4 @@
-"""rtw.sensitivity and rtw.basin go through the checks of `rtw-scan sensitivity` and `rtw-scan basin`.
+"""rtw.sensitivity, rtw.basin, rtw.profile and rtw.design go through the checks of their `rtw-scan` subcommands.
 
 Both faces call one library entry point each: the same bad file, table or
 value gets the same refusal, in the same words (the CLI's flag `--name` is
@@ -194,3 +194,59 @@ def test_ctrl_c_stops_basin_and_sensitivity(ctrl_c: None) -> None:
     assert _interrupted(lambda: rtw.sensitivity(committed, resamples=10_000)) < 10
     # Python stays usable.
     assert rtw.basin(*FIG7A, x=X, y=Y, steps=8).num_rows == 9
+
+
+DESIGN5 = dict(zip(["length", "rho", "alpha", "fn", "zeta"], FIG7A[:5]))
+
+
+@pytest.mark.parametrize(
+    ("flag", "value"),
+    [
+        ("tol", "0"),
+        ("tol", "1e-12"),
+        ("grid", "0"),
+        ("grid", "1e-9"),
+        ("threads", "0"),
+        ("threads", str(10**6)),
+    ],
+)
+def test_profile_settings_get_the_same_refusal(tmp_path: Path, flag: str, value: str) -> None:
+    design = [a for pair in (("--" + k, str(v)) for k, v in DESIGN5.items()) for a in pair]
+    cli = cli_error("profile", *design, "--from", "0.1", "--to", "0.2", f"--{flag}", value)
+    number = int(value) if flag == "threads" else float(value)
+    py = python_error(lambda: rtw.profile(**DESIGN5, phi_from=0.1, phi_to=0.2, **{flag: number}))
+    assert py == as_python(cli)
+    assert "in [" in py or "in (" in py or "at least" in py, py
+
+
+@pytest.mark.parametrize(
+    ("key", "value"),
+    [
+        ("method", '"grid"'),
+        ("batch", "1"),
+        ("budget", "0"),
+        ("objectives", '["fastest"]'),
+        ("seed", "-1"),
+    ],
+)
+def test_design_configs_get_the_same_refusal(tmp_path: Path, key: str, value: str) -> None:
+    base = (ROOT / "configs/design/widest.toml").read_text()
+    lines = [line for line in base.splitlines() if not line.startswith(f"{key} =")]
+    # Top-level keys go before the first table.
+    at = next(i for i, line in enumerate(lines) if line.startswith("["))
+    cfg = tmp_path / "bad.toml"
+    cfg.write_text("\n".join([*lines[:at], f"{key} = {value}", *lines[at:]]) + "\n")
+    cli = cli_error("design", str(cfg), "--out", str(tmp_path / "out"), "--quiet")
+    py = python_error(lambda: rtw.design(cfg, progress=False))
+    assert py == cli
+    assert key in py, py
+
+
+def test_ctrl_c_stops_profile_and_design(ctrl_c: None, tmp_path: Path) -> None:
+    # Each would run for minutes: a profile on a 1e-5 grid (10^4 slopes);
+    # the design search of the committed config (20 000 simulations).
+    assert _interrupted(lambda: rtw.profile(**DESIGN5, phi_from=0.1, phi_to=0.2, grid=1e-5)) < 5
+    out = tmp_path / "search"
+    assert _interrupted(lambda: rtw.design(ROOT / "configs/design/widest.toml", out=out, progress=False)) < 10
+    # Python stays usable.
+    assert rtw.profile(**DESIGN5, phi_from=0.1, phi_to=0.12, grid=0.01).runs > 0
