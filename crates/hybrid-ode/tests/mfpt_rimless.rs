@@ -22,7 +22,7 @@
 use hybrid_ode::metastable::{FallRate, MfptOptions, Rng, Walker, mfpt};
 
 mod rimless_reference;
-use rimless_reference::{Rough, chain, omega_max, reference};
+use rimless_reference::{GAMMA0, Rough, chain, omega_max, reference};
 
 impl Walker for Rough {
     type State = f64;
