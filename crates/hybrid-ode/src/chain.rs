@@ -114,6 +114,10 @@ pub struct ChainMfpt {
     pub fall_rate: f64,
     /// The MFPT at twice the cells (the discretisation test).
     pub mfpt_fine: f64,
+    /// The MFPT without the mesh: one over the members' mean fall mass (a
+    /// check of the mesh: the members sample the QSD, and each one's fall
+    /// mass is its exact tail).
+    pub mfpt_one_step: f64,
     /// Cells of the coarse mesh (fewer than asked when the members are fewer).
     pub cells: usize,
     /// Members whose steps were taken.
@@ -506,10 +510,13 @@ fn effective_dimension(points: &[Vec<f64>]) -> usize {
     d
 }
 
+/// A member's step on a mesh: the mass landing in each cell, and the fall.
+type Mapped = (Vec<(usize, f64)>, f64);
+
 /// The QSD's fall rate `ν·f` of the chain whose cell `a` is the mean of the
 /// steps `rows[a]` (each a member's step, its landings already mapped to
 /// cells).
-fn qsd_fall_rate(rows: &[Vec<&(Vec<(usize, f64)>, f64)>]) -> f64 {
+fn qsd_fall_rate(rows: &[Vec<&Mapped>]) -> f64 {
     let n = rows.len();
     // Each cell's row, sparse, and its fall.
     let mut q: Vec<Vec<(usize, f64)>> = Vec::with_capacity(n);
@@ -598,11 +605,15 @@ pub fn chain_mfpt<W: ChainWalker>(
             &mut steps,
         ));
     }
+    // The one-step estimate: the members sample the QSD, so the mean of
+    // their exact fall masses is its fall rate, without the mesh (and
+    // without the paths of several moderate inputs that the chain sees).
+    let one_step = m as f64 / taken.iter().map(|t| t.fall).sum::<f64>();
     // The MFPT on a mesh of `k` cells, and its bootstrap over members.
     let mut mesh = |k: usize, boot: usize| {
         let centres = kmeans(&points, k, &mut rng);
         let cell: Vec<usize> = points.iter().map(|p| nearest(&centres, p)).collect();
-        let mapped: Vec<(Vec<(usize, f64)>, f64)> = taken
+        let mapped: Vec<Mapped> = taken
             .iter()
             .map(|t| {
                 (
@@ -619,7 +630,7 @@ pub fn chain_mfpt<W: ChainWalker>(
             by_cell[*c].push(i);
         }
         let rate = |pick: &mut dyn FnMut(&[usize]) -> Vec<usize>| {
-            let rows: Vec<Vec<&(Vec<(usize, f64)>, f64)>> = by_cell
+            let rows: Vec<Vec<&Mapped>> = by_cell
                 .iter()
                 .map(|ms| pick(ms).into_iter().map(|i| &mapped[i]).collect())
                 .collect();
@@ -651,6 +662,7 @@ pub fn chain_mfpt<W: ChainWalker>(
         hi: coarse.max(fine).max(quantile(0.975)),
         fall_rate: 1.0 / coarse,
         mfpt_fine: fine,
+        mfpt_one_step: one_step,
         cells,
         members: m,
         nodes: o.nodes,
