@@ -96,7 +96,7 @@ pub const MFPT_SETTINGS: MfptOptions = MfptOptions {
 pub(crate) struct State {
     pub(crate) rtw: Rtw,
     pub(crate) y: [f64; N],
-    quiet: f64,
+    pub(crate) quiet: f64,
     /// No step taken yet: the walker has reached no rough patch.
     fresh: bool,
 }
@@ -105,7 +105,7 @@ pub(crate) struct State {
 pub(crate) struct RtwWalker<'a, 'b> {
     pub(crate) s: &'a SettledGait<'b>,
     /// One step of the flat gait, never stopped early.
-    options: Options,
+    pub(crate) options: Options,
     /// The centre of mass's velocity at the settled state.
     v_settled: [f64; 2],
     /// The flat gait's mean speed.

@@ -40,16 +40,17 @@ use hybrid_ode::metastable::Rng;
 /// The chain's settings for the RTW (besides the seed, `terrain.seed`).
 pub const CHAIN_SETTINGS: ChainOptions = ChainOptions {
     seed: 0,
-    cells: 200,
-    members: 1500,
+    cells: 800,
+    members: 6000,
     nodes: 9,
     lookahead: 4,
     bootstrap: 40,
+    min_members: 5,
 };
 
 /// The cloud that samples the cells: walkers, steps of burn-in, steps
 /// sampled (32 × 60 = 1920 states).
-const CLOUD: (usize, usize, usize) = (32, 60, 60);
+const CLOUD: (usize, usize, usize) = (64, 60, 100);
 
 impl ChainWalker for RtwWalker<'_, '_> {
     type State = State;
@@ -97,6 +98,10 @@ impl ChainWalker for RtwWalker<'_, '_> {
         }
         let tip = furthest_tip(rtw, y);
         f.push(terrain.patch_ahead(tip).1 / terrain.patch);
+        // How long no tip has touched down, of the stall time that makes
+        // it a fall: without it a standing walker's cell keeps its mass
+        // with no fall, a trap of the chain.
+        f.push(st.quiet / self.options.stall_time);
         f
     }
 
