@@ -658,7 +658,13 @@ pub fn chain_mfpt<W: ChainWalker>(
         }
         (1.0 / p, centres.len(), boots)
     };
+    if walker.stopped() {
+        return None;
+    }
     let (coarse, cells, mut boots) = mesh(o.cells, o.bootstrap);
+    if walker.stopped() {
+        return None;
+    }
     let (fine, _, _) = mesh(2 * o.cells, 0);
     boots.sort_by(f64::total_cmp);
     let quantile = |q: f64| {
