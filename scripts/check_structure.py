@@ -38,6 +38,8 @@ LAYERS = {
         {"engine"},
         {"variational", "nonsmooth", "limit"},
         {"continuation"},
+        {"metastable"},
+        {"chain"},
         {"rimless", "counting"},
     ],
     "rtw-model": [

@@ -53,60 +53,31 @@ pub(crate) const BRANCHES: usize = 32;
 /// of the branch before it.
 ///
 /// A branch may set its first patch's height itself (`z`, in units of the
-/// roughness; NaN: drawn with its seed like the rest): the MFPT's chain
+/// roughness; none: drawn with its seed like the rest): the MFPT's chain
 /// (`run/mfpt_chain.rs`) integrates over that height by quadrature, so a
 /// step must be a function of the height it meets.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Branches {
     len: u8,
     first: [i64; BRANCHES],
     seed: [u64; BRANCHES],
-    z: [f64; BRANCHES],
-}
-
-/// Equal when they draw the same ground (a NaN height equals a NaN one).
-impl PartialEq for Branches {
-    fn eq(&self, other: &Self) -> bool {
-        let n = usize::from(self.len);
-        self.len == other.len
-            && self.first[..n] == other.first[..n]
-            && self.seed[..n] == other.seed[..n]
-            && (0..n).all(|i| self.z[i].to_bits() == other.z[i].to_bits())
-    }
-}
-
-impl Default for Branches {
-    fn default() -> Self {
-        Self {
-            len: 0,
-            first: [0; BRANCHES],
-            seed: [0; BRANCHES],
-            z: [f64::NAN; BRANCHES],
-        }
-    }
+    z: [Option<f64>; BRANCHES],
 }
 
 impl Branches {
     /// The seed of patch `k`, and its standard-normal height if the branch
     /// set it, if a branch covers it.
     #[inline]
-    fn seed_of(&self, k: i64) -> Option<(u64, f64)> {
+    fn seed_of(&self, k: i64) -> Option<(u64, Option<f64>)> {
         (0..usize::from(self.len))
             .rev()
             .find(|&i| self.first[i] <= k)
-            .map(|i| {
-                let z = if self.first[i] == k {
-                    self.z[i]
-                } else {
-                    f64::NAN
-                };
-                (self.seed[i], z)
-            })
+            .map(|i| (self.seed[i], self.z[i].filter(|_| self.first[i] == k)))
     }
 
     /// Draws the patches from `first` on afresh with `seed`, the first at
-    /// `z` (standard normal) unless it is NaN.
-    fn branch(&mut self, first: i64, seed: u64, z: f64) {
+    /// `z` (standard normal) if given.
+    fn branch(&mut self, first: i64, seed: u64, z: Option<f64>) {
         while self.len > 0 && self.first[usize::from(self.len) - 1] >= first {
             self.len -= 1;
         }
@@ -290,8 +261,8 @@ impl TerrainOptions {
             -self.step_height
         } else {
             let z = match self.branches.seed_of(k) {
-                Some((_, z)) if !z.is_nan() => z,
-                Some((seed, _)) => standard_normal(seed, k as u64),
+                Some((_, Some(z))) => z,
+                Some((seed, None)) => standard_normal(seed, k as u64),
                 None => standard_normal(self.seed, k as u64),
             };
             -self.step_height + self.roughness * z
@@ -310,7 +281,8 @@ impl TerrainOptions {
     pub(crate) fn branch_beyond_at(&mut self, x: f64, seed: u64, z: f64) {
         if self.roughness != 0.0 {
             let first = self.patch_at(x).index.max(-1) + 1;
-            self.branches.branch(first, seed, z);
+            self.branches
+                .branch(first, seed, (!z.is_nan()).then_some(z));
         }
     }
 

@@ -49,7 +49,12 @@
 //! doomed tail, `BISECTIONS + 1` doom tests; nothing grows with the MFPT.
 
 use crate::metastable::Rng;
-use nalgebra::{DMatrix, SymmetricEigen};
+
+mod mesh;
+mod quadrature;
+pub use mesh::kmeans;
+use mesh::{effective_dimension, nearest};
+pub use quadrature::{erfc, gauss_hermite, normal_cdf};
 
 /// A walker for the chain: one standard-normal input per step, the step a
 /// deterministic function of (state, input).
@@ -148,80 +153,6 @@ const Z_FAR: f64 = 10.0;
 /// Bisections of a critical input (its error `2 Z_FAR / 2²⁰`, a relative
 /// error of a tail at `z` about `z` times that).
 const BISECTIONS: usize = 20;
-
-/// `erfc` (Numerical Recipes' Chebyshev fit, relative error below 1.2 × 10⁻⁷
-/// everywhere, so a tail of 10⁻¹⁵ keeps its digits).
-pub fn erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let r = t
-        * (-z * z - 1.265_512_23
-            + t * (1.000_023_68
-                + t * (0.374_091_96
-                    + t * (0.096_784_18
-                        + t * (-0.186_288_06
-                            + t * (0.278_868_07
-                                + t * (-1.135_203_98
-                                    + t * (1.488_515_87
-                                        + t * (-0.822_152_23 + t * 0.170_872_77)))))))))
-            .exp();
-    if x >= 0.0 { r } else { 2.0 - r }
-}
-
-/// The standard normal distribution function `Φ`.
-pub fn normal_cdf(x: f64) -> f64 {
-    0.5 * erfc(-x / core::f64::consts::SQRT_2)
-}
-
-/// Gauss–Hermite nodes and weights for the standard normal law (`n` ≥ 1):
-/// `E[g(Z)] ≈ Σ w_i g(z_i)`, exact for polynomials of degree `2n − 1`.
-/// The physicists' nodes by Newton's method on `H_n` (Numerical Recipes'
-/// `gauher`), scaled by `√2`.
-pub fn gauss_hermite(n: usize) -> Vec<(f64, f64)> {
-    assert!(n >= 1, "gauss_hermite: at least one node");
-    let pim4 = core::f64::consts::PI.powf(-0.25);
-    let nf = n as f64;
-    let mut x = vec![0.0; n];
-    let mut w = vec![0.0; n];
-    let mut z = 0.0;
-    for i in 0..n.div_ceil(2) {
-        z = match i {
-            0 => (2.0 * nf + 1.0).sqrt() - 1.85575 * (2.0 * nf + 1.0).powf(-1.0 / 6.0),
-            1 => z - 1.14 * nf.powf(0.426) / z,
-            2 => 1.86 * z - 0.86 * x[0],
-            3 => 1.91 * z - 0.91 * x[1],
-            _ => 2.0 * z - x[i - 2],
-        };
-        let mut pp = 0.0;
-        for _ in 0..100 {
-            let (mut p1, mut p2) = (pim4, 0.0);
-            for j in 0..n {
-                let p3 = p2;
-                p2 = p1;
-                let jf = j as f64;
-                p1 = z * (2.0 / (jf + 1.0)).sqrt() * p2 - (jf / (jf + 1.0)).sqrt() * p3;
-            }
-            pp = (2.0 * nf).sqrt() * p2;
-            let dz = p1 / pp;
-            z -= dz;
-            if dz.abs() <= 1e-15 * z.abs().max(1.0) {
-                break;
-            }
-        }
-        x[i] = z;
-        x[n - 1 - i] = -z;
-        w[i] = 2.0 / (pp * pp);
-        w[n - 1 - i] = w[i];
-    }
-    let s = core::f64::consts::PI.sqrt();
-    let mut out: Vec<(f64, f64)> = x
-        .iter()
-        .zip(&w)
-        .map(|(&x, &w)| (core::f64::consts::SQRT_2 * x, w / s))
-        .collect();
-    out.sort_by(|a, b| a.0.total_cmp(&b.0));
-    out
-}
 
 /// A sample of the QSD: a Fleming–Viot cloud of `replicas` walkers from
 /// `start`, each input drawn from N(0, 1); a walker that falls restarts as
@@ -405,123 +336,6 @@ impl Scale {
     }
 }
 
-fn dist2(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum()
-}
-
-/// The index of the centre nearest `f`.
-fn nearest(centres: &[Vec<f64>], f: &[f64]) -> usize {
-    let mut best = (f64::INFINITY, 0);
-    for (i, c) in centres.iter().enumerate() {
-        let d = dist2(c, f);
-        if d < best.0 {
-            best = (d, i);
-        }
-    }
-    best.1
-}
-
-/// k-means of `points` into at most `k` non-empty clusters: k-means++
-/// seeding, then Lloyd's iterations until no point moves (at most 100).
-/// Returns the centres that hold at least `min_members` points.
-pub fn kmeans(points: &[Vec<f64>], k: usize, min_members: usize, rng: &mut Rng) -> Vec<Vec<f64>> {
-    let k = k.min(points.len()).max(1);
-    let mut centres = vec![points[rng.below(points.len())].clone()];
-    let mut d2: Vec<f64> = points.iter().map(|p| dist2(p, &centres[0])).collect();
-    while centres.len() < k {
-        let total: f64 = d2.iter().sum();
-        if total <= 0.0 {
-            break;
-        }
-        let mut u = rng.uniform() * total;
-        let mut pick = points.len() - 1;
-        for (i, d) in d2.iter().enumerate() {
-            if u < *d {
-                pick = i;
-                break;
-            }
-            u -= d;
-        }
-        let c = points[pick].clone();
-        for (d, p) in d2.iter_mut().zip(points) {
-            *d = d.min(dist2(p, &c));
-        }
-        centres.push(c);
-    }
-    let mut label = vec![usize::MAX; points.len()];
-    for _ in 0..100 {
-        let mut moved = false;
-        for (l, p) in label.iter_mut().zip(points) {
-            let n = nearest(&centres, p);
-            if n != *l {
-                *l = n;
-                moved = true;
-            }
-        }
-        if !moved {
-            break;
-        }
-        let dim = points[0].len();
-        let mut sum = vec![vec![0.0; dim]; centres.len()];
-        let mut count = vec![0usize; centres.len()];
-        for (l, p) in label.iter().zip(points) {
-            count[*l] += 1;
-            for (s, x) in sum[*l].iter_mut().zip(p) {
-                *s += x;
-            }
-        }
-        for ((c, s), n) in centres.iter_mut().zip(sum).zip(&count) {
-            if *n > 0 {
-                *c = s.into_iter().map(|x| x / *n as f64).collect();
-            }
-        }
-    }
-    // Keep the centres that hold at least `min_members` points (or the
-    // most populous one).
-    let mut count = vec![0usize; centres.len()];
-    for p in points {
-        count[nearest(&centres, p)] += 1;
-    }
-    let most = count.iter().copied().max().unwrap_or(0);
-    centres
-        .into_iter()
-        .zip(count)
-        .filter_map(|(c, n)| (n >= min_members.min(most).max(1)).then_some(c))
-        .collect()
-}
-
-/// Principal components that hold 95 % of the variance of `points`.
-fn effective_dimension(points: &[Vec<f64>]) -> usize {
-    let d = points[0].len();
-    if d == 0 {
-        return 0;
-    }
-    let n = points.len() as f64;
-    let mut cov = DMatrix::<f64>::zeros(d, d);
-    for p in points {
-        for i in 0..d {
-            for j in 0..d {
-                cov[(i, j)] += p[i] * p[j] / n;
-            }
-        }
-    }
-    let mut ev: Vec<f64> = SymmetricEigen::new(cov)
-        .eigenvalues
-        .iter()
-        .map(|v| v.max(0.0))
-        .collect();
-    ev.sort_by(|a, b| b.total_cmp(a));
-    let total: f64 = ev.iter().sum();
-    let mut acc = 0.0;
-    for (i, v) in ev.iter().enumerate() {
-        acc += v;
-        if acc >= 0.95 * total {
-            return i + 1;
-        }
-    }
-    d
-}
-
 /// A member's step on a mesh: the mass landing in each cell, and the fall.
 type Mapped = (Vec<(usize, f64)>, f64);
 
@@ -688,59 +502,4 @@ pub fn chain_mfpt<W: ChainWalker>(
         features: points[0].len(),
         steps,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn gauss_hermite_integrates_the_normal_moments() {
-        for n in [1, 2, 5, 9, 20] {
-            let q = gauss_hermite(n);
-            // E[Z^2k] = (2k − 1)!!, exact up to degree 2n − 1.
-            let mut double_fact = 1.0;
-            for k in 0..n {
-                let got: f64 = q.iter().map(|(z, w)| w * z.powi(2 * k as i32)).sum();
-                assert!(
-                    (got - double_fact).abs() < 1e-9 * double_fact,
-                    "{n} nodes, E[Z^{}]: {got} vs {double_fact}",
-                    2 * k
-                );
-                double_fact *= (2 * k + 1) as f64;
-            }
-            let odd: f64 = q.iter().map(|(z, w)| w * z.powi(3)).sum();
-            assert!(odd.abs() < 1e-12, "{n}: {odd}");
-        }
-    }
-
-    #[test]
-    fn the_normal_tail_is_the_law_s() {
-        // Φ(−z) against mpmath's values.
-        for (z, tail) in [
-            (1.0, 0.158_655_253_931_457_05),
-            (3.0, 1.349_898_031_630_094_6e-3),
-            (6.0, 9.865_876_450_376_946e-10),
-            (9.0, 1.128_588_405_953_034_5e-19),
-        ] {
-            let got = normal_cdf(-z);
-            assert!((got - tail).abs() < 2e-7 * tail, "{z}: {got} vs {tail}");
-        }
-    }
-
-    #[test]
-    fn kmeans_finds_separated_clusters() {
-        let mut rng = Rng::new(3);
-        let points: Vec<Vec<f64>> = (0..300)
-            .map(|i| {
-                let c = (i % 3) as f64 * 10.0;
-                vec![c + 0.1 * rng.normal(), -c + 0.1 * rng.normal()]
-            })
-            .collect();
-        let mut centres = kmeans(&points, 3, 1, &mut Rng::new(1));
-        centres.sort_by(|a, b| a[0].total_cmp(&b[0]));
-        for (i, c) in centres.iter().enumerate() {
-            assert!((c[0] - 10.0 * i as f64).abs() < 0.1, "{centres:?}");
-        }
-    }
 }
