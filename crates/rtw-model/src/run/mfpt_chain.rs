@@ -27,6 +27,13 @@
 //! **The cells** are cut over a Fleming–Viot cloud at the same roughness
 //! ([`qsd_cloud`]; a cloud at a larger roughness would lay its kept
 //! patches at that roughness, and they are part of the state).
+//!
+//! **Status: not yet right below σ = 3 cm** (results/robustness/mfpt_chain.md).
+//! At Fig. 7(a) it overlaps the counted estimate at 5 and 3 cm and is 5 000
+//! times too high at 2 cm; its MFPT equals its one-step estimate at every
+//! roughness, so the mesh (about 530 cells over a cloud of effective
+//! dimension 11 to 17 of these 31 features) carries no memory from step to
+//! step and misses the falls that come through several moderate patches.
 
 use crate::options::{RobustnessOptions, TerrainOptions};
 use crate::outcome::{ChainDiagnostics, MeanFirstPassage};
