@@ -39,7 +39,7 @@ LAYERS = {
         {"variational", "nonsmooth", "limit"},
         {"continuation"},
         {"metastable", "logistic"},
-        {"splitting"},
+        {"splitting", "chain"},
         {"rimless", "counting"},
     ],
     "rtw-model": [

@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 #![warn(missing_docs)]
 
+pub mod chain;
 pub mod continuation;
 #[cfg(feature = "testing")]
 pub mod counting;

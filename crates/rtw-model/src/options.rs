@@ -41,7 +41,7 @@ mod robustness;
 mod seed;
 mod terrain;
 pub(crate) use robustness::MFPT_BATCHES_DEFAULT;
-pub use robustness::RobustnessOptions;
+pub use robustness::{MfptMethod, RobustnessOptions};
 pub use terrain::TerrainOptions;
 pub(crate) use terrain::{Face, Over};
 

@@ -510,6 +510,10 @@ pub struct Robustness {
     /// The mean first-passage time on a rough slope (Fleming–Viot,
     /// docs/robustness.md).
     pub mfpt: Option<MeanFirstPassage>,
+    /// How the chain estimator made `mfpt` (`robustness.mfpt_method =
+    /// "chain"`; absent for the counted one, so that old JSON is unchanged).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mfpt_chain: Option<ChainDiagnostics>,
     /// Integrator work of the measures' runs.
     pub work: hybrid_ode::Work,
 }
@@ -567,6 +571,28 @@ pub struct MeanFirstPassage {
     pub fall_rate: f64,
     /// Steps the estimate simulated (its cost).
     pub steps: u64,
+}
+
+/// How the chain estimator's MFPT was made (docs/robustness-rough.md, "The
+/// chain method"): its mesh, and its discretisation test.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ChainDiagnostics {
+    /// Cells of the mesh.
+    pub cells: usize,
+    /// Sampled extended states whose one step was integrated.
+    pub members: usize,
+    /// Gauss–Hermite nodes of the new patch's height.
+    pub nodes: usize,
+    /// Principal components holding 95 % of the cloud's standardised
+    /// variance (the effective dimension), of `features`.
+    pub dimension: usize,
+    /// Features of the extended state.
+    pub features: usize,
+    /// The MFPT at twice the cells (the discretisation test).
+    pub mfpt_fine: f64,
+    /// One over the sampled states' mean exact fall mass: the MFPT without
+    /// the mesh (a check of it).
+    pub mfpt_one_step: f64,
 }
 
 #[cfg(test)]

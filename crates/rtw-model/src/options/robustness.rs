@@ -53,6 +53,49 @@ pub struct RobustnessOptions {
     /// closes for (about a fifth of the counted steps; docs/robustness.md).
     #[serde(skip_serializing_if = "is_default_mfpt_batches")]
     pub mfpt_batches: u32,
+    /// The MFPT's estimator (docs/robustness-rough.md): `"counted"` (the
+    /// default, left out of a serialized config so that every config's
+    /// hash stays what it was), `"chain"` (a Markov chain on a mesh of the
+    /// extended states the walker reaches, `run/mfpt_chain.rs`) or
+    /// `"splitting"` (not built in this build).
+    #[serde(
+        skip_serializing_if = "MfptMethod::is_counted",
+        deserialize_with = "MfptMethod::deserialize_built"
+    )]
+    pub mfpt_method: MfptMethod,
+}
+
+/// The MFPT's estimators (`robustness.mfpt_method`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MfptMethod {
+    /// The falls of a Fleming–Viot cloud, counted (`run/mfpt.rs`): its cost
+    /// grows with the MFPT.
+    #[default]
+    Counted,
+    /// The Markov chain on k-means cells of the cloud's extended states
+    /// (`run/mfpt_chain.rs`, `hybrid_ode::chain`): its cost does not.
+    Chain,
+    /// Adaptive multilevel splitting: not built in this build.
+    Splitting,
+}
+
+impl MfptMethod {
+    fn is_counted(&self) -> bool {
+        *self == MfptMethod::Counted
+    }
+
+    /// The method a config names, refusing one this build does not have
+    /// with the field and the values it has.
+    fn deserialize_built<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        match Self::deserialize(d)? {
+            MfptMethod::Splitting => Err(serde::de::Error::custom(
+                "robustness.mfpt_method = \"splitting\" is not built in this build: must be \
+                 \"counted\" or \"chain\"",
+            )),
+            m => Ok(m),
+        }
+    }
 }
 
 /// The default roughness of `steps_to_fall` (m).
@@ -101,6 +144,7 @@ impl Default for RobustnessOptions {
             max_steps: MAX_STEPS_DEFAULT,
             mfpt: false,
             mfpt_batches: MFPT_BATCHES_DEFAULT,
+            mfpt_method: MfptMethod::Counted,
         }
     }
 }
@@ -170,5 +214,58 @@ impl RobustnessOptions {
              290 µs a step; split a larger study over several scans of other terrain.seed)",
             |v| v <= MAX_TRIAL_STEPS,
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde::de::value::{Error, MapDeserializer};
+
+    /// The options a config's `robustness` table of `pairs` gives.
+    fn from(pairs: &[(&'static str, &'static str)]) -> Result<RobustnessOptions, Error> {
+        RobustnessOptions::deserialize(MapDeserializer::new(pairs.iter().copied()))
+    }
+
+    #[test]
+    fn the_mfpt_method_is_counted_by_default_and_chain_on_request() {
+        assert_eq!(from(&[]).unwrap().mfpt_method, MfptMethod::Counted);
+        assert_eq!(
+            RobustnessOptions::default().mfpt_method,
+            MfptMethod::Counted
+        );
+        for (text, method) in [
+            ("counted", MfptMethod::Counted),
+            ("chain", MfptMethod::Chain),
+        ] {
+            let r = from(&[("mfpt_method", text)]).unwrap();
+            assert_eq!(r.mfpt_method, method);
+            assert_eq!(
+                RobustnessOptions {
+                    mfpt_method: MfptMethod::Counted,
+                    ..r
+                },
+                RobustnessOptions::default()
+            );
+        }
+        // The default is left out of a serialized config (every config hash
+        // stays what it was), another method is not.
+        assert!(MfptMethod::Counted.is_counted());
+        assert!(!MfptMethod::Chain.is_counted());
+    }
+
+    #[test]
+    fn an_unknown_or_unbuilt_mfpt_method_is_refused_naming_the_valid_ones() {
+        let e = from(&[("mfpt_method", "sampled")]).unwrap_err().to_string();
+        assert!(e.contains("sampled"), "{e}");
+        for valid in ["counted", "chain", "splitting"] {
+            assert!(e.contains(valid), "{e}");
+        }
+        let e = from(&[("mfpt_method", "splitting")])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("robustness.mfpt_method"), "{e}");
+        assert!(e.contains("not built"), "{e}");
+        assert!(e.contains("\"counted\" or \"chain\""), "{e}");
     }
 }

@@ -51,36 +51,46 @@ pub(crate) const BRANCHES: usize = 32;
 /// [`BRANCHES`] are kept the oldest is dropped, and the patches it covered
 /// (at least `BRANCHES` patches behind the newest branch) take the heights
 /// of the branch before it.
+///
+/// A branch may set its first patch's height itself (`z`, in units of the
+/// roughness; none: drawn with its seed like the rest): the MFPT's chain
+/// (`run/mfpt_chain.rs`) integrates over that height by quadrature, so a
+/// step must be a function of the height it meets.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Branches {
     len: u8,
     first: [i64; BRANCHES],
     seed: [u64; BRANCHES],
+    z: [Option<f64>; BRANCHES],
 }
 
 impl Branches {
-    /// The seed of patch `k`, if a branch covers it.
+    /// The seed of patch `k`, and its standard-normal height if the branch
+    /// set it, if a branch covers it.
     #[inline]
-    fn seed_of(&self, k: i64) -> Option<u64> {
+    fn seed_of(&self, k: i64) -> Option<(u64, Option<f64>)> {
         (0..usize::from(self.len))
             .rev()
             .find(|&i| self.first[i] <= k)
-            .map(|i| self.seed[i])
+            .map(|i| (self.seed[i], self.z[i].filter(|_| self.first[i] == k)))
     }
 
-    /// Draws the patches from `first` on afresh with `seed`.
-    fn branch(&mut self, first: i64, seed: u64) {
+    /// Draws the patches from `first` on afresh with `seed`, the first at
+    /// `z` (standard normal) if given.
+    fn branch(&mut self, first: i64, seed: u64, z: Option<f64>) {
         while self.len > 0 && self.first[usize::from(self.len) - 1] >= first {
             self.len -= 1;
         }
         if usize::from(self.len) == BRANCHES {
             self.first.copy_within(1.., 0);
             self.seed.copy_within(1.., 0);
+            self.z.copy_within(1.., 0);
             self.len -= 1;
         }
         let i = usize::from(self.len);
         self.first[i] = first;
         self.seed[i] = seed;
+        self.z[i] = z;
         self.len += 1;
     }
 }
@@ -250,8 +260,12 @@ impl TerrainOptions {
         } else if self.roughness == 0.0 {
             -self.step_height
         } else {
-            let seed = self.branches.seed_of(k).unwrap_or(self.seed);
-            -self.step_height + self.roughness * standard_normal(seed, k as u64)
+            let z = match self.branches.seed_of(k) {
+                Some((_, Some(z))) => z,
+                Some((seed, None)) => standard_normal(seed, k as u64),
+                None => standard_normal(self.seed, k as u64),
+            };
+            -self.step_height + self.roughness * z
         }
     }
 
@@ -259,10 +273,30 @@ impl TerrainOptions {
     /// from the first patch that starts after `x` on. Nothing changes on a
     /// ground without roughness.
     pub(crate) fn branch_beyond(&mut self, x: f64, seed: u64) {
+        self.branch_beyond_at(x, seed, f64::NAN);
+    }
+
+    /// [`branch_beyond`](Self::branch_beyond) with the first patch drawn
+    /// afresh at the height `z × roughness` (`z` NaN: drawn with `seed`).
+    pub(crate) fn branch_beyond_at(&mut self, x: f64, seed: u64, z: f64) {
         if self.roughness != 0.0 {
             let first = self.patch_at(x).index.max(-1) + 1;
-            self.branches.branch(first, seed);
+            self.branches
+                .branch(first, seed, (!z.is_nan()).then_some(z));
         }
+    }
+
+    /// The standard-normal height of the patch under `x` (0 off the rough
+    /// ground), and the distance from `x` to the next patch's edge.
+    pub(crate) fn patch_ahead(&self, x: f64) -> (f64, f64) {
+        if self.roughness == 0.0 || x < self.step_at {
+            return (0.0, (self.step_at - x).max(0.0));
+        }
+        let p = self.patch_at(x);
+        (
+            (self.level(p.index) + self.step_height) / self.roughness,
+            p.hi - x,
+        )
     }
 
     /// The ground's height (slope normal) under `x`.

@@ -169,6 +169,19 @@ impl Rtw {
         self.note_patches(y);
     }
 
+    /// [`branch_terrain_beyond`](Self::branch_terrain_beyond) with the
+    /// first patch drawn afresh at `z` standard deviations
+    /// ([`TerrainOptions::branch_beyond_at`]).
+    pub(crate) fn branch_terrain_beyond_at(&mut self, x: f64, seed: u64, z: f64, y: &[f64; N]) {
+        self.terrain.branch_beyond_at(x, seed, z);
+        self.note_patches(y);
+    }
+
+    /// The ground's options (the MFPT's chain reads the patches ahead).
+    pub(crate) fn terrain(&self) -> &TerrainOptions {
+        &self.terrain
+    }
+
     /// Notes the patch under each free tip at `y`: wherever the modes or the
     /// ground change under a walker otherwise than by a reset (a section
     /// point entered, a ground put under it or drawn afresh ahead of it).

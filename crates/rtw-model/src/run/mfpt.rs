@@ -94,27 +94,27 @@ pub const MFPT_SETTINGS: MfptOptions = MfptOptions {
 /// has touched down.
 #[derive(Clone)]
 pub(crate) struct State {
-    rtw: Rtw,
-    y: [f64; N],
-    quiet: f64,
+    pub(crate) rtw: Rtw,
+    pub(crate) y: [f64; N],
+    pub(crate) quiet: f64,
     /// No step taken yet: the walker has reached no rough patch.
     fresh: bool,
 }
 
 /// The settled gait as a walker on the rough slope.
-struct RtwWalker<'a, 'b> {
-    s: &'a SettledGait<'b>,
+pub(crate) struct RtwWalker<'a, 'b> {
+    pub(crate) s: &'a SettledGait<'b>,
     /// One step of the flat gait, never stopped early.
-    options: Options,
+    pub(crate) options: Options,
     /// The centre of mass's velocity at the settled state.
     v_settled: [f64; 2],
     /// The flat gait's mean speed.
-    speed: f64,
-    work: RefCell<Work>,
+    pub(crate) speed: f64,
+    pub(crate) work: RefCell<Work>,
 }
 
 /// The downhill position of the furthest tip of `y`.
-fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
+pub(crate) fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
     let rods = rtw.rods(y);
     SPOKES
         .iter()
@@ -123,25 +123,26 @@ fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
 }
 
 /// The centre of mass's velocity (the rods are equal).
-fn com_velocity(rtw: &Rtw, y: &[f64; N]) -> [f64; 2] {
+pub(crate) fn com_velocity(rtw: &Rtw, y: &[f64; N]) -> [f64; 2] {
     let rods = rtw.rods(y);
     let v = |k: usize| rods.iter().map(|r| r.v[k]).sum::<f64>() / 3.0;
     [v(0), v(1)]
 }
 
-impl Walker for RtwWalker<'_, '_> {
-    type State = State;
-
-    fn step(&self, st: &State, rng: &mut Rng) -> Option<State> {
+impl RtwWalker<'_, '_> {
+    /// One step from `st` after the patches beyond its reach are drawn
+    /// afresh with `seed`, the first at `z` standard deviations unless `z`
+    /// is NaN (then with `seed` too).
+    pub(crate) fn step_branched(&self, st: &State, seed: u64, z: f64) -> Option<State> {
         let mut rtw = st.rtw.clone();
         // Before its first step the walker stands before the rough slope:
         // every patch is ahead of it.
-        let reach = if st.fresh {
-            f64::NEG_INFINITY
+        let reach = self.reach(st);
+        if z.is_nan() {
+            rtw.branch_terrain_beyond(reach, seed, &st.y);
         } else {
-            furthest_tip(&rtw, &st.y) + self.s.phys.length
-        };
-        rtw.branch_terrain_beyond(reach, rng.next_u64(), &st.y);
+            rtw.branch_terrain_beyond_at(reach, seed, z, &st.y);
+        }
         let (o, rtw, y) = run_from(
             self.s.params,
             &self.options,
@@ -167,6 +168,25 @@ impl Walker for RtwWalker<'_, '_> {
         })
     }
 
+    /// Beyond where the ground is drawn afresh before a step from `st`: a
+    /// rod length beyond its furthest tip (before its first step, all of
+    /// the rough slope).
+    pub(crate) fn reach(&self, st: &State) -> f64 {
+        if st.fresh {
+            f64::NEG_INFINITY
+        } else {
+            furthest_tip(&st.rtw, &st.y) + self.s.phys.length
+        }
+    }
+}
+
+impl Walker for RtwWalker<'_, '_> {
+    type State = State;
+
+    fn step(&self, st: &State, rng: &mut Rng) -> Option<State> {
+        self.step_branched(st, rng.next_u64(), f64::NAN)
+    }
+
     fn score(&self, st: &State) -> f64 {
         let v = com_velocity(&st.rtw, &st.y);
         (v[0] - self.v_settled[0]).hypot(v[1] - self.v_settled[1]) / self.speed
@@ -189,6 +209,34 @@ pub(crate) fn mean_first_passage(
     terrain: TerrainOptions,
     work: &mut Work,
 ) -> Option<MeanFirstPassage> {
+    let (walker, start) = walker(s, r, terrain);
+    let m = mfpt(
+        &walker,
+        &start,
+        &MfptOptions {
+            seed: terrain.seed,
+            batches: r.mfpt_batches as usize,
+            ..MFPT_SETTINGS
+        },
+    );
+    *work += walker.work.into_inner();
+    let m = m?;
+    Some(MeanFirstPassage {
+        mfpt: m.mfpt,
+        lo: m.lo,
+        hi: m.hi,
+        fall_rate: m.fall_rate,
+        steps: m.steps,
+    })
+}
+
+/// The settled gait `s` as a walker on the rough slope of `r.sigma`, and
+/// its start (see the module doc).
+pub(crate) fn walker<'a, 'b>(
+    s: &'a SettledGait<'b>,
+    r: &RobustnessOptions,
+    terrain: TerrainOptions,
+) -> (RtwWalker<'a, 'b>, State) {
     let options = Options {
         t_max: 1.0 / s.flat.f_w_newfoot,
         stop_when_settled: false,
@@ -220,22 +268,5 @@ pub(crate) fn mean_first_passage(
         quiet: 0.0,
         fresh: true,
     };
-    let m = mfpt(
-        &walker,
-        &start,
-        &MfptOptions {
-            seed: terrain.seed,
-            batches: r.mfpt_batches as usize,
-            ..MFPT_SETTINGS
-        },
-    );
-    *work += walker.work.into_inner();
-    let m = m?;
-    Some(MeanFirstPassage {
-        mfpt: m.mfpt,
-        lo: m.lo,
-        hi: m.hi,
-        fall_rate: m.fall_rate,
-        steps: m.steps,
-    })
+    (walker, start)
 }

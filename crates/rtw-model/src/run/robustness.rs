@@ -39,8 +39,8 @@
 //! tolerance; the last height with `S ≥ ½` is reported (0 when even the first
 //! rung, bisected down to `STEP_DOWN_ATOL × L`, has `S < ½`).
 
-use crate::options::Options;
 use crate::options::TerrainOptions;
+use crate::options::{MfptMethod, Options};
 use crate::outcome::{Label, Outcome, PhaseSurvival, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
@@ -225,10 +225,25 @@ pub(crate) fn measure(
         )
     });
     // None also when the stop flag cut it (the result is then refused).
-    let mfpt = options.robustness.mfpt.then(|| {
-        crate::run::mfpt::mean_first_passage(&s, &options.robustness, options.terrain, &mut work)
-    });
-    let mfpt = mfpt.flatten();
+    let (mfpt, mfpt_chain) = match (options.robustness.mfpt, options.robustness.mfpt_method) {
+        (false, _) => (None, None),
+        (true, MfptMethod::Chain) => crate::run::mfpt_chain::chain_first_passage(
+            &s,
+            &options.robustness,
+            options.terrain,
+            &mut work,
+        )
+        .map_or((None, None), |(m, d)| (Some(m), Some(d))),
+        (true, _) => (
+            crate::run::mfpt::mean_first_passage(
+                &s,
+                &options.robustness,
+                options.terrain,
+                &mut work,
+            ),
+            None,
+        ),
+    };
     Robustness {
         asked: options.robustness,
         step_down_max,
@@ -238,6 +253,7 @@ pub(crate) fn measure(
         gsn,
         steps_to_fall,
         mfpt,
+        mfpt_chain,
         work,
     }
 }
