@@ -41,7 +41,7 @@
 
 use crate::options::TerrainOptions;
 use crate::options::{MfptMethod, Options};
-use crate::outcome::{Label, Outcome, PhaseSurvival, Robustness};
+use crate::outcome::{Label, MeanFirstPassage, Outcome, PhaseSurvival, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::N;
@@ -234,7 +234,23 @@ pub(crate) fn measure(
             &mut work,
         )
         .map_or((None, None), |(m, d)| (Some(m), Some(d))),
-        (true, _) => (
+        (true, MfptMethod::Splitting) => (
+            crate::run::mfpt_splitting::mean_first_passage_splitting(
+                &s,
+                &options.robustness,
+                options.terrain,
+                &mut work,
+            )
+            .map(|m| MeanFirstPassage {
+                mfpt: m.mfpt,
+                lo: m.mfpt_lo,
+                hi: m.mfpt_hi,
+                fall_rate: m.fall_rate,
+                steps: m.steps,
+            }),
+            None,
+        ),
+        (true, MfptMethod::Counted) => (
             crate::run::mfpt::mean_first_passage(
                 &s,
                 &options.robustness,
