@@ -151,7 +151,7 @@ fn the_period_doubling_curve_of_the_shifted_logistic_map_is_the_closed_form() {
     // fixed point, i.e. x = (r + 1)/(2r) and c = (r + 1)(3 − r)/(4r).
     let map2 = |z: &[f64], p: [f64; 2]| {
         let (x, r, c) = (z[0], p[0], p[1]);
-        Some(MapEval2 {
+        Some(PlaneMapEval {
             value: vec![r * x * (1.0 - x) + c],
             dz: DMatrix::from_element(1, 1, r * (1.0 - 2.0 * x)),
             dp: [vec![x * (1.0 - x)], vec![1.0]],
@@ -173,7 +173,7 @@ fn the_period_doubling_curve_of_the_shifted_logistic_map_is_the_closed_form() {
     };
     let b = continue_branch(&mut map, &[0.4], 2.0, 1.0, &opts, &eig).unwrap();
     let pd = &b.bifurcations[0];
-    let opts2 = Options2 {
+    let opts2 = CurveOptions {
         base: Options {
             p_min: 2.0,
             p_max: 4.0,
@@ -206,7 +206,7 @@ fn the_fold_curve_of_a_two_parameter_map_is_the_closed_form() {
     // 2z = p₂, on the curve p₁ = −p₂²/4.
     let map2 = |z: &[f64], p: [f64; 2]| {
         let x = z[0];
-        Some(MapEval2 {
+        Some(PlaneMapEval {
             value: vec![x + 0.5 * (p[0] - x * x + p[1] * x)],
             dz: DMatrix::from_element(1, 1, 1.0 + 0.5 * (p[1] - 2.0 * x)),
             dp: [vec![0.5], vec![0.5 * x]],
@@ -231,7 +231,7 @@ fn the_fold_curve_of_a_two_parameter_map_is_the_closed_form() {
         .iter()
         .find(|b| b.kind == Kind::Fold)
         .unwrap();
-    let opts2 = Options2 {
+    let opts2 = CurveOptions {
         base: Options {
             ds_max: 0.05,
             ..Options::default()

@@ -55,7 +55,7 @@ pub use params::{Normalization, Num, Param, ParamError, Params, Physical};
 pub use plant::contact::RodMode;
 pub use plant::geometry::Tip;
 /// The star's geometry for drawings: spoke order, strings, tips and connection points.
-pub use plant::geometry::{SPOKES, STRINGS, V2, spoke_points};
+pub use plant::geometry::{SPOKES, STRINGS, Vec2, spoke_points};
 pub use plant::rtw::GuardKind;
 pub use run::cancel::cancellable;
 pub use run::simulate::{simulate, simulate_traced};

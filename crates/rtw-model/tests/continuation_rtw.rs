@@ -12,10 +12,10 @@
 //! default's own diagrams, at its fitted s, are results/bifurcation/ and
 //! results/continuation/.
 
-use hybrid_ode::continuation::{self, End, Kind, Options as Cont, Options2};
+use hybrid_ode::continuation::{self, CurveOptions, End, Kind, Options as Cont};
 use hybrid_ode::limit;
 use rtw_model::cycles::{CycleOptions, StepMap};
-use rtw_model::cycles::{StepMapFamily, StepMapFamily2};
+use rtw_model::cycles::{StepMapFamily, StepMapPlane};
 use rtw_model::{Label, Options, Param, Params, simulate};
 
 /// The period-1 walk at φ = 0.2 (Fig. 7(a) otherwise), its map in φ and
@@ -126,8 +126,8 @@ fn the_walks_period_doubling_curve_in_phi_and_fn_agrees_with_a_brute_force_grid(
         .iter()
         .find(|b| b.kind == Kind::PeriodDoubling)
         .expect("the period doubling");
-    let f2 = StepMapFamily2::new(family, Param::Fn);
-    let opts2 = Options2 {
+    let f2 = StepMapPlane::new(family, Param::Fn);
+    let opts2 = CurveOptions {
         base: Cont {
             ds_max: 0.2,
             ..opts

@@ -7,7 +7,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 /// A map with two parameters and its derivatives at `(z, p)`.
 #[derive(Clone, Debug, PartialEq)]
-pub struct MapEval2 {
+pub struct PlaneMapEval {
     /// `P(z; p)`.
     pub value: Vec<f64>,
     /// `∂P/∂z`.
@@ -43,7 +43,7 @@ pub struct Curve {
 /// Settings of a two-parameter continuation: `p_min`/`p_max`/`p_scale` of
 /// `base` apply to the first parameter, these to the second.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Options2 {
+pub struct CurveOptions {
     /// Steps, tolerances, first-parameter range and scales.
     pub base: Options,
     /// The curve ends once the second parameter leaves this range.
@@ -71,11 +71,11 @@ pub fn continue_curve<F>(
     at: &Bifurcation,
     p2: f64,
     direction: f64,
-    opts: &Options2,
+    opts: &CurveOptions,
     multipliers: &dyn Fn(&DMatrix<f64>) -> Vec<Complex<f64>>,
 ) -> Result<Curve, Error>
 where
-    F: FnMut(&[f64], [f64; 2]) -> Option<MapEval2>,
+    F: FnMut(&[f64], [f64; 2]) -> Option<PlaneMapEval>,
 {
     let sign = match at.kind {
         Kind::Fold => -1.0,

@@ -24,7 +24,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 mod chord;
 mod curve;
-pub use curve::{Curve, CurvePoint, MapEval2, Options2, continue_curve};
+pub use curve::{Curve, CurveOptions, CurvePoint, PlaneMapEval, continue_curve};
 
 /// A map and its derivatives at one point `(z, p)`.
 #[derive(Clone, Debug, PartialEq)]

@@ -10,7 +10,7 @@
 //! | `map/stepmap.rs` | the step map, its Jacobian (variational or differences), its iterates and periods | [`StepMap`], [`CycleOptions`], [`Jacobian`], [`Step`], [`StepError`] |
 //! | `map/limit_cycle.rs` | fixed points of the map's power by Newton, Floquet multipliers, the limit cycle of a finished run | [`LimitCycle`], [`CycleError`] |
 //! | `robustness/gsn.rs` | the gait sensitivity norm: the map linearised with the floor height as input, its H2 norm | (crate-private; a run's `gsn`) |
-//! | `branches/continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapFamily2`], [`diagram`] |
+//! | `branches/continuation.rs` | the step map as a map with a parameter, for branches and bifurcations ([`hybrid_ode::continuation`]) | [`StepMapFamily`], [`StepMapPlane`], [`diagram`] |
 //! | `branches/nonsmooth.rs` | where a branch's mode sequence changes (grazing, corner, the gait lost): the orbit's mode sequence and closest approaches, the located end | [`ModeSequence`], [`ModeEvent`], [`Approach`], [`Orbit`], [`Setting`], [`EndOptions`], [`EndKind`], [`BranchEnd`] |
 //! | `robustness/basin.rs` | a slice of a gait's basin of attraction: a grid of perturbed section points, each iterated and classified | [`Basin`], [`BasinSpec`] |
 //! | `branches/segments.rs` | a branch continued through those changes, segment by segment | [`Segment`], [`continue_segments`] |
@@ -20,7 +20,7 @@ pub(crate) mod map;
 pub(crate) mod robustness;
 
 pub use branches::continuation::{
-    Diagram, DiagramBranch, DiagramError, DiagramOptions, StepMapFamily, StepMapFamily2, diagram,
+    Diagram, DiagramBranch, DiagramError, DiagramOptions, StepMapFamily, StepMapPlane, diagram,
 };
 pub use branches::nonsmooth::{
     Approach, BranchEnd, EndKind, EndOptions, ModeEvent, ModeSequence, Orbit, Setting,

@@ -15,7 +15,7 @@
 //! Contacts of different rods never couple (strings carry no impulse), so
 //! every decision here is per rod.
 
-use crate::plant::geometry::{RodFrame, RodState, Tip, V2, add, cross, perp, scale, sub};
+use crate::plant::geometry::{RodFrame, RodState, Tip, Vec2, add, cross, perp, scale, sub};
 
 /// A rod's contact mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,7 +95,7 @@ pub struct RodBody {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Load {
     /// Net force.
-    pub force: V2,
+    pub force: Vec2,
     /// Torque about the rod's centre.
     pub torque: f64,
 }
@@ -106,13 +106,13 @@ pub struct RodAccel {
     /// Time derivative of the rod's six slots.
     pub deriv: [f64; 6],
     /// Contact force λ on the tip (zero when free).
-    pub lambda: V2,
+    pub lambda: Vec2,
 }
 
 impl RodBody {
     /// The vector from the centre to tip `tip`.
     #[inline]
-    pub fn arm(&self, theta_e: V2, tip: Tip) -> V2 {
+    pub fn arm(&self, theta_e: Vec2, tip: Tip) -> Vec2 {
         scale(tip.sign() * self.half_length, theta_e)
     }
 
@@ -154,7 +154,7 @@ impl RodBody {
 
     /// Position and velocity of a tip.
     #[inline]
-    pub fn tip_point(&self, r: &RodState, tip: Tip) -> (V2, V2) {
+    pub fn tip_point(&self, r: &RodState, tip: Tip) -> (Vec2, Vec2) {
         let (sin, cos) = r.theta.sin_cos();
         let d = self.arm([cos, sin], tip);
         (add(r.c, d), add(r.v, scale(r.omega, perp(d))))
@@ -170,7 +170,7 @@ impl RodBody {
 
     /// [`frame`](Self::frame) given the unit vector `e` of the angle `s[2]`.
     #[inline]
-    pub fn frame_with(&self, mode: RodMode, s: &[f64], e: V2) -> RodFrame {
+    pub fn frame_with(&self, mode: RodMode, s: &[f64], e: Vec2) -> RodFrame {
         match mode {
             RodMode::Free => RodFrame {
                 c: [s[0], s[1]],
@@ -259,7 +259,7 @@ impl RodBody {
 
     /// Acceleration of a tip if the rod were free.
     #[inline]
-    pub fn free_tip_accel(&self, r: &RodState, tip: Tip, load: &Load) -> V2 {
+    pub fn free_tip_accel(&self, r: &RodState, tip: Tip, load: &Load) -> Vec2 {
         let (sin, cos) = r.theta.sin_cos();
         let d = self.arm([cos, sin], tip);
         let beta = load.torque / self.inertia;
@@ -275,7 +275,7 @@ impl RodBody {
 
     #[cfg(test)]
     /// Angular momentum about a point `p` (z-component).
-    pub fn angular_momentum_about(&self, r: &RodState, p: V2) -> f64 {
+    pub fn angular_momentum_about(&self, r: &RodState, p: Vec2) -> f64 {
         self.inertia * r.omega + self.m * cross(sub(r.c, p), r.v)
     }
 
@@ -448,7 +448,7 @@ pub struct Impact {
     /// The rod just after the impact (same position).
     pub after: RodState,
     /// Impulse of the ground on the tip.
-    pub impulse: V2,
+    pub impulse: Vec2,
     /// Which impact it was.
     pub kind: ImpactKind,
 }
@@ -473,7 +473,7 @@ mod tests {
         }
     }
 
-    fn rod(theta: f64, v: V2, omega: f64) -> RodState {
+    fn rod(theta: f64, v: Vec2, omega: f64) -> RodState {
         RodState {
             c: [0.3, 0.4 * theta.sin().abs()],
             theta,

@@ -7,36 +7,36 @@
 use std::f64::consts::PI;
 
 /// A plain 2-vector (the hot path wants no more than this).
-pub type V2 = [f64; 2];
+pub type Vec2 = [f64; 2];
 
 /// `a + b`.
 #[inline]
-pub fn add(a: V2, b: V2) -> V2 {
+pub fn add(a: Vec2, b: Vec2) -> Vec2 {
     [a[0] + b[0], a[1] + b[1]]
 }
 /// `a − b`.
 #[inline]
-pub fn sub(a: V2, b: V2) -> V2 {
+pub fn sub(a: Vec2, b: Vec2) -> Vec2 {
     [a[0] - b[0], a[1] - b[1]]
 }
 /// `s a`.
 #[inline]
-pub fn scale(s: f64, a: V2) -> V2 {
+pub fn scale(s: f64, a: Vec2) -> Vec2 {
     [s * a[0], s * a[1]]
 }
 /// `a · b`.
 #[inline]
-pub fn dot(a: V2, b: V2) -> f64 {
+pub fn dot(a: Vec2, b: Vec2) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 /// z-component of the planar cross product `a × b`.
 #[inline]
-pub fn cross(a: V2, b: V2) -> f64 {
+pub fn cross(a: Vec2, b: Vec2) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 /// `a` turned by +90°: the velocity of a point at `a` on a body spinning at unit rate.
 #[inline]
-pub fn perp(a: V2) -> V2 {
+pub fn perp(a: Vec2) -> Vec2 {
     [-a[1], a[0]]
 }
 
@@ -82,11 +82,11 @@ impl Tip {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RodState {
     /// Centre.
-    pub c: V2,
+    pub c: Vec2,
     /// Angle θ.
     pub theta: f64,
     /// Centre velocity.
-    pub v: V2,
+    pub v: Vec2,
     /// Angular velocity ω.
     pub omega: f64,
 }
@@ -95,13 +95,13 @@ pub struct RodState {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RodFrame {
     /// Centre.
-    pub c: V2,
+    pub c: Vec2,
     /// Centre velocity.
-    pub v: V2,
+    pub v: Vec2,
     /// Angular velocity ω.
     pub omega: f64,
     /// Unit vector along the rod.
-    pub e: V2,
+    pub e: Vec2,
 }
 
 impl RodFrame {
@@ -130,7 +130,7 @@ impl RodFrame {
 
     /// The point at signed distance `a` from the centre along the rod, and its velocity.
     #[inline]
-    pub fn point(&self, a: f64) -> (V2, V2) {
+    pub fn point(&self, a: f64) -> (Vec2, Vec2) {
         let arm = scale(a, self.e);
         (add(self.c, arm), add(self.v, scale(self.omega, perp(arm))))
     }
@@ -139,7 +139,7 @@ impl RodFrame {
 /// The rest shape (docs/model.md §3): a regular six-spoked star, all centres at
 /// `hub`, with rod angles `θ_a`, `θ_a + π/3`, `θ_a + 2π/3`, so that the spokes
 /// a+, b+, c+, a−, b−, c− go round in that angular order.
-pub fn rest_star(hub: V2, theta_a: f64) -> [RodState; 3] {
+pub fn rest_star(hub: Vec2, theta_a: f64) -> [RodState; 3] {
     std::array::from_fn(|i| RodState {
         c: hub,
         theta: theta_a + i as f64 * PI / 3.0,
@@ -167,7 +167,7 @@ pub const STRINGS: [(usize, usize); 6] = [(0, 1), (1, 2), (2, 3), (3, 4), (4, 5)
 /// rods with centres `c` and angles `theta` (`rods[i] = (c, theta)`): tip
 /// `c ± (L/2) e`, connection point `c ± r e`. What a drawing of the star
 /// needs; the strings join the connection points as [`STRINGS`] pairs them.
-pub fn spoke_points(rods: &[(V2, f64); 3], length: f64, r: f64) -> ([V2; 6], [V2; 6]) {
+pub fn spoke_points(rods: &[(Vec2, f64); 3], length: f64, r: f64) -> ([Vec2; 6], [Vec2; 6]) {
     let frames = rods.map(|(c, theta)| {
         RodFrame::new(&RodState {
             c,
@@ -176,7 +176,7 @@ pub fn spoke_points(rods: &[(V2, f64); 3], length: f64, r: f64) -> ([V2; 6], [V2
             omega: 0.0,
         })
     });
-    let at = |a: f64| -> [V2; 6] {
+    let at = |a: f64| -> [Vec2; 6] {
         std::array::from_fn(|j| {
             let (i, tip) = SPOKES[j];
             frames[i].point(tip.sign() * a).0

@@ -8,7 +8,7 @@
 
 use crate::options::{Damping, Options};
 use crate::params::Physical;
-use crate::plant::geometry::{RodFrame, SPOKES, STRINGS, V2, add, cross, dot, scale, sub};
+use crate::plant::geometry::{RodFrame, SPOKES, STRINGS, Vec2, add, cross, dot, scale, sub};
 
 /// String constants of one RTW.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,7 +48,7 @@ impl StringSet {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StringLoads {
     /// Net string force on each rod.
-    pub force: [V2; 3],
+    pub force: [Vec2; 3],
     /// Net string torque on each rod, about its centre.
     pub torque: [f64; 3],
     /// Rate of energy dissipation by the dampers (≥ 0 without slack).
@@ -58,7 +58,7 @@ pub struct StringLoads {
 impl StringSet {
     /// The force on end `p` of a string from `q` to `p`, and the power dissipated.
     #[inline]
-    fn string_force(&self, p: V2, vp: V2, q: V2, vq: V2) -> (V2, f64) {
+    fn string_force(&self, p: Vec2, vp: Vec2, q: Vec2, vq: Vec2) -> (Vec2, f64) {
         let d = sub(p, q);
         let dv = sub(vp, vq);
         let len = dot(d, d).sqrt();
@@ -146,7 +146,7 @@ mod tests {
     use super::*;
     use crate::plant::geometry::RodState;
 
-    fn frames(c: [V2; 3], th: [f64; 3], v: [V2; 3], w: [f64; 3]) -> [RodFrame; 3] {
+    fn frames(c: [Vec2; 3], th: [f64; 3], v: [Vec2; 3], w: [f64; 3]) -> [RodFrame; 3] {
         std::array::from_fn(|i| {
             RodFrame::new(&RodState {
                 c: c[i],

@@ -3,7 +3,7 @@
 //! (two-parameter curves), each from one column table, with the settings in
 //! their metadata.
 
-use super::{Continuation, Result2, critical, end_name, kind_name};
+use super::{Continuation, DiagramAndCurves, critical, end_name, kind_name};
 use ::parquet::file::metadata::KeyValue;
 use anyhow::Result;
 use arrow_schema::SchemaRef;
@@ -415,7 +415,7 @@ fn at(value: f64, omega: f64, m: &[nalgebra::Complex<f64>]) -> At {
 }
 
 /// The rows of a run.
-pub(crate) fn rows(c: &Continuation, r: &Result2) -> Rows {
+pub(crate) fn rows(c: &Continuation, r: &DiagramAndCurves) -> Rows {
     let param = c.param.name();
     let d = &r.diagram;
     let mut points = Vec::new();

@@ -23,11 +23,11 @@ pub use study::{THROUGH_MAX, check_through, run_to_files};
 pub(crate) mod summary;
 
 use anyhow::{Result, anyhow, bail};
-use hybrid_ode::continuation::{self, Curve, End, Kind, Options as ContOptions, Options2};
+use hybrid_ode::continuation::{self, Curve, CurveOptions, End, Kind, Options as ContOptions};
 use hybrid_ode::limit;
 use nalgebra::{Complex, DMatrix};
 use rtw_model::cycles::{
-    CycleOptions, Diagram, DiagramOptions, StepMap, StepMapFamily, StepMapFamily2, diagram,
+    CycleOptions, Diagram, DiagramOptions, StepMap, StepMapFamily, StepMapPlane, diagram,
 };
 use rtw_model::{Num, Options, Param, Params};
 
@@ -152,7 +152,7 @@ pub(crate) struct CurveRun {
 
 /// A diagram and its curves.
 #[derive(Clone, Debug)]
-pub(crate) struct Result2 {
+pub(crate) struct DiagramAndCurves {
     pub diagram: Diagram,
     pub curves: Vec<CurveRun>,
 }
@@ -163,7 +163,7 @@ fn nontrivial(j: &DMatrix<f64>) -> Vec<Complex<f64>> {
 
 /// Runs the diagram, then each fold and period doubling of the branches
 /// through the start continued in the second input, both ways.
-pub(crate) fn run(c: &Continuation) -> Result<Result2> {
+pub(crate) fn run(c: &Continuation) -> Result<DiagramAndCurves> {
     let d = diagram(&c.base, &c.options, &c.cycle, c.param, &c.diagram)?;
     let mut curves = Vec::new();
     if let Some(cs) = c.curve {
@@ -177,7 +177,7 @@ pub(crate) fn run(c: &Continuation) -> Result<Result2> {
             template,
             d.start.period,
         );
-        let opts2 = Options2 {
+        let opts2 = CurveOptions {
             // A curve is smooth and each of its points costs a Newton solve
             // of the augmented system: longer steps than along a branch.
             base: ContOptions {
@@ -195,7 +195,7 @@ pub(crate) fn run(c: &Continuation) -> Result<Result2> {
             }
             for bif in b.branch.bifurcations.iter().filter(|x| on_curve(x.kind)) {
                 for direction in [1.0, -1.0] {
-                    let f2 = StepMapFamily2::new(family.clone(), cs.param);
+                    let f2 = StepMapPlane::new(family.clone(), cs.param);
                     let curve = continuation::continue_curve(
                         |z: &[f64], p: [f64; 2]| f2.eval(z, p),
                         bif,
@@ -213,7 +213,7 @@ pub(crate) fn run(c: &Continuation) -> Result<Result2> {
             }
         }
     }
-    Ok(Result2 { diagram: d, curves })
+    Ok(DiagramAndCurves { diagram: d, curves })
 }
 
 /// The kinds a two-parameter curve can follow.

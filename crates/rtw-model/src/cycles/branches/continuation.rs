@@ -13,8 +13,8 @@ use crate::cycles::map::stepmap::{CycleOptions, Jacobian, StepMap};
 use crate::plant::slots::{self, OMEGA};
 use crate::{Options, Param, Params};
 use hybrid_ode::continuation::{
-    self, Bifurcation, Branch, Error as ContError, Kind, MapEval, MapEval2, Options as ContOptions,
-    ParamMap,
+    self, Bifurcation, Branch, Error as ContError, Kind, MapEval, Options as ContOptions, ParamMap,
+    PlaneMapEval,
 };
 use hybrid_ode::limit;
 use nalgebra::DMatrix;
@@ -103,12 +103,12 @@ impl ParamMap for StepMapFamily {
 /// period doublings in a parameter plane
 /// ([`hybrid_ode::continuation::continue_curve`]).
 #[derive(Clone, Debug)]
-pub struct StepMapFamily2 {
+pub struct StepMapPlane {
     family: StepMapFamily,
     second: Param,
 }
 
-impl StepMapFamily2 {
+impl StepMapPlane {
     /// `family`'s map with `second` as its second parameter.
     pub fn new(family: StepMapFamily, second: Param) -> Self {
         Self { family, second }
@@ -116,7 +116,7 @@ impl StepMapFamily2 {
 
     /// `Pⁿ` at `(z; p₁, p₂)` with `∂Pⁿ/∂z` (variational) and both parameter
     /// derivatives (central differences).
-    pub fn eval(&self, z: &[f64], p: [f64; 2]) -> Option<MapEval2> {
+    pub fn eval(&self, z: &[f64], p: [f64; 2]) -> Option<PlaneMapEval> {
         let mut at = self.family.clone();
         at.base[self.second] = p[1];
         let first = at.eval(z, p[0])?;
@@ -132,7 +132,7 @@ impl StepMapFamily2 {
             .zip(&minus)
             .map(|(a, b)| (a - b) / (2.0 * h))
             .collect();
-        Some(MapEval2 {
+        Some(PlaneMapEval {
             value: first.value,
             dz: first.dz,
             dp: [first.dp, dp2],

@@ -3,7 +3,7 @@
 
 use super::model::Rtw;
 use crate::plant::contact::RodMode;
-use crate::plant::geometry::{RodFrame, V2};
+use crate::plant::geometry::{RodFrame, Vec2};
 use crate::plant::slots::N;
 
 impl Rtw {
@@ -36,7 +36,7 @@ impl Rtw {
     }
 
     /// [`friction_ratio`](Self::friction_ratio) from the contact forces.
-    pub fn friction_ratio_of(&self, lambda: &[V2; 3]) -> f64 {
+    pub fn friction_ratio_of(&self, lambda: &[Vec2; 3]) -> f64 {
         let floor = self.mu_floor;
         (0..3)
             .filter(|&i| matches!(self.modes[i], RodMode::Stick { .. }))
@@ -75,12 +75,12 @@ impl Rtw {
     }
 
     /// Centre of mass of the three rods.
-    pub fn centre_of_mass(&self, y: &[f64; N]) -> V2 {
+    pub fn centre_of_mass(&self, y: &[f64; N]) -> Vec2 {
         Self::centre_of_mass_at(&self.frames(y))
     }
 
     /// Centre of mass of the rods with frames `f`.
-    pub fn centre_of_mass_at(f: &[RodFrame; 3]) -> V2 {
+    pub fn centre_of_mass_at(f: &[RodFrame; 3]) -> Vec2 {
         [
             (f[0].c[0] + f[1].c[0] + f[2].c[0]) / 3.0,
             (f[0].c[1] + f[1].c[1] + f[2].c[1]) / 3.0,

@@ -3,7 +3,7 @@
 
 use super::model::{AtState, Rtw};
 use crate::plant::contact::{Load, RodMode};
-use crate::plant::geometry::{RodFrame, V2, add, scale};
+use crate::plant::geometry::{RodFrame, Vec2, add, scale};
 use crate::plant::slots::{self, DISSIPATED, FRICTION, N, VX};
 
 impl Rtw {
@@ -53,12 +53,12 @@ impl Rtw {
 
     #[cfg(test)]
     /// Contact forces λ of the rods at `y` (zero when free).
-    pub fn contact_forces(&self, y: &[f64; N]) -> [V2; 3] {
+    pub fn contact_forces(&self, y: &[f64; N]) -> [Vec2; 3] {
         self.contact_forces_of(&self.frames(y))
     }
 
     /// Contact forces λ of the rods with frames `frames` (zero when free).
-    pub(super) fn contact_forces_of(&self, frames: &[RodFrame; 3]) -> [V2; 3] {
+    pub(super) fn contact_forces_of(&self, frames: &[RodFrame; 3]) -> [Vec2; 3] {
         let (loads, _) = self.loads(frames);
         let mut lambda = [[0.0; 2]; 3];
         for i in 0..3 {

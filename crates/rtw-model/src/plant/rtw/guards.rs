@@ -3,7 +3,7 @@
 
 use super::model::{GuardKind, Rtw};
 use crate::plant::contact::RodMode;
-use crate::plant::geometry::{RodFrame, Tip, V2};
+use crate::plant::geometry::{RodFrame, Tip, Vec2};
 use crate::plant::slots::{self, N, VX};
 use hybrid_ode::{Crossing, Guards};
 use std::ops::ControlFlow;
@@ -90,7 +90,7 @@ impl Rtw {
         &self,
         y: &[f64; N],
         frames: &[RodFrame; 3],
-        lambda: &[V2; 3],
+        lambda: &[Vec2; 3],
         out: &mut Guards,
     ) {
         out.clear();
@@ -108,7 +108,7 @@ impl Rtw {
         kind: GuardKind,
         y: &[f64; N],
         frame: impl Fn(usize) -> RodFrame,
-        lambda: impl Fn(usize) -> V2,
+        lambda: impl Fn(usize) -> Vec2,
     ) -> f64 {
         let tip = |rod: usize, tip: Tip| frame(rod).point(tip.sign() * self.body.half_length).0;
         // A tip's height above the ground under it (crate::plant::terrain).

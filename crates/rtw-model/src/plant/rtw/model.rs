@@ -6,7 +6,7 @@ use crate::options::{Over, TerrainOptions};
 use crate::outcome::FailureDetail;
 use crate::params::Physical;
 use crate::plant::contact::{ImpactKind, RodBody, RodMode};
-use crate::plant::geometry::{RodFrame, RodState, Tip, V2};
+use crate::plant::geometry::{RodFrame, RodState, Tip, Vec2};
 use crate::plant::slots::{self, N, THETA};
 use crate::plant::strings::StringSet;
 use hybrid_ode::EndsRun;
@@ -72,7 +72,7 @@ pub struct AtState {
     /// The rods' frames.
     pub frames: [RodFrame; 3],
     /// Contact forces λ of the rods (zero when free).
-    pub lambda: [V2; 3],
+    pub lambda: [Vec2; 3],
 }
 
 /// The discrete choices a reset made: the rod's new mode and, at a
@@ -91,7 +91,7 @@ pub struct Rtw {
     /// The strings.
     pub(crate) strings: StringSet,
     /// Gravity in the slope frame, g (sin φ, −cos φ).
-    pub(crate) gravity: V2,
+    pub(crate) gravity: Vec2,
     /// Friction coefficient (infinite: no slip, frictionless slide).
     pub(crate) mu: f64,
     /// The rods' contact modes.
@@ -190,7 +190,7 @@ impl Rtw {
 
     #[cfg(test)]
     /// Gravity in the slope frame, g (sin φ, −cos φ).
-    pub fn gravity(&self) -> V2 {
+    pub fn gravity(&self) -> Vec2 {
         self.gravity
     }
 
