@@ -46,13 +46,24 @@ pub(crate) fn basin<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let threads = threads.as_ref().map(digits).transpose()?;
-    let settings = BasinSettings::parse(x, y, &digits(&steps)?, tol, threads.as_deref(), "")
+    let settings = BasinSettings::parse(x, y, &digits(&steps)?, tol, "").map_err(value_error)?;
+    let threads = threads
+        .as_deref()
+        .map(|t| parse_threads(t, "threads"))
+        .transpose()
         .map_err(value_error)?;
     let (params, options) = inputs(values, config, variant, options.as_ref())?;
     let counter = Counter::default();
     let batch = interruptible(
         py,
-        |cancel| slice_table(&params, &options, &settings, cancel, &counter),
+        |cancel| {
+            slice_table(
+                &params,
+                &options,
+                &settings,
+                &Run::new(&counter, cancel).on(threads),
+            )
+        },
         || report(progress.as_ref(), &counter),
     )?
     .map_err(study_error)?;
@@ -82,21 +93,19 @@ pub(crate) fn profile<'py>(
     threads: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Profile> {
     let threads = threads.as_ref().map(digits).transpose()?;
-    let settings = ProfileSettings::parse(
-        design,
-        phi_from,
-        phi_to,
-        tol,
-        grid,
-        threads.as_deref(),
-        &ProfileNames::PYTHON,
-    )
-    .map_err(value_error)?;
+    let settings =
+        ProfileSettings::parse(design, phi_from, phi_to, tol, grid, &ProfileNames::PYTHON)
+            .map_err(value_error)?;
+    let threads = threads
+        .as_deref()
+        .map(|t| parse_threads(t, "threads"))
+        .transpose()
+        .map_err(value_error)?;
     let options = model(config.as_ref(), variant, options.as_ref())?;
     let done = AtomicU64::new(0);
     let p = interruptible(
         py,
-        |cancel| run_profile(&settings, &options, &Run::new(&done, cancel)),
+        |cancel| run_profile(&settings, &options, &Run::new(&done, cancel).on(threads)),
         || Ok(()),
     )?
     .map_err(study_error)?;

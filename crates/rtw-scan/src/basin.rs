@@ -9,6 +9,7 @@ use clap::Args;
 use rtw_engine::config::params::checked_params;
 use rtw_engine::config::validate_options;
 use rtw_engine::scan::Run;
+use rtw_engine::scan::workers::parse_threads;
 use rtw_studies::basin::{self, OUTCOMES, Settings, outcome_index};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -54,7 +55,12 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     let (p, options) = a.model.resolve()?;
     let params = checked_params([p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi], "--")?;
     validate_options(&options, "simulation")?;
-    let settings = Settings::parse(&a.x, &a.y, &a.steps, a.tol, a.threads.as_deref(), "--")?;
+    let settings = Settings::parse(&a.x, &a.y, &a.steps, a.tol, "--")?;
+    let threads = a
+        .threads
+        .as_deref()
+        .map(|t| parse_threads(t, "--threads"))
+        .transpose()?;
     let spec = settings.spec;
     let progress = StderrProgress::study(a.quiet, "basin: grid points");
     let (slice, points, wall) = basin::run_to_files(
@@ -63,7 +69,7 @@ pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
         &settings,
         &a.out,
         a.force,
-        &Run::new(&progress, &STOP),
+        &Run::new(&progress, &STOP).on(threads),
     )?;
     let per_point = wall / points.len() as f64;
     let (cx, cy) = slice.centre();

@@ -8,6 +8,7 @@ use super::simulate::{DesignArgs, OptionArgs};
 use anyhow::Result;
 use clap::Args;
 use rtw_engine::scan::Run;
+use rtw_engine::scan::workers::parse_threads;
 use rtw_studies::profile::{self, Names, Settings};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -50,18 +51,15 @@ pub(super) struct ProfileArgs {
 }
 
 pub(super) fn cmd_profile(a: ProfileArgs) -> Result<ExitCode> {
-    let settings = Settings::parse(
-        a.design.values(),
-        a.from,
-        a.to,
-        a.tol,
-        a.grid,
-        a.threads.as_deref(),
-        &Names::CLI,
-    )?;
+    let settings = Settings::parse(a.design.values(), a.from, a.to, a.tol, a.grid, &Names::CLI)?;
+    let threads = a
+        .threads
+        .as_deref()
+        .map(|t| parse_threads(t, "--threads"))
+        .transpose()?;
     let options = a.options.resolve()?;
     let progress = StderrProgress::unless(a.quiet);
-    let run = Run::new(&progress, &STOP);
+    let run = Run::new(&progress, &STOP).on(threads);
     let p = match &a.out {
         Some(out) => profile::run_to_files(&settings, &options, out, a.force, &run)?,
         None => profile::run(&settings, &options, &run)?,

@@ -67,7 +67,6 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
         seed,
         run: RunSettings {
             out_dir: a.dir.clone(),
-            threads: a.threads,
             resume: true,
             chunk_size: NonZeroUsize::new(DEFAULT_CHUNK_SIZE).expect("positive"),
             shard: a.shard,
@@ -80,11 +79,18 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
         let sim = |p: &_, o: &_| rtw_engine::fake::simulate(p, o, delay);
-        return finish(&a, refine::refine(&r, &sim, &Run::new(&progress, &STOP))?);
+        return finish(
+            &a,
+            refine::refine(&r, &sim, &Run::new(&progress, &STOP).on(a.threads))?,
+        );
     }
     finish(
         &a,
-        refine::refine(&r, &rtw_model::simulate, &Run::new(&progress, &STOP))?,
+        refine::refine(
+            &r,
+            &rtw_model::simulate,
+            &Run::new(&progress, &STOP).on(a.threads),
+        )?,
     )
 }
 

@@ -7,6 +7,7 @@ use clap::Args;
 use rtw_engine::config::ScanConfig;
 use rtw_engine::entry::scan::{self, RunSettings, RunStatus, Shard};
 use rtw_engine::hash::fnv1a64;
+use rtw_engine::scan::Run;
 use rtw_engine::scan::workers::parse_threads;
 use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
@@ -114,21 +115,21 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     GRACEFUL.store(true, Ordering::SeqCst);
     let settings = RunSettings {
         out_dir: out.clone(),
-        threads,
         resume: a.resume,
         chunk_size: a.chunk_size,
         shard: a.shard,
         force: a.force,
     };
     let progress = StderrProgress::unless(a.quiet);
+    let run = Run::new(&progress, &STOP).on(threads);
     #[cfg(feature = "fake-sim")]
     if let Some(ms) = a.fake_sim {
         let delay = std::time::Duration::from_millis(ms);
         let sim = |p: &_, o: &_| rtw_engine::fake::simulate(p, o, delay);
-        let status = scan::run_scan(&cfg, &settings, &sim, &STOP, &progress)?;
+        let status = scan::run_scan(&cfg, &settings, &sim, &run)?;
         return finish_run(&a, &out, status);
     }
-    let status = scan::run_scan(&cfg, &settings, &rtw_model::simulate, &STOP, &progress)?;
+    let status = scan::run_scan(&cfg, &settings, &rtw_model::simulate, &run)?;
     finish_run(&a, &out, status)
 }
 

@@ -589,6 +589,7 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scan::Run;
     use crate::scan::progress::Silent;
     use crate::scan::run::{RunSettings, run_scan};
     use std::num::NonZeroUsize;
@@ -610,7 +611,6 @@ mod tests {
             let dir = root.path().join(name);
             let settings = RunSettings {
                 out_dir: dir.clone(),
-                threads: NonZeroUsize::new(1),
                 resume: false,
                 chunk_size: NonZeroUsize::new(8).unwrap(),
                 shard: None,
@@ -619,7 +619,9 @@ mod tests {
             let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
                 crate::fake::simulate(p, o, std::time::Duration::ZERO)
             };
-            run_scan(&cfg, &settings, &sim, &AtomicBool::new(false), &Silent).unwrap();
+            let stop = AtomicBool::new(false);
+            let run = Run::new(&Silent, &stop).on(NonZeroUsize::new(1));
+            run_scan(&cfg, &settings, &sim, &run).unwrap();
             let md = summarize(&dir.join("samples.parquet"), None)
                 .unwrap()
                 .to_markdown();
@@ -651,7 +653,6 @@ phi = { uniform = [0.05, 0.12] }
         let dir = tempfile::tempdir().unwrap();
         let settings = RunSettings {
             out_dir: dir.path().to_path_buf(),
-            threads: NonZeroUsize::new(2),
             resume: false,
             chunk_size: NonZeroUsize::new(4000).unwrap(),
             shard: None,
@@ -660,7 +661,9 @@ phi = { uniform = [0.05, 0.12] }
         let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
             crate::fake::simulate(p, o, std::time::Duration::ZERO)
         };
-        run_scan(&cfg, &settings, &sim, &AtomicBool::new(false), &Silent).unwrap();
+        let stop = AtomicBool::new(false);
+        let run = Run::new(&Silent, &stop).on(NonZeroUsize::new(2));
+        run_scan(&cfg, &settings, &sim, &run).unwrap();
         let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
         let collapses = data.counts[label_index(Label::Collapse)] as usize;
         let stalls = data.counts[label_index(Label::Stall)] as usize;

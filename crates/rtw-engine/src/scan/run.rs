@@ -39,6 +39,7 @@ use crate::scan::checkpoint::{
     Checkpoint, Intent, Layout, Resume, check_chunk_size, refuse_other_results, report_unknown,
 };
 use crate::scan::chunks::{Todo, compute_chunks};
+use crate::scan::context::Run;
 use crate::scan::lock::Lock;
 use crate::scan::one::Simulator;
 use crate::scan::partial::remove_partial;
@@ -51,7 +52,6 @@ use anyhow::Result;
 use std::collections::BTreeSet;
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 /// Rows per chunk unless told otherwise.
 pub const DEFAULT_CHUNK_SIZE: usize = 256;
@@ -62,8 +62,6 @@ pub struct RunSettings {
     /// The scan's directory: `samples.parquet` (or the shard's
     /// `part-K.parquet`) and, while it runs, `.partial/`.
     pub out_dir: PathBuf,
-    /// Worker threads (`None`: one per core).
-    pub threads: Option<NonZeroUsize>,
     /// Finish the interrupted run in `out_dir`, keeping its finished chunks.
     pub resume: bool,
     /// Rows per chunk; a resumed run keeps the size it was started with.
@@ -99,17 +97,16 @@ pub enum RunStatus {
     },
 }
 
-/// Runs (or resumes) a scan into `settings.out_dir`: `stop` set (by a
-/// signal handler, say) ends it after the samples in flight, and `progress`
-/// watches it.
+/// Runs (or resumes) a scan into `settings.out_dir` on `run.threads`
+/// workers: `run.stop` set (by a signal handler, say) ends it after the
+/// samples in flight, and `run.progress` watches it.
 pub fn run_scan(
     cfg: &ScanConfig,
     settings: &RunSettings,
     sim: Simulator,
-    stop: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<RunStatus> {
-    run_scan_with(cfg, &Sampler::new(cfg), settings, sim, stop, progress)
+    run_scan_with(cfg, &Sampler::new(cfg), settings, sim, run)
 }
 
 /// [`run_scan`] with the rows' parameters from `sampler` (stored points of a
@@ -125,9 +122,9 @@ pub fn run_scan_with(
     sampler: &Sampler,
     settings: &RunSettings,
     sim: Simulator,
-    stop: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<RunStatus> {
+    let (stop, progress) = (run.stop, run.progress);
     let total = sampler.total();
     let ids = match settings.shard {
         Some(s) => s.ids(total)?,
@@ -135,7 +132,7 @@ pub fn run_scan_with(
     };
     // Started here, before any file is made: the pool refuses a thread
     // count beyond its cap.
-    let pool = worker_pool(settings.threads)?;
+    let pool = worker_pool(run.threads)?;
     check_chunk_size(settings.chunk_size.get())?;
     let checkpoint = Checkpoint::new(&settings.out_dir, cfg, ids, settings.shard);
     let rows = checkpoint.rows();
@@ -289,17 +286,54 @@ mod tests {
     use rtw_model::outcome::FailureDetail;
     use rtw_model::{Options, Params};
     use std::path::Path;
-    use std::sync::atomic::{AtomicU64, Ordering};
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
-    fn settings(dir: &Path, threads: usize, chunk: usize) -> RunSettings {
-        RunSettings {
-            out_dir: dir.to_path_buf(),
-            threads: NonZeroUsize::new(threads),
-            resume: false,
-            chunk_size: NonZeroUsize::new(chunk).unwrap(),
-            shard: None,
-            force: false,
+    /// A scan's settings and the threads of the run that takes them.
+    struct Case {
+        settings: RunSettings,
+        threads: Option<NonZeroUsize>,
+    }
+
+    impl std::ops::Deref for Case {
+        type Target = RunSettings;
+        fn deref(&self) -> &RunSettings {
+            &self.settings
         }
+    }
+
+    impl std::ops::DerefMut for Case {
+        fn deref_mut(&mut self) -> &mut RunSettings {
+            &mut self.settings
+        }
+    }
+
+    fn settings(dir: &Path, threads: usize, chunk: usize) -> Case {
+        Case {
+            settings: RunSettings {
+                out_dir: dir.to_path_buf(),
+                resume: false,
+                chunk_size: NonZeroUsize::new(chunk).unwrap(),
+                shard: None,
+                force: false,
+            },
+            threads: NonZeroUsize::new(threads),
+        }
+    }
+
+    /// [`run_scan`] with the case's threads, stop flag and progress.
+    fn scan(
+        cfg: &ScanConfig,
+        case: &Case,
+        sim: Simulator,
+        stop: &AtomicBool,
+        progress: &dyn Progress,
+    ) -> Result<RunStatus> {
+        run_scan(
+            cfg,
+            &case.settings,
+            sim,
+            &Run::new(progress, stop).on(case.threads),
+        )
     }
 
     /// Every row of a samples file with wall time zeroed.
@@ -319,8 +353,8 @@ mod tests {
         let stop = AtomicBool::new(false);
         let a = tempfile::tempdir().unwrap();
         let b = tempfile::tempdir().unwrap();
-        run_scan(&cfg, &settings(a.path(), 1, 5), &fake_sim, &stop, &Silent).unwrap();
-        let st = run_scan(&cfg, &settings(b.path(), 2, 8), &fake_sim, &stop, &Silent).unwrap();
+        scan(&cfg, &settings(a.path(), 1, 5), &fake_sim, &stop, &Silent).unwrap();
+        let st = scan(&cfg, &settings(b.path(), 2, 8), &fake_sim, &stop, &Silent).unwrap();
         assert!(
             matches!(
                 st,
@@ -367,7 +401,7 @@ mod tests {
         let stop = AtomicBool::new(false);
         let a = tempfile::tempdir().unwrap();
         let b = tempfile::tempdir().unwrap();
-        run_scan(
+        scan(
             &cfg,
             &settings(a.path(), 2, 1000),
             &fake_sim,
@@ -375,13 +409,13 @@ mod tests {
             &Silent,
         )
         .unwrap();
-        run_scan(&cfg, &settings(b.path(), 1, 999), &fake_sim, &stop, &Silent).unwrap();
+        scan(&cfg, &settings(b.path(), 1, 999), &fake_sim, &stop, &Silent).unwrap();
         // Three shards (parts of 5463 rows, cut into 1000-row chunks), merged.
         let c = tempfile::tempdir().unwrap();
         for index in 0..3 {
             let mut s = settings(c.path(), 2, 1000);
             s.shard = Some(Shard { index, count: 3 });
-            run_scan(&cfg, &s, &fake_sim, &stop, &Silent).unwrap();
+            scan(&cfg, &s, &fake_sim, &stop, &Silent).unwrap();
         }
         crate::scan::shard::merge_parts(c.path(), false).unwrap();
         let cap = MAX_ROW_GROUP_ROWS as i64;
@@ -406,7 +440,7 @@ mod tests {
         let cfg = parse(CFG).unwrap();
         let dir = tempfile::tempdir().unwrap();
         let stop = AtomicBool::new(false);
-        run_scan(
+        scan(
             &cfg,
             &settings(dir.path(), 2, 16),
             &fake_sim,
@@ -455,7 +489,7 @@ mod tests {
             }
             fake_sim(p, o)
         };
-        run_scan(cfg, &settings(dir, 1, 4), &stopping, &stop, &Silent).unwrap()
+        scan(cfg, &settings(dir, 1, 4), &stopping, &stop, &Silent).unwrap()
     }
 
     #[test]
@@ -464,7 +498,7 @@ mod tests {
         let full = tempfile::tempdir().unwrap();
         let part = tempfile::tempdir().unwrap();
         let never = AtomicBool::new(false);
-        run_scan(
+        scan(
             &cfg,
             &settings(full.path(), 2, 4),
             &fake_sim,
@@ -487,7 +521,7 @@ mod tests {
         assert!(!part.path().join("samples.parquet").exists());
 
         // Without --resume the unfinished run is not silently dropped.
-        let e = run_scan(
+        let e = scan(
             &cfg,
             &settings(part.path(), 1, 4),
             &fake_sim,
@@ -500,7 +534,7 @@ mod tests {
         let other = parse(&CFG.replace("seed = 11", "seed = 12")).unwrap();
         let mut s = settings(part.path(), 2, 4);
         s.resume = true;
-        let e = run_scan(&other, &s, &fake_sim, &never, &Silent).unwrap_err();
+        let e = scan(&other, &s, &fake_sim, &never, &Silent).unwrap_err();
         assert!(e.to_string().contains("different config"), "{e}");
         // A stray temporary file and a corrupt chunk are cleaned up.
         std::fs::write(
@@ -509,7 +543,7 @@ mod tests {
         )
         .unwrap();
         std::fs::write(part.path().join(".partial/chunk-00002.parquet"), b"junk").unwrap();
-        let st = run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
+        let st = scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         assert!(
             matches!(st, RunStatus::Complete { computed: 33, .. }),
             "{st:?}"
@@ -519,7 +553,7 @@ mod tests {
             rows_without_wall_time(&part.path().join("samples.parquet"))
         );
         // Resuming a finished run does nothing.
-        let st = run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
+        let st = scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         assert!(
             matches!(st, RunStatus::Complete { computed: 0, .. }),
             "{st:?}"
@@ -564,7 +598,7 @@ mod tests {
         // Finished, then resumed again: complete, nothing to compute.
         let mut s = settings(dir.path(), 1, 4);
         s.resume = true;
-        run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
+        scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
         assert_eq!(found, Resume::Complete);
         // Without --resume a finished result is computed anew.
@@ -601,7 +635,7 @@ mod tests {
         assert!(kept >= 2, "{kept} chunks");
         let mut s = settings(dir.path(), 2, 4);
         s.resume = true;
-        let st = run_scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
+        let st = scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         // Chunk 0's 4 rows are computed again with the others not kept.
         let computed = 37 - 4 * (kept - 1);
         assert!(
@@ -620,7 +654,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let never = AtomicBool::new(false);
         let sim: Simulator = &rtw_model::simulate;
-        run_scan(&cfg, &settings(dir.path(), 2, 2), sim, &never, &Silent).unwrap();
+        scan(&cfg, &settings(dir.path(), 2, 2), sim, &never, &Silent).unwrap();
         let done = AtomicU64::new(0);
         let b = scan_batch(&cfg, NonZeroUsize::new(2), &never, &done)
             .unwrap()

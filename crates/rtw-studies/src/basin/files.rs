@@ -215,12 +215,12 @@ pub fn run_to_files(
     force: bool,
     run: &Run,
 ) -> Result<(Basin, Vec<BasinPoint>, f64)> {
-    let (cancel, progress) = (run.stop, run.progress);
+    let progress = run.progress;
     let _lock = Lock::for_result(out, &format!("writing the basin slice {}", out.display()))?;
     check_output(out, force)?;
     let cycle = CycleOptions::default();
     let t0 = Instant::now();
-    let slice = crate::basin::slice(params, options, settings, cancel, progress);
+    let slice = crate::basin::slice(params, options, settings, run);
     progress.finish(slice.is_ok());
     let (slice, points) = slice?;
     let wall = t0.elapsed().as_secs_f64();

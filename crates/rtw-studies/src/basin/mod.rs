@@ -12,38 +12,28 @@ use crate::bifurcation::sweep::{PointLabel, failure_label};
 use anyhow::{Result, anyhow, bail};
 use arrow_array::RecordBatch;
 use rayon::prelude::*;
-use rtw_engine::scan::progress::Progress;
-use rtw_engine::scan::workers::{Stopped, parse_threads, worker_pool};
+use rtw_engine::scan::Run;
+use rtw_engine::scan::workers::{Stopped, worker_pool};
 use rtw_model::cycles::{
     Axis, Basin, BasinError, BasinPoint, BasinSpec, Coord, CycleOptions, Fate,
 };
 use rtw_model::{Options, Params};
-use std::num::NonZeroUsize;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 
-/// A slice's settings, checked: the grid and its steps and tolerance, and
-/// the worker threads (`None`: one per core).
+/// A slice's settings, checked: the grid and its steps and tolerance (the
+/// worker threads are the study's [`Run`]'s).
 #[derive(Clone, Copy, Debug)]
 pub struct Settings {
     /// The grid, the steps and the tolerance.
     pub spec: BasinSpec,
-    /// Worker threads.
-    pub threads: Option<NonZeroUsize>,
 }
 
 impl Settings {
     /// The settings as given (the axes `COORD:FROM:TO:POINTS`, the steps
-    /// and threads as the digits written), each checked against its range
+    /// as the digits written), each checked against its range
     /// and named in an error as `prefix` + its name (`--steps` on the
     /// command line, `steps` in Python), the axes with their text.
-    pub fn parse(
-        x: &str,
-        y: &str,
-        steps: &str,
-        tol: f64,
-        threads: Option<&str>,
-        prefix: &str,
-    ) -> Result<Self> {
+    pub fn parse(x: &str, y: &str, steps: &str, tol: f64, prefix: &str) -> Result<Self> {
         let name = |n: &str| format!("{prefix}{n}");
         // The range of the steps is rtw-model's (`BasinSpec::validate`): a
         // count beyond any integer is out of it like a large one, and text
@@ -70,29 +60,26 @@ impl Settings {
             };
             bail!("{}{given}: {what} is invalid: must be {range}", name(field));
         }
-        let threads = threads
-            .map(|t| parse_threads(t, &name("threads")))
-            .transpose()?;
-        Ok(Self { spec, threads })
+        Ok(Self { spec })
     }
 }
 
 /// The basin slice of `settings` around the gait of `params` under
 /// `options` (both already checked): the gait, and every grid point in
 /// grid order (row-major: `y` outer, `x` inner), the same on any number of
-/// threads. `progress` counts the grid points as they are done. Setting
-/// `cancel` stops it after the points in flight, with the
-/// error [`Stopped`]. `rtw-scan basin` and Python's `rtw.basin` both run it.
+/// threads. `run.progress` counts the grid points as they are done;
+/// `run.stop` set stops it after the points in flight, with the error
+/// [`Stopped`]; it works on `run.threads` workers. `rtw-scan basin` and Python's `rtw.basin` both run it.
 pub fn slice(
     params: &Params,
     options: &Options,
     settings: &Settings,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<(Basin, Vec<BasinPoint>)> {
+    let (cancel, progress) = (run.stop, run.progress);
     // Started first: the pool refuses a thread count beyond its cap before
     // the gait is solved.
-    let pool = worker_pool(settings.threads)?;
+    let pool = worker_pool(run.threads)?;
     let slice = Basin::new(params, options, &CycleOptions::default(), settings.spec)?;
     progress.start(slice.len() as u64);
     let points: Option<Vec<BasinPoint>> = pool.install(|| {
@@ -117,10 +104,9 @@ pub fn slice_table(
     params: &Params,
     options: &Options,
     settings: &Settings,
-    cancel: &AtomicBool,
-    progress: &dyn Progress,
+    run: &Run,
 ) -> Result<RecordBatch> {
-    let (slice, points) = slice(params, options, settings, cancel, progress)?;
+    let (slice, points) = slice(params, options, settings, run)?;
     Ok(files::batch(&files::rows(&slice, &points)))
 }
 

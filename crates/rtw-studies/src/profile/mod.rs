@@ -26,9 +26,8 @@ use rtw_engine::io::scan_rows::{self, Row};
 use rtw_engine::scan::Run;
 use rtw_engine::scan::one::run_one;
 use rtw_engine::scan::progress::Progress;
-use rtw_engine::scan::workers::{Stopped, parse_threads, worker_pool};
+use rtw_engine::scan::workers::{Stopped, worker_pool};
 use rtw_model::{Label, Num, Options, Param, Params};
-use std::num::NonZeroUsize;
 use std::sync::atomic::AtomicBool;
 
 pub use files::{markdown, run_to_files};
@@ -55,8 +54,6 @@ pub struct Names {
     pub tol: &'static str,
     /// The coarse grid's spacing.
     pub grid: &'static str,
-    /// The worker threads.
-    pub threads: &'static str,
 }
 
 impl Names {
@@ -67,7 +64,6 @@ impl Names {
         to: "--to",
         tol: "--tol",
         grid: "--grid",
-        threads: "--threads",
     };
     /// `rtw.profile`'s keywords.
     pub const PYTHON: Names = Names {
@@ -76,12 +72,12 @@ impl Names {
         to: "phi_to",
         tol: "tol",
         grid: "grid",
-        threads: "threads",
     };
 }
 
 /// A profile's settings, checked: the design (its φ the range's start), the
-/// slope range, the tolerance, the coarse grid and the worker threads.
+/// slope range, the tolerance and the coarse grid (the worker threads are
+/// the study's [`Run`]'s).
 #[derive(Clone, Copy, Debug)]
 pub struct Settings {
     /// The design; its `phi` is `from`.
@@ -94,14 +90,11 @@ pub struct Settings {
     pub tol: f64,
     /// The coarse grid's spacing is at most this (rad).
     pub grid: f64,
-    /// Worker threads (`None`: one per core).
-    pub threads: Option<NonZeroUsize>,
 }
 
 impl Settings {
     /// The settings as given: the design's five inputs (L, ρ, α, f_n, ζ),
-    /// the slope range, the tolerance and grid in rad, and the threads as
-    /// the digits written; each refused naming it as `names` spells it,
+    /// the slope range, the tolerance and grid in rad; each refused naming it as `names` spells it,
     /// with its valid range.
     pub fn parse(
         design: [f64; 5],
@@ -109,7 +102,6 @@ impl Settings {
         to: f64,
         tol: f64,
         grid: f64,
-        threads: Option<&str>,
         names: &Names,
     ) -> Result<Self> {
         let slope = |v: f64, name: &str| -> Result<f64> {
@@ -170,16 +162,12 @@ impl Settings {
         }
         let [length, rho, alpha, f_n, zeta] = design;
         let design = checked_params([length, rho, alpha, f_n, zeta, from], names.prefix)?;
-        let threads = threads
-            .map(|t| parse_threads(t, names.threads))
-            .transpose()?;
         Ok(Self {
             design,
             from,
             to,
             tol,
             grid,
-            threads,
         })
     }
 
@@ -351,13 +339,13 @@ pub(crate) fn run_at_slope(
 
 /// The slope profile of `settings` under `options` (both checked): each φ
 /// run as `rtw-scan simulate` runs it, the runs of a round in parallel on
-/// the scans' worker pool, each counted in `progress`. Setting `cancel`
-/// stops it within moments (every run in flight ends at its next step),
+/// the scans' worker pool of `run.threads`, each counted in `run.progress`.
+/// Setting `run.stop` stops it within moments (every run in flight ends at its next step),
 /// with the error [`Stopped`]. `rtw-scan profile` and `rtw.profile` both
 /// run it.
 pub fn run(settings: &Settings, options: &Options, run: &Run) -> Result<Profile> {
     let (progress, cancel) = (run.progress, run.stop);
-    let pool = worker_pool(settings.threads)?;
+    let pool = worker_pool(run.threads)?;
     progress.stage("profile: the coarse grid's slopes");
     progress.start(settings.coarse().len() as u64);
     // After the start, so that a bar shows it too.
@@ -410,7 +398,7 @@ mod tests {
     /// The Fig. 7(a) design's settings over [from, to] at `grid`, tol 1e-3.
     fn fig7a(from: f64, to: f64, grid: f64) -> Settings {
         let design = [0.8, 2.5, 0.125, 3.269, 0.0514];
-        Settings::parse(design, from, to, 1e-3, grid, None, &Names::CLI).unwrap()
+        Settings::parse(design, from, to, 1e-3, grid, &Names::CLI).unwrap()
     }
 
     fn seg(label: Label, lo: f64, hi: f64) -> Segment {
@@ -484,10 +472,10 @@ mod tests {
         assert_eq!(s.coarse(), [0.14, 0.16]);
         // The finest grid, 1e5 cells, as the message shows it.
         let design = [0.8, 2.5, 0.125, 3.269, 0.0514];
-        let finest = Settings::parse(design, 0.14, 0.16, 1e-9, 2e-7, None, &Names::CLI).unwrap();
+        let finest = Settings::parse(design, 0.14, 0.16, 1e-9, 2e-7, &Names::CLI).unwrap();
         assert_eq!(finest.coarse().len(), 100_001);
         for grid in [0.021, 1.9e-7] {
-            let e = Settings::parse(design, 0.14, 0.16, 1e-9, grid, None, &Names::CLI).unwrap_err();
+            let e = Settings::parse(design, 0.14, 0.16, 1e-9, grid, &Names::CLI).unwrap_err();
             assert_eq!(
                 e.to_string(),
                 format!(

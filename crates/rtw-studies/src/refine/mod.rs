@@ -419,7 +419,7 @@ pub fn refine(r: &Refine, sim: Simulator, run: &Run) -> Result<RefineStatus> {
             };
             let sampler = Sampler::new(&rcfg);
             progress.stage(&format!("round {round} of {}", r.rounds));
-            let status = run_scan_with(&rcfg, &sampler, &settings, sim, stop, progress)?;
+            let status = run_scan_with(&rcfg, &sampler, &settings, sim, run)?;
             if r.run.shard.is_some() || matches!(status, RunStatus::Interrupted { .. }) {
                 return Ok(RefineStatus::Stopped { round, dir, status });
             }

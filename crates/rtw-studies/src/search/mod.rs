@@ -225,7 +225,6 @@ fn profile_settings(s: &SearchSettings, x: &[f64; 4], grid: f64) -> Result<Profi
         to: s.to,
         tol: s.tol.min(grid),
         grid,
-        threads: None,
     })
 }
 
