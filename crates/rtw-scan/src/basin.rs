@@ -7,7 +7,6 @@ use super::signal::STOP;
 use anyhow::Result;
 use clap::Args;
 use rtw_engine::config::params::checked_params;
-use rtw_engine::config::validate_options;
 use rtw_engine::scan::Run;
 use rtw_engine::scan::workers::parse_threads;
 use rtw_studies::basin::{self, OUTCOMES, Settings, outcome_index};
@@ -54,7 +53,7 @@ pub(super) struct BasinArgs {
 pub(super) fn cmd_basin(a: BasinArgs) -> Result<ExitCode> {
     let (p, options) = a.model.resolve()?;
     let params = checked_params([p.length, p.rho, p.alpha, p.f_n, p.zeta, p.phi], "--")?;
-    validate_options(&options, "simulation")?;
+    // The options are checked where they are read (`simulation_options`).
     let settings = Settings::parse(&a.x, &a.y, &a.steps, a.tol, "--")?;
     let threads = a
         .threads
