@@ -72,9 +72,15 @@ impl FileSet {
         Ok(())
     }
 
-    /// Moves every file into place, in the order they were added.
+    /// Moves every file into place, in the order they were added, once
+    /// every destination is checked: what appeared at one of them since its
+    /// file was written (a symlink, a directory) stops the set before any
+    /// file of it is moved, and the temporary files go.
     pub fn commit(self) -> Result<()> {
         let _renaming = COMMIT.lock().unwrap_or_else(|e| e.into_inner());
+        for (_, dest) in &self.files {
+            refuse_special(dest, "")?;
+        }
         for (tmp, dest) in self.files {
             tmp.persist(&dest)?;
         }
@@ -310,7 +316,34 @@ pub fn error_message(e: &anyhow::Error) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::error_message;
+    use super::{FileSet, error_message};
+
+    /// A set whose later file can no longer go where it is to go (a
+    /// directory appeared there after its file was written) moves none of
+    /// its files: the earlier file of the set is not replaced ahead of the
+    /// refusal.
+    #[test]
+    fn a_set_with_one_refused_destination_moves_none_of_its_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.json"), dir.path().join("b.md"));
+        std::fs::write(&a, "earlier").unwrap();
+        let mut set = FileSet::default();
+        set.add_bytes(&a, b"new").unwrap();
+        set.add_bytes(&b, b"new").unwrap();
+        std::fs::create_dir(&b).unwrap();
+        let e = set.commit().unwrap_err().to_string();
+        assert!(
+            e.contains("b.md") && e.contains("not a regular file"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "earlier");
+        let left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect();
+        assert!(left.is_empty(), "temporary files left: {left:?}");
+    }
 
     /// A disk-full error says the OS's message once: Parquet's error that
     /// wraps it also shows it, and is shown with its source.

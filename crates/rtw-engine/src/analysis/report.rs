@@ -595,6 +595,42 @@ mod tests {
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
 
+    /// A summary whose Markdown cannot be written where it goes (a symlink
+    /// stands there) leaves the earlier JSON as it was: the two files are
+    /// one set.
+    #[cfg(unix)]
+    #[test]
+    fn a_summary_refused_at_its_markdown_leaves_the_earlier_json() {
+        let cfg = config::parse(
+            "seed = 3\nsamples = 8\n[params]\nlength = 0.8\nrho = 2.5\n\
+             alpha = { uniform = [0, 0.4] }\nfn = 3.0\nzeta = 0.05\nphi = 0.15\n",
+        )
+        .unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let settings = RunSettings {
+            out_dir: dir.path().to_path_buf(),
+            resume: false,
+            chunk_size: NonZeroUsize::new(8).unwrap(),
+            shard: None,
+            force: false,
+        };
+        let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
+            crate::fake::simulate(p, o, std::time::Duration::ZERO)
+        };
+        let stop = AtomicBool::new(false);
+        run_scan(&cfg, &settings, &sim, &Run::new(&Silent, &stop)).unwrap();
+        let json = dir.path().join("summary.json");
+        std::fs::write(&json, "{\"earlier\": true}").unwrap();
+        std::os::unix::fs::symlink("/dev/null", dir.path().join("summary.md")).unwrap();
+        let summary = summarize(&dir.path().join("samples.parquet"), None).unwrap();
+        let e = write_summary(dir.path(), &summary).unwrap_err().to_string();
+        assert!(e.contains("summary.md") && e.contains("symlink"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(&json).unwrap(),
+            "{\"earlier\": true}"
+        );
+    }
+
     /// `run --set …` writes to `runs/NAME+set-HASH/` so that its rows never
     /// mix with the plain scan's; its summary must be headed by that name
     /// too, or the two summaries read alike.
