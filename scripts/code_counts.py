@@ -4,7 +4,7 @@
 - production lines per folder: the lines of each crate's `src/` folder (one
   level down: `rtw-scan/src/scan`, …) outside `#[cfg(test)]` modules and
   test-only files;
-- imports against the layers (scripts/check_structure.py, rule 3);
+- imports against the layers (scripts/rtwscripts/structure.py, rule 3);
 - files over 600 raw lines, tests included;
 - integration-test binaries: each `tests/*.rs` file and each `tests/NAME/main.rs`
   of a crate is one binary cargo builds and links.
@@ -15,7 +15,7 @@ Usage: python3 scripts/code_counts.py [--folders]
 import os
 import sys
 
-import check_structure as cs  # scripts/ is on sys.path: this file's own folder
+from rtwscripts import structure as cs
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 

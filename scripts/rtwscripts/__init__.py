@@ -10,7 +10,9 @@ A script run as `python scripts/NAME.py` has scripts/ first on sys.path, so
 - `rtwscripts.labels`: the gait and failure labels, from the package rtw;
 - `rtwscripts.stats`: Wilson intervals over arrays and the permutation test;
 - `rtwscripts.paper`: the paper's targets and how a scan is scored on them;
-- `rtwscripts.reference`: the SciPy port of the model (scripts/scipy_side_by_side.py).
+- `rtwscripts.reference`: the SciPy port of the model (scripts/scipy_side_by_side.py);
+- `rtwscripts.structure`: the structural rules and layers of the crates
+  (scripts/check_structure.py, scripts/code_counts.py).
 """
 
 from __future__ import annotations

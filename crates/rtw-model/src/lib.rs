@@ -16,6 +16,7 @@
 //!
 //! | module | what it holds |
 //! |---|---|
+//! | `cancel` ([`cancellable`]) | a stop flag that ends every run of a computation at its next step end |
 //! | `params` | normalized inputs (L, ρ, α, f_n, ζ, φ), their names and ranges ([`Param`]) → physical (m, l_c, I, r, k, c) |
 //! | [`options`] | every modelling and numerical choice, with the adopted defaults (docs/model.md §9) |
 //! | [`outcome`] | what a run produces: label, failure, metrics, and the gait-labelling rule |
@@ -30,6 +31,7 @@
 //! The crate does no I/O.
 #![warn(missing_docs)]
 
+mod cancel;
 pub mod cycles;
 pub mod modal;
 pub mod options;
@@ -47,6 +49,7 @@ mod run;
 mod tests;
 
 // hybrid-ode's own item, documented (and counted) there.
+pub use cancel::cancellable;
 #[doc(no_inline)]
 pub use options::Method;
 pub use options::Options;
@@ -57,5 +60,4 @@ pub use plant::geometry::Tip;
 /// The star's geometry for drawings: spoke order, strings, tips and connection points.
 pub use plant::geometry::{SPOKES, STRINGS, Vec2, spoke_points};
 pub use plant::rtw::GuardKind;
-pub use run::cancel::cancellable;
 pub use run::simulate::{simulate, simulate_traced};

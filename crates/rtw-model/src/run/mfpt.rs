@@ -196,7 +196,7 @@ impl Walker for RtwWalker<'_, '_> {
     /// ends at once, but thousands of batches of them would still take
     /// minutes, so the estimator's loops read it too.
     fn stopped(&self) -> bool {
-        crate::run::cancel::requested()
+        crate::cancel::requested()
     }
 }
 

@@ -113,7 +113,7 @@ impl ChainWalker for RtwWalker<'_, '_> {
     }
 
     fn stopped(&self) -> bool {
-        crate::run::cancel::requested()
+        crate::cancel::requested()
     }
 }
 

@@ -298,7 +298,7 @@ impl Walker for RtwWalker<'_, '_> {
     }
 
     fn stopped(&self) -> bool {
-        crate::run::cancel::requested()
+        crate::cancel::requested()
     }
 }
 

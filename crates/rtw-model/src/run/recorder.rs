@@ -114,7 +114,7 @@ impl Observer<N, Rtw> for Recorder<'_> {
     }
 
     fn on_step(&mut self, rtw: &Rtw, dense: &Dense<N>, end: StepEnd<'_, AtState>) -> Flow {
-        if crate::run::cancel::requested() {
+        if crate::cancel::requested() {
             return Flow::Stop;
         }
         match end {

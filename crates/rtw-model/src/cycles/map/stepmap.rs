@@ -120,7 +120,7 @@ impl Observer<N, Rtw> for StepLog {
         // A study stopped from outside (`cancellable`) ends its step maps at
         // their next step too, as it ends its plain runs: a continuation is
         // thousands of them.
-        if crate::run::cancel::requested() {
+        if crate::cancel::requested() {
             return Flow::Stop;
         }
         self.state_time[rtw.contact_state()] += dense.t1 - dense.t0;
