@@ -6,11 +6,14 @@
 //! than any grid). So each reported interval is simulated again at
 //! [`SLOPES`] slopes evenly across it and at every multiple of [`ROUND`]
 //! inside it (the slopes a reader is likely to try), and the interval
-//! reported is the widest run of checked slopes with no failure.
+//! reported is the widest run of checked slopes with no failure: a slope
+//! fails when it is not stable, or, for a search of one gait, when it is
+//! not that gait (a walk interval with a skip window inside it is not a
+//! walk interval).
 
 use crate::profile::run_at_slope;
 use rayon::prelude::*;
-use rtw_model::{Options, Params};
+use rtw_model::{Label, Options, Params};
 use std::sync::atomic::AtomicBool;
 
 /// Slopes evenly across the interval, its ends included.
@@ -29,7 +32,7 @@ pub struct Checked {
     pub hi: f64,
     /// Slopes simulated.
     pub slopes: u64,
-    /// Of them, not stable.
+    /// Of them, not stable (or, when a gait was checked, not that gait).
     pub failures: u64,
 }
 
@@ -78,23 +81,22 @@ pub(crate) fn widest_run(phis: &[f64], stable: &[bool]) -> Option<(usize, usize)
 }
 
 /// Design `params` simulated at every checked slope of `[lo, hi]` under
-/// `options`, in parallel on the pool the caller installed; `None` when
+/// `options`, in parallel on the pool the caller installed, each slope
+/// kept when it is stable and, if `gait` is given, that gait; `None` when
 /// stopped.
 pub(crate) fn check(
     params: Params,
     (lo, hi): (f64, f64),
     options: &Options,
+    gait: Option<Label>,
     cancel: &AtomicBool,
 ) -> Option<Checked> {
     let phis = slopes(lo, hi);
     let stable: Option<Vec<bool>> = phis
         .par_iter()
         .map(|&phi| {
-            Some(
-                run_at_slope(params, phi, options, cancel)?
-                    .label()
-                    .is_stable(),
-            )
+            let label = run_at_slope(params, phi, options, cancel)?.label();
+            Some(label.is_stable() && gait.is_none_or(|g| g == label))
         })
         .collect();
     let stable = stable?;
@@ -117,6 +119,39 @@ pub(crate) fn check(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The widest-walk search's first reported design (results/design/
+    /// designs-widest-walk.parquet, row 0, its interval as the stable-only
+    /// check gave it): its slope profile (`rtw-scan profile … --grid 0.0015
+    /// --tol 0.0002`, an independent bisection) finds it skipping on
+    /// [0.13736, 0.13923] inside that interval. A check of the walk must see
+    /// those slopes fail and keep a walking interval above them.
+    #[test]
+    fn a_gait_checked_interval_holds_only_that_gait() {
+        let design = Params {
+            length: 0.8,
+            rho: 3.3385616626338726,
+            alpha: 0.24993740931144315,
+            f_n: 2.66035097853401,
+            zeta: 0.06457513238933699,
+            phi: 0.053500000000000006,
+        };
+        let (lo, hi) = (0.053500000000000006, 0.35750000000000004);
+        let options = Options::default();
+        let cancel = AtomicBool::new(false);
+        let any = check(design, (lo, hi), &options, None, &cancel).unwrap();
+        let walk = check(design, (lo, hi), &options, Some(Label::Walk), &cancel).unwrap();
+        assert!(walk.failures > any.failures, "{any:?} {walk:?}");
+        assert!(walk.lo > 0.13923 && walk.hi <= hi, "{walk:?}");
+        for phi in slopes(lo, hi) {
+            if (walk.lo..=walk.hi).contains(&phi) {
+                let label = run_at_slope(design, phi, &options, &cancel)
+                    .unwrap()
+                    .label();
+                assert_eq!(label, Label::Walk, "φ = {phi}");
+            }
+        }
+    }
 
     #[test]
     fn the_slopes_span_the_interval_with_its_round_values_and_the_widest_clean_run_is_kept() {

@@ -526,7 +526,13 @@ pub fn report(search: &Search, options: &Options, run: &Run) -> Result<Vec<Repor
                 let checked = match (v.phi_lo, v.phi_hi) {
                     (Some(lo), Some(hi)) => {
                         let params = fine.settings.design;
-                        let c = check::check(params, (lo, hi), &budget::plain(options), cancel)?;
+                        let c = check::check(
+                            params,
+                            (lo, hi),
+                            &budget::plain(options),
+                            s.gait,
+                            cancel,
+                        )?;
                         // The interval reported is the checked one.
                         v.phi_lo = Some(c.lo).filter(|x| x.is_finite());
                         v.phi_hi = Some(c.hi).filter(|x| x.is_finite());
