@@ -1,12 +1,14 @@
 //! The peer benchmark's rtw side (`examples/peers`) against the closed forms
 //! it is scored on, at the accuracy the benchmark's page reports: the
-//! bouncing ball's impact times and the rimless wheel's touchdown times and
-//! post-impact rates.
+//! bouncing ball's impact times, the rimless wheel's touchdown times and
+//! post-impact rates, and the impact oscillator's first impact near grazing.
 
 #[path = "../examples/peers/closed_form.rs"]
 mod closed_form;
 
-use closed_form::{Ball, IMPACTS, Impacts, ball_reference, gauss_legendre, wheel, wheel_reference};
+use closed_form::{
+    Ball, IMPACTS, Impacts, Oscillator, ball_reference, gauss_legendre, wheel, wheel_reference,
+};
 use hybrid_ode::{EngineOptions, Method, run};
 
 fn opts(method: Method, tol: f64) -> EngineOptions {
@@ -87,6 +89,44 @@ fn wheel_steps_match_the_closed_form_to_a_hundred_tolerances() {
                 }
                 assert!((y[1] - y_ref[1]).abs() < 100.0 * tol, "{method:?} {tol}");
                 assert!((y[0] - y_ref[0]).abs() < 1e-12);
+            }
+        }
+    }
+}
+
+#[test]
+fn oscillator_first_impact_is_found_and_matches_the_closed_form() {
+    // Just past grazing the orbit is beyond the stop for a sliver of a
+    // step (0.035 s of a 7.85 s period at ε = 1e-4): found only by the
+    // engine's dip search. The impact time's error is the state error over
+    // the small impact speed, hence the loose bound.
+    let (t, y) = Oscillator::past_grazing(0.0).reference();
+    // At grazing: Ωt − θ = 2π, the orbit's maximum, and the speed is 0.
+    let theta = (2.0f64 * 0.05 * 0.8).atan2(1.0 - 0.64);
+    assert!((t - (theta + 2.0 * std::f64::consts::PI) / 0.8).abs() < 1e-12);
+    assert_eq!(y, [1.0, 0.0]);
+    for method in [Method::Dop853, Method::Dp54] {
+        for tol in [1e-6, 1e-9, 1e-12] {
+            for eps in [1e-4, 1e-2, 0.1] {
+                let osc = Oscillator::past_grazing(eps);
+                let (t0, mut y) = osc.start();
+                let mut obs = Impacts::stopping_after(1);
+                run(
+                    &mut { osc },
+                    &mut obs,
+                    t0,
+                    &mut y,
+                    100.0,
+                    &opts(method, tol),
+                );
+                assert_eq!(obs.count, 1, "{method:?} {tol} {eps}");
+                let (t_ref, y_ref) = osc.reference();
+                let err = (obs.times[0] - t_ref).abs();
+                assert!(err < 1e4 * tol, "{method:?} {tol} {eps}: {err}");
+                assert!(
+                    (y[1] - y_ref[1]).abs() < 1e4 * tol,
+                    "{method:?} {tol} {eps}"
+                );
             }
         }
     }

@@ -1,6 +1,7 @@
 //! rtw's side of the peer benchmark (`scripts/peers_bench.sh`): `n`
 //! trajectories of the bouncing ball and of the rimless wheel, each run to
-//! its 10th impact by [`hybrid_ode::run`] at each tolerance, timed on one
+//! its 10th impact, and of the impact oscillator near grazing to its first,
+//! by [`hybrid_ode::run`] at each tolerance, timed on one
 //! thread, with the work done and the errors against the closed forms
 //! (`closed_form.rs`). Prints one JSON object a line, one per
 //! model × method × tolerance.
@@ -10,7 +11,8 @@
 mod closed_form;
 
 use closed_form::{
-    Ball, IMPACTS, Impacts, ball_height, ball_reference, wheel, wheel_rate, wheel_reference,
+    Ball, IMPACTS, Impacts, Oscillator, ball_height, ball_reference, osc_epsilon, wheel,
+    wheel_rate, wheel_reference,
 };
 use hybrid_ode::{EngineOptions, HybridSystem, Method, Observer, Work, run};
 use std::time::Instant;
@@ -54,15 +56,15 @@ struct Outcome {
     work: Work,
 }
 
-fn simulate<S>(sys: S, y0: [f64; 2], t_end: f64, opts: &EngineOptions) -> Outcome
+fn simulate<S>(sys: S, t0: f64, y0: [f64; 2], impacts: usize, opts: &EngineOptions) -> Outcome
 where
     S: HybridSystem<2>,
     Impacts: Observer<2, S>,
 {
     let mut sys = sys;
-    let mut obs = Impacts::default();
+    let mut obs = Impacts::stopping_after(impacts);
     let mut y = y0;
-    let end = run(&mut sys, &mut obs, 0.0, &mut y, t_end, opts);
+    let end = run(&mut sys, &mut obs, t0, &mut y, T_END, opts);
     Outcome {
         times: obs.times,
         impacts: obs.count,
@@ -70,6 +72,9 @@ where
         work: end.work,
     }
 }
+
+/// Far past the last impact of every model here.
+const T_END: f64 = 100.0;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -86,16 +91,23 @@ fn main() {
     let w = wheel();
     // The parameters, for the driver to check against its own copy.
     println!(
-        "{{\"params\":{{\"g\":{},\"e\":{},\"impacts\":{},\"wheel_l\":{},\"wheel_gamma\":{},\"wheel_spokes\":{},\"n\":{}}}}}",
+        "{{\"params\":{{\"g\":{},\"e\":{},\"impacts\":{},\"wheel_l\":{},\"wheel_gamma\":{},\"wheel_spokes\":{},\"osc_zeta\":{},\"osc_omega\":{},\"osc_sigma\":{},\"osc_r\":{},\"n\":{}}}}}",
         closed_form::G,
         closed_form::RESTITUTION,
         IMPACTS,
         closed_form::WHEEL_L,
         closed_form::WHEEL_GAMMA,
         closed_form::WHEEL_SPOKES,
+        closed_form::OSC_ZETA,
+        closed_form::OSC_OMEGA,
+        closed_form::OSC_SIGMA,
+        closed_form::OSC_R,
         args.n
     );
-    for model in ["ball", "rimless"] {
+    for model in ["ball", "rimless", "oscillator"] {
+        // The oscillator is scored on its first impact, the one with a
+        // closed form.
+        let impacts = if model == "oscillator" { 1 } else { IMPACTS };
         for (method, name) in [(Method::Dop853, "dop853"), (Method::Dp54, "dp54")] {
             for &tol in &args.tols {
                 let opts = EngineOptions {
@@ -108,8 +120,16 @@ fn main() {
                     ..EngineOptions::default()
                 };
                 let one = |i: usize| match model {
-                    "ball" => simulate(Ball, [ball_height(i, args.n), 0.0], 100.0, &opts),
-                    _ => simulate(w, w.initial_state(wheel_rate(i, args.n)), 100.0, &opts),
+                    "ball" => simulate(Ball, 0.0, [ball_height(i, args.n), 0.0], impacts, &opts),
+                    "rimless" => {
+                        let y0 = w.initial_state(wheel_rate(i, args.n));
+                        simulate(w, 0.0, y0, impacts, &opts)
+                    }
+                    _ => {
+                        let osc = Oscillator::past_grazing(osc_epsilon(i, args.n));
+                        let (t0, y0) = osc.start();
+                        simulate(osc, t0, y0, impacts, &opts)
+                    }
                 };
                 let mut per_traj = Vec::with_capacity(args.reps);
                 let mut outcomes = Vec::new();
@@ -125,13 +145,21 @@ fn main() {
                     let mut want = [0.0; IMPACTS];
                     let y_ref = match model {
                         "ball" => ball_reference(ball_height(i, args.n), &mut want),
-                        _ => wheel_reference(&w, wheel_rate(i, args.n), &mut want),
+                        "rimless" => wheel_reference(&w, wheel_rate(i, args.n), &mut want),
+                        _ => {
+                            let (t, y) =
+                                Oscillator::past_grazing(osc_epsilon(i, args.n)).reference();
+                            want[0] = t;
+                            y
+                        }
                     };
-                    if o.impacts < IMPACTS {
+                    // A run short of its impacts, or one whose first impact
+                    // is a later one (a crossing missed), failed.
+                    if o.impacts < impacts || (o.times[0] - want[0]).abs() > 1.0 {
                         failed += 1;
                         continue;
                     }
-                    for (got, want) in o.times.iter().zip(&want) {
+                    for (got, want) in o.times.iter().zip(&want).take(impacts) {
                         t_err = t_err.max((got - want).abs());
                     }
                     for (got, want) in o.y.iter().zip(&y_ref) {
