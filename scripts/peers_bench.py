@@ -1,11 +1,13 @@
 """The peer benchmark's driver (run by scripts/peers_bench.sh in .venv-peers):
-heyoka and diffrax on the bouncing ball and the rimless wheel, beside rtw's
+heyoka and diffrax on the bouncing ball, the rimless wheel and the impact
+oscillator near grazing, beside rtw's
 own figures (hybrid-ode's `peers` example, whose JSON lines it reads), all
 scored against the same closed forms; writes results/bench/peers.md.
 
 python scripts/peers_bench.py RTW_JSON OUT_MD [--n N] [--reps R] [--quick]
 
-Every trajectory runs to its 10th impact. Time per trajectory is the median
+The ball and the wheel run to their 10th impact, the oscillator to its first
+(the one with a closed form). Time per trajectory is the median
 over R repetitions of (wall time of all N trajectories) / N, on one thread.
 Compile or JIT time is measured once, apart; so is the cost of one round
 trip from Python into the peer and back, which a reset done in Python pays
@@ -662,7 +664,7 @@ def write_page(path, rows, meta):
     add("Every row above with its repetitions, as JSON lines (the rtw lines as the example "
         "printed them):")
     add("")
-    add("```json")
+    add("```text")
     for r in rows:
         add(json.dumps(r, separators=(",", ":")))
     add("```")

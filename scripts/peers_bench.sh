@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # rtw's engine against heyoka and diffrax on the smallest hybrid systems with
-# closed forms, the bouncing ball and the rimless wheel (docs/performance.md,
+# closed forms, the bouncing ball, the rimless wheel and the impact oscillator
+# near grazing (docs/performance.md,
 # "Against heyoka and diffrax"): builds hybrid-ode's `peers` example, makes
 # .venv-peers (its own venv, apart from .venv: jax and LLVM are heavy and the
 # project's scripts need neither) with heyoka and diffrax from the package
