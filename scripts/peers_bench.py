@@ -571,10 +571,13 @@ def write_page(path, rows, meta):
         "error**: the largest |t_k − t_k,ref| over the scored impacts of all trajectories. "
         "**Failed**: trajectories short of their impacts or whose first impact is a later "
         "one (a crossing missed); the errors are over the others. "
-        "**State error**: the largest component error of the state just after the last impact. "
+        "**State error**: the largest component error of the state just after the last scored "
+        "impact. "
         "Tolerance `tol` is rtol = atol = tol for rtw and diffrax and heyoka's single `tol`. "
         f"Event times are located to {EVENT_TOL:g} s by rtw (its default `event_time_tol`) and "
-        "diffrax (Newton on the dense output, rtol = atol of the root finder); heyoka's "
+        "diffrax (its root finder on the solver's dense output, at rtol = atol = that: "
+        "bisection for the ball and the oscillator, whose guards Newton fails on, Newton for "
+        "the wheel); heyoka's "
         "Taylor events are located to rounding by its own polynomial root finder.")
     add("")
     add("## How the comparison is made fair")
@@ -592,7 +595,7 @@ def write_page(path, rows, meta):
         "integrator, diffrax's Python loop), every event costs a return to Python and a new "
         "call. That cost alone (a call that integrates nothing, plus the state read and "
         "write) is measured and listed; it is part of the time per trajectory. diffrax's "
-        "`jit loop` (the ten segments and resets in one jitted `fori_loop`, one call per "
+        "`jit loop` (all of a trajectory's segments and resets in one jitted `fori_loop`, one call per "
         "trajectory) and `vmap` (all trajectories in one call) pay none of it per event.")
     add("- **Work**: rtw counts steps (accepted), rejected steps and right-hand-side "
         "evaluations itself. diffrax reports steps (accepted + rejected); its RHS count is "
