@@ -201,6 +201,7 @@ CONT = "results/continuation/summary.md"
 SEG = "results/continuation/segments.md"
 PLANE = "results/continuation/plane/summary.md"
 PERF = "docs/performance.md"
+PEERS = "results/bench/peers.md"
 LC = "docs/limit-cycles.md"
 CONTD = "docs/continuation.md"
 ROB_STEP = "docs/robustness-step-down.md"
@@ -245,6 +246,11 @@ def scan_row(setting: str, cells: int) -> Rx:
 def early(scan: str, column: str, part: int | None = None) -> Cell:
     """A cell of the benchmark's early-stop table."""
     return Cell(BENCH, "Early stop", column, {"scan": f"`{scan}`"}, part=part)
+
+
+def peer(column: str, tool: str, method: str, tol: str) -> Cell:
+    """A cell of the peer benchmark's rimless-wheel table."""
+    return Cell(PEERS, "Rimless wheel", column, {"tool": tool, "method": method, "tol": tol})
 
 
 def bif(section: str, column: str, nth: int = 0, part: int | None = None, **where: str) -> Cell:
@@ -293,6 +299,18 @@ NS = {"bifurcation": "neimark sacker"}
 P2 = "up, branch 2 (period 2)*"
 
 PINS: list[Pin] = [
+    # docs/performance.md: the peer benchmark (results/bench/peers.md).
+    Pin(PERF, rf"On the wheel at tol 1e-9 rtw's DOP853 takes {N} µs a trajectory, heyoka {N} µs and "
+        rf"diffrax's vmapped Dopri8 {N} µs",
+        [peer("µs per trajectory", "rtw", "dop853", "1e-09"),
+         peer("µs per trajectory", "heyoka", "taylor, order *", "1e-09"),
+         peer("µs per trajectory", "diffrax", "Dopri8, vmap", "1e-09")]),
+    Pin(PERF, rf"touchdown times to {N} s at tol 1e-12, rtw's DOP853 {N} s\)",
+        [peer("event-time error (s)", "heyoka", "taylor, order *", "1e-12"),
+         peer("event-time error (s)", "rtw", "dop853", "1e-12")]),
+    Pin(PERF, rf"event times within 1e-11 s: heyoka {N} µs a trajectory, rtw {N} µs \(its DP5\(4\) at tol 1e-12\)",
+        [Rx(PEERS, rf"^- error ≤ 1e-11 s: [^\n]*; heyoka taylor at tol 1e-12, {N} µs;", "Rimless wheel"),
+         Rx(PEERS, rf"^- error ≤ 1e-11 s: rtw dp54 at tol 1e-12, {N} µs;", "Rimless wheel")]),
     # docs/performance.md: the per-core target's events, from the Hot path table.
     Pin(PERF, rf"\(Fig\. 7\(a\): {N} events in {N} steps, the Hot path table\)",
         [Rx("results/bench/page.md", rf"^\| RHS evaluations / steps / rejected / events \| [^|]* / {N} \|"),
