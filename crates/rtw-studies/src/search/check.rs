@@ -34,6 +34,22 @@ pub struct Checked {
     pub slopes: u64,
     /// Of them, not stable (or, when a gait was checked, not that gait).
     pub failures: u64,
+    /// Whether a slope below `lo` holds too (a checked slope, or one of the
+    /// profile's other intervals): `lo` is then an interleaved end, where
+    /// failing and holding slopes alternate, not a sharp one with only
+    /// failure beyond.
+    pub beyond_lo: bool,
+    /// The same above `hi`.
+    pub beyond_hi: bool,
+}
+
+impl Checked {
+    /// How the interval ends at `lo` and at `hi`: `"sharp"` (no slope
+    /// beyond it holds) or `"interleaved"`.
+    pub fn ends(&self) -> (&'static str, &'static str) {
+        let kind = |beyond: bool| if beyond { "interleaved" } else { "sharp" };
+        (kind(self.beyond_lo), kind(self.beyond_hi))
+    }
 }
 
 /// The slopes checked in `[lo, hi]`, ascending, each once.
@@ -102,17 +118,22 @@ pub(crate) fn check(
     let stable = stable?;
     let failures = stable.iter().filter(|s| !**s).count() as u64;
     let (a, b) = widest_run(&phis, &stable).unwrap_or((0, 0));
-    let (lo_ok, hi_ok) = if stable.iter().any(|s| *s) {
+    let any = stable.iter().any(|s| *s);
+    let (lo_ok, hi_ok) = if any {
         (phis[a], phis[b])
     } else {
         (f64::NAN, f64::NAN)
     };
+    let beyond_lo = any && stable[..a].iter().any(|s| *s);
+    let beyond_hi = any && stable[b + 1..].iter().any(|s| *s);
     Some(Checked {
         profile: (lo, hi),
         lo: lo_ok,
         hi: hi_ok,
         slopes: phis.len() as u64,
         failures,
+        beyond_lo,
+        beyond_hi,
     })
 }
 
@@ -143,6 +164,8 @@ mod tests {
         let walk = check(design, (lo, hi), &options, Some(Label::Walk), &cancel).unwrap();
         assert!(walk.failures > any.failures, "{any:?} {walk:?}");
         assert!(walk.lo > 0.13923 && walk.hi <= hi, "{walk:?}");
+        // Walking slopes below the skip window: its lower end interleaves.
+        assert_eq!(walk.ends().0, "interleaved", "{walk:?}");
         for phi in slopes(lo, hi) {
             if (walk.lo..=walk.hi).contains(&phi) {
                 let label = run_at_slope(design, phi, &options, &cancel)

@@ -45,6 +45,8 @@ pub fn designs_path(out: &Path) -> PathBuf {
 /// designs) what the search had found.
 struct Line {
     e: Evaluation,
+    /// The gait the search is of (`None`: any stable gait).
+    gait: Option<rtw_model::Label>,
     length: f64,
     found: Option<Evaluation>,
     checked: Option<super::check::Checked>,
@@ -259,8 +261,32 @@ fn reported_columns() -> Vec<Column<Line>> {
             "checked_failures",
             true,
             "1",
-            "of them, not stable: isolated failing slopes the profile's grid did not resolve",
+            "of them, not stable (for a search of one gait: not that gait): isolated failing \
+             slopes the profile's grid did not resolve",
             Get::I64(|r: &Line| Some(r.checked?.failures as i64)),
+        ),
+        column(
+            "gait",
+            false,
+            "-",
+            "the gait phi_lo..phi_hi was checked for at every checked slope (\"any\": any \
+             stable gait)",
+            Get::Str(|r: &Line| Some(r.gait.map_or("any", |g| g.as_str()))),
+        ),
+        column(
+            "phi_lo_end",
+            true,
+            "-",
+            "how the interval ends at phi_lo: \"sharp\" (no slope below it holds the gait, \
+             checked or profiled) or \"interleaved\" (some do, between failures)",
+            Get::Str(|r: &Line| Some(r.checked?.ends().0)),
+        ),
+        column(
+            "phi_hi_end",
+            true,
+            "-",
+            "how it ends at phi_hi: \"sharp\" or \"interleaved\"",
+            Get::Str(|r: &Line| Some(r.checked?.ends().1)),
         ),
     ]);
     c
@@ -283,6 +309,7 @@ pub fn search_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
         .iter()
         .map(|e| Line {
             e: e.clone(),
+            gait: s.gait,
             length: s.length,
             found: None,
             checked: None,
@@ -298,6 +325,7 @@ pub fn reported_batch(s: &SearchSettings, reported: &[Reported]) -> RecordBatch 
         .iter()
         .map(|r| Line {
             e: r.verified.clone(),
+            gait: s.gait,
             length: s.length,
             found: Some(r.found.clone()),
             checked: r.checked,

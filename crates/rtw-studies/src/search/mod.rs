@@ -526,13 +526,18 @@ pub fn report(search: &Search, options: &Options, run: &Run) -> Result<Vec<Repor
                 let checked = match (v.phi_lo, v.phi_hi) {
                     (Some(lo), Some(hi)) => {
                         let params = fine.settings.design;
-                        let c = check::check(
+                        let mut c = check::check(
                             params,
                             (lo, hi),
                             &budget::plain(options),
                             s.gait,
                             cancel,
                         )?;
+                        // An end is interleaved too when another interval
+                        // of the fine profile holds beyond it.
+                        let others = intervals(s, &fine);
+                        c.beyond_lo |= others.iter().any(|&(_, b)| b < lo);
+                        c.beyond_hi |= others.iter().any(|&(a, _)| a > hi);
                         // The interval reported is the checked one.
                         v.phi_lo = Some(c.lo).filter(|x| x.is_finite());
                         v.phi_hi = Some(c.hi).filter(|x| x.is_finite());
