@@ -113,7 +113,8 @@ enum Command {
         integrator work, wall time), DIR/summary.json and DIR/summary.md, and prints the summary. Finished chunks \
         are kept in DIR/.partial while the run goes on, so an interrupted run (Ctrl-C, kill) loses at most the \
         chunks in progress (the workers take the samples in order: those of the samples in flight, one per \
-        worker): finish it with --resume. A sample that panics or fails numerically becomes a `diverged` row; \
+        worker): finish it with --resume. Run again over its finished scan (the same config and rtw version), \
+        it says the scan is complete and computes nothing (--force computes it anew). A sample that panics or fails numerically becomes a `diverged` row; \
         the scan goes on.\n\n\
         Config keys: seed, samples, name (optional), sampling (random, sobol, halton, lhs, grid or saltelli: the \
         design of the uniform axes, docs/cli.md); [params] length, rho, alpha, fn, zeta, phi, each a number, \
