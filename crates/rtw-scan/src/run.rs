@@ -144,11 +144,14 @@ fn finish_run(a: &RunArgs, out: &Path, status: RunStatus) -> Result<ExitCode> {
             if computed == 0 && !a.quiet {
                 // Said with or without --resume: a finished scan of this
                 // config and version is not run again (its rows would be
-                // the same), and a user who wants it anew must know how.
-                eprintln!(
-                    "rtw-scan: {} is already complete: nothing computed (--force computes it anew)",
-                    samples.display()
-                );
+                // the same). Without --resume the user asked for a run, and
+                // learns how to have one.
+                let anew = if a.resume {
+                    ""
+                } else {
+                    ": nothing computed (--force computes it anew)"
+                };
+                eprintln!("rtw-scan: {} is already complete{anew}", samples.display());
             }
             if let Some(s) = a.shard {
                 // One part is not the scan: the summary comes with `merge`.
