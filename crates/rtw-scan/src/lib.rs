@@ -113,7 +113,8 @@ enum Command {
         integrator work, wall time), DIR/summary.json and DIR/summary.md, and prints the summary. Finished chunks \
         are kept in DIR/.partial while the run goes on, so an interrupted run (Ctrl-C, kill) loses at most the \
         chunks in progress (the workers take the samples in order: those of the samples in flight, one per \
-        worker): finish it with --resume. A sample that panics or fails numerically becomes a `diverged` row; \
+        worker): finish it with --resume. Run again over its finished scan (the same config and rtw version), \
+        it says the scan is complete and computes nothing (--force computes it anew). A sample that panics or fails numerically becomes a `diverged` row; \
         the scan goes on.\n\n\
         Config keys: seed, samples, name (optional), sampling (random, sobol, halton, lhs, grid or saltelli: the \
         design of the uniform axes, docs/cli.md); [params] length, rho, alpha, fn, zeta, phi, each a number, \
@@ -234,7 +235,8 @@ enum Command {
         after_help = EXIT_CODES
     )]
     Profile(ProfileArgs),
-    /// Search a box of designs for the one that walks on the widest range of slopes, the shallowest, or fastest.
+    /// Search a box of designs for the one that walks on the widest range of slopes (slope_range), the
+    /// shallowest (phi_min), the fastest (speed) or the longest before a fall on a rough slope (mfpt).
     #[command(
         long_about = "Search the box of designs (ρ, α, f_n, ζ) of CONFIG for those that maximise its objectives \
         (docs/design.md): slope_range (the widest interval of stable slopes, of one gait if `gait` is set), \
@@ -336,20 +338,26 @@ mod tests {
         );
     }
 
-    /// `design --help` names every objective a config may ask for.
+    /// `design --help` and `design -h` name every objective a config may
+    /// ask for: the short help is the one a user sees first.
     #[test]
     fn design_help_names_every_objective() {
-        let help = Cli::command()
+        let mut cli = Cli::command();
+        let design = cli
             .find_subcommand_mut("design")
-            .expect("a design subcommand")
-            .render_long_help()
-            .to_string();
-        for o in rtw_studies::search::Objective::ALL {
-            assert!(
-                help.contains(o.as_str()),
-                "design --help does not name {}",
-                o.as_str()
-            );
+            .expect("a design subcommand");
+        let helps = [
+            ("--help", design.render_long_help().to_string()),
+            ("-h", design.render_help().to_string()),
+        ];
+        for (flag, help) in helps {
+            for o in rtw_studies::search::Objective::ALL {
+                assert!(
+                    help.contains(o.as_str()),
+                    "design {flag} does not name {}:\n{help}",
+                    o.as_str()
+                );
+            }
         }
     }
 

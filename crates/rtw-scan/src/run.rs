@@ -39,8 +39,9 @@ pub(super) struct RunArgs {
     #[arg(long, value_name = "K/N")]
     shard: Option<Shard>,
     /// Write even into a directory that holds another scan's results (another config, another --shard
-    /// split), its unfinished run or summaries rtw-scan did not write, replacing them; start even when
-    /// the output may not fit on the disk. Never writes through a symlink or over a special file.
+    /// split), its unfinished run or summaries rtw-scan did not write, replacing them; compute anew a
+    /// scan it holds complete; start even when the output may not fit on the disk. Never writes through
+    /// a symlink or over a special file.
     #[arg(long)]
     force: bool,
     /// Print no progress (errors and the interruption notice still go to stderr).
@@ -141,8 +142,17 @@ fn finish_run(a: &RunArgs, out: &Path, status: RunStatus) -> Result<ExitCode> {
             computed,
             rows,
         } => {
-            if computed == 0 && a.resume && !a.quiet {
-                eprintln!("rtw-scan: {} is already complete", samples.display());
+            if computed == 0 && !a.quiet {
+                // Said with or without --resume: a finished scan of this
+                // config and version is not run again (its rows would be
+                // the same). Without --resume the user asked for a run, and
+                // learns how to have one.
+                let anew = if a.resume {
+                    ""
+                } else {
+                    ": nothing computed (--force computes it anew)"
+                };
+                eprintln!("rtw-scan: {} is already complete{anew}", samples.display());
             }
             if let Some(s) = a.shard {
                 // One part is not the scan: the summary comes with `merge`.

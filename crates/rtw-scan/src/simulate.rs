@@ -7,6 +7,7 @@ use rtw_engine::config::params::checked_params;
 use rtw_engine::io::scan_rows::{JsonRow, row_text};
 use rtw_engine::io::{TraceNames, TraceWriter};
 use rtw_engine::scan::one::run_one;
+use rtw_model::options::RobustnessOptions;
 use rtw_model::outcome::Energy;
 use rtw_model::{Label, Options, Outcome, Params};
 use std::path::PathBuf;
@@ -123,6 +124,9 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
         None => None,
     };
     let mut trace_error = None;
+    if let Some(line) = measuring(&options.robustness) {
+        eprintln!("{line}");
+    }
     let row = run_one(0, params, &options, |p: &Params, o: &Options| -> Outcome {
         #[cfg(feature = "fake-sim")]
         if a.fake_sim {
@@ -173,6 +177,30 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
         why.unwrap_or("diverged")
     );
     Ok(ExitCode::FAILURE)
+}
+
+/// The line `simulate` prints on stderr before a run with robustness
+/// measures, naming them: each runs the gait again (seconds, minutes for a
+/// deep MFPT), and a command silent that long looks hung. `None` without
+/// any: a bare run takes milliseconds and stays silent.
+fn measuring(r: &RobustnessOptions) -> Option<String> {
+    let asked: Vec<&str> = [
+        ("step_down", r.step_down),
+        ("step_down_h50", r.step_down_h50),
+        ("step_down_at", r.step_down_at > 0.0),
+        ("gsn", r.gsn),
+        ("steps_to_fall", r.steps_to_fall),
+        ("mfpt", r.mfpt),
+    ]
+    .into_iter()
+    .filter_map(|(name, on)| on.then_some(name))
+    .collect();
+    (!asked.is_empty()).then(|| {
+        format!(
+            "rtw-scan: simulating, then measuring {} on the gait found (each measure runs it again)",
+            asked.join(", ")
+        )
+    })
 }
 
 /// What `simulate` says of a run whose energy balance is off by more than

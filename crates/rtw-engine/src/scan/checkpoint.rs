@@ -7,7 +7,7 @@
 use crate::config;
 use crate::config::ScanConfig;
 use crate::files;
-use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, VERSION};
+use crate::io::metadata::{self, META_CONFIG, META_CONFIG_HASH, META_SHARD, META_VERSION, VERSION};
 use crate::io::parquet::{self, READ_BATCH_ROWS};
 use crate::io::{scan_files, table};
 use crate::scan::partial::{chunks_on_disk, remove_partial, remove_stray_temps};
@@ -169,7 +169,14 @@ impl<'a> Checkpoint<'a> {
         progress: &dyn Progress,
     ) -> Result<Resume> {
         let layout = &self.layout;
-        if intent.resume && is_complete(&layout.samples, &self.config, self.shard.as_deref()) {
+        // A finished result of this config and shard is complete for a
+        // resume; without one, when this very version made it too: its rows
+        // depend only on (seed, sample id) and the build, so running them
+        // again would rewrite the same rows (the main command run twice).
+        // Another version's file is computed anew, and `force` always is.
+        let complete = is_complete(&layout.samples, &self.config, self.shard.as_deref())
+            && (intent.resume || (!intent.force && made_by_this_version(&layout.samples)));
+        if complete {
             // Complete: at most the clean-up of a run killed after its merge is left.
             if layout.partial.is_dir() {
                 report_unknown(progress, &layout.partial, &remove_partial(&layout.partial)?);
@@ -493,6 +500,13 @@ pub(crate) fn describe_mismatch(
         );
     }
     format!("it is {theirs}, this run is {ours}: {}", differ.join("; "))
+}
+
+/// Was `samples` written by this very build of rtw (its `rtw.version`)?
+fn made_by_this_version(samples: &Path) -> bool {
+    parquet::open(samples, 1)
+        .map(|i| i.metadata.get(META_VERSION).map(String::as_str) == Some(VERSION))
+        .unwrap_or(false)
 }
 
 /// Does `samples` exist, complete, for this very config (and shard)?

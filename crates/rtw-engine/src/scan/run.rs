@@ -601,9 +601,64 @@ mod tests {
         scan(&cfg, &s, &fake_sim, &never, &Silent).unwrap();
         let found = checkpoint.open(intent(true, 8), &never, &Silent).unwrap();
         assert_eq!(found, Resume::Complete);
-        // Without --resume a finished result is computed anew.
+        // Without --resume too, since this version made it: nothing to
+        // compute (the same command run twice); with --force, computed anew.
         let found = checkpoint.open(intent(false, 8), &never, &Silent).unwrap();
+        assert_eq!(found, Resume::Complete);
+        let forced = Intent {
+            force: true,
+            ..intent(false, 8)
+        };
+        let found = checkpoint.open(forced, &never, &Silent).unwrap();
         assert_eq!(found, Resume::Fresh { chunk_size: 8 });
+    }
+
+    #[test]
+    fn a_finished_scan_of_another_version_run_again_is_computed_anew() {
+        // Its rows may differ from this build's: a run without --resume
+        // replaces them with this version's, as before.
+        let cfg = parse(CFG).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let never = AtomicBool::new(false);
+        scan(
+            &cfg,
+            &settings(dir.path(), 1, 8),
+            &fake_sim,
+            &never,
+            &Silent,
+        )
+        .unwrap();
+        let samples = dir.path().join("samples.parquet");
+        let input = parquet::open(&samples, 64).unwrap();
+        let meta = input
+            .metadata
+            .iter()
+            .map(|(k, v)| {
+                let v = if k == metadata::META_VERSION {
+                    "0.0.9"
+                } else {
+                    v
+                };
+                metadata::kv(k, v.to_string())
+            })
+            .collect();
+        let batches: Vec<RecordBatch> = input.reader.map(|b| b.unwrap()).collect();
+        assert_eq!(batches.len(), 1);
+        parquet::write_file(&samples, &batches[0], meta).unwrap();
+        let st = scan(
+            &cfg,
+            &settings(dir.path(), 1, 8),
+            &fake_sim,
+            &never,
+            &Silent,
+        )
+        .unwrap();
+        assert!(
+            matches!(st, RunStatus::Complete { computed: 37, .. }),
+            "{st:?}"
+        );
+        let file = parquet::open(&samples, 1).unwrap();
+        assert_eq!(file.metadata[metadata::META_VERSION], VERSION);
     }
 
     #[test]

@@ -175,6 +175,46 @@ fn killed_run_resumes_to_the_same_rows() {
 }
 
 #[test]
+fn a_finished_scan_run_again_says_it_is_complete_and_computes_nothing() {
+    // The same command twice (the README's main command, say): the second
+    // finds the first's file, of this config and this version, and has
+    // nothing to do; its rows would be the same, row for row.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &paper_like(12, 3));
+    let out = dir.path().join("done");
+    fake_run_ok(&cfg, &out, &[]);
+    let samples = out.join("samples.parquet");
+    let before = std::fs::read(&samples).unwrap();
+
+    // A fake sample of 20 ms: computing the 12 rows again would take 240 ms
+    // of samples and rewrite the file with other wall times.
+    let t0 = Instant::now();
+    let o = run_ok(&["run", &cfg, "--out", s(&out), "--fake-sim", "20"]);
+    let err = stderr(&o);
+    assert!(err.contains("already complete"), "{err}");
+    assert!(
+        err.contains("--force"),
+        "says how to compute it anew: {err}"
+    );
+    assert!(
+        t0.elapsed() < Duration::from_millis(240),
+        "{:?}",
+        t0.elapsed()
+    );
+    assert_eq!(std::fs::read(&samples).unwrap(), before, "rewritten");
+    assert!(stdout(&o).contains("rtw-scan summary"), "{}", stdout(&o));
+
+    // --force computes it anew, as it says.
+    let o = run_ok(&["run", &cfg, "--out", s(&out), "--fake-sim", "1", "--force"]);
+    assert!(!stderr(&o).contains("already complete"), "{}", stderr(&o));
+    assert_ne!(
+        std::fs::read(&samples).unwrap(),
+        before,
+        "not computed anew"
+    );
+}
+
+#[test]
 fn ctrl_c_keeps_finished_chunks_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = write_config(dir.path(), "c.toml", &paper_like(80, 9));

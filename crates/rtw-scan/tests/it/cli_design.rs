@@ -506,3 +506,24 @@ fn a_search_folder_that_is_a_device_or_a_file_is_refused_saying_what_is_there() 
     assert!(!err.contains("os error 17"), "{err}");
     assert_eq!(std::fs::read_to_string(&plain).unwrap(), "a user's file\n");
 }
+
+#[test]
+fn docs_design_md_names_every_config_of_configs_design() {
+    // The page's table of configs, not a count that a new config makes
+    // wrong: each file of configs/design/ has its row, and each row a file.
+    let doc = std::fs::read_to_string(workspace().join("docs/design.md")).unwrap();
+    let mut on_disk: Vec<String> = std::fs::read_dir(workspace().join("configs/design"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    on_disk.sort();
+    let mut rows: Vec<String> = doc
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `")?.split_once(".toml` |"))
+        .map(|(name, _)| format!("{name}.toml"))
+        .collect();
+    rows.sort();
+    assert!(on_disk.len() >= 2, "{on_disk:?}");
+    assert_eq!(rows, on_disk, "docs/design.md's table of configs/design/");
+}

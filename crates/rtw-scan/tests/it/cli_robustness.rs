@@ -442,3 +442,27 @@ fn an_unbounded_mfpt_is_told_from_a_missing_one_in_json_and_parquet() {
         assert_eq!(c.value(1), f64::INFINITY, "{name}: {c:?}");
     }
 }
+
+/// `simulate` with robustness measures says, before it runs them, which it
+/// measures: they take seconds (minutes for a deep MFPT), and a command
+/// silent that long looks hung. A bare run, milliseconds long, prints
+/// nothing on stderr.
+#[test]
+fn simulate_names_the_robustness_measures_it_runs_before_it_runs_them() {
+    let sets = [
+        "--set",
+        "robustness.gsn=true",
+        "--set",
+        "robustness.sigma=0.05",
+        "--set",
+        "robustness.mfpt=true",
+    ];
+    let o = run_ok(&[&SIMULATE_FIG7A[..], &sets, &["--json", "--fake-sim"]].concat());
+    let err = stderr(&o);
+    assert!(
+        err.contains("rtw-scan: simulating, then measuring gsn, mfpt"),
+        "{err}"
+    );
+    let o = run_ok(&[&SIMULATE_FIG7A[..], &["--json", "--fake-sim"]].concat());
+    assert_eq!(stderr(&o), "");
+}

@@ -1,7 +1,7 @@
 //! A design search's summary, `search.md`: its settings, its cost, how
 //! often it drew a design that fell, and the reported designs.
 
-use super::{Evaluation, Method, Reported, Search};
+use super::{Evaluation, Method, Objective, Reported, Search, oriented};
 use std::fmt::Write;
 
 /// The summary's first line, before the search's name: how a folder's
@@ -50,6 +50,9 @@ pub fn markdown(search: &Search, reported: &[Reported]) -> String {
         falls,
         100.0 * falls as f64 / search.evaluations.len().max(1) as f64
     );
+    if !reported.is_empty() {
+        let _ = writeln!(m, "{}\n", order(search, reported));
+    }
     let _ = writeln!(
         m,
         "| index | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | speed | mfpt | search's slope range |"
@@ -78,4 +81,132 @@ pub fn markdown(search: &Search, reported: &[Reported]) -> String {
         );
     }
     m
+}
+
+/// The table's column of an objective's verified value.
+fn column(o: Objective) -> &'static str {
+    match o {
+        Objective::SlopeRange => "slope range",
+        Objective::PhiMin => "phi_min",
+        Objective::Speed => "speed",
+        Objective::Mfpt => "mfpt",
+    }
+}
+
+/// What the rows' order is. They come in the search's order (its own values,
+/// from the coarse profile), which the verification on the fine grid may
+/// not keep: a reader who reads the verified columns would otherwise take
+/// row 1 for the best of them. Said, not re-sorted, so that the summary,
+/// `designs.parquet` and the design page number the designs alike.
+fn order(search: &Search, reported: &[Reported]) -> String {
+    let s = &search.settings;
+    let first = s.objectives[0];
+    let best = if first == Objective::PhiMin {
+        "smallest"
+    } else {
+        "largest"
+    };
+    let rows = if s.objectives.len() == 1 {
+        format!(
+            "Rows: the search's {} best designs by its own {} (its coarse profile), best first",
+            reported.len(),
+            first.as_str()
+        )
+    } else {
+        format!(
+            "Rows: designs of the search's Pareto front of {}, by its own values (its coarse \
+             profile), spread along {} from the best",
+            s.objectives
+                .iter()
+                .map(|o| o.as_str())
+                .collect::<Vec<_>>()
+                .join(" and "),
+            first.as_str()
+        )
+    };
+    let verified = reported
+        .iter()
+        .filter(|r| r.verified.feasible() && !r.verified.values.is_empty())
+        .max_by(|a, b| {
+            oriented(s, &a.verified.values)[0]
+                .total_cmp(&oriented(s, &b.verified.values)[0])
+                .then(b.verified.index.cmp(&a.verified.index))
+        });
+    match verified {
+        Some(r) => format!(
+            "{rows}; verified on the fine grid they may rank otherwise: the {best} verified {} \
+             is index {}'s.",
+            column(first),
+            r.verified.index
+        ),
+        None => format!("{rows}; none is stable once verified on the fine grid."),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::search::SearchSettings;
+
+    fn eval(index: u64, lo: f64, hi: f64) -> Evaluation {
+        Evaluation {
+            index,
+            round: 0,
+            generation: 0,
+            design: [1.0 + index as f64, 0.1, 3.0, 0.06],
+            p_fall: None,
+            runs: 1,
+            phi_lo: Some(lo),
+            phi_hi: Some(hi),
+            phi_min: Some(lo),
+            label_at_speed_phi: None,
+            speed: None,
+            label_at_mfpt_phi: None,
+            mfpt: None,
+            infeasible: None,
+            values: vec![hi - lo],
+            score: Some(hi - lo),
+        }
+    }
+
+    #[test]
+    fn the_summary_says_its_rows_are_in_the_search_s_order_and_which_verified_best() {
+        let settings = SearchSettings::parse(
+            "name = \"t\"\nseed = 3\nbudget = 100\nobjectives = [\"slope_range\"]\n\
+             [box]\nrho = [1.0, 5.0]\nalpha = [0.0, 0.4]\nfn = [1.5, 5.0]\nzeta = [0.05, 0.1]\n\
+             [slopes]\nfrom = 0.0\nto = 0.4\n",
+        )
+        .unwrap();
+        // The search's best (index 4, 0.30 wide) is cut to 0.10 on the fine
+        // grid; its runner-up (index 7, 0.25) keeps 0.20.
+        let reported = vec![
+            Reported {
+                found: eval(4, 0.05, 0.35),
+                verified: eval(4, 0.05, 0.15),
+                checked: None,
+            },
+            Reported {
+                found: eval(7, 0.10, 0.35),
+                verified: eval(7, 0.10, 0.30),
+                checked: None,
+            },
+        ];
+        let search = Search {
+            settings,
+            evaluations: reported.iter().map(|r| r.found.clone()).collect(),
+        };
+        let md = markdown(&search, &reported);
+        assert!(
+            md.contains("Rows: the search's 2 best designs by its own slope_range"),
+            "{md}"
+        );
+        assert!(
+            md.contains("the largest verified slope range is index 7's."),
+            "{md}"
+        );
+        // Said before the table, whose first row stays the search's best.
+        let (said, table) = md.split_once("| index |").unwrap();
+        assert!(said.contains("Rows:"), "{md}");
+        assert!(table.lines().nth(2).unwrap().starts_with("| 4 |"), "{md}");
+    }
 }
