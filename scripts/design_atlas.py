@@ -97,6 +97,13 @@ def profile(d: dict, out: Path | None = None, span: tuple[float, float, float, f
     return json.loads(cli(*args))
 
 
+def ends(r: dict) -> str:
+    """The gait an interval was checked for and how it ends at phi_lo and phi_hi."""
+    if r.get("phi_lo_end") is None:
+        return f"{r['gait']}; –"
+    return f"{r['gait']}; {r['phi_lo_end']}, {r['phi_hi_end']}"
+
+
 def main() -> None:
     search, out = Path(sys.argv[1]), Path(sys.argv[2])
     roles = {"widest": "widest stable slope range", "widest-walk": "widest walking slope range",
@@ -111,6 +118,7 @@ def main() -> None:
                          "length": r["length"], **{k: r[k] for k in INPUTS}, "phi_lo": r["phi_lo"],
                          "phi_hi": r["phi_hi"], "slope_range": r["slope_range"], "phi_min": r["phi_min"],
                          "checked_slopes": r["checked_slopes"], "checked_failures": r["checked_failures"],
+                         "ends": ends(r),
                          "label_at_0.15": label, "speed_at_0.15": speed})
         # The reported designs as rtw-scan wrote them (each interval checked
         # by direct simulation in the library, search::check).
@@ -214,13 +222,14 @@ def main() -> None:
           "is biased upwards, and a fresh draw is not.\n",
           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | gait at 0.15 | speed at 0.15 | "
           f"MFPT at 0.15, σ 5 cm | on fresh draws (seeds {', '.join(map(str, FRESH_SEEDS))}) | "
-          "failures in the profile's interval |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
+          "failures in the profile's interval | checked for; ends |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---|"]
     for r in list(winners.values()) + [fig7a]:
         md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
                   f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['phi_min'])} | "
                   f"{r['label_at_0.15']} | {f(r['speed_at_0.15'], 3)} | {f(r['mfpt_at_0.15'], 0)} | "
-                  f"{', '.join(f(v, 0) for v in r['mfpt_fresh'])} | {r['checked_failures']} of {r['checked_slopes']} |")
+                  f"{', '.join(f(v, 0) for v in r['mfpt_fresh'])} | {r['checked_failures']} of {r['checked_slopes']} | "
+                  f"{r['ends']} |")
     # The table rounds the designs, and a design's MFPT on a rough slope is
     # not smooth in its inputs: a star a little different takes another
     # path over the same ground. So each winner's numbers come with the
@@ -243,12 +252,16 @@ def main() -> None:
                       f"--set robustness.sigma=0.05 --json  # {r['role']}")
     md += ["```"]
     md += ["\n## Pareto front: slope range against speed at φ = 0.15\n",
-           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | speed at 0.15 | failures in the profile's interval |",
-           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+           "| role | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | speed at 0.15 | failures in the profile's interval | checked for; ends |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
     for r in front:
         md.append(f"| {r['role']} | {r['rho']:.3f} | {r['alpha']:.4f} | {r['fn']:.3f} | {r['zeta']:.4f} | "
                   f"{f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | {f(r['speed_at_0.15'], 3)} | "
-                  f"{r['checked_failures']} of {r['checked_slopes']} |")
+                  f"{r['checked_failures']} of {r['checked_slopes']} | {r['ends']} |")
+    md += ["\nEach interval was checked for the gait named (`any`: any stable gait) at every checked slope; "
+           "an end is *sharp* when no slope beyond it holds (checked or in the fine profile) and "
+           "*interleaved* when some do, between failures: beyond an interleaved end the design still holds "
+           "at some slopes, at others not (`gait`, `phi_lo_end`, `phi_hi_end` of designs.parquet).\n"]
     md += ["\n## What sets them apart\n",
            f"Spearman rank correlation of each input with the widest stable slope range and with the "
            f"shallowest stable slope, over the {corr[0][5]} Sobol designs of the widest config "

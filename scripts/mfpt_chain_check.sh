@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The chain estimator of the MFPT (robustness.mfpt_method = "chain",
-# docs/robustness-rough.md, "The chain method") at Fig. 7(a) against the
+# docs/robustness-estimators.md, "The chain method") at Fig. 7(a) against the
 # counted estimator's references (run with many batches; their intervals
 # in results/robustness/mfpt_chain.md), at σ = 5, 3, 2, 1.5 and 1 cm: each
 # command, its mfpt [mfpt_lo, mfpt_hi] and fall_rate, and its wall and CPU

@@ -573,7 +573,7 @@ pub struct MeanFirstPassage {
     pub steps: u64,
 }
 
-/// How the chain estimator's MFPT was made (docs/robustness-rough.md, "The
+/// How the chain estimator's MFPT was made (docs/robustness-estimators.md, "The
 /// chain method"): its mesh, and its discretisation test.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ChainDiagnostics {

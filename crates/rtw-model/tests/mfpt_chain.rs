@@ -1,5 +1,5 @@
 //! The RTW's MFPT by the chain (`robustness.mfpt_method = "chain"`,
-//! docs/robustness-rough.md, "The chain method") at Fig. 7(a), against the
+//! docs/robustness-estimators.md, "The chain method") at Fig. 7(a), against the
 //! counted estimator's measurements there (results/robustness/mfpt_chain.md
 //! has the commands and the table at five roughnesses).
 

@@ -1,5 +1,5 @@
 //! The MFPT by a Markov chain on a mesh of the extended states the walker
-//! reaches (`robustness.mfpt_method = "chain"`, docs/robustness-rough.md,
+//! reaches (`robustness.mfpt_method = "chain"`, docs/robustness-estimators.md,
 //! "The chain method"): the walker of `run/mfpt.rs` as a
 //! [`ChainWalker`] for [`hybrid_ode::chain`].
 //!
