@@ -595,6 +595,24 @@ mod tests {
     use std::num::NonZeroUsize;
     use std::sync::atomic::AtomicBool;
 
+    /// `cfg` scanned into `dir` by the fake simulator, in chunks of
+    /// `chunk` rows on `threads` workers.
+    fn fake_scan(cfg: &ScanConfig, dir: &std::path::Path, chunk: usize, threads: usize) {
+        let settings = RunSettings {
+            out_dir: dir.to_path_buf(),
+            resume: false,
+            chunk_size: NonZeroUsize::new(chunk).unwrap(),
+            shard: None,
+            force: false,
+        };
+        let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
+            crate::fake::simulate(p, o, std::time::Duration::ZERO)
+        };
+        let stop = AtomicBool::new(false);
+        let run = Run::new(&Silent, &stop).on(NonZeroUsize::new(threads));
+        run_scan(cfg, &settings, &sim, &run).unwrap();
+    }
+
     /// A summary whose Markdown cannot be written where it goes (a symlink
     /// stands there) leaves the earlier JSON as it was: the two files are
     /// one set.
@@ -607,18 +625,7 @@ mod tests {
         )
         .unwrap();
         let dir = tempfile::tempdir().unwrap();
-        let settings = RunSettings {
-            out_dir: dir.path().to_path_buf(),
-            resume: false,
-            chunk_size: NonZeroUsize::new(8).unwrap(),
-            shard: None,
-            force: false,
-        };
-        let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
-            crate::fake::simulate(p, o, std::time::Duration::ZERO)
-        };
-        let stop = AtomicBool::new(false);
-        run_scan(&cfg, &settings, &sim, &Run::new(&Silent, &stop)).unwrap();
+        fake_scan(&cfg, dir.path(), 8, 1);
         let json = dir.path().join("summary.json");
         std::fs::write(&json, "{\"earlier\": true}").unwrap();
         std::os::unix::fs::symlink("/dev/null", dir.path().join("summary.md")).unwrap();
@@ -645,19 +652,7 @@ mod tests {
         let mut titles = Vec::new();
         for name in ["paper", "paper+set-0123abcd"] {
             let dir = root.path().join(name);
-            let settings = RunSettings {
-                out_dir: dir.clone(),
-                resume: false,
-                chunk_size: NonZeroUsize::new(8).unwrap(),
-                shard: None,
-                force: false,
-            };
-            let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
-                crate::fake::simulate(p, o, std::time::Duration::ZERO)
-            };
-            let stop = AtomicBool::new(false);
-            let run = Run::new(&Silent, &stop).on(NonZeroUsize::new(1));
-            run_scan(&cfg, &settings, &sim, &run).unwrap();
+            fake_scan(&cfg, &dir, 8, 1);
             let md = summarize(&dir.join("samples.parquet"), None)
                 .unwrap()
                 .to_markdown();
@@ -687,19 +682,7 @@ phi = { uniform = [0.05, 0.12] }
         )
         .unwrap();
         let dir = tempfile::tempdir().unwrap();
-        let settings = RunSettings {
-            out_dir: dir.path().to_path_buf(),
-            resume: false,
-            chunk_size: NonZeroUsize::new(4000).unwrap(),
-            shard: None,
-            force: false,
-        };
-        let sim = |p: &rtw_model::Params, o: &rtw_model::Options| {
-            crate::fake::simulate(p, o, std::time::Duration::ZERO)
-        };
-        let stop = AtomicBool::new(false);
-        let run = Run::new(&Silent, &stop).on(NonZeroUsize::new(2));
-        run_scan(&cfg, &settings, &sim, &run).unwrap();
+        fake_scan(&cfg, dir.path(), 4000, 2);
         let data = read_scan(&dir.path().join("samples.parquet")).unwrap();
         let collapses = data.counts[label_index(Label::Collapse)] as usize;
         let stalls = data.counts[label_index(Label::Stall)] as usize;
