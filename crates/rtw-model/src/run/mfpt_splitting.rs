@@ -34,7 +34,7 @@
 //! `train_max_steps` steps) and the splitting's batches, every step counted.
 
 use crate::options::{Options, RobustnessOptions, TerrainOptions};
-use crate::outcome::FailureDetail;
+use crate::outcome::{FailureDetail, MeanFirstPassage};
 use crate::plant::geometry::SPOKES;
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::{DISSIPATED, FRICTION, N};
@@ -129,6 +129,20 @@ pub struct SplitMfpt {
     /// On those walks, the score's mean quantile among all their states at
     /// each of [`LAGS`] steps before a fall (0.5: no sign of the fall).
     pub target_lags: Vec<(usize, f64)>,
+}
+
+impl SplitMfpt {
+    /// The estimate in the columns every MFPT method writes (`mfpt`,
+    /// `mfpt_lo`, `mfpt_hi`, `fall_rate`), its diagnostics left out.
+    pub(crate) fn mean_first_passage(&self) -> MeanFirstPassage {
+        MeanFirstPassage {
+            mfpt: self.mfpt,
+            lo: self.mfpt_lo,
+            hi: self.mfpt_hi,
+            fall_rate: self.fall_rate,
+            steps: self.steps,
+        }
+    }
 }
 
 /// The walker's state at a step: the system (its contact modes and the

@@ -41,7 +41,7 @@
 
 use crate::options::TerrainOptions;
 use crate::options::{MfptMethod, Options};
-use crate::outcome::{Label, MeanFirstPassage, Outcome, PhaseSurvival, Robustness};
+use crate::outcome::{Label, Outcome, PhaseSurvival, Robustness};
 use crate::params::{Params, Physical};
 use crate::plant::rtw::Rtw;
 use crate::plant::slots::N;
@@ -241,13 +241,7 @@ pub(crate) fn measure(
                 options.terrain,
                 &mut work,
             )
-            .map(|m| MeanFirstPassage {
-                mfpt: m.mfpt,
-                lo: m.mfpt_lo,
-                hi: m.mfpt_hi,
-                fall_rate: m.fall_rate,
-                steps: m.steps,
-            }),
+            .map(|m| m.mean_first_passage()),
             None,
         ),
         (true, MfptMethod::Counted) => (
