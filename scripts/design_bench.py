@@ -1,18 +1,21 @@
-"""The design search against Sobol designs at equal cost (docs/design.md).
+"""The design searches against Sobol designs at equal cost (docs/design.md).
 
-For each config and seed, reads runs/design-bench/CONFIG-METHOD-SEED/
+For each config, method and seed, reads runs/design-bench/CONFIG-METHOD-SEED/
 search.parquet (every evaluated design, in order, with the simulations it
-cost) and designs.parquet (the reported best, profiled again on the fine
-grid), and takes
+cost), designs.parquet (the reported best, profiled again on the fine grid
+and checked by direct simulation) and archive.parquet (the best design of
+each cell of the archive), and takes
   - found: the best objective among the designs evaluated before the
     cumulative simulations pass the config's budget (the same count for
-    both methods), as the search's own profile gives it;
+    every method), as the search's own profile gives it;
   - verified: the reported best design's objective on the fine grid;
-  - infeasible: the share of evaluated designs with no objective (they fall).
-Then the mean over seeds per method, and the mean paired difference
-(CMA-ES − Sobol; for phi_min Sobol − CMA-ES, so that positive is better
-for the search) with a percentile bootstrap 95 % interval (10 000
-resamples of the seeds, seed 0), and a sign count.
+  - infeasible: the share of evaluated designs with no objective (they fall);
+  - cells: the archive's cells filled; QD-score: the sum of its elites'
+    scores (normalised objectives), as the search wrote them.
+Then, per method, the mean over seeds and the mean paired difference from
+Sobol at the same seed (Sobol − method for phi_min, so that positive is
+better for the method) with its paired t 95 % interval, and how many seeds
+it is better at.
 
 Writes results/design/bench.md and results/design/bench-seeds.csv.
 Usage: python scripts/design_bench.py RUNS CONFIG [CONFIG ...]
@@ -26,8 +29,15 @@ from pathlib import Path
 
 import numpy as np
 import pyarrow.parquet as pq
+from scipy import stats
 
 ROOT = Path(__file__).resolve().parent.parent
+METHODS = {
+    "sobol": "Sobol designs (baseline)",
+    "cmaes": "CMA-ES, fall model",
+    "archive": "MAP-Elites archive, fall model",
+    "archive-penalty": "MAP-Elites archive, falls as a bad value",
+}
 
 
 def budget_of(config: Path) -> int:
@@ -38,7 +48,7 @@ def objective_of(config: Path) -> str:
     return re.search(r'^objectives = \["(\w+)"', config.read_text(), re.M).group(1)
 
 
-def one(run: Path, budget: int, objective: str) -> tuple[float, float, float, int]:
+def one(run: Path, budget: int, objective: str) -> dict[str, float]:
     t = pq.read_table(run / "search.parquet").to_pydict()
     runs = np.cumsum(t["runs"])
     within = runs <= budget
@@ -47,15 +57,22 @@ def one(run: Path, budget: int, objective: str) -> tuple[float, float, float, in
     sign = -1.0 if objective == "phi_min" else 1.0
     found = sign * np.nanmax(sign * values[feasible]) if feasible.any() else np.nan
     d = pq.read_table(run / "designs.parquet").to_pydict()
-    verified = d[objective][0] if d[objective] else np.nan
-    infeasible = 1.0 - np.mean(np.array(t["feasible"])[within])
-    return found, verified, infeasible, int(within.sum())
+    a = pq.read_table(run / "archive.parquet").to_pydict()
+    return {
+        "found": found,
+        "verified": d[objective][0] if d[objective] else np.nan,
+        "infeasible": 1.0 - np.mean(np.array(t["feasible"])[within]),
+        "designs": int(within.sum()),
+        "cells": len(a["score"]),
+        "qd": float(np.sum(a["score"])),
+    }
 
 
-def bootstrap(diff: np.ndarray) -> tuple[float, float]:
-    rng = np.random.default_rng(0)
-    means = rng.choice(diff, size=(10_000, diff.size), replace=True).mean(axis=1)
-    return float(np.percentile(means, 2.5)), float(np.percentile(means, 97.5))
+def paired(diff: np.ndarray) -> str:
+    """The mean of `diff` with its paired t 95 % interval."""
+    m = diff.mean()
+    half = stats.t.ppf(0.975, diff.size - 1) * diff.std(ddof=1) / np.sqrt(diff.size)
+    return f"{m:+.3g} [{m - half:+.3g}, {m + half:+.3g}]"
 
 
 def main() -> None:
@@ -63,44 +80,55 @@ def main() -> None:
     configs = sys.argv[2:]
     out = ROOT / "results/design"
     out.mkdir(parents=True, exist_ok=True)
-    csv = ["config,objective,seed,method,found,verified,infeasible,designs"]
+    csv = ["config,objective,seed,method,found,verified,infeasible,designs,cells,qd_score"]
     md = [
-        "# Design search against Sobol designs at equal cost\n",
-        "`./scripts/design_bench.sh` (`--analyse-only` to tabulate again): each config of "
-        "`configs/design/` run with seeds 1–5 by CMA-ES with the learned fall constraint and by a "
-        "scrambled Sobol sequence of designs, both stopped at the config's budget of simulations. "
+        "# Design searches against Sobol designs at equal cost\n",
+        "`./scripts/design_bench.sh` (`--analyse-only` to tabulate again): each config run with "
+        "every seed below by each method, all stopped at the config's budget of simulations. "
         "*found*: the best objective among the designs evaluated within the budget (the search's "
-        "own profile, grid 0.01 or 0.002); *verified*: the reported best design profiled again on the "
-        "five times finer grid. Difference: CMA-ES − Sobol (Sobol − CMA-ES for phi_min, the smaller "
-        "the better), positive when the search is better; 95 % percentile bootstrap interval over "
-        "the seeds. Slopes in rad.\n",
-        "| config | objective | budget | CMA-ES found | Sobol found | difference [95 % CI] | CMA-ES better | "
-        "CMA-ES verified | Sobol verified | verified difference [95 % CI] | infeasible CMA-ES / Sobol |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "own profile); *verified*: the reported best design profiled again on the five times finer "
+        "grid and checked by direct simulation. Each difference is the method's minus Sobol's at "
+        "the same seed (Sobol's minus the method's for phi_min, the smaller the better), positive "
+        "when the method is better, with its paired t 95 % interval over the seeds. *cells*: the "
+        "archive's cells filled, of 32 (8 bins of the widest interval's middle slope × 4 of the "
+        "share that walks); *QD-score*: the sum of the elites' normalised objectives. Slopes in "
+        "rad.\n",
+        "| config | method | seeds | found | vs Sobol [95 % CI] | better | verified | vs Sobol "
+        "[95 % CI] | better | infeasible | cells | QD-score | vs Sobol [95 % CI] |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for c in configs:
         cfg = ROOT / f"configs/design/{c}.toml"
         budget, objective = budget_of(cfg), objective_of(cfg)
         sign = -1.0 if objective == "phi_min" else 1.0
         seeds = sorted(
-            int(p.name.rsplit("-", 1)[1]) for p in runs.glob(f"{c}-cmaes-*") if p.is_dir()
+            int(p.name.rsplit("-", 1)[1]) for p in runs.glob(f"{c}-sobol-*") if p.is_dir()
         )
         res = {}
-        for m in ("cmaes", "sobol"):
-            res[m] = np.array([one(runs / f"{c}-{m}-{s}", budget, objective) for s in seeds])
+        for m in METHODS:
+            if not all((runs / f"{c}-{m}-{s}").is_dir() for s in seeds):
+                continue
+            res[m] = [one(runs / f"{c}-{m}-{s}", budget, objective) for s in seeds]
             for s, r in zip(seeds, res[m]):
-                csv.append(f"{c},{objective},{s},{m},{r[0]:.6g},{r[1]:.6g},{r[2]:.4f},{int(r[3])}")
-        a, b = res["cmaes"], res["sobol"]
-        d_found = sign * (a[:, 0] - b[:, 0])
-        d_ver = sign * (a[:, 1] - b[:, 1])
-        lo, hi = bootstrap(d_found)
-        vlo, vhi = bootstrap(d_ver)
-        md.append(
-            f"| {c} | {objective} | {budget} | {a[:, 0].mean():.4g} | {b[:, 0].mean():.4g} | "
-            f"{d_found.mean():+.3g} [{lo:+.3g}, {hi:+.3g}] | {int((d_found > 0).sum())} of {len(seeds)} | "
-            f"{a[:, 1].mean():.4g} | {b[:, 1].mean():.4g} | {d_ver.mean():+.3g} [{vlo:+.3g}, {vhi:+.3g}] | "
-            f"{100 * a[:, 2].mean():.1f} % / {100 * b[:, 2].mean():.1f} % |"
-        )
+                csv.append(
+                    f"{c},{objective},{s},{m},{r['found']:.6g},{r['verified']:.6g},"
+                    f"{r['infeasible']:.4f},{r['designs']},{r['cells']},{r['qd']:.6g}"
+                )
+        col = lambda m, k: np.array([r[k] for r in res[m]])  # noqa: E731
+        for m in res:
+            f, v, q = col(m, "found"), col(m, "verified"), col(m, "qd")
+            df = sign * (f - col("sobol", "found"))
+            dv = sign * (v - col("sobol", "verified"))
+            dq = q - col("sobol", "qd")
+            vs = m != "sobol"
+            md.append(
+                f"| {c} | {METHODS[m]} | {len(seeds)} | {f.mean():.4g} | "
+                f"{paired(df) if vs else '–'} | {f'{(df > 0).sum()} of {len(seeds)}' if vs else '–'} | "
+                f"{v.mean():.4g} | {paired(dv) if vs else '–'} | "
+                f"{f'{(dv > 0).sum()} of {len(seeds)}' if vs else '–'} | "
+                f"{100 * col(m, 'infeasible').mean():.1f} % | {col(m, 'cells').mean():.1f} | "
+                f"{q.mean():.3f} | {paired(dq) if vs else '–'} |"
+            )
     (out / "bench.md").write_text("\n".join(md) + "\n")
     (out / "bench-seeds.csv").write_text("\n".join(csv) + "\n")
     print("\n".join(md))

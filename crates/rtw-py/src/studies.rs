@@ -164,11 +164,16 @@ pub(crate) fn design_search<'py>(
         search::files::search_batch(&settings, &found.evaluations),
     )?;
     let designs = to_table(py, search::files::reported_batch(&settings, &reported))?;
+    let archive = to_table(
+        py,
+        search::files::archive_batch(&settings, &found.evaluations),
+    )?;
     Ok(DesignSearch::new(
         search::files::markdown(&found, &reported),
         found.runs(),
         evaluations.unbind(),
         designs.unbind(),
+        archive.unbind(),
     ))
 }
 

@@ -485,11 +485,14 @@ fields_class! {
 ///         columns of ``designs.parquet``): ``phi_lo`` and ``phi_hi`` are
 ///         that profile's widest stable interval, checked by direct
 ///         simulation and cut to its widest run of stable checked slopes.
+///     archive: the best design of each archive cell, as a ``pyarrow.Table``
+///         (the columns of ``archive.parquet``).
     DesignSearch {
         summary: String,
         runs: u64,
         evaluations: TableField,
         designs: TableField,
+        archive: TableField,
     }
 }
 
@@ -499,12 +502,14 @@ impl DesignSearch {
         runs: u64,
         evaluations: Py<PyAny>,
         designs: Py<PyAny>,
+        archive: Py<PyAny>,
     ) -> Self {
         Self {
             summary,
             runs,
             evaluations: TableField(evaluations),
             designs: TableField(designs),
+            archive: TableField(archive),
         }
     }
 }

@@ -50,6 +50,7 @@ def test_design_equals_the_cli_search_in_memory_and_in_a_folder(tmp_path) -> Non
     assert isinstance(d, rtw.DesignSearch)
     assert _rows(d.evaluations) == _rows(pq.read_table(cli / "search.parquet"))
     assert _rows(d.designs) == _rows(pq.read_table(cli / "designs.parquet"))
+    assert _rows(d.archive) == _rows(pq.read_table(cli / "archive.parquet"))
     assert d.summary == (cli / "search.md").read_text()
     assert d.runs == sum(d.evaluations.column("runs").to_pylist()) >= 300
     assert calls, "no progress reported"

@@ -243,11 +243,12 @@ enum Command {
         phi_min (the shallowest stable slope, minimised), speed (at speed_phi) or mfpt (the mean first-passage \
         time at mfpt_phi on a rough slope of robustness.sigma, set with --set). Each candidate is judged by its \
         slope profile (as `profile`); a design with no stable slope falls, and the search learns where designs \
-        fall and draws again there rather than scoring a fall. Candidates come from CMA-ES (method = \"cmaes\") \
-        or, as the baseline, a Sobol sequence (method = \"sobol\"); two objectives give a Pareto front. Writes \
-        OUT/search.parquet (every evaluation, after each generation: an interrupted search resumes with the same \
-        command), OUT/designs.parquet (the reported designs, each profiled again on the fine grid, phi_lo and \
-        phi_hi their widest stable interval) and OUT/search.md. The model: the config's [simulation] table, then --variant and --set.",
+        fall and draws again there rather than scoring a fall. Candidates come from CMA-ES (method = \"cmaes\"), \
+        from a MAP-Elites archive (method = \"archive\") or, as the baseline, a Sobol sequence (method = \"sobol\"); \
+        two objectives give a Pareto front. Writes OUT/search.parquet (every evaluation, after each generation: an \
+        interrupted search resumes with the same command), OUT/designs.parquet (the reported designs, each profiled \
+        again on the fine grid, phi_lo and phi_hi their widest stable interval), OUT/archive.parquet (the best \
+        design of each cell: where it works × how much of it walks) and OUT/search.md. The model: the config's [simulation] table, then --variant and --set.",
         after_help = EXIT_CODES
     )]
     Design(DesignArgs),

@@ -93,6 +93,11 @@ pub(crate) fn outputs() -> Vec<ParquetOutput> {
             row: "one reported design, profiled again on the fine grid",
             schema: crate::search::files::designs_schema(),
         },
+        ParquetOutput {
+            files: "`DIR/archive.parquet` (`design CONFIG --out DIR`)",
+            row: "one elite of the search's archive: the best design of its cell",
+            schema: crate::search::files::archive_schema(),
+        },
     ]
 }
 

@@ -561,7 +561,8 @@ def design(
 
     ``rtw.design("configs/design/widest.toml", out="runs/design/widest")``:
     searches the config's box of designs for those that maximise its
-    objectives (``slope_range``, ``phi_min``, ``speed``), each candidate
+    objectives (``slope_range``, ``phi_min``, ``speed``, ``mfpt``) by the
+    config's ``method`` (``cmaes``, ``archive`` or ``sobol``), each candidate
     judged by its slope profile, falls learned as a constraint
     (docs/design.md).
 
@@ -580,7 +581,7 @@ def design(
 
     Returns:
         A :class:`DesignSearch`: ``summary`` (Markdown), ``runs``,
-        ``evaluations`` and ``designs`` (``pyarrow.Table``).
+        ``evaluations``, ``designs`` and ``archive`` (``pyarrow.Table``).
 
     Raises:
         ValueError: a config key, option or setting is invalid (named with

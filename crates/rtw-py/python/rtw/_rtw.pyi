@@ -123,6 +123,7 @@ class DesignSearch:
     runs: int
     evaluations: pyarrow.Table
     designs: pyarrow.Table
+    archive: pyarrow.Table
     def to_dict(self) -> dict[str, Any]: ...
 
 def simulate(

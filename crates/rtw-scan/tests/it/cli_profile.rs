@@ -344,8 +344,9 @@ fn design_config(dir: &std::path::Path, name: &str, extra: &str) -> String {
 fn search_settings(
     dir: &std::path::Path,
     name: &str,
+    extra: &str,
 ) -> (rtw_studies::search::SearchSettings, rtw_model::Options) {
-    let cfg = design_config(dir, name, "");
+    let cfg = design_config(dir, name, extra);
     let settings = rtw_studies::search::SearchSettings::read(std::path::Path::new(&cfg)).unwrap();
     (settings, rtw_model::Options::default())
 }
@@ -370,11 +371,52 @@ impl rtw_engine::scan::Progress for StopAfter<'_> {
 
 #[test]
 fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() {
+    stopped_and_resumed("");
+}
+
+#[test]
+fn a_stopped_archive_search_resumes_to_the_uninterrupted_result_and_its_archive() {
+    let dir = stopped_and_resumed("method = \"archive\"");
+    // Each elite is the best-scoring design of its cell among every
+    // evaluation, and the cells are those its descriptors give.
+    let archive = rows(&dir.path().join("part/archive.parquet"));
+    let search = rows(&dir.path().join("part/search.parquet"));
+    assert!(archive.len() >= 3, "{} elites", archive.len());
+    let num = |row: &[String], k: &str| field(row, k).parse::<f64>().unwrap();
+    let cell = |row: &[String]| {
+        let mid = 0.5 * (num(row, "phi_lo") + num(row, "phi_hi"));
+        let bin = |t: f64, n: f64| ((t.clamp(0.0, 1.0) * n) as i64).min(n as i64 - 1);
+        (
+            bin((mid - 0.05) / 0.25, 8.0),
+            bin(num(row, "walk_share"), 4.0),
+        )
+    };
+    for elite in &archive {
+        let c = (
+            num(elite, "cell_slope") as i64,
+            num(elite, "cell_walk") as i64,
+        );
+        assert_eq!(cell(elite), c);
+        for row in search.iter().filter(|r| field(r, "feasible") == "true") {
+            if cell(row) == c {
+                assert!(
+                    num(row, "score") <= num(elite, "score"),
+                    "{row:?} beats {elite:?}"
+                );
+            }
+        }
+    }
+}
+
+/// A search of the small config with `extra` keys, stopped after a dozen
+/// designs and resumed, against the same search uninterrupted; the
+/// folder (`part/`: stopped and resumed; `whole/`).
+fn stopped_and_resumed(extra: &str) -> tempfile::TempDir {
     use rtw_engine::scan::Run;
     use rtw_studies::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
-    let (settings, options) = search_settings(dir.path(), "resume");
+    let (settings, options) = search_settings(dir.path(), "resume", extra);
     let quiet = rtw_engine::scan::progress::Silent;
     let never = AtomicBool::new(false);
     let whole = dir.path().join("whole");
@@ -420,6 +462,11 @@ fn a_stopped_search_keeps_its_designs_and_resumes_to_the_uninterrupted_result() 
         rows(&files::designs_path(&part)),
         rows(&files::designs_path(&whole))
     );
+    assert_eq!(
+        rows(&files::archive_path(&part)),
+        rows(&files::archive_path(&whole))
+    );
+    dir
 }
 
 /// A stored search made by another build is not resumed: its evaluations
@@ -432,7 +479,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     use rtw_studies::search::files;
     use std::sync::atomic::AtomicBool;
     let dir = tempfile::tempdir().unwrap();
-    let (settings, options) = search_settings(dir.path(), "build");
+    let (settings, options) = search_settings(dir.path(), "build", "");
     let out = dir.path().join("out");
     let cancel = AtomicBool::new(false);
     let stop = StopAfter {
@@ -529,9 +576,13 @@ fn the_learned_fall_constraint_draws_fewer_designs_that_fall_than_sobol_designs(
             .count() as f64
             / r.len() as f64
     };
-    let (cmaes, sobol) = (share("cmaes"), share("sobol"));
+    let (cmaes, sobol, archive) = (share("cmaes"), share("sobol"), share("archive"));
     assert!(sobol > 0.3, "Sobol designs that fall: {sobol}");
     assert!(cmaes < 0.5 * sobol, "CMA-ES {cmaes} against Sobol {sobol}");
+    assert!(
+        archive < 0.5 * sobol,
+        "archive {archive} against Sobol {sobol}"
+    );
 }
 
 #[test]

@@ -47,9 +47,10 @@ fn design_runs(s: &SearchSettings, grid: f64) -> Result<u64> {
     Ok(coarse + s.speed_phi.is_some() as u64 + s.mfpt_phi.is_some() as u64)
 }
 
-/// The sub-searches the budget is shared by.
-fn rounds(s: &SearchSettings) -> u64 {
-    if s.method == Method::Cmaes {
+/// The sub-searches the budget is shared by: one per weight, but one
+/// for the Sobol sequence, which has nothing to weigh.
+pub(super) fn rounds(s: &SearchSettings) -> u64 {
+    if s.method != Method::Sobol {
         s.weights
     } else {
         1

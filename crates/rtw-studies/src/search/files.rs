@@ -6,13 +6,19 @@
 //! - `designs.parquet`: the reported designs (the front, or the best), each
 //!   with the widest stable interval of its profile made again on the fine
 //!   grid (`phi_lo`, `phi_hi`), beside what the search found;
+//! - `archive.parquet`: the archive (`archive.rs`), one row per elite: its
+//!   sub-search, its cell, and its evaluation;
 //! - `search.md`: the summary.
 //!
-//! The three appear together at the end; an earlier `search.parquet` of
+//! Their columns are `columns.rs`'s.
+//!
+//! The four appear together at the end; an earlier `search.parquet` of
 //! other settings is refused unless `force`.
 
+pub use super::columns::{archive_batch, reported_batch, search_batch};
+pub(crate) use super::columns::{archive_schema, designs_schema, search_schema};
+use super::summary::HEADING;
 pub use super::summary::markdown;
-use super::summary::{HEADING, width};
 use super::{Evaluation, Reported, Search, SearchSettings};
 use anyhow::{Context, Result, bail};
 use arrow_array::RecordBatch;
@@ -24,7 +30,6 @@ use rtw_engine::io::metadata::{
     kv,
 };
 use rtw_engine::io::parquet;
-use rtw_engine::io::table::{self, Column, Get, column};
 use rtw_engine::scan::Run;
 use rtw_engine::scan::lock::Lock;
 use rtw_model::Options;
@@ -41,298 +46,9 @@ pub fn designs_path(out: &Path) -> PathBuf {
     out.join("designs.parquet")
 }
 
-/// A row of either file: an evaluation, the rod length, and (reported
-/// designs) what the search had found.
-struct Line {
-    e: Evaluation,
-    /// The gait the search is of (`None`: any stable gait).
-    gait: Option<rtw_model::Label>,
-    length: f64,
-    found: Option<Evaluation>,
-    checked: Option<super::check::Checked>,
-}
-
-fn design_columns() -> Vec<Column<Line>> {
-    vec![
-        column(
-            "index",
-            false,
-            "1",
-            "the design's place in the order of evaluation",
-            Get::I64(|r| Some(r.e.index as i64)),
-        ),
-        column(
-            "length",
-            false,
-            "m",
-            "rod length L (fixed)",
-            Get::F64(|r| Some(r.length)),
-        ),
-        column(
-            "rho",
-            false,
-            "kg/m",
-            "mass per length ρ of a rod",
-            Get::F64(|r| Some(r.e.design[0])),
-        ),
-        column(
-            "alpha",
-            false,
-            "1",
-            "connection ratio α",
-            Get::F64(|r| Some(r.e.design[1])),
-        ),
-        column(
-            "fn",
-            false,
-            "Hz",
-            "design eigen-frequency f_n",
-            Get::F64(|r| Some(r.e.design[2])),
-        ),
-        column(
-            "zeta",
-            false,
-            "1",
-            "damping ratio ζ",
-            Get::F64(|r| Some(r.e.design[3])),
-        ),
-        column(
-            "feasible",
-            false,
-            "-",
-            "whether every objective is defined (it does not fall)",
-            Get::Bool(|r| Some(r.e.feasible())),
-        ),
-        column(
-            "infeasible",
-            true,
-            "-",
-            "why not: no stable slope (of the gait) in the range, or not that gait at speed_phi",
-            Get::Str(|r| r.e.infeasible.as_deref()),
-        ),
-        column(
-            "phi_lo",
-            true,
-            "rad",
-            "the widest interval of stable slopes (of the gait, if the config names one): its lowest \
-             simulated slope; in designs.parquet, the widest run of directly checked slopes with no \
-             failure in the fine profile's interval",
-            Get::F64(|r| r.e.phi_lo),
-        ),
-        column(
-            "phi_hi",
-            true,
-            "rad",
-            "its highest simulated slope",
-            Get::F64(|r| r.e.phi_hi),
-        ),
-        column(
-            "slope_range",
-            true,
-            "rad",
-            "phi_hi − phi_lo",
-            Get::F64(|r| width(&r.e)),
-        ),
-        column(
-            "phi_min",
-            true,
-            "rad",
-            "the shallowest stable slope (of the gait)",
-            Get::F64(|r| r.e.phi_min),
-        ),
-        column(
-            "label_at_speed_phi",
-            true,
-            "-",
-            "the gait at speed_phi (objective speed)",
-            Get::Str(|r| r.e.label_at_speed_phi.map(|l| l.as_str())),
-        ),
-        column(
-            "speed",
-            true,
-            "m/s",
-            "mean downhill speed at speed_phi",
-            Get::F64(|r| r.e.speed),
-        ),
-        column(
-            "label_at_mfpt_phi",
-            true,
-            "-",
-            "the gait at mfpt_phi (objective mfpt)",
-            Get::Str(|r| r.e.label_at_mfpt_phi.map(|l| l.as_str())),
-        ),
-        column(
-            "mfpt",
-            true,
-            "1",
-            "mean first-passage time (expected steps to fall) at mfpt_phi on a rough slope of \
-             robustness.sigma (docs/robustness.md)",
-            Get::F64(|r| r.e.mfpt),
-        ),
-        column(
-            "runs",
-            false,
-            "1",
-            "simulations spent on the design",
-            Get::I64(|r| Some(r.e.runs as i64)),
-        ),
-    ]
-}
-
-fn search_columns() -> Vec<Column<Line>> {
-    let mut c = design_columns();
-    c.splice(
-        1..1,
-        [
-            column(
-                "round",
-                false,
-                "1",
-                "the sub-search (weight) of a two-objective search",
-                Get::I64(|r: &Line| Some(r.e.round as i64)),
-            ),
-            column(
-                "generation",
-                false,
-                "1",
-                "the generation within its sub-search",
-                Get::I64(|r: &Line| Some(r.e.generation as i64)),
-            ),
-        ],
-    );
-    c.push(column(
-        "p_fall",
-        true,
-        "1",
-        "the learned probability that the design falls, when it was drawn (cmaes)",
-        Get::F64(|r| r.e.p_fall),
-    ));
-    c.push(column("score", true, "1", "the value its sub-search maximised (normalised objective, or the weighted Chebyshev scalarisation)", Get::F64(|r| r.e.score)));
-    c
-}
-
-fn reported_columns() -> Vec<Column<Line>> {
-    let mut c = design_columns();
-    c.extend([
-        column(
-            "found_phi_lo",
-            true,
-            "rad",
-            "phi_lo of the search's own (coarser) profile",
-            Get::F64(|r: &Line| r.found.as_ref()?.phi_lo),
-        ),
-        column(
-            "found_phi_hi",
-            true,
-            "rad",
-            "phi_hi of the search's own profile",
-            Get::F64(|r: &Line| r.found.as_ref()?.phi_hi),
-        ),
-        column(
-            "found_slope_range",
-            true,
-            "rad",
-            "slope_range of the search's own profile",
-            Get::F64(|r: &Line| width(r.found.as_ref()?)),
-        ),
-        column(
-            "profile_phi_lo",
-            true,
-            "rad",
-            "the fine profile's widest interval (of the gait), before the direct check",
-            Get::F64(|r: &Line| Some(r.checked?.profile.0)),
-        ),
-        column(
-            "profile_phi_hi",
-            true,
-            "rad",
-            "its upper end",
-            Get::F64(|r: &Line| Some(r.checked?.profile.1)),
-        ),
-        column(
-            "checked_slopes",
-            true,
-            "1",
-            "slopes of the fine profile's interval simulated directly (201 across it and every \
-             multiple of 0.005 inside it)",
-            Get::I64(|r: &Line| Some(r.checked?.slopes as i64)),
-        ),
-        column(
-            "checked_failures",
-            true,
-            "1",
-            "of them, not stable (for a search of one gait: not that gait): isolated failing \
-             slopes the profile's grid did not resolve",
-            Get::I64(|r: &Line| Some(r.checked?.failures as i64)),
-        ),
-        column(
-            "gait",
-            false,
-            "-",
-            "the gait phi_lo..phi_hi was checked for at every checked slope (\"any\": any \
-             stable gait)",
-            Get::Str(|r: &Line| Some(r.gait.map_or("any", |g| g.as_str()))),
-        ),
-        column(
-            "phi_lo_end",
-            true,
-            "-",
-            "how the interval ends at phi_lo: \"sharp\" (no slope below it holds the gait, \
-             checked or profiled) or \"interleaved\" (some do, between failures)",
-            Get::Str(|r: &Line| Some(r.checked?.ends().0)),
-        ),
-        column(
-            "phi_hi_end",
-            true,
-            "-",
-            "how it ends at phi_hi: \"sharp\" or \"interleaved\"",
-            Get::Str(|r: &Line| Some(r.checked?.ends().1)),
-        ),
-    ]);
-    c
-}
-
-/// `search.parquet`'s schema.
-pub(crate) fn search_schema() -> arrow_schema::SchemaRef {
-    table::schema(&search_columns())
-}
-
-/// `designs.parquet`'s schema.
-pub(crate) fn designs_schema() -> arrow_schema::SchemaRef {
-    table::schema(&reported_columns())
-}
-
-/// Every evaluation as a table: the columns of `search.parquet`
-/// (docs/results-other-commands.md).
-pub fn search_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
-    let rows: Vec<Line> = evals
-        .iter()
-        .map(|e| Line {
-            e: e.clone(),
-            gait: s.gait,
-            length: s.length,
-            found: None,
-            checked: None,
-        })
-        .collect();
-    let cols = search_columns();
-    table::batch(&cols, table::schema(&cols), &rows)
-}
-
-/// The reported designs as a table: the columns of `designs.parquet`.
-pub fn reported_batch(s: &SearchSettings, reported: &[Reported]) -> RecordBatch {
-    let rows: Vec<Line> = reported
-        .iter()
-        .map(|r| Line {
-            e: r.verified.clone(),
-            gait: s.gait,
-            length: s.length,
-            found: Some(r.found.clone()),
-            checked: r.checked,
-        })
-        .collect();
-    let cols = reported_columns();
-    table::batch(&cols, table::schema(&cols), &rows)
+/// The archive's file in `out`.
+pub fn archive_path(out: &Path) -> PathBuf {
+    out.join("archive.parquet")
 }
 
 /// The search's identity as JSON ([`META_DESIGN`]): its settings and options.
@@ -447,7 +163,7 @@ fn evaluations_of(s: &SearchSettings, b: &RecordBatch) -> Result<Vec<Evaluation>
     let (rho, alpha, f_n, zeta) = (rho?, alpha?, f_n?, zeta?);
     let (phi_lo, phi_hi, phi_min, speed) = (f("phi_lo")?, f("phi_hi")?, f("phi_min")?, f("speed")?);
     let mfpt = f("mfpt")?;
-    let (p_fall, score) = (f("p_fall")?, f("score")?);
+    let (p_fall, score, walk_share) = (f("p_fall")?, f("score")?, f("walk_share")?);
     let (infeasible, labels) = (text("infeasible")?, text("label_at_speed_phi")?);
     let mfpt_labels = text("label_at_mfpt_phi")?;
     let parse = |l: &Option<String>| -> Result<Option<rtw_model::Label>> {
@@ -468,6 +184,7 @@ fn evaluations_of(s: &SearchSettings, b: &RecordBatch) -> Result<Vec<Evaluation>
                 phi_lo: phi_lo[k],
                 phi_hi: phi_hi[k],
                 phi_min: phi_min[k],
+                walk_share: walk_share[k],
                 label_at_speed_phi: label,
                 speed: speed[k],
                 label_at_mfpt_phi: parse(&mfpt_labels[k])?,
@@ -493,12 +210,17 @@ pub fn check_outputs(out: &Path, force: bool) -> Result<()> {
         Output {
             path: main.clone(),
             flag: "--out",
-            schema: table::schema(&search_columns()),
+            schema: search_schema(),
         },
         Output {
             path: designs_path(out),
             flag: "--out",
-            schema: table::schema(&reported_columns()),
+            schema: designs_schema(),
+        },
+        Output {
+            path: archive_path(out),
+            flag: "--out",
+            schema: archive_schema(),
         },
     ];
     destination::check_outputs(
@@ -513,7 +235,7 @@ pub fn check_outputs(out: &Path, force: bool) -> Result<()> {
 
 /// The search of `s` into `out` ([`super::run`], then [`super::report`]):
 /// the outputs checked first, an earlier run of the same settings resumed,
-/// the evaluations written after each generation, and the three files
+/// the evaluations written after each generation, and the four files
 /// together at the end.
 pub fn run_to_files(
     s: &SearchSettings,
@@ -561,6 +283,12 @@ pub fn run_to_files(
         &mut set,
         &designs_path(out),
         &reported_batch(s, &reported),
+        metadata(s, options, wall)?,
+    )?;
+    parquet::add_file(
+        &mut set,
+        &archive_path(out),
+        &archive_batch(s, &search.evaluations),
         metadata(s, options, wall)?,
     )?;
     set.add_bytes(

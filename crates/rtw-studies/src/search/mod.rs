@@ -23,9 +23,11 @@
 //! and the earlier evaluations only, so a search resumed from its stored
 //! evaluations replays them and goes on exactly as the uninterrupted one.
 
+pub mod archive;
 pub mod budget;
 pub mod check;
 mod cmaes;
+mod columns;
 mod fall_model;
 pub mod files;
 mod identity;
@@ -76,6 +78,8 @@ pub struct Evaluation {
     pub phi_hi: Option<f64>,
     /// The shallowest stable slope (of the gait, if one is asked for).
     pub phi_min: Option<f64>,
+    /// The share of its stable slopes that walk ([`archive::walk_share`]).
+    pub walk_share: Option<f64>,
     /// The label at `speed_phi` (objective `speed`).
     pub label_at_speed_phi: Option<Label>,
     /// The speed there (m/s).
@@ -274,6 +278,7 @@ fn judge(
         phi_lo: widest.map(|w| w.0),
         phi_hi: widest.map(|w| w.1),
         phi_min: iv.first().map(|i| i.0),
+        walk_share: archive::walk_share(p.segments.iter().map(|g| (g.label, g.lo, g.hi))),
         label_at_speed_phi: at_speed.map(|a| a.0),
         speed: at_speed.and_then(|a| a.1),
         label_at_mfpt_phi: at_mfpt.map(|a| a.0),
@@ -369,11 +374,7 @@ pub fn run(
     let pool = worker_pool(threads)?;
     let earlier: BTreeMap<u64, &Evaluation> = earlier.iter().map(|e| (e.index, e)).collect();
     let mut said = Some(said);
-    let rounds = if s.method == Method::Cmaes {
-        s.weights
-    } else {
-        1
-    };
+    let rounds = budget::rounds(s);
     let mut evaluations: Vec<Evaluation> = Vec::new();
     let mut spent = 0u64;
     for round in 0..rounds {
@@ -593,6 +594,7 @@ mod tests {
             phi_lo: None,
             phi_hi: None,
             phi_min: None,
+            walk_share: None,
             label_at_speed_phi: None,
             speed: None,
             label_at_mfpt_phi: None,

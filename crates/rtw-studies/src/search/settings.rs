@@ -66,12 +66,18 @@ pub enum Method {
     /// The designs of a scrambled Sobol sequence in the box, in order: the
     /// baseline a search must beat at equal cost.
     Sobol,
+    /// MAP-Elites over the archive's cells (where the design works, how
+    /// much of it walks), its variation with the learned fall constraint.
+    Archive,
 }
 
 impl Method {
     /// Each method by its name in a config.
-    pub const NAMES: [(&'static str, Method); 2] =
-        [("cmaes", Method::Cmaes), ("sobol", Method::Sobol)];
+    pub const NAMES: [(&'static str, Method); 3] = [
+        ("cmaes", Method::Cmaes),
+        ("sobol", Method::Sobol),
+        ("archive", Method::Archive),
+    ];
 }
 
 /// The design inputs a search varies, in the order of its unit box.
@@ -488,7 +494,7 @@ to = 0.4
             (
                 "seed = 1",
                 "seed = 1\nmethod = \"grid\"",
-                "method: \"grid\" is invalid: must be one of \"cmaes\", \"sobol\"",
+                "method: \"grid\" is invalid: must be one of \"cmaes\", \"sobol\", \"archive\"",
             ),
             (
                 "seed = 1",

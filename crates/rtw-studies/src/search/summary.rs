@@ -27,6 +27,7 @@ pub fn markdown(search: &Search, reported: &[Reported]) -> String {
     let method = match s.method {
         Method::Cmaes => "CMA-ES with the learned fall constraint",
         Method::Sobol => "Sobol designs (baseline)",
+        Method::Archive => "MAP-Elites archive with the learned fall constraint",
     };
     let _ = writeln!(
         m,
@@ -43,12 +44,21 @@ pub fn markdown(search: &Search, reported: &[Reported]) -> String {
     let falls = search.evaluations.iter().filter(|e| !e.feasible()).count();
     let _ = writeln!(
         m,
-        "- {} designs evaluated in {} simulations (budget {}); {} infeasible ({:.1} %)\n",
+        "- {} designs evaluated in {} simulations (budget {}); {} infeasible ({:.1} %)",
         search.evaluations.len(),
         search.runs(),
         s.budget,
         falls,
         100.0 * falls as f64 / search.evaluations.len().max(1) as f64
+    );
+    let (coverage, qd) = super::archive::coverage_and_qd(s, &search.evaluations);
+    let _ = writeln!(
+        m,
+        "- archive (`archive.parquet`): {:.0} % of its {} × {} cells filled (the widest \
+         interval's middle slope × the share that walks), QD-score {qd:.3}\n",
+        100.0 * coverage,
+        super::archive::SLOPE_BINS,
+        super::archive::WALK_BINS,
     );
     if !reported.is_empty() {
         let _ = writeln!(m, "{}\n", order(search, reported));
@@ -159,6 +169,7 @@ mod tests {
             phi_lo: Some(lo),
             phi_hi: Some(hi),
             phi_min: Some(lo),
+            walk_share: None,
             label_at_speed_phi: None,
             speed: None,
             label_at_mfpt_phi: None,
