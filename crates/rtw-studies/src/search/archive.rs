@@ -15,7 +15,7 @@
 //! higher than the elite there (ties keep the elite); a design that falls
 //! has no descriptors and enters no cell. Every search has an archive, of
 //! the designs it evaluated whatever drew them; `method = "archive"` also
-//! draws from it ([`super::propose`]), which is what makes it a MAP-Elites
+//! draws from it (`propose.rs`), which is what makes it a MAP-Elites
 //! search.
 
 use super::{Evaluation, SearchSettings};

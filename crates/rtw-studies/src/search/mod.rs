@@ -78,7 +78,8 @@ pub struct Evaluation {
     pub phi_hi: Option<f64>,
     /// The shallowest stable slope (of the gait, if one is asked for).
     pub phi_min: Option<f64>,
-    /// The share of its stable slopes that walk ([`archive::walk_share`]).
+    /// The share of its stable slopes (by length) that walk: the archive's
+    /// second descriptor (`archive.rs`).
     pub walk_share: Option<f64>,
     /// The label at `speed_phi` (objective `speed`).
     pub label_at_speed_phi: Option<Label>,
