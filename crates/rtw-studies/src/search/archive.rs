@@ -105,8 +105,8 @@ impl Elites {
 }
 
 /// The archive of a finished search: per sub-search (round), each cell's
-/// elite by its place in the order of evaluation.
-pub fn of(s: &SearchSettings, evaluations: &[Evaluation]) -> BTreeMap<(u64, Cell), u64> {
+/// elite by its place in the order of evaluation, with its score.
+pub fn of(s: &SearchSettings, evaluations: &[Evaluation]) -> BTreeMap<(u64, Cell), (u64, f64)> {
     let mut rounds: BTreeMap<u64, Elites> = BTreeMap::new();
     for e in evaluations {
         if let (Some(c), Some(score)) = (cell(s, e), e.score) {
@@ -121,7 +121,7 @@ pub fn of(s: &SearchSettings, evaluations: &[Evaluation]) -> BTreeMap<(u64, Cell
         .flat_map(|(round, el)| {
             el.cells
                 .into_iter()
-                .map(move |(c, (_, index, _))| ((round, c), index))
+                .map(move |(c, (score, index, _))| ((round, c), (index, score)))
         })
         .collect()
 }
@@ -131,17 +131,13 @@ pub fn of(s: &SearchSettings, evaluations: &[Evaluation]) -> BTreeMap<(u64, Cell
 /// the elites' scores (each a normalised objective, ≥ 0 for one).
 pub fn coverage_and_qd(s: &SearchSettings, evaluations: &[Evaluation]) -> (f64, f64) {
     let archive = of(s, evaluations);
-    let score: BTreeMap<u64, f64> = evaluations
-        .iter()
-        .filter_map(|e| Some((e.index, e.score?)))
-        .collect();
     let rounds = evaluations
         .iter()
         .map(|e| e.round)
         .max()
         .map_or(1, |r| r + 1);
     let cells = (SLOPE_BINS * WALK_BINS) as f64 * rounds as f64;
-    let qd = archive.values().map(|i| score[i]).sum();
+    let qd = archive.values().map(|(_, score)| score).sum();
     (archive.len() as f64 / cells, qd)
 }
 

@@ -20,6 +20,21 @@ struct Line {
     cell: Option<super::archive::Cell>,
 }
 
+impl Line {
+    /// The row of evaluation `e` of the search of `s`, with nothing found,
+    /// checked or placed in a cell.
+    fn of(s: &SearchSettings, e: &Evaluation) -> Line {
+        Line {
+            e: e.clone(),
+            gait: s.gait,
+            length: s.length,
+            found: None,
+            checked: None,
+            cell: None,
+        }
+    }
+}
+
 fn design_columns() -> Vec<Column<Line>> {
     vec![
         column(
@@ -333,17 +348,7 @@ pub(crate) fn designs_schema() -> arrow_schema::SchemaRef {
 /// Every evaluation as a table: the columns of `search.parquet`
 /// (docs/results-other-commands.md).
 pub fn search_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
-    let rows: Vec<Line> = evals
-        .iter()
-        .map(|e| Line {
-            e: e.clone(),
-            gait: s.gait,
-            length: s.length,
-            found: None,
-            checked: None,
-            cell: None,
-        })
-        .collect();
+    let rows: Vec<Line> = evals.iter().map(|e| Line::of(s, e)).collect();
     let cols = search_columns();
     table::batch(&cols, table::schema(&cols), &rows)
 }
@@ -355,13 +360,9 @@ pub fn archive_batch(s: &SearchSettings, evals: &[Evaluation]) -> RecordBatch {
         evals.iter().map(|e| (e.index, e)).collect();
     let rows: Vec<Line> = super::archive::of(s, evals)
         .into_iter()
-        .map(|((_, cell), index)| Line {
-            e: by_index[&index].clone(),
-            gait: s.gait,
-            length: s.length,
-            found: None,
-            checked: None,
+        .map(|((_, cell), (index, _))| Line {
             cell: Some(cell),
+            ..Line::of(s, by_index[&index])
         })
         .collect();
     let cols = archive_columns();
@@ -373,12 +374,9 @@ pub fn reported_batch(s: &SearchSettings, reported: &[Reported]) -> RecordBatch 
     let rows: Vec<Line> = reported
         .iter()
         .map(|r| Line {
-            e: r.verified.clone(),
-            gait: s.gait,
-            length: s.length,
             found: Some(r.found.clone()),
             checked: r.checked,
-            cell: None,
+            ..Line::of(s, &r.verified)
         })
         .collect();
     let cols = reported_columns();

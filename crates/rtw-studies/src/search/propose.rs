@@ -241,22 +241,30 @@ mod tests {
         }
     }
 
-    /// The best score, the archive's QD-score and the falls of `designs`
-    /// designs drawn by `method` in generations of the batch.
-    fn search(method: &str, avoid: f64, seed: u64, designs: u64) -> (f64, f64, usize) {
-        let s = settings(method, avoid, seed);
-        let mut p = Proposer::new(&s, 0);
-        let mut all = Vec::new();
+    /// Generations of the batch drawn by the search of `s` and judged on
+    /// the landscape until `designs` are: their points and evaluations.
+    fn drive(s: &SearchSettings, designs: u64) -> (Vec<Vec<f64>>, Vec<Evaluation>) {
+        let mut p = Proposer::new(s, 0);
+        let (mut points, mut all) = (Vec::new(), Vec::new());
         while (all.len() as u64) < designs {
             let us: Vec<Vec<f64>> = (0..s.batch).map(|_| p.propose(s.avoid).0).collect();
             let evals: Vec<Evaluation> = us
                 .iter()
                 .enumerate()
-                .map(|(k, u)| judged(&s, (all.len() + k) as u64, u))
+                .map(|(k, u)| judged(s, (all.len() + k) as u64, u))
                 .collect();
             p.tell(&us, &evals);
+            points.extend(us);
             all.extend(evals);
         }
+        (points, all)
+    }
+
+    /// The best score, the archive's QD-score and the falls of `designs`
+    /// designs drawn by `method` in generations of the batch.
+    fn search(method: &str, avoid: f64, seed: u64, designs: u64) -> (f64, f64, usize) {
+        let s = settings(method, avoid, seed);
+        let (_, all) = drive(&s, designs);
         let best = all.iter().filter_map(|e| e.score).fold(f64::MIN, f64::max);
         let (_, qd) = archive::coverage_and_qd(&s, &all);
         (best, qd, all.iter().filter(|e| !e.feasible()).count())
@@ -307,22 +315,8 @@ mod tests {
 
     #[test]
     fn an_archive_search_draws_the_same_designs_again_from_the_same_evaluations() {
-        let draw = || {
-            let s = settings("archive", 0.5, 7);
-            let mut p = Proposer::new(&s, 0);
-            let mut out = Vec::new();
-            for g in 0..6u64 {
-                let us: Vec<Vec<f64>> = (0..s.batch).map(|_| p.propose(s.avoid).0).collect();
-                let evals: Vec<Evaluation> = us
-                    .iter()
-                    .enumerate()
-                    .map(|(k, u)| judged(&s, g * s.batch + k as u64, u))
-                    .collect();
-                p.tell(&us, &evals);
-                out.extend(us);
-            }
-            out
-        };
+        let s = settings("archive", 0.5, 7);
+        let draw = || drive(&s, 6 * s.batch).0;
         let (a, b) = (draw(), draw());
         assert_eq!(a, b);
         // Past the Sobol start it varies its elites: not Sobol's points.
