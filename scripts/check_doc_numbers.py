@@ -215,6 +215,9 @@ MCOST = "results/robustness/mfpt_cost-robustness-map.txt"
 PCOST = "results/robustness/mfpt_cost.txt"
 BASIN = "results/robustness/basin_fig7a.txt"
 ATLAS = "results/design/atlas.md"
+FAMILIES = "results/design/families.md"
+DESIGN_BENCH = "results/design/bench.md"
+ATLAS_PAGE = "docs/design-atlas.md"
 CURVE = "results/robustness/step_down_curve.md"
 RB = "results/refine/summary.md"
 MAPS = "results/robustness/map/samples.parquet"
@@ -236,6 +239,14 @@ PTEN = "Paper: what sets the designs with no fall counted apart"
 PSEEDS = "Paper: over terrain seeds"
 # Where a results file prints a correlation or slope with its sign (`+0.06`).
 P = r"\+?" + N
+
+
+def fam(column: str, family: str, role: str) -> Cell:
+    return Cell(FAMILIES, "Winners", column, {"family": family, "role": role})
+
+
+def fam_apart(column: str, gait: str) -> Cell:
+    return Cell(FAMILIES, "What sets the families apart", f"{column}: median [IQR]", {"gait": gait})
 
 
 def scan_row(setting: str, cells: int) -> Rx:
@@ -500,19 +511,45 @@ PINS: list[Pin] = [
          Rx(RS, rf"trials fall for {N} of them", PAPER), Rx(RS, rf"^No fall was counted for {N} stable gaits", PAPER)]),
     Pin(ROB_STUDY, rf"At σ = 5 cm \(Fig\. 7\(a\): {N} \[119, 215\]",
         [Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "Fig. 7(a)"})]),
-    Pin("docs/design.md", rf"the `robust` search found at that slope \(a walker, α {N} and f_n {N} Hz\)",
+    Pin("docs/design-atlas.md", rf"the `robust` search found at that slope \(a walker, α {N} and f_n {N} Hz\)",
         [Cell(ATLAS, "Winners", "α", {"role": "robust-1"}), Cell(ATLAS, "Winners", "f_n", {"role": "robust-1"})]),
-    Pin("docs/design.md", rf"design before it falls \({N} against {N}\); the widest-walk winner, searched for its "
+    Pin("docs/design-atlas.md", rf"design before it falls \({N} against {N}\); the widest-walk winner, searched for its "
         rf"range, reaches {N}\.",
         [Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "robust-1"}),
          Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "Fig. 7(a)"}),
          Cell(ATLAS, "Winners", "MFPT at 0.15, σ 5 cm", {"role": "widest-walk-17"})]),
-    Pin("docs/design.md", rf"the robust winner gives {N} and {N}, the Fig\. 7\(a\) design {N} and {N}, and the "
+    Pin("docs/design-atlas.md", rf"the robust winner gives {N} and {N}, the Fig\. 7\(a\) design {N} and {N}, and the "
         rf"widest-walk winner {N} and {N}",
         [Cell(ATLAS, "Winners", "on fresh draws (seeds 100, 200)", {"role": role}, part=k)
          for role in ("robust-1", "Fig. 7(a)", "widest-walk-17") for k in (0, 1)]),
-    Pin("docs/design.md", rf"the robust winner as rounded there goes {N} steps at seed 0",
+    Pin("docs/design-atlas.md", rf"the robust winner as rounded there goes {N} steps at seed 0",
         [Rx(ATLAS, rf"the robust winner as rounded in the table: {N} steps at seed 0")]),
+    # The design searches against Sobol designs (scripts/design_bench.sh).
+    Pin("docs/design.md", rf"The archive's verified interval on `widest` \(\+{N}\) comes closest",
+        [Rx(DESIGN_BENCH, rf"^\| widest \| MAP-Elites archive, fall model \|(?: [^|]* \|){{5}} \+{N} \[")]),
+    Pin("docs/design.md", rf"on `widest-walk`, {N} % of Sobol's designs have no walking slope at all, against {N} % of "
+        rf"CMA-ES's and {N} % of the archive's",
+        [Cell(DESIGN_BENCH, "", "infeasible", {"config": "widest-walk", "method": m})
+         for m in ("Sobol designs (baseline)", "CMA-ES, fall model", "MAP-Elites archive, fall model")]),
+    # The gait families of the design atlas (scripts/design_atlas.sh).
+    Pin(ATLAS_PAGE, rf"median f_n of {N} Hz, against {N} Hz for its walks and {N} Hz for its skips, and at small α "
+        rf"\(median {N}\); no crawl winner has f_n above {N} Hz",
+        [fam_apart("fn", "crawl"), fam_apart("fn", "walk"), fam_apart("fn", "skip"), fam_apart("alpha", "crawl"),
+         Cell(FAMILIES, "Winners", "f_n", {"family": "crawl"}, agg="max")]),
+    Pin(ATLAS_PAGE, rf"the widest skipper \(α {N}, f_n {N} Hz\) skips on every checked slope from {N} to {N} rad; the "
+        rf"paper scan's skips have a median α of {N}\.",
+        [fam("α", "skip", "widest"), fam("f_n", "skip", "widest"), fam("phi_lo", "skip", "widest"),
+         fam("phi_hi", "skip", "widest"), fam_apart("alpha", "skip")]),
+    Pin(ATLAS_PAGE, rf"at median α {N}: the widest walker \(α {N}, f_n {N} Hz\) is softer than the widest skipper, "
+        rf"and walks from {N} to {N}\.",
+        [fam_apart("alpha", "walk"), fam("α", "walk", "widest"), fam("f_n", "walk", "widest"),
+         fam("phi_lo", "walk", "widest"), fam("phi_hi", "walk", "widest")]),
+    Pin(ATLAS_PAGE, rf"the fastest walker goes {N} m/s, the fastest skipper {N} and the fastest crawler {N}; on the 5 cm "
+        rf"rough slope the most robust walker goes {N} steps before it falls, the most robust skipper {N} and the "
+        rf"most robust crawler {N}:",
+        [*(fam("speed at 0.15", g, "fastest") for g in ("walk", "skip", "crawl")),
+         *(fam("MFPT at 0.15, σ 5 cm", g, "robust") for g in ("walk", "skip", "crawl"))]),
+    Pin(ATLAS_PAGE, rf"its shallowest skip is {N}\)", [fam("phi_min", "skip", "robust")]),
     # The survival curves of scripts/step_down_curve.py.
     Pin(ROB_STEP, rf"the crawl's `step_down_max`, {N} m, is a fifth of its `step_down_h50`",
         [Rx(CURVE, rf"^`step_down_max` {N} m \(the best phase\)", "crawl")]),

@@ -23,7 +23,9 @@
 - OUT/atlas.png and OUT/atlas.md: the front with Fig. 7(a), the winners'
   designs in the box, and the rank correlations of each input with the
   slope range and the shallowest slope over the Sobol designs of the widest
-  config (`widest-sobol`, a sample of the box that no search biased).
+  config (`widest-sobol`, a sample of the box that no search biased);
+- OUT/families.png and OUT/families.md: the gait families
+  (rtwscripts/families.py), each family's winners along φ with Fig. 7(a).
 
 Usage: .venv/bin/python scripts/design_atlas.py SEARCH OUT
 """
@@ -44,6 +46,7 @@ import numpy as np  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 from scipy.stats import spearmanr  # noqa: E402
 
+from rtwscripts import families  # noqa: E402
 from rtwscripts.labels import STABLE  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -71,6 +74,11 @@ def at_speed_phi(d: dict) -> tuple[str, float | None]:
     v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json"))
     stable = v["outcome"] in STABLE
     return v["outcome"], v.get("speed") if stable else None
+
+
+def label_at(d: dict, phi: float) -> str:
+    """The design's gait (or failure) at slope `phi`, simulated directly."""
+    return json.loads(cli("simulate", *flags(d), "--phi", repr(float(phi)), "--json"))["outcome"]
 
 
 # The searches judge the MFPT on the rough slope of terrain.seed 0. The
@@ -118,7 +126,7 @@ def main() -> None:
                          "length": r["length"], **{k: r[k] for k in INPUTS}, "phi_lo": r["phi_lo"],
                          "phi_hi": r["phi_hi"], "slope_range": r["slope_range"], "phi_min": r["phi_min"],
                          "checked_slopes": r["checked_slopes"], "checked_failures": r["checked_failures"],
-                         "ends": ends(r),
+                         "ends": ends(r), "gait": r["gait"],
                          "label_at_0.15": label, "speed_at_0.15": speed})
         # The reported designs as rtw-scan wrote them (each interval checked
         # by direct simulation in the library, search::check).
@@ -270,6 +278,77 @@ def main() -> None:
     for k, r1, p1, r2, p2, _ in corr:
         md.append(f"| {k} | {r1:+.2f} | {p1:.1e} | {r2:+.2f} | {p2:.1e} |")
     (out / "atlas.md").write_text("\n".join(md) + "\n")
+    print("\n".join(md))
+    gait_families(search, out, fig7a)
+
+
+def gait_families(search: Path, out: Path, fig7a: dict) -> None:
+    """OUT/families.md and families.png: each gait family's winners
+    (rtwscripts.families), their profiles on one slope axis with Fig. 7(a)'s."""
+    fam = families.winners(search, out, at_speed_phi, label_at, mfpt_at_speed_phi, FRESH_SEEDS)
+    strips = []
+    for row in fam + [{"family": "Fig. 7(a)", "role": "", "search": "fig7a", "design": fig7a}]:
+        d = row["design"]
+        if d is None:
+            continue
+        path = ROOT / f"runs/design/families/profile-{row['search']}.parquet"
+        profile(d, path, families.SPAN)
+        t = pq.read_table(path, columns=["phi", "outcome"]).sort_by("phi").to_pydict()
+        interval = (d["phi_lo"], d["phi_hi"])
+        label = "Fig. 7(a)" if row["search"] == "fig7a" else f"{row['family']}: {row['role']}"
+        strips.append((label, {"phi": t["phi"], "outcome": t["outcome"], "interval": interval, "gait": d["gait"]}))
+
+    fig, (a, b) = plt.subplots(1, 2, figsize=(13, 5.6), gridspec_kw={"width_ratios": [1.6, 1]})
+    families.strips(a, strips)
+    a.set_title("Each family's winners along φ (box: the interval checked for the gait; dashed: for any gait)", fontsize=10)
+    families.scatter(b, ROOT / "results/paper/samples.parquet", fam, fig7a)
+    b.set_title("The winners on the paper scan's samples of each gait (dots)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out / "families.png", dpi=110)
+
+    def f(v, d=4):
+        return "–" if v is None else f"{v:.{d}f}"
+
+    fresh = ", ".join(map(str, FRESH_SEEDS))
+    md = ["# Gait families (default model, L = 0.8 m)\n",
+          "`./scripts/design_atlas.sh`: for each gait, the searches `widest`, `shallowest`, `fastest` and "
+          "`robust` of `configs/design/` run again with `gait = \"GAIT\"` (`runs/design/families/GAIT-ROLE.toml`; "
+          "the walk's widest is `widest-walk`), each reported design's interval checked by direct simulation "
+          "for that gait (`results/design/designs-GAIT-ROLE.parquet`). Of each search's reported designs, the "
+          "winner: the widest checked interval, the shallowest slope of the gait, and, of those in the gait at "
+          "φ = 0.15 by `rtw-scan simulate`, the fastest there and the largest MFPT there (σ = 5 cm, the "
+          f"searches' ground terrain.seed 0; again on fresh draws, seeds {fresh}). The robust design at the "
+          "default roughness (σ = 1 cm) awaits an MFPT that reaches it (docs/robustness.md): at 1 cm most "
+          "stable gaits have no fall counted.\n",
+          "## Winners\n",
+          "| family | role | design | ρ | α | f_n | ζ | phi_lo | phi_hi | slope range | phi_min | gait at phi_min | "
+          "gait at 0.15 | "
+          f"speed at 0.15 | MFPT at 0.15, σ 5 cm | on fresh draws (seeds {fresh}) | "
+          "failures in the profile's interval | checked for; ends |",
+          "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---|"]
+    for row in fam:
+        r = row["design"]
+        if r is None:
+            md.append(f"| {row['family']} | {row['role']} | – | " + "– | " * 9
+                      + (f"none of {row['found']} reported in the gait at 0.15" if row["found"] else
+                         "no design in the gait found") + " | – | – | – | – | – |")
+            continue
+        md.append(f"| {row['family']} | {row['role']} | {r['from']} | {r['rho']:.3f} | {r['alpha']:.4f} | "
+                  f"{r['fn']:.3f} | {r['zeta']:.4f} | {f(r['phi_lo'])} | {f(r['phi_hi'])} | {f(r['slope_range'])} | "
+                  f"{f(r['phi_min'])} | {r['label_at_phi_min']} | {r['label_at_0.15']} | "
+                  f"{f(r['speed_at_0.15'], 3)} | "
+                  f"{f(r['mfpt_at_0.15'], 0)} | {', '.join(f(v, 0) for v in r['mfpt_fresh'])} | "
+                  f"{r['checked_failures']} of {r['checked_slopes']} | {ends(r)} |")
+    md += ["\n*design*: the search that reported it and its place there (best first by the search's own "
+           "profile); the fastest and the most robust are also sought among the designs of `front` and `robust` "
+           "(any gait) that are in the gait at φ = 0.15. *slope range*, *phi_min*: of the gait, on the fine profile; *phi_lo*, *phi_hi*: the widest "
+           "run of checked slopes in the gait.\n",
+           "## What sets the families apart\n",
+           "The paper scan's samples of each gait (`results/paper/samples.parquet`: designs drawn uniformly from "
+           "the article's box, each at a slope drawn from its range), their inputs' and slopes' medians and "
+           "interquartile ranges.\n",
+           *families.apart(ROOT / "results/paper/samples.parquet", INPUTS)]
+    (out / "families.md").write_text("\n".join(md) + "\n")
     print("\n".join(md))
 
 

@@ -14,11 +14,12 @@
 # A run whose folder holds the finished search of the same config is kept,
 # so a stopped benchmark goes on where it was.
 #   ./scripts/design_bench.sh [--analyse-only]
-#   (defaults: SEEDS=10 CONFIGS="widest" METHODS="cmaes sobol archive")
+#   (defaults: SEEDS=10 CONFIGS="widest widest-walk"
+#    METHODS="cmaes sobol archive archive-penalty"; about an hour on two idle cores)
 . "$(dirname "$0")/lib.sh"
 SEEDS=${SEEDS:-10}
-read -r -a CONFIGS <<< "${CONFIGS:-widest}"
-read -r -a METHODS <<< "${METHODS:-cmaes sobol archive}"
+read -r -a CONFIGS <<< "${CONFIGS:-widest widest-walk}"
+read -r -a METHODS <<< "${METHODS:-cmaes sobol archive archive-penalty}"
 if [[ "${1:-}" != "--analyse-only" ]]; then
   rtw_build
   mkdir -p runs/design-bench

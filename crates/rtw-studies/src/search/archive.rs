@@ -131,12 +131,9 @@ pub fn of(s: &SearchSettings, evaluations: &[Evaluation]) -> BTreeMap<(u64, Cell
 /// the elites' scores (each a normalised objective, ≥ 0 for one).
 pub fn coverage_and_qd(s: &SearchSettings, evaluations: &[Evaluation]) -> (f64, f64) {
     let archive = of(s, evaluations);
-    let rounds = evaluations
-        .iter()
-        .map(|e| e.round)
-        .max()
-        .map_or(1, |r| r + 1);
-    let cells = (SLOPE_BINS * WALK_BINS) as f64 * rounds as f64;
+    // Of every sub-search's archive, those not yet begun included: a search
+    // stopped before its last weight has not filled its cells.
+    let cells = (SLOPE_BINS * WALK_BINS) as f64 * super::budget::rounds(s) as f64;
     let qd = archive.values().map(|(_, score)| score).sum();
     (archive.len() as f64 / cells, qd)
 }
@@ -163,6 +160,40 @@ mod tests {
         assert_eq!(bin(0.25, 0.0, 1.0, 4), 1);
         assert_eq!(bin(1.0, 0.0, 1.0, 4), 3);
         assert_eq!(bin(-3.0, 0.0, 1.0, 4), 0);
+    }
+
+    #[test]
+    fn coverage_counts_the_cells_of_every_sub_search_begun_or_not() {
+        // Two weights; the search stopped in its first: one elite of the
+        // 2 × 32 cells the finished search would have.
+        let s = SearchSettings::parse(
+            "name = \"t\"\nseed = 1\nbudget = 100\nobjectives = [\"slope_range\", \"speed\"]\n\
+             speed_phi = 0.1\nweights = 2\n[box]\nrho = [1.0, 5.0]\nalpha = [0.0, 0.4]\n\
+             fn = [1.5, 5.0]\nzeta = [0.05, 0.1]\n[slopes]\nfrom = 0.0\nto = 0.4\n",
+        )
+        .unwrap();
+        let e = Evaluation {
+            index: 0,
+            round: 0,
+            generation: 0,
+            design: [2.0, 0.1, 3.0, 0.07],
+            p_fall: None,
+            runs: 40,
+            phi_lo: Some(0.1),
+            phi_hi: Some(0.2),
+            phi_min: Some(0.1),
+            walk_share: Some(1.0),
+            label_at_speed_phi: Some(Walk),
+            speed: Some(1.0),
+            label_at_mfpt_phi: None,
+            mfpt: None,
+            infeasible: None,
+            values: vec![0.1, 1.0],
+            score: Some(0.3),
+        };
+        let (coverage, qd) = coverage_and_qd(&s, &[e]);
+        assert_eq!(coverage, 1.0 / 64.0);
+        assert_eq!(qd, 0.3);
     }
 
     #[test]

@@ -128,35 +128,49 @@ impl Proposer {
 
     /// Learns a generation's evaluations (their unit-box places `us`).
     pub(super) fn tell(&mut self, us: &[Vec<f64>], evals: &[Evaluation]) {
-        if let Proposer::Archive(a) = self {
-            for (u, e) in us.iter().zip(evals) {
-                a.model.add(u.clone(), !e.feasible());
-                if let (Some(c), Some(score)) = (archive::cell(&a.settings, e), e.score) {
-                    a.elites.offer(c, score, e.index, u);
-                }
-            }
-        }
-        if let Proposer::Cmaes { es, rng, model } = self {
+        if let Some(model) = self.fall_model() {
             for (u, e) in us.iter().zip(evals) {
                 model.add(u.clone(), !e.feasible());
             }
-            let mut ranked: Vec<(f64, &Vec<f64>)> = us
-                .iter()
-                .zip(evals)
-                .filter_map(|(u, e)| e.score.map(|sc| (sc, u)))
-                .collect();
-            ranked.sort_by(|a, b| b.0.total_cmp(&a.0));
-            es.tell(
-                &ranked
-                    .into_iter()
-                    .map(|(_, u)| u.clone())
-                    .collect::<Vec<_>>(),
-            );
-            if es.sigma() < SIGMA_RESTART {
-                let n = us.first().map_or(0, Vec::len);
-                let mean: Vec<f64> = (0..n).map(|_| rng.random::<f64>()).collect();
-                **es = Cmaes::new(mean, SIGMA0, es.lambda);
+        }
+        match self {
+            Proposer::Archive(a) => {
+                for (u, e) in us.iter().zip(evals) {
+                    if let (Some(c), Some(score)) = (archive::cell(&a.settings, e), e.score) {
+                        a.elites.offer(c, score, e.index, u);
+                    }
+                }
             }
+            Proposer::Cmaes { es, rng, .. } => {
+                let mut ranked: Vec<(f64, &Vec<f64>)> = us
+                    .iter()
+                    .zip(evals)
+                    .filter_map(|(u, e)| e.score.map(|sc| (sc, u)))
+                    .collect();
+                ranked.sort_by(|a, b| b.0.total_cmp(&a.0));
+                es.tell(
+                    &ranked
+                        .into_iter()
+                        .map(|(_, u)| u.clone())
+                        .collect::<Vec<_>>(),
+                );
+                if es.sigma() < SIGMA_RESTART {
+                    let n = us.first().map_or(0, Vec::len);
+                    let mean: Vec<f64> = (0..n).map(|_| rng.random::<f64>()).collect();
+                    **es = Cmaes::new(mean, SIGMA0, es.lambda);
+                }
+            }
+            Proposer::Sobol(..) => {}
+        }
+    }
+
+    /// The learned fall constraint of a proposer that screens its
+    /// candidates (the Sobol sequence screens none).
+    fn fall_model(&mut self) -> Option<&mut FallModel> {
+        match self {
+            Proposer::Cmaes { model, .. } => Some(model),
+            Proposer::Archive(a) => Some(&mut a.model),
+            Proposer::Sobol(..) => None,
         }
     }
 }
