@@ -528,9 +528,16 @@ PINS: list[Pin] = [
     Pin("docs/design.md", rf"The archive's verified interval on `widest` \(\+{N}\) comes closest",
         [Rx(DESIGN_BENCH, rf"^\| widest \| MAP-Elites archive, fall model \|(?: [^|]* \|){{5}} \+{N} \[")]),
     Pin("docs/design.md", rf"on `widest-walk`, {N} % of Sobol's designs have no walking slope at all, against {N} % of "
-        rf"CMA-ES's and {N} % of the archive's",
+        rf"CMA-ES's and {N} % of the archive's, and CMA-ES without the model draws {N} %",
         [Cell(DESIGN_BENCH, "", "infeasible", {"config": "widest-walk", "method": m})
-         for m in ("Sobol designs (baseline)", "CMA-ES, fall model", "MAP-Elites archive, fall model")]),
+         for m in ("Sobol designs (baseline)", "CMA-ES, fall model", "MAP-Elites archive, fall model",
+                   "CMA-ES, no fall model")]),
+    Pin("docs/design.md", rf"it draws the same designs at {N} of {N} seeds either way, and with the model {N} percentage "
+        rf"points of falls",
+        [Cell(DESIGN_BENCH, "What the fall model changes", "same", {"config": "widest-walk", "search": "CMA-ES"}),
+         Rx(DESIGN_BENCH, rf"^\| widest-walk \| CMA-ES \|(?: [^|]* \|){{3}} \d+ of {N} \|$"),
+         Cell(DESIGN_BENCH, "What the fall model changes", "infeasible, with − without (pp)",
+              {"config": "widest-walk", "search": "CMA-ES"})]),
     # The gait families of the design atlas (scripts/design_atlas.sh).
     Pin(ATLAS_PAGE, rf"median f_n of {N} Hz, against {N} Hz for its walks and {N} Hz for its skips, and at small α "
         rf"\(median {N}\); no crawl winner has f_n above {N} Hz",
