@@ -22,19 +22,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pyarrow.parquet as pq  # noqa: E402
 
-from rtwscripts.labels import FAILED, OUTCOMES, STABLE  # noqa: E402
+from rtwscripts.labels import COLOURS, FAILED, OUTCOMES, STABLE  # noqa: E402
 
 # The gait axis from the bottom: the failures, the stable gaits from the
 # slowest (crawl) up, then whatever else a run can end as (diverged).
 LABELS = [*FAILED, *STABLE[::-1], *(o for o in OUTCOMES if o not in FAILED and o not in STABLE)]
-COLOURS = {
-    "walk": "tab:green",
-    "skip": "tab:blue",
-    "crawl": "tab:purple",
-    "collapse": "tab:red",
-    "stall": "tab:orange",
-    "diverged": "black",
-}
 
 
 def main() -> int:

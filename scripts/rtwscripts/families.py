@@ -1,4 +1,4 @@
-"""The design atlas's gait families (docs/design.md): for walk, skip and
+"""The design atlas's gait families (docs/design-atlas.md): for walk, skip and
 crawl, the winner of each of four searches run for that gait alone
 (GAIT-ROLE, scripts/design_atlas.sh), each re-simulated directly, with the
 Fig. 7(a) design on the same axes.
@@ -27,15 +27,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pyarrow.parquet as pq
 
+from .labels import COLOURS
+
 GAITS = ("walk", "skip", "crawl")
-ROLES = {
-    "widest": "widest interval of the gait",
-    "shallowest": "shallowest slope of the gait",
-    "fastest": "fastest at φ = 0.15",
-    "robust": "largest MFPT at φ = 0.15, σ = 5 cm",
-}
-COLOURS = {"walk": "tab:green", "skip": "tab:blue", "crawl": "tab:purple", "collapse": "tab:red",
-           "stall": "tab:orange", "diverged": "black"}
+ROLES = ("widest", "shallowest", "fastest", "robust")
 # The profile behind each winner's strip: the whole slope axis of the
 # searches, from level ground, on the atlas's fine grid.
 SPAN = (0.0, 0.8, 0.002, 1e-4)
@@ -88,8 +83,7 @@ def winners(search: Path, out: Path, at_speed_phi: Callable, label_at: Callable,
                 if "mfpt_at_0.15" not in best:
                     best["mfpt_at_0.15"] = mfpt(best)
                 best["mfpt_fresh"] = [mfpt(best, s) if best["mfpt_at_0.15"] is not None else None for s in fresh]
-            rows.append({"family": g, "role": role, "search": name, "found": found, "at_0.15": len(at),
-                         "design": best})
+            rows.append({"family": g, "role": role, "search": name, "found": found, "design": best})
     return rows
 
 

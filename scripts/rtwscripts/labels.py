@@ -13,4 +13,14 @@ STABLE = list(STABLE_LABELS)
 # The failures (collapse, stall; a diverged sample is neither a gait nor a failure).
 FAILED = list(FAILURE_LABELS)
 
-__all__ = ["FAILED", "OUTCOMES", "STABLE"]
+# Each label's colour in the figures of a design's gait along φ.
+COLOURS = {
+    "walk": "tab:green",
+    "skip": "tab:blue",
+    "crawl": "tab:purple",
+    "collapse": "tab:red",
+    "stall": "tab:orange",
+    "diverged": "black",
+}
+
+__all__ = ["COLOURS", "FAILED", "OUTCOMES", "STABLE"]
