@@ -32,6 +32,7 @@ Usage: .venv/bin/python scripts/design_atlas.py SEARCH OUT
 
 from __future__ import annotations
 
+import functools
 import json
 import shutil
 import subprocess
@@ -69,16 +70,29 @@ def cli(*args: str) -> str:
     return subprocess.run([str(BIN), *args], check=True, capture_output=True, text=True).stdout
 
 
+@functools.cache
+def _simulated(design: tuple[float, ...], *args: str) -> dict:
+    """`rtw-scan simulate --json` of the design (its INPUTS in order) with
+    `args`, once: the winners of the atlas and of its gait families are
+    judged on the same designs (the `front` and `robust` searches' among
+    them), and a run is deterministic."""
+    return json.loads(cli("simulate", *flags(dict(zip(INPUTS, design))), *args, "--json"))
+
+
+def simulated(d: dict, *args: str) -> dict:
+    return _simulated(tuple(float(d[k]) for k in INPUTS), *args)
+
+
 def at_speed_phi(d: dict) -> tuple[str, float | None]:
     """The gait at φ = 0.15 and its speed (none unless the gait is stable)."""
-    v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json"))
+    v = simulated(d, "--phi", str(SPEED_PHI))
     stable = v["outcome"] in STABLE
     return v["outcome"], v.get("speed") if stable else None
 
 
 def label_at(d: dict, phi: float) -> str:
     """The design's gait (or failure) at slope `phi`, simulated directly."""
-    return json.loads(cli("simulate", *flags(d), "--phi", repr(float(phi)), "--json"))["outcome"]
+    return simulated(d, "--phi", repr(float(phi)))["outcome"]
 
 
 # The searches judge the MFPT on the rough slope of terrain.seed 0. The
@@ -90,8 +104,8 @@ FRESH_SEEDS = (100, 200)
 def mfpt_at_speed_phi(d: dict, seed: int = 0) -> float | None:
     """The MFPT at φ = 0.15 on a rough slope of σ = 5 cm drawn from
     terrain.seed `seed` (none unless stable there)."""
-    v = json.loads(cli("simulate", *flags(d), "--phi", str(SPEED_PHI), "--json", "--set", "robustness.mfpt=true",
-                       "--set", "robustness.sigma=0.05", "--set", f"terrain.seed={seed}"))
+    v = simulated(d, "--phi", str(SPEED_PHI), "--set", "robustness.mfpt=true", "--set", "robustness.sigma=0.05",
+                  "--set", f"terrain.seed={seed}")
     return v.get("mfpt") if v["outcome"] in STABLE else None
 
 
