@@ -7,7 +7,7 @@
 # time (the chain's diagnostics are the library's, Robustness::mfpt_chain:
 # `cargo test --release -p rtw-model --test mfpt_chain -- --ignored
 # --nocapture` prints them). Writes results/robustness/mfpt_chain-cli.md
-# (results/robustness/mfpt_chain.md is the library's table). The gaits run
+# (results/robustness/mfpt_chain.md says where the rest is). The gaits run
 # one after another on one thread; on a machine shared with other jobs
 # the wall time grows with their load, the CPU time (user + sys) much less.
 #

@@ -581,7 +581,7 @@ pub struct ChainDiagnostics {
     pub cells: usize,
     /// Sampled extended states whose one step was integrated.
     pub members: usize,
-    /// Gauss–Hermite nodes of the new patch's height.
+    /// Inputs of a member's step (twice the strata of the new patch's height).
     pub nodes: usize,
     /// Principal components holding 95 % of the cloud's standardised
     /// variance (the effective dimension), of `features`.

@@ -1,7 +1,7 @@
 //! The RTW's MFPT by the chain (`robustness.mfpt_method = "chain"`,
 //! docs/robustness-estimators.md, "The chain method") at Fig. 7(a), against the
 //! counted estimator's measurements there (results/robustness/mfpt_chain.md
-//! has the commands and the table at five roughnesses).
+//! says where the numbers and the references are).
 
 use rtw_model::options::{MfptMethod, RobustnessOptions};
 use rtw_model::{Options, Params, cancellable, simulate};
@@ -23,9 +23,9 @@ fn options(sigma: f64) -> Options {
 
 /// Where the chain works on the RTW (σ = 5 and 3 cm) its range overlaps
 /// the counted estimator's interval (5 cm: 153 [119, 215]; 3 cm: 8 056
-/// [6 839, 9 558]), and it says how it was made. Measured: 127.5
-/// [99.8, 2.2e12] and 5 632 [1 809, 304 576]. Below 3 cm it does not
-/// (the table's 2 cm: 4.4e9 against 8.2e5), so no test claims it.
+/// [6 839, 9 558]), and it says how it was made (the values measured are
+/// in results/robustness/mfpt_chain-cli.md). Below 3 cm it does not (2 cm:
+/// about ten times too high), so no test claims it.
 #[test]
 #[ignore = "minutes: the chain's 4 x 10^5 steps at each roughness"]
 fn the_chain_overlaps_the_counted_estimate_at_5_and_3_cm() {
@@ -38,7 +38,7 @@ fn the_chain_overlaps_the_counted_estimate_at_5_and_3_cm() {
         eprintln!("sigma {sigma}: {m:?} {d:?} in {:?}", t.elapsed());
         assert!(m.lo <= hi && lo <= m.hi, "sigma {sigma}: {m:?}");
         assert!(m.lo <= m.mfpt && m.mfpt <= m.hi, "{m:?}");
-        assert!(d.cells > 100 && d.members == 6000 && d.nodes == 9, "{d:?}");
+        assert!(d.cells >= 20 && d.members == 1500 && d.nodes == 80, "{d:?}");
         assert!(d.dimension >= 1 && d.dimension <= d.features, "{d:?}");
     }
 }

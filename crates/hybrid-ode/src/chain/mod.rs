@@ -37,6 +37,17 @@
 //!    `(I − Q) m = 1` would need a matrix of condition about the MFPT; the
 //!    iteration converges at the chain's mixing rate, whatever the MFPT.
 //!
+//! **Options for a walker like the RTW**: the input stratified in the
+//! halvings of each tail's mass instead of the nodes
+//! ([`ChainOptions::strata`], for a doom set that is not a clean tail);
+//! a doom test that stops once the walker has left the input's ground
+//! ([`ChainWalker::behind`], for falls called long after the step that
+//! deals them); members weighted by their likelihood ratio
+//! ([`ChainWalker::weight`], for a sample drawn from a wider law: each
+//! cell's row and the one-step estimate are then weighted means); cells
+//! cut as quantile bins of a learned score of the fall
+//! ([`ChainOptions::by_fall`]).
+//!
 //! **Its error** is the discretisation's: the MFPT at `cells` and at
 //! `2 × cells` cells (the same members, so no step is re-simulated) and a
 //! bootstrap over each cell's members; `lo` and `hi` are the extremes of
@@ -52,9 +63,13 @@ use crate::metastable::Rng;
 
 mod mesh;
 mod quadrature;
+mod score;
+mod strata;
 pub use mesh::kmeans;
 use mesh::{effective_dimension, nearest};
 pub use quadrature::{erfc, gauss_hermite, normal_cdf};
+use score::FallScore;
+use strata::member_step_stratified;
 
 /// A walker for the chain: one standard-normal input per step, the step a
 /// deterministic function of (state, input).
@@ -68,6 +83,20 @@ pub trait ChainWalker {
     /// The features of the extended state on which the cells are cut (any
     /// fixed length; they are standardised over the sample).
     fn features(&self, state: &Self::State) -> Vec<f64>;
+    /// The state's weight in the sample (its likelihood ratio when part of
+    /// it was drawn from a wider law than the walker's): 1 by default.
+    fn weight(&self, state: &Self::State) -> f64 {
+        let _ = state;
+        1.0
+    }
+    /// Whether the input of the step from `from` is behind the walker now
+    /// at `now`: it has left the ground that input laid, so no later step
+    /// can fall because of it and a doom test may stop. By default never:
+    /// the test takes all its `lookahead` steps.
+    fn behind(&self, from: &Self::State, now: &Self::State) -> bool {
+        let _ = (from, now);
+        false
+    }
     /// Whether the estimate is no longer wanted (a Ctrl-C): read before
     /// each member's step; then the estimate returns `None`.
     fn stopped(&self) -> bool {
@@ -100,6 +129,19 @@ pub struct ChainOptions {
     /// chain's only view of them (the rimless wheel at σ = 0.04: 1.8 × 10⁴
     /// with 5, against 1.5 × 10⁵ with 1 and in the reference).
     pub min_members: usize,
+    /// Halvings of each tail's mass by which a step's input is stratified
+    /// instead of by Gauss–Hermite nodes (0: the nodes). Stratum `k` of the
+    /// upper tail holds the inputs whose tail mass `Φ(−z)` is in
+    /// `[2^−(k+2), 2^−(k+1))`, the last every input beyond; one input is
+    /// drawn in each, at a uniform quantile from the member's own seed. A
+    /// doom set of any shape (a speckle of moderate inputs or a clean tail
+    /// at 8 σ) is then integrated without bias, at a few inputs per
+    /// standard deviation where the law's mass is.
+    pub strata: usize,
+    /// Cut the cells along a learned score of the fall (the members' log
+    /// fall mass regressed on their features) into quantile bins, not by
+    /// k-means over all the features.
+    pub by_fall: bool,
 }
 
 impl Default for ChainOptions {
@@ -112,6 +154,8 @@ impl Default for ChainOptions {
             lookahead: 0,
             bootstrap: 40,
             min_members: 1,
+            strata: 0,
+            by_fall: false,
         }
     }
 }
@@ -137,7 +181,7 @@ pub struct ChainMfpt {
     pub cells: usize,
     /// Members whose steps were taken.
     pub members: usize,
-    /// Gauss–Hermite nodes.
+    /// Inputs of a member's step: the Gauss–Hermite nodes, or twice the strata.
     pub nodes: usize,
     /// Features' principal components that hold 95 % of the sample's
     /// (standardised) variance: the effective dimension of the cloud.
@@ -215,16 +259,23 @@ fn undoomed<W: ChainWalker>(
     let next = w.step_with(s, z)?;
     let mut t = next.clone();
     for _ in 0..lookahead {
+        if w.behind(s, &t) {
+            break;
+        }
         *steps += 1;
         t = w.step_with(&t, 0.0)?;
     }
     Some(next)
 }
 
-/// Whether `s` survives `lookahead` steps with the mean input (0).
+/// Whether `s` survives `lookahead` steps with the mean input (0), or
+/// until it has left the ground it has laid ([`ChainWalker::behind`]).
 fn viable_state<W: ChainWalker>(w: &W, s: &W::State, lookahead: usize, steps: &mut u64) -> bool {
     let mut t = s.clone();
-    for _ in 0..lookahead {
+    for taken in 0..lookahead {
+        if taken > 0 && w.behind(s, &t) {
+            break;
+        }
         *steps += 1;
         match w.step_with(&t, 0.0) {
             Some(next) => t = next,
@@ -336,8 +387,12 @@ impl Scale {
     }
 }
 
-/// A member's step on a mesh: the mass landing in each cell, and the fall.
-type Mapped = (Vec<(usize, f64)>, f64);
+/// The cell of a point of the standardised features.
+type CellOf<'a> = Box<dyn Fn(&[f64]) -> usize + 'a>;
+
+/// A member's step on a mesh: the mass landing in each cell, the fall, and
+/// the member's weight.
+type Mapped = (Vec<(usize, f64)>, f64, f64);
 
 /// The QSD's fall rate `ν·f` of the chain whose cell `a` is the mean of the
 /// steps `rows[a]` (each a member's step, its landings already mapped to
@@ -349,12 +404,12 @@ fn qsd_fall_rate(rows: &[Vec<&Mapped>]) -> f64 {
     let mut f = vec![0.0; n];
     for (a, members) in rows.iter().enumerate() {
         let mut row = vec![0.0; n];
-        let m = members.len() as f64;
-        for (lands, fall) in members {
+        let m: f64 = members.iter().map(|t| t.2).sum();
+        for (lands, fall, wt) in members {
             for &(b, w) in lands {
-                row[b] += w / m;
+                row[b] += w * wt / m;
             }
-            f[a] += fall / m;
+            f[a] += fall * wt / m;
         }
         q.push(row.into_iter().enumerate().filter(|r| r.1 > 0.0).collect());
     }
@@ -422,36 +477,61 @@ pub fn chain_mfpt<W: ChainWalker>(
         if walker.stopped() {
             return None;
         }
-        taken.push(member_step(
-            walker,
-            s,
-            &nodes,
-            o.lookahead,
-            &scale,
-            &mut steps,
-        ));
+        taken.push(if o.strata > 0 {
+            let seed = o.seed ^ (0x5742_0000 + taken.len() as u64);
+            member_step_stratified(walker, s, o.strata, o.lookahead, seed, &scale, &mut steps)
+        } else {
+            member_step(walker, s, &nodes, o.lookahead, &scale, &mut steps)
+        });
     }
     // The one-step estimate: the members sample the QSD, so the mean of
     // their exact fall masses is its fall rate, without the mesh (and
     // without the paths of several moderate inputs that the chain sees).
-    let one_step = m as f64 / taken.iter().map(|t| t.fall).sum::<f64>();
+    let weights: Vec<f64> = members.iter().map(|s| walker.weight(s)).collect();
+    let one_step = weights.iter().sum::<f64>()
+        / taken
+            .iter()
+            .zip(&weights)
+            .map(|(t, w)| t.fall * w)
+            .sum::<f64>();
+    // The cells by the members' learned fall (a ridge regression of the log
+    // of each member's fall mass on its features), when asked.
+    let fall_score = o
+        .by_fall
+        .then(|| FallScore::fit(&points, &taken.iter().map(|t| t.fall).collect::<Vec<_>>()));
     // The MFPT on a mesh of `k` cells, and its bootstrap over members.
     let mut mesh = |k: usize, boot: usize| {
-        let centres = kmeans(&points, k, o.min_members, &mut rng);
-        let cell: Vec<usize> = points.iter().map(|p| nearest(&centres, p)).collect();
+        let cell_of: CellOf<'_> = match &fall_score {
+            Some(score) => {
+                let mut s: Vec<f64> = points.iter().map(|p| score.at(p)).collect();
+                s.sort_by(f64::total_cmp);
+                let k = k.min(s.len());
+                // The bins' upper edges: quantiles of the members' scores.
+                let edges: Vec<f64> = (1..k).map(|i| s[i * s.len() / k]).collect();
+                Box::new(move |p: &[f64]| {
+                    let v = score.at(p);
+                    edges.partition_point(|e| *e <= v)
+                })
+            }
+            None => {
+                let centres = kmeans(&points, k, o.min_members, &mut rng);
+                Box::new(move |p: &[f64]| nearest(&centres, p))
+            }
+        };
+        let cell: Vec<usize> = points.iter().map(|p| cell_of(p)).collect();
         let mapped: Vec<Mapped> = taken
             .iter()
-            .map(|t| {
+            .zip(&weights)
+            .map(|(t, wt)| {
                 (
-                    t.lands
-                        .iter()
-                        .map(|(w, f)| (nearest(&centres, f), *w))
-                        .collect(),
+                    t.lands.iter().map(|(w, f)| (cell_of(f), *w)).collect(),
                     t.fall,
+                    *wt,
                 )
             })
             .collect();
-        let mut by_cell: Vec<Vec<usize>> = vec![Vec::new(); centres.len()];
+        let cells = cell.iter().max().map_or(1, |c| c + 1);
+        let mut by_cell: Vec<Vec<usize>> = vec![Vec::new(); cells];
         for (i, c) in cell.iter().enumerate() {
             by_cell[*c].push(i);
         }
@@ -470,7 +550,7 @@ pub fn chain_mfpt<W: ChainWalker>(
             let q = rate(&mut |ms| (0..ms.len()).map(|_| ms[r.below(ms.len())]).collect());
             boots.push(1.0 / q);
         }
-        (1.0 / p, centres.len(), boots)
+        (1.0 / p, cells, boots)
     };
     if walker.stopped() {
         return None;
@@ -497,7 +577,7 @@ pub fn chain_mfpt<W: ChainWalker>(
         mfpt_one_step: one_step,
         cells,
         members: m,
-        nodes: o.nodes,
+        nodes: if o.strata > 0 { 2 * o.strata } else { o.nodes },
         dimension: effective_dimension(&points),
         features: points[0].len(),
         steps,

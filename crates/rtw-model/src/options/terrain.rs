@@ -62,22 +62,32 @@ pub(crate) struct Branches {
     first: [i64; BRANCHES],
     seed: [u64; BRANCHES],
     z: [Option<f64>; BRANCHES],
+    /// The factor on the heights the branch draws with its seed (1 but for
+    /// the chain's steps on the ground of a rougher cloud: the ground a
+    /// step lays is the target roughness's, the kept patches the cloud's).
+    scale: [f64; BRANCHES],
 }
 
 impl Branches {
     /// The seed of patch `k`, and its standard-normal height if the branch
     /// set it, if a branch covers it.
     #[inline]
-    fn seed_of(&self, k: i64) -> Option<(u64, Option<f64>)> {
+    fn seed_of(&self, k: i64) -> Option<(u64, Option<f64>, f64)> {
         (0..usize::from(self.len))
             .rev()
             .find(|&i| self.first[i] <= k)
-            .map(|i| (self.seed[i], self.z[i].filter(|_| self.first[i] == k)))
+            .map(|i| {
+                (
+                    self.seed[i],
+                    self.z[i].filter(|_| self.first[i] == k),
+                    self.scale[i],
+                )
+            })
     }
 
     /// Draws the patches from `first` on afresh with `seed`, the first at
     /// `z` (standard normal) if given.
-    fn branch(&mut self, first: i64, seed: u64, z: Option<f64>) {
+    fn branch(&mut self, first: i64, seed: u64, z: Option<f64>, scale: f64) {
         while self.len > 0 && self.first[usize::from(self.len) - 1] >= first {
             self.len -= 1;
         }
@@ -85,12 +95,14 @@ impl Branches {
             self.first.copy_within(1.., 0);
             self.seed.copy_within(1.., 0);
             self.z.copy_within(1.., 0);
+            self.scale.copy_within(1.., 0);
             self.len -= 1;
         }
         let i = usize::from(self.len);
         self.first[i] = first;
         self.seed[i] = seed;
         self.z[i] = z;
+        self.scale[i] = scale;
         self.len += 1;
     }
 }
@@ -261,8 +273,8 @@ impl TerrainOptions {
             -self.step_height
         } else {
             let z = match self.branches.seed_of(k) {
-                Some((_, Some(z))) => z,
-                Some((seed, None)) => standard_normal(seed, k as u64),
+                Some((_, Some(z), _)) => z,
+                Some((seed, None, scale)) => standard_normal(seed, k as u64) * scale,
                 None => standard_normal(self.seed, k as u64),
             };
             -self.step_height + self.roughness * z
@@ -279,10 +291,16 @@ impl TerrainOptions {
     /// [`branch_beyond`](Self::branch_beyond) with the first patch drawn
     /// afresh at the height `z × roughness` (`z` NaN: drawn with `seed`).
     pub(crate) fn branch_beyond_at(&mut self, x: f64, seed: u64, z: f64) {
+        self.branch_beyond_scaled(x, seed, z, 1.0);
+    }
+
+    /// [`branch_beyond_at`](Self::branch_beyond_at) with the heights drawn
+    /// with `seed` multiplied by `scale` (the first patch's `z` is not).
+    pub(crate) fn branch_beyond_scaled(&mut self, x: f64, seed: u64, z: f64, scale: f64) {
         if self.roughness != 0.0 {
             let first = self.patch_at(x).index.max(-1) + 1;
             self.branches
-                .branch(first, seed, (!z.is_nan()).then_some(z));
+                .branch(first, seed, (!z.is_nan()).then_some(z), scale);
         }
     }
 

@@ -173,7 +173,21 @@ impl Rtw {
     /// first patch drawn afresh at `z` standard deviations
     /// ([`TerrainOptions::branch_beyond_at`]).
     pub(crate) fn branch_terrain_beyond_at(&mut self, x: f64, seed: u64, z: f64, y: &[f64; N]) {
-        self.terrain.branch_beyond_at(x, seed, z);
+        self.branch_terrain_beyond_scaled(x, seed, z, 1.0, y);
+    }
+
+    /// [`branch_terrain_beyond_at`](Self::branch_terrain_beyond_at) with
+    /// the heights drawn with `seed` multiplied by `scale`
+    /// ([`TerrainOptions::branch_beyond_scaled`]).
+    pub(crate) fn branch_terrain_beyond_scaled(
+        &mut self,
+        x: f64,
+        seed: u64,
+        z: f64,
+        scale: f64,
+        y: &[f64; N],
+    ) {
+        self.terrain.branch_beyond_scaled(x, seed, z, scale);
         self.note_patches(y);
     }
 

@@ -97,6 +97,10 @@ pub(crate) struct State {
     pub(crate) rtw: Rtw,
     pub(crate) y: [f64; N],
     pub(crate) quiet: f64,
+    /// The likelihood ratio of the ground it has laid ahead (1 but in the
+    /// chain's sample, whose kept patch ahead is drawn from a wider law,
+    /// `run/mfpt_chain.rs`).
+    pub(crate) weight: f64,
     /// No step taken yet: the walker has reached no rough patch.
     fresh: bool,
 }
@@ -164,6 +168,7 @@ impl RtwWalker<'_, '_> {
             rtw,
             y,
             quiet,
+            weight: st.weight,
             fresh: false,
         })
     }
@@ -266,6 +271,7 @@ pub(crate) fn walker<'a, 'b>(
         rtw,
         y,
         quiet: 0.0,
+        weight: 1.0,
         fresh: true,
     };
     (walker, start)
