@@ -272,8 +272,8 @@ fn undoomed<W: ChainWalker>(
 /// until it has left the ground it has laid ([`ChainWalker::behind`]).
 fn viable_state<W: ChainWalker>(w: &W, s: &W::State, lookahead: usize, steps: &mut u64) -> bool {
     let mut t = s.clone();
-    for taken in 0..lookahead {
-        if taken > 0 && w.behind(s, &t) {
+    for _ in 0..lookahead {
+        if w.behind(s, &t) {
             break;
         }
         *steps += 1;

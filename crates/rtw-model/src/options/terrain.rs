@@ -63,8 +63,8 @@ pub(crate) struct Branches {
     seed: [u64; BRANCHES],
     z: [Option<f64>; BRANCHES],
     /// The factor on the heights the branch draws with its seed (1 but for
-    /// the chain's steps on the ground of a rougher cloud: the ground a
-    /// step lays is the target roughness's, the kept patches the cloud's).
+    /// the chain's members, whose patch laid ahead is drawn from a wider
+    /// law, `run/mfpt_chain.rs`).
     scale: [f64; BRANCHES],
 }
 

@@ -117,13 +117,22 @@ pub(crate) struct RtwWalker<'a, 'b> {
     pub(crate) work: RefCell<Work>,
 }
 
-/// The downhill position of the furthest tip of `y`.
-pub(crate) fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
+/// The downhill positions of the six tips of `y`.
+fn tips_downhill(rtw: &Rtw, y: &[f64; N]) -> impl Iterator<Item = f64> {
     let rods = rtw.rods(y);
     SPOKES
         .iter()
-        .map(|&(rod, tip)| rtw.body.tip_point(&rods[rod], tip).0[0])
-        .fold(f64::NEG_INFINITY, f64::max)
+        .map(move |&(rod, tip)| rtw.body.tip_point(&rods[rod], tip).0[0])
+}
+
+/// The downhill position of the furthest tip of `y`.
+pub(crate) fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
+    tips_downhill(rtw, y).fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The downhill position of the hindmost tip of `y`.
+pub(crate) fn hindmost_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
+    tips_downhill(rtw, y).fold(f64::INFINITY, f64::min)
 }
 
 /// The centre of mass's velocity (the rods are equal).

@@ -61,16 +61,10 @@
 //! the face, which the walker's state remembers and a plain sample holds
 //! too few of. It is not yet an answer below 3 cm.
 
-//! **Status** (results/robustness/mfpt_chain-cli.md): at Fig. 7(a) its
-//! interval holds the counted estimate at 3 and 2 cm and touches it at
-//! 5 cm; its point estimate at 2 cm is about three times counting's, and
-//! it moves with how many walked patches are weighed. It is not yet
-//! validated where counting cannot reach.
-
 use crate::options::{RobustnessOptions, TerrainOptions};
 use crate::outcome::{ChainDiagnostics, MeanFirstPassage};
 use crate::plant::geometry::SPOKES;
-use crate::run::mfpt::{RtwWalker, State, com_velocity, furthest_tip, walker};
+use crate::run::mfpt::{RtwWalker, State, com_velocity, furthest_tip, hindmost_tip, walker};
 use crate::run::settled::SettledGait;
 use hybrid_ode::Work;
 use hybrid_ode::chain::{ChainOptions, ChainWalker, chain_mfpt, qsd_cloud};
@@ -169,15 +163,6 @@ impl ChainWalker for RtwWalker<'_, '_> {
     fn stopped(&self) -> bool {
         crate::cancel::requested()
     }
-}
-
-/// The downhill position of the hindmost tip of `y`.
-fn hindmost_tip(rtw: &crate::plant::rtw::Rtw, y: &[f64; crate::plant::slots::N]) -> f64 {
-    let rods = rtw.rods(y);
-    SPOKES
-        .iter()
-        .map(|&(rod, tip)| rtw.body.tip_point(&rods[rod], tip).0[0])
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The kept patch ahead of each of the chain's members (the one that
