@@ -3,7 +3,9 @@ link (href, src) of every page points to a file of the site, and every
 `#anchor` to an id on that page; then the first page is opened in Debian's
 headless Chromium, which must render its title and the tutorial's link, and
 a screenshot is kept beside the site (SITE.png). External links are not
-fetched (these machines reach no web site); they are counted.
+fetched (these machines reach no web site); they are counted. Last, no
+page of docs/ or results/ is over PAGE_MAX_LINES lines (the CHANGELOG, the
+project's history, is read by search, not page by page).
 
 Without chromium on PATH the render check is skipped, saying so (the test
 command installs it as root for the report's browser test).
@@ -22,6 +24,16 @@ from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 FIRST_PAGE = Path("docs/index.html")
+# A page a reader takes in one sitting; a longer one is split by topic
+# (docs/index.md keeps the spine).
+PAGE_MAX_LINES = 400
+
+
+def long_pages(root: Path) -> list[str]:
+    """The Markdown pages of docs/ and results/ under `root` over PAGE_MAX_LINES lines."""
+    pages = sorted((root / "docs").glob("*.md")) + sorted((root / "results").rglob("*.md"))
+    return [f"{p.relative_to(root)}: {n} lines (at most {PAGE_MAX_LINES})"
+            for p in pages if (n := len(p.read_text().splitlines())) > PAGE_MAX_LINES]
 
 
 class Page(HTMLParser):
@@ -110,7 +122,11 @@ def main() -> int:
             print(f"check_site: the first page rendered without {missing}", file=sys.stderr)
             return 1
         print(f"check_site: the first page renders in headless Chromium (screenshot {site}.png)")
-    return 1 if broken else 0
+    long = long_pages(Path(__file__).resolve().parent.parent)
+    for p in long:
+        print(f"check_site: page too long: {p}", file=sys.stderr)
+    print(f"check_site: {len(long)} pages of docs/ and results/ over {PAGE_MAX_LINES} lines")
+    return 1 if broken or long else 0
 
 
 if __name__ == "__main__":

@@ -454,13 +454,16 @@ for i in 1 2 3 4; do
   wait "$pid" 2>/dev/null || true
   faults=$((faults + 1))
   n=0
-  if [ -e "$out/search.parquet" ]; then
-    kept_of "$work/design-ref/search.parquet" "$out/search.parquet" ||
-      fail "design kill $i (SIG$sig): a stored evaluation is not the uninterrupted search's"
-    n=$(rows_of "$out/search.parquet")
-  fi
-  if [ "$sig" = TERM ] && ls -A "$out" 2>/dev/null | grep -q '\.tmp$'; then
-    fail "design kill $i (SIGTERM): temporary files left: $(ls -A "$out")"
+  # What a kill keeps: search.parquet (merged at an earlier stop) and the
+  # parts the search appended after each generation since.
+  for f in "$out/search.parquet" "$out"/search.part-*.parquet; do
+    [ -e "$f" ] || continue
+    kept_of "$work/design-ref/search.parquet" "$f" ||
+      fail "design kill $i (SIG$sig): a stored evaluation in $(basename "$f") is not the uninterrupted search's"
+    n=$((n + $(rows_of "$f")))
+  done
+  if [ "$sig" = TERM ] && ls -A "$out" 2>/dev/null | grep -qE '\.tmp$|^search\.part-'; then
+    fail "design kill $i (SIGTERM): temporary files or unmerged parts left: $(ls -A "$out")"
   fi
   echo "fault_inject: design kill $i (SIG$sig after ${delay_ms} ms): $n evaluations kept, each the uninterrupted search's"
 done
@@ -469,7 +472,7 @@ for f in search.parquet designs.parquet; do
   same_table "$work/design-ref/$f" "$out/$f" ||
     fail "design search killed and resumed: $f differs from the uninterrupted search's"
 done
-! ls -A "$out" | grep -q '\.tmp$' || fail "design search after the kills: temporary files left"
+! ls -A "$out" | grep -qE '\.tmp$|^search\.part-' || fail "design search after the kills: temporary files or parts left"
 
 # A slope profile killed at random instants over an earlier profile of its
 # own at --out: that file is kept byte for byte, or replaced by the whole

@@ -444,7 +444,6 @@ pub(crate) fn hinit<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
 /// engine's `rk4_step` plays no part). On return `y` holds the state at `t1`.
 /// Returns the number of right-hand-side evaluations. This is how the
 /// convergence orders are measured; it allocates nothing.
-#[cfg(any(test, feature = "testing"))]
 pub fn fixed_step_solve<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     method: Method,
     mut rhs: F,
@@ -474,7 +473,6 @@ pub fn fixed_step_solve<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>
 /// control, writing the method's full dense output on `[t0, t0 + h]` into
 /// `dense` (the new state is `dense.y1`). Returns the number of
 /// right-hand-side evaluations.
-#[cfg(any(test, feature = "testing"))]
 pub fn step_with_dense<const N: usize, F: FnMut(f64, &[f64; N], &mut [f64; N])>(
     method: Method,
     mut rhs: F,

@@ -3,7 +3,11 @@
 
 pub mod chain;
 pub mod continuation;
-#[cfg(feature = "testing")]
+// The test fixtures (`counting`, `rimless`, `kernels`) are compiled in every
+// build, hidden from the docs, rather than behind a feature the tests turn
+// on: a feature only the tests ask for makes `cargo test` build this crate
+// and every crate above it a second time (docs/testing.md, "Build times").
+#[doc(hidden)]
 pub mod counting;
 mod dense;
 mod engine;
@@ -13,7 +17,7 @@ pub mod limit;
 pub mod logistic;
 pub mod metastable;
 pub mod nonsmooth;
-#[cfg(feature = "testing")]
+#[doc(hidden)]
 pub mod rimless;
 pub mod splitting;
 pub mod system;
@@ -22,8 +26,8 @@ mod variational;
 
 /// The one-step kernels of the integrators, outside the engine: for the
 /// integrator's own tests (order, dense output) and the model's benches.
-/// Only with the `testing` feature; not part of the engine's API.
-#[cfg(feature = "testing")]
+/// Not part of the engine's API.
+#[doc(hidden)]
 pub mod kernels {
     pub use crate::integrate::{fixed_step_solve, step_with_dense};
 }

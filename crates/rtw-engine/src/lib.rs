@@ -23,8 +23,9 @@
 //! | [`analysis`] | k-means of the failures, shares with Wilson intervals, summary files, a scan read whole and verified |
 //! | [`entry`] | the scan's entry points: a scan and its merge, its summary and clusters |
 //!
-//! The stand-in simulator `fake` and the test pauses exist only with the
-//! `fake-sim` feature, which the tests turn on.
+//! The stand-in simulator `fake` and the test pauses are in every build,
+//! hidden and inert: the test build of the command (`rtw-scan-test`) is
+//! the one that reaches them.
 
 #![warn(missing_docs)]
 
@@ -34,7 +35,11 @@ pub mod analysis;
 mod build_id;
 pub mod config;
 pub mod entry;
-#[cfg(any(test, feature = "fake-sim"))]
+// The stand-in simulator of the tests, compiled in every build (a feature
+// only the tests turned on made `cargo test` build this crate and the
+// studies a second time): reached only through the hidden `--fake-sim` of
+// the test build of the command, `rtw-scan-test`.
+#[doc(hidden)]
 pub mod fake;
 pub mod files;
 pub mod hash;
@@ -63,13 +68,13 @@ pub use files::remove_live_files;
 /// another version's rows (docs/results-on-disk.md, "Versions").
 pub use io::metadata::VERSION;
 
-/// Test builds only (the `fake-sim` feature): with `RTW_SCAN_PAUSE=POINT` in
-/// the environment, a run says `paused at POINT` on stderr and waits there a
-/// minute, so that the tests and `scripts/fault_inject.sh` can kill it at
+/// Test builds only (once [`allow_test_pauses`] has run, as `rtw-scan-test`
+/// does first): with `RTW_SCAN_PAUSE=POINT` in the environment, a run says
+/// `paused at POINT` on stderr and waits there a minute, so that the tests and `scripts/fault_inject.sh` can kill it at
 /// exactly that step of its end: `manifest` (`.partial` made, its manifest
 /// not yet), `merge` (the scan file half written), `merged` (the scan file
-/// complete, `.partial` whole), `cleanup` (`.partial` partly removed). A
-/// plain build does nothing here. It waits once per process (the merge
+/// complete, `.partial` whole), `cleanup` (`.partial` partly removed).
+/// Otherwise (`rtw-scan`, Python) it does nothing here. It waits once per process (the merge
 /// passes its point once per file).
 pub fn pause_at(point: &str) {
     pause_unless(point, &std::sync::atomic::AtomicBool::new(false));
@@ -79,9 +84,10 @@ pub fn pause_at(point: &str) {
 /// `stop` is set, so that a test interrupting the study there sees it stop
 /// as it would anywhere else.
 pub fn pause_unless(point: &str, stop: &std::sync::atomic::AtomicBool) {
-    #[cfg(feature = "fake-sim")]
-    if std::env::var("RTW_SCAN_PAUSE").is_ok_and(|p| p == point) {
-        use std::sync::atomic::Ordering;
+    use std::sync::atomic::Ordering;
+    if TEST_PAUSES.load(Ordering::SeqCst)
+        && std::env::var("RTW_SCAN_PAUSE").is_ok_and(|p| p == point)
+    {
         static PAUSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
         if PAUSED.swap(true, Ordering::SeqCst) {
             return;
@@ -92,6 +98,13 @@ pub fn pause_unless(point: &str, stop: &std::sync::atomic::AtomicBool) {
             std::thread::sleep(std::time::Duration::from_millis(20));
         }
     }
-    #[cfg(not(feature = "fake-sim"))]
-    let _ = (point, stop);
+}
+
+static TEST_PAUSES: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Lets `RTW_SCAN_PAUSE` pause this process ([`pause_at`]): called first by
+/// the test build of the command, `rtw-scan-test`, and by nothing else.
+#[doc(hidden)]
+pub fn allow_test_pauses() {
+    TEST_PAUSES.store(true, std::sync::atomic::Ordering::SeqCst);
 }

@@ -58,7 +58,8 @@ pub(super) fn cmd_design(a: DesignArgs) -> Result<ExitCode> {
     );
     let (search, reported) = match done {
         Err(e) if e.downcast_ref::<Stopped>().is_some() && STOP.load(Ordering::SeqCst) => {
-            let kept = files::stored(&out, &settings, &options, false).map_or(0, |k| k.len());
+            let kept =
+                files::stored(&out, &settings, &options, false).map_or(0, |k| k.evaluations.len());
             eprintln!(
                 "rtw-scan: interrupted: {kept} designs kept in {}; the same command resumes \
                  the search from them",

@@ -5,5 +5,6 @@
 //! re-links `target/release/rtw-scan` and never the binary the tests run.
 
 fn main() -> std::process::ExitCode {
+    rtw_engine::allow_test_pauses();
     rtw_scan::main()
 }

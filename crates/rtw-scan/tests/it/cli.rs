@@ -1101,12 +1101,42 @@ fn rewrite_as_another_tool(src: &Path, dest: &Path, codec: parquet::basic::Compr
             .columns()
             .iter()
             .zip(schema.fields())
-            .map(|(c, f)| arrow_cast::cast(c, f.data_type()).unwrap())
+            .map(|(c, f)| as_another_tool(c, f.data_type()))
             .collect();
         w.write(&arrow_array::RecordBatch::try_new(schema.clone(), cols).unwrap())
             .unwrap();
     }
     w.close().unwrap();
+}
+
+/// Column `c` as `rewrite_as_another_tool` types it: strings as large
+/// strings, a dictionary as `UInt32` keys over large strings.
+fn as_another_tool(
+    c: &arrow_array::ArrayRef,
+    to: &arrow_schema::DataType,
+) -> arrow_array::ArrayRef {
+    use arrow_array::cast::AsArray;
+    use arrow_array::{DictionaryArray, LargeStringArray, UInt32Array};
+    use std::sync::Arc;
+    match to {
+        arrow_schema::DataType::LargeUtf8 => {
+            Arc::new(c.as_string::<i32>().iter().collect::<LargeStringArray>())
+        }
+        arrow_schema::DataType::Dictionary(_, _) => {
+            let d = c.as_any_dictionary();
+            let keys = d.normalized_keys();
+            let keys: UInt32Array = (0..c.len())
+                .map(|i| c.is_valid(i).then(|| keys[i] as u32))
+                .collect();
+            let values = d
+                .values()
+                .as_string::<i32>()
+                .iter()
+                .collect::<LargeStringArray>();
+            Arc::new(DictionaryArray::try_new(keys, Arc::new(values)).unwrap())
+        }
+        _ => c.clone(),
+    }
 }
 
 #[test]

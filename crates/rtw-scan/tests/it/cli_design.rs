@@ -443,7 +443,7 @@ fn ctrl_c_stops_a_search_saying_what_it_kept_and_how_to_go_on() {
         "1",
     ];
     let mut child = spawn(&args);
-    wait_for(&mut child, &out.join("search.parquet"));
+    wait_for(&mut child, &out.join("search.part-000001.parquet"));
     interrupt(&mut child, Duration::from_secs(30));
     let done = child.wait_with_output().unwrap();
     assert_eq!(done.status.code(), Some(130));
@@ -454,6 +454,60 @@ fn ctrl_c_stops_a_search_saying_what_it_kept_and_how_to_go_on() {
     let kept = rows(&out.join("search.parquet")).len();
     assert!(kept > 0);
     assert!(err.contains(&format!("{kept} designs")), "{kept}: {err}");
+    // The parts appended while it ran are merged into search.parquet.
+    assert_eq!(parts_in(&out), Vec::<String>::new());
+}
+
+/// The names of the parts a running search appends in `out`, in order.
+fn parts_in(out: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("search.part-"))
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_killed_search_keeps_each_generation_in_its_own_part_and_resumes_from_them() {
+    // Each generation's new designs are appended as one small file, not the
+    // whole search written again: the writes grow with the designs, not
+    // with their square. A kill (no chance to merge) leaves the parts; the
+    // same command resumes from them and ends with the uninterrupted
+    // search's rows, the parts merged and gone.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = tiny(dir.path(), "k", 3000, "");
+    let reference = dir.path().join("ref");
+    run_ok(&["design", &cfg, "--out", s(&reference), "--quiet"]);
+    let out = dir.path().join("out");
+    let mut child = spawn(&[
+        "design",
+        &cfg,
+        "--out",
+        s(&out),
+        "--quiet",
+        "--threads",
+        "1",
+    ]);
+    wait_for(&mut child, &out.join("search.part-000003.parquet"));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let parts = parts_in(&out);
+    assert!(parts.len() >= 3, "{parts:?}");
+    assert!(!out.join("search.parquet").exists());
+    let want = rows(&reference.join("search.parquet"));
+    let mut seen = 0;
+    for p in &parts[..3] {
+        // A whole generation of 4 designs each, the next ones in order.
+        let got = rows(&out.join(p));
+        assert_eq!(got.len(), 4, "{p}");
+        assert_eq!(got, want[seen..seen + 4].to_vec(), "{p}");
+        seen += 4;
+    }
+    run_ok(&["design", &cfg, "--out", s(&out), "--quiet"]);
+    assert_eq!(rows(&out.join("search.parquet")), want);
+    assert_eq!(parts_in(&out), Vec::<String>::new());
 }
 
 #[test]

@@ -440,7 +440,9 @@ fn stopped_and_resumed(extra: &str) -> tempfile::TempDir {
     let e = files::run_to_files(&settings, &options, &part, false, &Run::new(&stop, &cancel))
         .expect_err("stopped");
     assert!(format!("{e:#}").contains("stopped"), "{e:#}");
-    let kept = files::stored(&part, &settings, &options, false).unwrap();
+    let kept = files::stored(&part, &settings, &options, false)
+        .unwrap()
+        .evaluations;
     assert!(
         !kept.is_empty() && kept.len() < full.evaluations.len(),
         "{} of {}",
@@ -490,7 +492,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     files::run_to_files(&settings, &options, &out, false, &Run::new(&stop, &cancel))
         .expect_err("stopped");
     let stored = files::stored(&out, &settings, &options, false).unwrap();
-    assert!(!stored.is_empty());
+    assert!(!stored.evaluations.is_empty());
     // The same file as another build would have written it.
     let path = files::search_path(&out);
     let input = output::open(&path, 1 << 20).unwrap();
@@ -515,6 +517,7 @@ fn a_search_stored_by_another_build_is_refused_and_force_computes_it_anew() {
     assert!(
         files::stored(&out, &settings, &options, true)
             .unwrap()
+            .evaluations
             .is_empty()
     );
 }
