@@ -108,3 +108,35 @@ static TEST_PAUSES: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBoo
 pub fn allow_test_pauses() {
     TEST_PAUSES.store(true, std::sync::atomic::Ordering::SeqCst);
 }
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    #[test]
+    fn the_pauses_are_inert_until_the_test_build_of_the_command_allows_them() {
+        // They are compiled into every build: in `rtw-scan` and Python a
+        // stray RTW_SCAN_PAUSE must not stop a run for a minute.
+        // SAFETY: no other test of this crate reads or sets RTW_SCAN_PAUSE.
+        unsafe { std::env::set_var("RTW_SCAN_PAUSE", "a-point-of-this-test") };
+        let t0 = Instant::now();
+        super::pause_at("a-point-of-this-test");
+        assert!(t0.elapsed() < Duration::from_secs(1), "{:?}", t0.elapsed());
+        // Allowed, it waits there until its stop flag is set.
+        super::allow_test_pauses();
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let t0 = Instant::now();
+        std::thread::scope(|s| {
+            s.spawn(|| {
+                std::thread::sleep(Duration::from_millis(300));
+                stop.store(true, std::sync::atomic::Ordering::SeqCst);
+            });
+            super::pause_unless("a-point-of-this-test", &stop);
+        });
+        assert!(
+            t0.elapsed() >= Duration::from_millis(300),
+            "{:?}",
+            t0.elapsed()
+        );
+    }
+}

@@ -136,8 +136,8 @@ pub fn rows(path: &Path) -> Vec<Vec<String>> {
     rows
 }
 
-/// Row `i` of column `c` as text: `null`, a number in Rust's shortest
-/// round-trip form (equal strings, equal bits), a string, or a dictionary's
+/// Row `i` of column `c` as text: `null`, a number in its shortest
+/// round-trip form (equal strings, equal bits; `40.0`, `1e-7`), a string, or a dictionary's
 /// value. Written here rather than taken from `arrow-cast`, whose build (with
 /// `arrow-ord`) was a third of the test build's time.
 pub fn value(c: &dyn arrow_array::Array, i: usize) -> String {
@@ -157,8 +157,9 @@ pub fn value(c: &dyn arrow_array::Array, i: usize) -> String {
         T::UInt16 => c.as_primitive::<UInt16Type>().value(i).to_string(),
         T::UInt32 => c.as_primitive::<UInt32Type>().value(i).to_string(),
         T::UInt64 => c.as_primitive::<UInt64Type>().value(i).to_string(),
-        T::Float32 => c.as_primitive::<Float32Type>().value(i).to_string(),
-        T::Float64 => c.as_primitive::<Float64Type>().value(i).to_string(),
+        // Debug: the shortest round-trip form, whole numbers with ".0".
+        T::Float32 => format!("{:?}", c.as_primitive::<Float32Type>().value(i)),
+        T::Float64 => format!("{:?}", c.as_primitive::<Float64Type>().value(i)),
         T::Utf8 => c.as_string::<i32>().value(i).to_string(),
         T::LargeUtf8 => c.as_string::<i64>().value(i).to_string(),
         T::Dictionary(_, _) => {

@@ -1186,31 +1186,6 @@ fn kill_at(cfg: &str, out: &Path, point: &str, extra: &[&str]) {
 }
 
 #[test]
-fn the_test_pauses_stay_inert_in_the_command_users_run() {
-    // The engine compiles its test pauses into every build (so that the test
-    // build reuses the main build's libraries): only `rtw-scan-test` turns
-    // them on. `rtw-scan` itself, even as `cargo test` builds it (with the
-    // hidden `--fake-sim`), finishes a run without pausing at any point.
-    let dir = tempfile::tempdir().unwrap();
-    let cfg = write(dir.path(), "c.toml", &paper_like(8, 4));
-    for point in ["manifest", "merge", "merged", "cleanup"] {
-        let out = dir.path().join(point);
-        let t0 = std::time::Instant::now();
-        let done = std::process::Command::new(env!("CARGO_BIN_EXE_rtw-scan"))
-            .args(["run", &cfg, "--out", s(&out), "--chunk-size", "4"])
-            .args(["--fake-sim", "0", "--quiet"])
-            .env("RTW_SCAN_PAUSE", point)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&done.stderr);
-        assert!(done.status.success(), "{point}: {err}");
-        assert!(!err.contains("paused at"), "{point}: {err}");
-        assert!(t0.elapsed() < std::time::Duration::from_secs(30), "{point}");
-        assert!(out.join("samples.parquet").exists(), "{point}");
-    }
-}
-
-#[test]
 fn a_sigkill_at_each_step_of_the_end_of_a_run_resumes_without_recomputing() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = write(dir.path(), "c.toml", &paper_like(40, 4));
