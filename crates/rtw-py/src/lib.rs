@@ -178,8 +178,21 @@ fn study_error(e: anyhow::Error) -> PyErr {
     value_error(e)
 }
 
-/// Calls a study's `progress(done, total)`, if any, once its total is known.
-fn report(progress: Option<&Bound<'_, PyAny>>, counter: &Counter) -> PyResult<()> {
+/// Tells Python what a study said since the last call: each warning as a
+/// `UserWarning` (as the command prints it even with `--quiet`), each note
+/// (what the study will cost) to the `rtw` logger at INFO; then calls its
+/// `progress(done, total)`, if any, once its total is known.
+fn report(py: Python<'_>, progress: Option<&Bound<'_, PyAny>>, counter: &Counter) -> PyResult<()> {
+    let said = counter.take_said();
+    if !said.notes.is_empty() {
+        let logger = py.import("logging")?.call_method1("getLogger", ("rtw",))?;
+        for note in said.notes {
+            logger.call_method1("info", ("%s", note))?;
+        }
+    }
+    for warning in said.warnings {
+        types::warn(py, Some(warning))?;
+    }
     let total = counter.total.load(Ordering::Relaxed);
     match progress {
         Some(f) if total > 0 => f
@@ -466,7 +479,7 @@ fn sensitivity<'py>(
         interruptible(
             py,
             |cancel| sa::analyse_file(&path, &settings, &Run::new(&counter, cancel)),
-            || report(progress.as_ref(), &counter),
+            || report(py, progress.as_ref(), &counter),
         )?
     } else {
         let (batches, schema) = Table::from_pyarrow_bound(&scan)
@@ -479,11 +492,11 @@ fn sensitivity<'py>(
         interruptible(
             py,
             |cancel| sa::analyse_table(&metadata, batches, &settings, &Run::new(&counter, cancel)),
-            || report(progress.as_ref(), &counter),
+            || report(py, progress.as_ref(), &counter),
         )?
     }
     .map_err(study_error)?;
-    report(progress.as_ref(), &counter)?;
+    report(py, progress.as_ref(), &counter)?;
     types::warn(py, sa::wide_warning(&analysis.indices))?;
     to_table(py, sa::to_batch(&analysis.indices))
 }

@@ -22,7 +22,7 @@ use rtw_studies::profile::{
 use rtw_studies::search::{self, Reported, Search, SearchSettings};
 use std::num::NonZeroUsize;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, AtomicU64};
+use std::sync::atomic::AtomicBool;
 
 /// A slice of the gait's basin of attraction (`rtw-scan basin`): a
 /// `pyarrow.Table` with one row per grid point, the columns of the CLI's
@@ -64,10 +64,10 @@ pub(crate) fn basin<'py>(
                 &Run::new(&counter, cancel).on(threads),
             )
         },
-        || report(progress.as_ref(), &counter),
+        || report(py, progress.as_ref(), &counter),
     )?
     .map_err(study_error)?;
-    report(progress.as_ref(), &counter)?;
+    report(py, progress.as_ref(), &counter)?;
     to_table(py, batch)
 }
 
@@ -102,13 +102,14 @@ pub(crate) fn profile<'py>(
         .transpose()
         .map_err(value_error)?;
     let options = model(config.as_ref(), variant, options.as_ref())?;
-    let done = AtomicU64::new(0);
+    let counter = Counter::default();
     let p = interruptible(
         py,
-        |cancel| run_profile(&settings, &options, &Run::new(&done, cancel).on(threads)),
-        || Ok(()),
+        |cancel| run_profile(&settings, &options, &Run::new(&counter, cancel).on(threads)),
+        || report(py, None, &counter),
     )?
     .map_err(study_error)?;
+    report(py, None, &counter)?;
     let table = to_table(py, p.table())?.unbind();
     Ok(Profile::new(&p, table))
 }
@@ -155,10 +156,10 @@ pub(crate) fn design_search<'py>(
             ),
             None => search_in_memory(&settings, &options, threads, &counter, cancel),
         },
-        || report(progress.as_ref(), &counter),
+        || report(py, progress.as_ref(), &counter),
     )?
     .map_err(study_error)?;
-    report(progress.as_ref(), &counter)?;
+    report(py, progress.as_ref(), &counter)?;
     let evaluations = to_table(
         py,
         search::files::search_batch(&settings, &found.evaluations),

@@ -74,14 +74,33 @@ impl Progress for AtomicU64 {
 }
 
 /// A study's progress read from another thread while it runs: its total
-/// (set by [`Progress::start`]) and the units done (Python's `rtw.basin`
-/// and `rtw.sensitivity` call `progress(done, total)` with it).
+/// (set by [`Progress::start`]), the units done (Python's studies call
+/// `progress(done, total)` with them), and the notes and warnings the study
+/// said since they were last taken ([`Counter::take_said`]: Python makes
+/// the warnings `UserWarning`s and logs the notes).
 #[derive(Debug, Default)]
 pub struct Counter {
     /// Units done: rows computed or kept, or unlabelled units.
     pub done: AtomicU64,
     /// The total of the last [`Progress::start`].
     pub total: AtomicU64,
+    said: std::sync::Mutex<Said>,
+}
+
+/// What a study said through [`Progress::note`] and [`Progress::warn`].
+#[derive(Debug, Default)]
+pub struct Said {
+    /// Its notes, in order.
+    pub notes: Vec<String>,
+    /// Its warnings, in order.
+    pub warnings: Vec<String>,
+}
+
+impl Counter {
+    /// The notes and warnings said since the last call, taken.
+    pub fn take_said(&self) -> Said {
+        std::mem::take(&mut *self.said.lock().unwrap_or_else(|e| e.into_inner()))
+    }
 }
 
 impl Progress for Counter {
@@ -100,5 +119,15 @@ impl Progress for Counter {
 
     fn advanced(&self) {
         self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn note(&self, text: &str) {
+        let mut said = self.said.lock().unwrap_or_else(|e| e.into_inner());
+        said.notes.push(text.to_string());
+    }
+
+    fn warn(&self, text: &str) {
+        let mut said = self.said.lock().unwrap_or_else(|e| e.into_inner());
+        said.warnings.push(text.to_string());
     }
 }
