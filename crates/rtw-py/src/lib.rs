@@ -178,17 +178,14 @@ fn study_error(e: anyhow::Error) -> PyErr {
     value_error(e)
 }
 
-/// Tells Python what a study said since the last call: each warning as a
-/// `UserWarning` (as the command prints it even with `--quiet`), each note
-/// (what the study will cost) to the `rtw` logger at INFO; then calls its
+/// Tells Python what a study said since the last call (warnings as
+/// `UserWarning`, notes to the `rtw` logger at INFO), then calls its
 /// `progress(done, total)`, if any, once its total is known.
 fn report(py: Python<'_>, progress: Option<&Bound<'_, PyAny>>, counter: &Counter) -> PyResult<()> {
     let said = counter.take_said();
-    if !said.notes.is_empty() {
-        let logger = py.import("logging")?.call_method1("getLogger", ("rtw",))?;
-        for note in said.notes {
-            logger.call_method1("info", ("%s", note))?;
-        }
+    let logger = py.import("logging")?.call_method1("getLogger", ("rtw",))?;
+    for note in said.notes {
+        logger.call_method1("info", ("%s", note))?;
     }
     for warning in said.warnings {
         types::warn(py, Some(warning))?;
