@@ -4,14 +4,13 @@ every other measure: from ``rtw.simulate`` and from ``rtw.scan``."""
 
 from __future__ import annotations
 
-import _thread
-import threading
-import time
 from pathlib import Path
-
-import pytest
+from typing import TYPE_CHECKING
 
 import rtw
+
+if TYPE_CHECKING:
+    from conftest import Press
 
 FIG7A = (0.8, 2.5, 0.125, 3.269, 0.0514, 0.15)
 # Its most batches: minutes of runs at σ = 5 cm.
@@ -22,35 +21,21 @@ PRESS_AFTER = 2.0
 LIMIT = 5.0
 
 
-def interrupted_within(run) -> float:
-    """Seconds from Ctrl-C (pressed after PRESS_AFTER) to `run` raising."""
-    timer = threading.Timer(PRESS_AFTER, _thread.interrupt_main)
-    started = time.monotonic()
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            run()
-    finally:
-        timer.cancel()
-        timer.join()
-    return time.monotonic() - started - PRESS_AFTER
-
-
-def test_simulate_with_the_mfpt_stops_at_ctrl_c(ctrl_c: None) -> None:
-    took = interrupted_within(lambda: rtw.simulate(*FIG7A, options=MFPT))
+def test_simulate_with_the_mfpt_stops_at_ctrl_c(ctrl_c: Press) -> None:
+    took = ctrl_c(PRESS_AFTER, lambda: rtw.simulate(*FIG7A, options=MFPT)) - PRESS_AFTER
     print(f"rtw.simulate: Ctrl-C to KeyboardInterrupt {took:.3f} s")
     assert took < LIMIT, took
     # Python stays usable, the flag of the stopped run gone.
     assert rtw.simulate(*FIG7A).outcome == "walk"
 
 
-def test_scan_with_the_mfpt_stops_at_ctrl_c(ctrl_c: None, tmp_path: Path) -> None:
+def test_scan_with_the_mfpt_stops_at_ctrl_c(ctrl_c: Press, tmp_path: Path) -> None:
     cfg = tmp_path / "c.toml"
     cfg.write_text(
         "seed = 1\nsamples = 1\n[params]\nlength = 0.8\nrho = 2.5\nalpha = 0.125\n"
         "fn = 3.269\nzeta = 0.0514\nphi = 0.15\n[simulation]\n"
         + "".join(f"{k} = {str(v).lower()}\n" for k, v in MFPT.items())
     )
-    took = interrupted_within(lambda: rtw.scan(cfg))
+    took = ctrl_c(PRESS_AFTER, lambda: rtw.scan(cfg)) - PRESS_AFTER
     print(f"rtw.scan: Ctrl-C to KeyboardInterrupt {took:.3f} s")
     assert took < LIMIT, took

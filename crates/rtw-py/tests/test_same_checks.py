@@ -7,13 +7,11 @@ Python's keyword `name`), and both stop on Ctrl-C.
 
 from __future__ import annotations
 
-import _thread
 import os
 import re
 import subprocess
-import threading
-import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pyarrow as pa
@@ -21,6 +19,9 @@ import pyarrow.parquet as pq
 import pytest
 
 import rtw
+
+if TYPE_CHECKING:
+    from conftest import Press
 
 ROOT = Path(__file__).resolve().parents[3]
 BINARY = Path(os.environ.get("RTW_SCAN", Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release/rtw-scan"))
@@ -183,22 +184,12 @@ def test_resamples_that_are_not_integers_are_refused_by_range() -> None:
         )
 
 
-def _interrupted(call) -> float:
-    timer = threading.Timer(0.5, _thread.interrupt_main)
-    started = time.monotonic()
-    timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        call()
-    timer.join()
-    return time.monotonic() - started
-
-
-def test_ctrl_c_stops_basin_and_sensitivity(ctrl_c: None) -> None:
+def test_ctrl_c_stops_basin_and_sensitivity(ctrl_c: Press) -> None:
     # Each would run for minutes: 201 × 201 points; 10^4 resamples of every
     # output of the committed Saltelli scan (229 376 rows).
-    assert _interrupted(lambda: rtw.basin(*FIG7A, x="omega_a:-30:30:201", y="theta_b:-0.3:0.3:201", steps=60)) < 5
+    assert ctrl_c(0.5, lambda: rtw.basin(*FIG7A, x="omega_a:-30:30:201", y="theta_b:-0.3:0.3:201", steps=60)) < 5
     committed = ROOT / "results/sensitivity/saltelli/samples.parquet"
-    assert _interrupted(lambda: rtw.sensitivity(committed, resamples=10_000)) < 10
+    assert ctrl_c(0.5, lambda: rtw.sensitivity(committed, resamples=10_000)) < 10
     # Python stays usable.
     assert rtw.basin(*FIG7A, x=X, y=Y, steps=8).num_rows == 9
 
@@ -249,11 +240,11 @@ def test_design_configs_get_the_same_refusal(tmp_path: Path, key: str, value: st
     assert key in py, py
 
 
-def test_ctrl_c_stops_profile_and_design(ctrl_c: None, tmp_path: Path) -> None:
+def test_ctrl_c_stops_profile_and_design(ctrl_c: Press, tmp_path: Path) -> None:
     # Each would run for minutes: a profile on a 1e-5 grid (10^4 slopes);
     # the design search of the committed config (20 000 simulations).
-    assert _interrupted(lambda: rtw.profile(**DESIGN5, phi_from=0.1, phi_to=0.2, grid=1e-5, tol=1e-6)) < 5
+    assert ctrl_c(0.5, lambda: rtw.profile(**DESIGN5, phi_from=0.1, phi_to=0.2, grid=1e-5, tol=1e-6)) < 5
     out = tmp_path / "search"
-    assert _interrupted(lambda: rtw.design(ROOT / "configs/design/widest.toml", out=out, progress=False)) < 10
+    assert ctrl_c(0.5, lambda: rtw.design(ROOT / "configs/design/widest.toml", out=out, progress=False)) < 10
     # Python stays usable.
     assert rtw.profile(**DESIGN5, phi_from=0.1, phi_to=0.12, grid=0.01).runs > 0

@@ -78,6 +78,12 @@ fn parts(out: &Path) -> Result<Vec<(usize, PathBuf)>> {
     Ok(found)
 }
 
+/// The number of the part a search writes next, after `parts`: where its
+/// run appends, and the one a kill can have left half-written.
+fn next_part(parts: &[(usize, PathBuf)]) -> usize {
+    parts.last().map_or(1, |(k, _)| k + 1)
+}
+
 /// The reported designs' file in `out`.
 pub fn designs_path(out: &Path) -> PathBuf {
     out.join("designs.parquet")
@@ -133,7 +139,7 @@ pub fn stored(out: &Path, s: &SearchSettings, options: &Options, force: bool) ->
     }
     Ok(Stored {
         evaluations: evals.into_values().collect(),
-        next_part: parts.last().map_or(1, |(k, _)| k + 1),
+        next_part: next_part(&parts),
         stale,
     })
 }
@@ -284,7 +290,7 @@ pub fn check_outputs(out: &Path, force: bool) -> Result<()> {
         schema,
     };
     let parts = parts(out)?;
-    let next = part_path(out, parts.last().map_or(1, |(k, _)| k + 1));
+    let next = part_path(out, next_part(&parts));
     let mut outputs = vec![
         output(main.clone(), search_schema()),
         output(designs_path(out), designs_schema()),
