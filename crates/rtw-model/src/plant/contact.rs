@@ -217,7 +217,10 @@ impl RodBody {
                 ],
                 lambda: [0.0, 0.0],
             },
-            RodMode::Stick { tip } => {
+            // In the corner the tip is pinned as in stick. One arm for both,
+            // not a call of `accel` again: a recursive `accel` is not inlined
+            // into the right-hand side, and the flat slope paid for it.
+            RodMode::Stick { tip } | RodMode::Corner { tip, .. } => {
                 let d = self.arm(r.e, tip);
                 let w2 = r.omega * r.omega;
                 // I_P θ̈ = τ_P, the moment about the contact point P = c + d.
@@ -231,7 +234,6 @@ impl RodBody {
                     lambda: sub(scale(m, cdd), f),
                 }
             }
-            RodMode::Corner { tip, .. } => self.accel(RodMode::Stick { tip }, r, load, mu),
             RodMode::Wall { tip, .. } => self.wall_accel(tip, r, load),
             RodMode::Slide { tip, dir } => {
                 let kappa = if mu.is_finite() { -mu * dir } else { 0.0 };

@@ -161,7 +161,21 @@ pub const SPOKES: [(usize, Tip); 6] = [
 /// The six strings as pairs of spokes (indices into [`SPOKES`]): string `j`
 /// joins the connection points of spoke `j` and spoke `j + 1`, round the
 /// star (a+–b+, b+–c+, c+–a−, a−–b−, b−–c−, c−–a+).
-pub const STRINGS: [(usize, usize); 6] = [(0, 1), (1, 2), (2, 3), (3, 4), (4, 5), (5, 0)];
+pub const STRINGS: [(usize, usize); 6] = {
+    let mut strings = [(0, 0); 6];
+    let mut j = 0;
+    while j < 6 {
+        strings[j] = (j, next_spoke(j));
+        j += 1;
+    }
+    strings
+};
+
+/// The spoke after spoke `j` round the star, which string `j` joins it to.
+#[inline]
+pub(crate) const fn next_spoke(j: usize) -> usize {
+    (j + 1) % 6
+}
 
 /// The tip and the connection point of every spoke, in [`SPOKES`] order, of
 /// rods with centres `c` and angles `theta` (`rods[i] = (c, theta)`): tip

@@ -228,7 +228,8 @@ impl Rtw {
     /// edge is declared a hair beyond it, as the foot of a face is: a tip
     /// let go at the foot of a face starts on the lower patch at the edge
     /// itself.
-    #[inline]
+    // Out of line: never asked on the flat slope, whose guards it slowed.
+    #[inline(never)]
     pub(crate) fn edge_pass_guard(&self, x: f64, rod: usize, tip: Tip) -> f64 {
         self.terrain
             .edge_distance_over(x, &self.over[rod][tip.index()])
@@ -265,7 +266,8 @@ impl Rtw {
     /// The value of a rod's edge guard at `y`: sliding on a patch, its
     /// distance to the patch's nearer edge; on a face, its height above the
     /// face's foot.
-    #[inline]
+    // Out of line: never asked on the flat slope, whose guards it slowed.
+    #[inline(never)]
     pub(crate) fn edge_guard(&self, y: &[f64; N], rod: usize) -> f64 {
         if let RodMode::Wall { side, .. } = self.modes[rod] {
             return self.wall_heights(y, rod, side).0;
@@ -295,7 +297,8 @@ impl Rtw {
 
     /// The value of the face-top guard of a rod whose tip is on a face: its
     /// depth below the face's top.
-    #[inline]
+    // Out of line: never asked on the flat slope, whose guards it slowed.
+    #[inline(never)]
     pub(crate) fn face_top_guard(&self, y: &[f64; N], rod: usize) -> f64 {
         let RodMode::Wall { side, .. } = self.modes[rod] else {
             unreachable!("face-top guard of a rod on a face")

@@ -31,10 +31,21 @@ impl Rtw {
     /// guards at the same state need not compute them again.
     #[inline]
     pub fn dynamics(&self, y: &[f64; N], dy: &mut [f64; N]) -> AtState {
-        let frames = self.frames(y);
-        let (loads, dissipation) = self.loads(&frames);
+        let mut at = AtState::default();
+        self.dynamics_into(y, dy, &mut at);
+        at
+    }
+
+    /// [`dynamics`](Self::dynamics) with the frames and λ written into `at`
+    /// in place: the engine keeps them at every stage, and a returned
+    /// `AtState` (216 bytes) was copied into its place at each evaluation.
+    #[inline]
+    pub(super) fn dynamics_into(&self, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
+        at.frames = self.frames(y);
+        let frames = &at.frames;
+        let (loads, dissipation) = self.loads(frames);
         let mut friction = 0.0;
-        let mut lambda = [[0.0; 2]; 3];
+        let lambda = &mut at.lambda;
         for i in 0..3 {
             let a = self
                 .body
@@ -48,7 +59,6 @@ impl Rtw {
         }
         dy[DISSIPATED] = dissipation;
         dy[FRICTION] = friction;
-        AtState { frames, lambda }
     }
 
     #[cfg(test)]

@@ -110,12 +110,11 @@ impl Rtw {
         frame: impl Fn(usize) -> RodFrame,
         lambda: impl Fn(usize) -> Vec2,
     ) -> f64 {
-        let tip = |rod: usize, tip: Tip| frame(rod).point(tip.sign() * self.body.half_length).0;
-        // A tip's height above the ground under it (crate::plant::terrain).
-        let tip_height = |rod: usize, t: Tip| {
-            let p = tip(rod, t);
-            p[1] - self.ground(p[0])
-        };
+        // Methods, not closures: the closures were left out of line once the
+        // guards of the faces were added, and the flat slope paid a call for
+        // every tip height.
+        let tip = |rod: usize, t: Tip| self.tip_at(&frame(rod), t);
+        let tip_height = |rod: usize, t: Tip| self.height_above_ground(self.tip_at(&frame(rod), t));
         match kind {
             // A free tip's height above the patch under it: smooth, as the
             // patch changes only at an edge pass.
@@ -156,6 +155,18 @@ impl Rtw {
             GuardKind::FaceTop { rod } => self.face_top_guard(y, rod),
             GuardKind::EdgePass { rod, tip: t } => self.edge_pass_guard(tip(rod, t)[0], rod, t),
         }
+    }
+
+    /// The point of `tip` of the rod with frame `f`.
+    #[inline(always)]
+    fn tip_at(&self, f: &RodFrame, tip: Tip) -> Vec2 {
+        f.point(tip.sign() * self.body.half_length).0
+    }
+
+    /// A point's height above the ground under it (crate::plant::terrain).
+    #[inline(always)]
+    fn height_above_ground(&self, p: Vec2) -> f64 {
+        p[1] - self.ground(p[0])
     }
 
     /// The time derivative of guard `kind` at a state with frames `frames`

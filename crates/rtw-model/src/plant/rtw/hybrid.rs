@@ -22,7 +22,7 @@ impl HybridSystem<N> for Rtw {
 
     #[inline]
     fn rhs_aux(&self, _t: f64, y: &[f64; N], dy: &mut [f64; N], at: &mut AtState) {
-        *at = self.dynamics(y, dy);
+        self.dynamics_into(y, dy, at);
     }
 
     #[inline]
@@ -73,12 +73,14 @@ impl HybridSystem<N> for Rtw {
             for (a, b) in yd.iter_mut().zip(dy) {
                 *a += d * b;
             }
-            ahead.frames = std::array::from_fn(|i| {
+            let frame = |i: usize| {
                 let e = at.frames[i].e;
                 let turn = d * dy[slots::at(i, THETA)];
                 let e = [e[0] - turn * e[1], e[1] + turn * e[0]];
                 self.body.frame_with(self.modes[i], slots::rod(&yd, i), e)
-            });
+            };
+            // Written out: `array::from_fn`'s closure was left out of line.
+            ahead.frames = [frame(0), frame(1), frame(2)];
             ahead.lambda = self.contact_forces_of(&ahead.frames);
         }
         let mut k = 0;

@@ -155,7 +155,10 @@ impl Rtw {
     /// Per-rod frames (full coordinates plus unit vectors) of state `y`.
     #[inline]
     pub fn frames(&self, y: &[f64; N]) -> [RodFrame; 3] {
-        std::array::from_fn(|i| self.body.frame(self.modes[i], slots::rod(y, i)))
+        // Written out, not `array::from_fn`: its closure was left out of line
+        // in the right-hand side once the contact modes grew.
+        let frame = |i: usize| self.body.frame(self.modes[i], slots::rod(y, i));
+        [frame(0), frame(1), frame(2)]
     }
 
     /// Full coordinates of the rods.
