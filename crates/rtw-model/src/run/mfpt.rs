@@ -111,7 +111,7 @@ pub(crate) struct RtwWalker<'a, 'b> {
     /// One step of the flat gait, never stopped early.
     pub(crate) options: Options,
     /// The centre of mass's velocity at the settled state.
-    v_settled: [f64; 2],
+    pub(crate) v_settled: [f64; 2],
     /// The flat gait's mean speed.
     pub(crate) speed: f64,
     pub(crate) work: RefCell<Work>,
@@ -251,37 +251,51 @@ pub(crate) fn walker<'a, 'b>(
     r: &RobustnessOptions,
     terrain: TerrainOptions,
 ) -> (RtwWalker<'a, 'b>, State) {
-    let options = Options {
-        t_max: 1.0 / s.flat.f_w_newfoot,
-        stop_when_settled: false,
-        ..s.options
-    };
-    let mut rtw = s.rtw.clone();
-    rtw.set_terrain(
-        TerrainOptions::rough(r.sigma, terrain.seed, s.edge, terrain.patch),
-        s.y,
-    );
-    // The energy dissipated so far is the flat run's, not this one's.
-    let mut y = *s.y;
-    y[DISSIPATED] = 0.0;
-    y[FRICTION] = 0.0;
-    let walker = RtwWalker {
-        s,
-        options,
-        v_settled: com_velocity(s.rtw, s.y),
-        speed: if s.flat.speed > 0.0 {
-            s.flat.speed
-        } else {
-            1.0
-        },
-        work: RefCell::new(Work::default()),
-    };
-    let start = State {
-        rtw,
-        y,
-        quiet: 0.0,
-        weight: 1.0,
-        fresh: true,
-    };
+    let walker = RtwWalker::new(s);
+    let start = walker.start(r.sigma, terrain);
     (walker, start)
+}
+
+impl<'a, 'b> RtwWalker<'a, 'b> {
+    /// The settled gait `s` as a walker: one step is a run of its flat
+    /// gait's step time, never stopped early.
+    pub(crate) fn new(s: &'a SettledGait<'b>) -> Self {
+        RtwWalker {
+            s,
+            options: Options {
+                t_max: 1.0 / s.flat.f_w_newfoot,
+                stop_when_settled: false,
+                ..s.options
+            },
+            v_settled: com_velocity(s.rtw, s.y),
+            speed: if s.flat.speed > 0.0 {
+                s.flat.speed
+            } else {
+                1.0
+            },
+            work: RefCell::new(Work::default()),
+        }
+    }
+
+    /// The walker at the settled state, meeting the rough slope of `sigma`
+    /// with `terrain`'s seed and patch length at the gait's edge.
+    pub(crate) fn start(&self, sigma: f64, terrain: TerrainOptions) -> State {
+        let s = self.s;
+        let mut rtw = s.rtw.clone();
+        rtw.set_terrain(
+            TerrainOptions::rough(sigma, terrain.seed, s.edge, terrain.patch),
+            s.y,
+        );
+        // The energy dissipated so far is the flat run's, not this one's.
+        let mut y = *s.y;
+        y[DISSIPATED] = 0.0;
+        y[FRICTION] = 0.0;
+        State {
+            rtw,
+            y,
+            quiet: 0.0,
+            weight: 1.0,
+            fresh: true,
+        }
+    }
 }

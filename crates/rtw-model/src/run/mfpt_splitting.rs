@@ -33,18 +33,14 @@
 //! **Cost**: the training walks (`train_walks` walks of at most
 //! `train_max_steps` steps) and the splitting's batches, every step counted.
 
-use crate::options::{Options, RobustnessOptions, TerrainOptions};
-use crate::outcome::{FailureDetail, MeanFirstPassage};
-use crate::plant::geometry::SPOKES;
-use crate::plant::rtw::Rtw;
-use crate::plant::slots::{DISSIPATED, FRICTION, N};
-use crate::run::recorder::run_from;
+use crate::options::{RobustnessOptions, TerrainOptions};
+use crate::outcome::MeanFirstPassage;
+use crate::run::mfpt::{self, com_velocity, furthest_tip};
 use crate::run::settled::SettledGait;
 use hybrid_ode::Work;
 use hybrid_ode::logistic::{Logistic, auc};
 use hybrid_ode::metastable::{Rng, Walker};
 use hybrid_ode::splitting::{Split, SplitOptions, split};
-use std::cell::RefCell;
 
 /// The settings of the RTW's splitting: the score's training and the
 /// splitting's own.
@@ -145,44 +141,28 @@ impl SplitMfpt {
     }
 }
 
-/// The walker's state at a step: the system (its contact modes and the
-/// ground, with the patches it has reached), the state, and how long no tip
-/// has touched down.
+/// The walker's state at a step: the counted estimator's
+/// ([`mfpt::State`]), and the splitting's score there.
 #[derive(Clone)]
 pub(crate) struct State {
-    rtw: Rtw,
-    y: [f64; N],
-    quiet: f64,
+    walker: mfpt::State,
     /// The learned log-odds averaged over the steps so far (exponentially,
     /// [`SplitSettings::smoothing`]): the splitting's score.
     risk: f64,
-    /// No step taken yet: the walker has reached no rough patch.
-    fresh: bool,
 }
 
 /// The number of [`features`].
 pub const FEATURES: usize = 11;
 
-/// The downhill position of the furthest tip of `y`.
-fn furthest_tip(rtw: &Rtw, y: &[f64; N]) -> f64 {
-    let rods = rtw.rods(y);
-    SPOKES
-        .iter()
-        .map(|&(rod, tip)| rtw.body.tip_point(&rods[rod], tip).0[0])
-        .fold(f64::NEG_INFINITY, f64::max)
-}
-
-/// The centre of mass's velocity (the rods are equal).
-fn com_velocity(rtw: &Rtw, y: &[f64; N]) -> [f64; 2] {
-    let rods = rtw.rods(y);
-    let v = |k: usize| rods.iter().map(|r| r.v[k]).sum::<f64>() / 3.0;
-    [v(0), v(1)]
-}
-
 /// The extended state's features (see the module doc), lengths in rod
 /// lengths `l` and velocities relative to the settled gait's, in units of
 /// its mean speed.
-pub(crate) fn features(st: &State, v_settled: [f64; 2], speed: f64, l: f64) -> [f64; FEATURES] {
+pub(crate) fn features(
+    st: &mfpt::State,
+    v_settled: [f64; 2],
+    speed: f64,
+    l: f64,
+) -> [f64; FEATURES] {
     let t = &st.rtw.terrain;
     let front = furthest_tip(&st.rtw, &st.y);
     let com = st.rtw.centre_of_mass(&st.y);
@@ -212,42 +192,41 @@ pub(crate) fn features(st: &State, v_settled: [f64; 2], speed: f64, l: f64) -> [
     ]
 }
 
-/// The settled gait as a walker on the rough slope, scored by `score`.
+/// The settled gait as a walker on the rough slope (the counted
+/// estimator's, [`mfpt::RtwWalker`]), scored by `score`.
 struct RtwWalker<'a, 'b> {
-    s: &'a SettledGait<'b>,
-    /// One step of the flat gait, never stopped early.
-    options: Options,
-    v_settled: [f64; 2],
-    speed: f64,
+    walker: mfpt::RtwWalker<'a, 'b>,
     score: Option<Logistic>,
     /// The weight of each step's log-odds in the score's average.
     smoothing: f64,
-    work: RefCell<Work>,
 }
 
-impl RtwWalker<'_, '_> {
+impl<'a, 'b> RtwWalker<'a, 'b> {
+    /// The settled gait `s` as a walker, its score not learned yet.
+    fn new(s: &'a SettledGait<'b>, smoothing: f64) -> Self {
+        RtwWalker {
+            walker: mfpt::RtwWalker::new(s),
+            score: None,
+            smoothing,
+        }
+    }
+
     fn features(&self, st: &State) -> [f64; FEATURES] {
-        features(st, self.v_settled, self.speed, self.s.phys.length)
+        let w = &self.walker;
+        features(&st.walker, w.v_settled, w.speed, w.s.phys.length)
     }
 
     /// The walker at the settled gait meeting the rough slope of `sigma`.
     fn start(&self, sigma: f64, terrain: TerrainOptions) -> State {
-        let mut rtw = self.s.rtw.clone();
-        rtw.set_terrain(
-            TerrainOptions::rough(sigma, terrain.seed, self.s.edge, terrain.patch),
-            self.s.y,
-        );
-        // The energy dissipated so far is the flat run's, not this one's.
-        let mut y = *self.s.y;
-        y[DISSIPATED] = 0.0;
-        y[FRICTION] = 0.0;
         State {
-            rtw,
-            y,
-            quiet: 0.0,
+            walker: self.walker.start(sigma, terrain),
             risk: f64::NAN,
-            fresh: true,
         }
+    }
+
+    /// What the walker has cost so far.
+    fn into_work(self) -> Work {
+        self.walker.work.into_inner()
     }
 }
 
@@ -255,41 +234,11 @@ impl Walker for RtwWalker<'_, '_> {
     type State = State;
 
     fn step(&self, st: &State, rng: &mut Rng) -> Option<State> {
-        let mut rtw = st.rtw.clone();
-        // Before its first step the walker stands before the rough slope:
-        // every patch is ahead of it.
-        let reach = if st.fresh {
-            f64::NEG_INFINITY
-        } else {
-            furthest_tip(&rtw, &st.y) + self.s.phys.length
-        };
-        rtw.branch_terrain_beyond(reach, rng.next_u64(), &st.y);
-        let (o, rtw, y) = run_from(
-            self.s.params,
-            &self.options,
-            self.s.phys,
-            rtw,
-            st.y,
-            self.s.flat.start,
-            Work::default(),
-            None,
-        );
-        *self.work.borrow_mut() += o.work;
-        let failed = o.failure.is_some_and(|f| f != FailureDetail::NoProgress);
-        let quiet = if o.touchdowns == 0 {
-            st.quiet + o.t_end
-        } else {
-            0.0
-        };
-        if failed || quiet >= self.options.stall_time {
-            return None;
-        }
         let mut next = State {
-            rtw,
-            y,
-            quiet,
+            walker: self
+                .walker
+                .step_branched(&st.walker, rng.next_u64(), f64::NAN)?,
             risk: 0.0,
-            fresh: false,
         };
         next.risk = match &self.score {
             None => 0.0,
@@ -418,24 +367,7 @@ pub(crate) fn split_with(
     set: &SplitSettings,
     work: &mut Work,
 ) -> Option<SplitMfpt> {
-    let options = Options {
-        t_max: 1.0 / s.flat.f_w_newfoot,
-        stop_when_settled: false,
-        ..s.options
-    };
-    let mut w = RtwWalker {
-        s,
-        options,
-        v_settled: com_velocity(s.rtw, s.y),
-        speed: if s.flat.speed > 0.0 {
-            s.flat.speed
-        } else {
-            1.0
-        },
-        score: None,
-        smoothing: set.smoothing,
-        work: RefCell::new(Work::default()),
-    };
+    let mut w = RtwWalker::new(s, set.smoothing);
     // Learn the score where falls are cheap.
     let mut rng = Rng::new(Rng::new(terrain.seed ^ 0x0074_7261_696e).next_u64());
     let train_start = w.start(set.train_sigma.max(sigma), terrain);
@@ -447,7 +379,7 @@ pub(crate) fn split_with(
         &mut rng,
     );
     let Some(trained) = trained else {
-        *work += w.work.into_inner();
+        *work += w.into_work();
         return None;
     };
     let (x, y, walk_of) = (&trained.x, trained.labels(set.horizon), &trained.walk_of);
@@ -462,7 +394,7 @@ pub(crate) fn split_with(
     let (fit_x, fit_y) = pick(true);
     let (held_x, held_y) = pick(false);
     let Ok(model) = Logistic::fit(&fit_x, &fit_y, set.ridge) else {
-        *work += w.work.into_inner();
+        *work += w.into_work();
         return None;
     };
     let held_scores: Vec<f64> = held_x.iter().map(|r| model.logit(r)).collect();
@@ -473,7 +405,7 @@ pub(crate) fn split_with(
     let (mut target_auc, mut target_lags) = (None, Vec::new());
     if set.target_walks > 0 {
         let Some(t) = walks(&w, &start, set.target_walks, set.train_max_steps, &mut rng) else {
-            *work += w.work.into_inner();
+            *work += w.into_work();
             return None;
         };
         let scores: Vec<f64> = t.x.iter().map(|r| model.logit(r)).collect();
@@ -499,7 +431,7 @@ pub(crate) fn split_with(
             ..set.split
         },
     );
-    *work += w.work.into_inner();
+    *work += w.into_work();
     let out = out?;
     Some(SplitMfpt {
         mfpt: out.mfpt,
@@ -522,7 +454,7 @@ pub(crate) fn split_with(
 #[cfg(test)]
 pub(crate) fn with_settled<T>(
     params: &crate::params::Params,
-    options: &Options,
+    options: &crate::options::Options,
     f: impl FnOnce(&SettledGait<'_>) -> T,
 ) -> Option<T> {
     let mut flat_options = *options;
@@ -540,6 +472,7 @@ pub(crate) fn with_settled<T>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::options::Options;
 
     fn env<T: std::str::FromStr>(name: &str, default: T) -> T {
         std::env::var(name)
@@ -556,35 +489,28 @@ mod tests {
         let o = Options::default();
         with_settled(&crate::params::Params::fig7a(), &o, |s| {
             let set = SPLIT_SETTINGS;
-            let w = RtwWalker {
-                s,
-                options: Options {
-                    t_max: 1.0 / s.flat.f_w_newfoot,
-                    stop_when_settled: false,
-                    ..s.options
-                },
-                v_settled: com_velocity(s.rtw, s.y),
-                speed: s.flat.speed,
-                score: None,
-                smoothing: set.smoothing,
-                work: RefCell::new(Work::default()),
-            };
+            let w = RtwWalker::new(s, set.smoothing);
             let mut rng = Rng::new(1);
             let mut st = w.start(0.03, TerrainOptions::default());
             for _ in 0..5 {
                 st = w.step(&st, &mut rng).expect("five steps at 3 cm");
             }
             let f = w.features(&st);
-            let reach = furthest_tip(&st.rtw, &st.y) + s.phys.length;
+            let reach = furthest_tip(&st.walker.rtw, &st.walker.y) + s.phys.length;
             let mut redrawn = st.clone();
-            redrawn.rtw.branch_terrain_beyond(reach, 12345, &redrawn.y);
+            redrawn
+                .walker
+                .rtw
+                .branch_terrain_beyond(reach, 12345, &redrawn.walker.y);
             assert_eq!(f, w.features(&redrawn));
             // The same walker on other kept patches: the rise ahead differs.
             let mut other = st.clone();
-            let front = furthest_tip(&st.rtw, &st.y);
-            other
-                .rtw
-                .branch_terrain_beyond(front - 2.0 * s.phys.length, 999, &other.y);
+            let front = furthest_tip(&st.walker.rtw, &st.walker.y);
+            other.walker.rtw.branch_terrain_beyond(
+                front - 2.0 * s.phys.length,
+                999,
+                &other.walker.y,
+            );
             assert_ne!(f[0], w.features(&other)[0], "{f:?}");
             assert!(f.iter().all(|v| v.is_finite()), "{f:?}");
         })
