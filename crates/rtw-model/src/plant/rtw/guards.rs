@@ -110,9 +110,10 @@ impl Rtw {
         frame: impl Fn(usize) -> RodFrame,
         lambda: impl Fn(usize) -> Vec2,
     ) -> f64 {
-        // Methods, not closures: the closures were left out of line once the
-        // guards of the faces were added, and the flat slope paid a call for
-        // every tip height.
+        // The tip and its height are `#[inline(always)]` methods, the
+        // closures only bind `frame`: with the arithmetic in closures (one
+        // calling the other) they stayed calls once the faces' guards grew
+        // this match, a call for every tip height of the flat slope.
         let tip = |rod: usize, t: Tip| self.tip_at(&frame(rod), t);
         let tip_height = |rod: usize, t: Tip| self.height_above_ground(self.tip_at(&frame(rod), t));
         match kind {
