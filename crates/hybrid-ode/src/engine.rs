@@ -35,6 +35,14 @@ pub struct EngineOptions {
     pub zeno_window: f64,
     /// The fixed step of [`Method::Rk4`] (s).
     pub rk4_step: f64,
+    /// Also find the crossings that the guards' values and rates at a step's
+    /// ends hide: a guard that dips where the right-hand side kinks inside
+    /// the step ([`HybridSystem::kink_sides`]: the step is split there and
+    /// each piece searched as a step of its own), one on its crossed side at
+    /// another guard's event, and a first crossing before the root a
+    /// bracket converged to. Off until the committed results are remade
+    /// with it: it changes runs where such a crossing was missed.
+    pub hidden_crossings: bool,
 }
 
 impl Default for EngineOptions {
@@ -50,6 +58,7 @@ impl Default for EngineOptions {
             zeno_events: 50,
             zeno_window: 1e-6,
             rk4_step: 1e-3,
+            hidden_crossings: false,
         }
     }
 }
@@ -255,6 +264,13 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
     let mut rn = [0.0; MAX_GUARDS];
     sys.guards_aux(t, y, &aux, &mut gp);
     sys.guard_rates(t, y, &st.k[0], &aux, &gp, &mut rp);
+    // The sides of the right-hand side's kinks at the step's start (all 0
+    // unless the hidden crossings are sought).
+    let hidden = opts.hidden_crossings;
+    let kink_sides = |sys: &S, t: f64, y: &[f64; N], aux: &S::Aux| {
+        if hidden { sys.kink_sides(t, y, aux) } else { 0 }
+    };
+    let mut kp = kink_sides(sys, t, y, &aux);
     if !(t < t_end) {
         finish!(EndReason::TimeUp);
     }
@@ -365,8 +381,10 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
 
         sys.guards_aux(t_new, &st.ynew, &aux, &mut gn);
         sys.guard_rates(t_new, &st.ynew, &st.fnew, &aux, &gn, &mut rn);
-        // A guard crossed at the step's end, or may have inside it.
-        let crossed = any_crossing(&gp, &gn, &rp, &rn, t, t_new);
+        // A guard crossed at the step's end, or may have inside it, or the
+        // right-hand side kinked inside it.
+        let kn = kink_sides(sys, t_new, &st.ynew, &aux);
+        let crossed = any_crossing(&gp, &gn, &rp, &rn, t, t_new) || kn != kp;
         let full = crossed || observer.reads_interior(sys, t, t_new);
         work.rhs_evals += fill_dense(
             method,
@@ -390,6 +408,7 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
                 &rn,
                 &st.err,
                 opts.event_time_tol,
+                (hidden, (kp, kp ^ kn)),
                 &mut sc,
             )
         } else {
@@ -429,6 +448,7 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
             }
             sys.guards_aux(t, y, &aux, &mut gp);
             sys.guard_rates(t, y, &st.k[0], &aux, &gp, &mut rp);
+            kp = kink_sides(sys, t, y, &aux);
             if t >= t_end {
                 finish!(EndReason::TimeUp);
             }
@@ -442,6 +462,7 @@ pub fn run<const N: usize, S: HybridSystem<N>, O: Observer<N, S>>(
         st.k[0] = st.fnew;
         core::mem::swap(&mut gp, &mut gn);
         core::mem::swap(&mut rp, &mut rn);
+        kp = kn;
         // `fill_dense` evaluates with plain `rhs`: `aux` is still at `y`.
         if observer.on_step(sys, &dense, StepEnd::Step { aux: &aux }) == Flow::Stop {
             finish!(EndReason::Stopped);

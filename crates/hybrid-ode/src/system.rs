@@ -25,6 +25,9 @@ use crate::dense::Dense;
 /// Capacity of a [`Guards`] set. Fixed so that guard evaluation never allocates.
 pub const MAX_GUARDS: usize = 16;
 
+/// Most kinks of a right-hand side ([`HybridSystem::kink_sides`]: one bit each).
+pub(crate) const MAX_KINKS: usize = 32;
+
 /// The direction in which a guard must cross zero to fire.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Crossing {
@@ -191,6 +194,32 @@ pub trait HybridSystem<const N: usize> {
         for ((r, a), b) in out.iter_mut().zip(&gd.value).zip(&g.value).take(g.len) {
             *r = (a - b) / d;
         }
+    }
+
+    /// Which side of each kink of the right-hand side the state `(t, y)` is
+    /// on, one bit per kink (set: below zero), where
+    /// [`rhs_aux`](HybridSystem::rhs_aux) has just written `aux`. A kink is
+    /// where the right-hand side switches branch without an event (a slack
+    /// string going taut); a guard computed from its forces kinks there too,
+    /// and no cubic model of the guard across a step holds. The engine
+    /// compares the bits at a step's two ends and splits the step at each
+    /// kink that changed ([`EngineOptions::hidden_crossings`]). The default,
+    /// 0, is right for a smooth right-hand side. It is asked only at step
+    /// ends, and only when the hidden crossings are sought.
+    ///
+    /// [`EngineOptions::hidden_crossings`]: crate::EngineOptions::hidden_crossings
+    #[inline]
+    fn kink_sides(&self, _t: f64, _y: &[f64; N], _aux: &Self::Aux) -> u32 {
+        0
+    }
+
+    /// Kink `index`'s value at `(t, y)`: a smooth function of the state whose
+    /// sign is bit `index` of [`kink_sides`](HybridSystem::kink_sides). Called
+    /// only for a kink whose bit changed over a step; the default (a system
+    /// without kinks) is never called.
+    #[inline]
+    fn kink(&self, _t: f64, _y: &[f64; N], _index: usize) -> f64 {
+        0.0
     }
 
     /// The reset of guard `index`, applied at its located event time `t` with

@@ -199,6 +199,7 @@ fn adaptive_opts(method: Method, rtol: f64) -> EngineOptions {
         zeno_events: 50,
         zeno_window: 1e-9,
         rk4_step: 0.01,
+        hidden_crossings: false,
     }
 }
 

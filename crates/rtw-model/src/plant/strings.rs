@@ -12,6 +12,9 @@ use crate::plant::geometry::{
     RodFrame, SPOKES, STRINGS, Vec2, add, cross, dot, next_spoke, scale, sub,
 };
 
+/// The number of strings.
+pub const STRING_COUNT: usize = 6;
+
 /// String constants of one RTW.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StringSet {
@@ -58,9 +61,13 @@ pub struct StringLoads {
 }
 
 impl StringSet {
-    /// The force on end `p` of a string from `q` to `p`, and the power dissipated.
+    /// The force on end `p` of a string from `q` to `p`, the power
+    /// dissipated, and the two values whose signs pick the branch of a slack
+    /// string's law: its stretch (its spring pulls only when stretched) and
+    /// the pull of spring and damper along it (it cannot push). The force
+    /// has a kink where either changes sign.
     #[inline]
-    fn string_force(&self, p: Vec2, vp: Vec2, q: Vec2, vq: Vec2) -> (Vec2, f64) {
+    fn string_law(&self, p: Vec2, vp: Vec2, q: Vec2, vq: Vec2) -> (Vec2, f64, [f64; 2]) {
         let d = sub(p, q);
         let dv = sub(vp, vq);
         let len = dot(d, d).sqrt();
@@ -77,25 +84,57 @@ impl StringSet {
         } else {
             self.k * stretch
         };
-        let force = match self.damping {
+        let (force, pull) = match self.damping {
             Damping::Along => {
                 let t = spring + self.c * len_rate;
+                let pull = t;
                 let t = if self.slack { t.max(0.0) } else { t };
-                scale(-t, u)
+                (scale(-t, u), pull)
             }
             Damping::Relative => {
                 let f = add(scale(-spring, u), scale(-self.c, dv));
+                let pull = -dot(f, u);
                 // Slack: the string can pull only.
-                if self.slack && dot(f, u) > 0.0 {
-                    [0.0, 0.0]
+                if self.slack && pull < 0.0 {
+                    ([0.0, 0.0], pull)
                 } else {
-                    f
+                    (f, pull)
                 }
             }
         };
         // Power absorbed by the string minus the rate of its stored energy.
         let absorbed = -dot(force, dv);
-        (force, absorbed - spring * len_rate)
+        (force, absorbed - spring * len_rate, [stretch, pull])
+    }
+
+    /// Where the strings' force law has kinks: for each string `j`, its
+    /// stretch at `2j` and its pull at `2j + 1` (see
+    /// [`string_law`](Self::string_law)); `None` for strings that cannot go
+    /// slack, whose law is smooth.
+    pub fn kinks(&self, rods: &[RodFrame; 3]) -> Option<[f64; 2 * STRING_COUNT]> {
+        if !self.slack {
+            return None;
+        }
+        let mut out = [0.0; 2 * STRING_COUNT];
+        for j in 0..STRING_COUNT {
+            let n = next_spoke(j);
+            let (p, vp) = rods[SPOKES[j].0].point(SPOKES[j].1.sign() * self.r);
+            let (q, vq) = rods[SPOKES[n].0].point(SPOKES[n].1.sign() * self.r);
+            let (_, _, k) = self.string_law(p, vp, q, vq);
+            out[2 * j] = k[0];
+            out[2 * j + 1] = k[1];
+        }
+        Some(out)
+    }
+
+    /// The sides of the strings' kinks ([`kinks`](Self::kinks)), bit `i`
+    /// set where kink `i` is below zero; 0 for strings that cannot go slack.
+    pub fn kink_sides(&self, rods: &[RodFrame; 3]) -> u32 {
+        self.kinks(rods).map_or(0, |k| {
+            k.iter()
+                .enumerate()
+                .fold(0, |bits, (i, v)| bits | (u32::from(*v < 0.0) << i))
+        })
     }
 
     /// Forces and torques of the six strings on the three rods.
@@ -115,7 +154,7 @@ impl StringSet {
             let n = next_spoke(j);
             let (p, vp, arm_p) = ends[j];
             let (q, vq, arm_q) = ends[n];
-            let (f, diss) = self.string_force(p, vp, q, vq);
+            let (f, diss, _) = self.string_law(p, vp, q, vq);
             let (ip, iq) = (SPOKES[j].0, SPOKES[n].0);
             out.force[ip] = add(out.force[ip], f);
             out.force[iq] = sub(out.force[iq], f);

@@ -6,7 +6,7 @@ use crate::plant::contact::RodMode;
 use crate::plant::geometry::{RodState, Tip, cross, perp, rest_star, scale, sub};
 use crate::plant::initial::initial_state;
 use crate::plant::rtw::Rtw;
-use crate::plant::slots::{self, DISSIPATED, N, OMEGA, VX, VY};
+use crate::plant::slots::{self, DISSIPATED, N, OMEGA, THETA, VX, VY, X, Y};
 use crate::{Label, Params, Physical, simulate};
 use hybrid_ode::{EndReason, EngineOptions, Flow, Guards, HybridSystem, run};
 
@@ -512,6 +512,66 @@ fn finite_friction_never_sticks_outside_its_cone() {
         out.energy.friction_loss > 0.0 && out.slide_time > 0.0,
         "{out:?}"
     );
+}
+
+#[test]
+fn the_kink_sides_of_the_dynamics_are_the_signs_of_the_kinks() {
+    // The engine compares the kinks' sides at a step's ends, from the frames
+    // the right-hand side made there, and locates a changed one by its value
+    // on the dense output: the bits must be the signs of those values at
+    // every state.
+    let o = Options::default();
+    assert!(o.strings.slack);
+    let phys = Physical::new(&Params::fig7a(), o.normalization, o.g);
+    let mut sys = Rtw::new(&phys, &o);
+    let (y0, _) = initial_state(&mut sys, &o, &mut Default::default()).unwrap();
+    // In flight, so that every rod's frame follows its centre.
+    sys.set_modes([RodMode::Free; 3]);
+    let (mut set, mut clear) = (0u32, 0u32);
+    for k in 0..40 {
+        // Stretched, compressed, lengthening and shortening strings.
+        // The star shrunk or grown about its centre, its rods moving in or
+        // out, turned and spun.
+        let mut y = y0;
+        let a = f64::from(k) / 40.0 * std::f64::consts::TAU;
+        let centre = |c: usize| (0..3).map(|i| y0[slots::at(i, c)]).sum::<f64>() / 3.0;
+        let (cx, cy) = (centre(X), centre(Y));
+        let (grow, rate) = (1.0 + 0.3 * a.sin(), 2.0 * (2.0 * a).cos());
+        for i in 0..3 {
+            let (dx, dy) = (y0[slots::at(i, X)] - cx, y0[slots::at(i, Y)] - cy);
+            y[slots::at(i, X)] = cx + grow * dx;
+            y[slots::at(i, Y)] = cy + grow * dy;
+            y[slots::at(i, VX)] += rate * dx;
+            y[slots::at(i, VY)] += rate * dy;
+            y[slots::at(i, OMEGA)] += 6.0 * (3.0 * a - i as f64).cos();
+            y[slots::at(i, THETA)] += 0.3 * (5.0 * a + 2.0 * i as f64).sin();
+        }
+        let mut dy = [0.0; N];
+        let at = sys.dynamics(&y, &mut dy);
+        let sides = sys.kink_sides(0.0, &y, &at);
+        let kinks = sys.string_kinks(&y).unwrap();
+        let expect = kinks
+            .iter()
+            .enumerate()
+            .fold(0u32, |b, (j, v)| b | (u32::from(*v < 0.0) << j));
+        assert_eq!(sides, expect, "state {k}: {kinks:?}");
+        for j in 0..kinks.len() {
+            assert_eq!(
+                sides & (1 << j) != 0,
+                sys.kink(0.0, &y, j) < 0.0,
+                "state {k} kink {j}"
+            );
+        }
+        set |= sides;
+        clear |= !sides;
+    }
+    // Stretches (even bits) and pulls (odd bits) were seen on both sides.
+    for (what, bits) in [("below", set), ("above", clear)] {
+        assert!(
+            bits & 0x555 != 0 && bits & 0xaaa != 0,
+            "no kink {what} zero: {bits:x}"
+        );
+    }
 }
 
 #[test]

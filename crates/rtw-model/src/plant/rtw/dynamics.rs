@@ -5,6 +5,7 @@ use super::model::{AtState, Rtw};
 use crate::plant::contact::{Load, RodMode};
 use crate::plant::geometry::{RodFrame, Vec2, add, scale};
 use crate::plant::slots::{self, DISSIPATED, FRICTION, N, VX};
+use crate::plant::strings::STRING_COUNT;
 
 impl Rtw {
     /// External loads (strings + gravity) on each rod, and the damper power.
@@ -59,6 +60,11 @@ impl Rtw {
         }
         dy[DISSIPATED] = dissipation;
         dy[FRICTION] = friction;
+    }
+
+    /// The strings' kinks at `y` ([`StringSet::kinks`](crate::plant::strings::StringSet::kinks)).
+    pub(crate) fn string_kinks(&self, y: &[f64; N]) -> Option<[f64; 2 * STRING_COUNT]> {
+        self.strings.kinks(&self.frames(y))
     }
 
     #[cfg(test)]

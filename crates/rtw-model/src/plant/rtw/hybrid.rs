@@ -108,6 +108,17 @@ impl HybridSystem<N> for Rtw {
         self.guards_of(y, &at.frames, &at.lambda, out);
     }
 
+    /// The strings' kinks: a slack string's stretch and pull changing sign,
+    /// from the frames the right-hand side made at the step's end.
+    #[inline]
+    fn kink_sides(&self, _t: f64, _y: &[f64; N], at: &AtState) -> u32 {
+        self.strings.kink_sides(&at.frames)
+    }
+
+    fn kink(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
+        self.string_kinks(y).map_or(0.0, |k| k[index])
+    }
+
     fn reset(&mut self, _t: f64, y: &mut [f64; N], index: usize) -> Transition {
         self.reset_kind(y, self.guard_kind(index))
     }
