@@ -9,6 +9,9 @@ use super::{Scratch, armed, illinois, is_crossed, past_noise};
 use crate::dense::Dense;
 use crate::system::{Guards, HybridSystem, MAX_GUARDS, MAX_KINKS, fd_delta};
 
+/// The tolerance of a kink's location, relative to the step's length.
+const KINK_TIME_TOL: f64 = 1e-8;
+
 /// The kinks of the right-hand side that changed side over a step
 /// ([`HybridSystem::kink_sides`]), located on its dense output, in time
 /// order, with every guard there: its value, and its rates just before and
@@ -44,6 +47,9 @@ pub(super) fn locate_kinks<const N: usize, S: HybridSystem<N>>(
         let f = |t: f64, y: &[f64; N]| sys.kink(t, y, j);
         let (ga, gb) = (f(dense.t0, &dense.y0), f(dense.t1, &dense.y1));
         sc.yc = dense.y1;
+        // A kink need not be located as tightly as an event: off by δ, a
+        // guard's value there is off by its rates' jump times δ.
+        let tol = tol.max(KINK_TIME_TOL * (dense.t1 - dense.t0));
         let (_, _, t) = illinois(f, dense, falling, dense.t0, ga, dense.t1, gb, tol, sc);
         // In time order; a kink at the time of one already found adds nothing.
         let k = &mut sc.kinks;

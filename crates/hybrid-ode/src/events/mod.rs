@@ -91,7 +91,6 @@ impl<const N: usize> Scratch<N> {
 /// ([`HybridSystem::guard`]).
 // `!(a < b)` is deliberate throughout the engine: it is true for NaN too.
 #[allow(clippy::too_many_arguments, clippy::neg_cmp_op_on_partial_ord)]
-#[inline]
 fn illinois<const N: usize, F: Fn(f64, &[f64; N]) -> f64>(
     f: F,
     dense: &Dense<N>,

@@ -528,6 +528,7 @@ fn the_kink_sides_of_the_dynamics_are_the_signs_of_the_kinks() {
     // In flight, so that every rod's frame follows its centre.
     sys.set_modes([RodMode::Free; 3]);
     let (mut set, mut clear) = (0u32, 0u32);
+    let mut states = vec![];
     for k in 0..40 {
         // Stretched, compressed, lengthening and shortening strings.
         // The star shrunk or grown about its centre, its rods moving in or
@@ -548,7 +549,7 @@ fn the_kink_sides_of_the_dynamics_are_the_signs_of_the_kinks() {
         }
         let mut dy = [0.0; N];
         let at = sys.dynamics(&y, &mut dy);
-        let sides = sys.kink_sides(0.0, &y, &at);
+        let sides = sys.strings.kink_sides(&at.frames);
         let kinks = sys.string_kinks(&y).unwrap();
         let expect = kinks
             .iter()
@@ -564,6 +565,7 @@ fn the_kink_sides_of_the_dynamics_are_the_signs_of_the_kinks() {
         }
         set |= sides;
         clear |= !sides;
+        states.push(y);
     }
     // Stretches (even bits) and pulls (odd bits) were seen on both sides.
     for (what, bits) in [("below", set), ("above", clear)] {
@@ -572,6 +574,30 @@ fn the_kink_sides_of_the_dynamics_are_the_signs_of_the_kinks() {
             "no kink {what} zero: {bits:x}"
         );
     }
+    // The engine is told of the kinks of the strings on a rod on the ground:
+    // none in flight; with one rod sticking, those of its four strings (rod
+    // 0: strings 0, 2, 3, 5, a+–b+, c+–a−, a−–b−, c−–a+), and only those.
+    let mut dy = [0.0; N];
+    let (mut kept, mut masked) = (0, 0);
+    let tip = crate::plant::geometry::Tip::Plus;
+    for y in states {
+        sys.set_modes([RodMode::Free; 3]);
+        let at = sys.dynamics(&y, &mut dy);
+        assert_eq!(sys.kink_sides(0.0, &y, &at), 0, "in flight");
+        for (rod, strings) in [(0, [0, 2, 3, 5]), (1, [0, 1, 3, 4]), (2, [1, 2, 4, 5])] {
+            let mut modes = [RodMode::Free; 3];
+            modes[rod] = RodMode::Stick { tip };
+            sys.set_modes(modes);
+            let at = sys.dynamics(&y, &mut dy);
+            let mask = strings.iter().fold(0u32, |m, j| m | 0b11 << (2 * j));
+            let all = sys.strings.kink_sides(&at.frames);
+            let sides = sys.kink_sides(0.0, &y, &at);
+            assert_eq!(sides, all & mask, "rod {rod} on the ground");
+            kept |= sides;
+            masked |= all & !mask;
+        }
+    }
+    assert!(kept != 0 && masked != 0, "kept {kept:x}, masked {masked:x}");
 }
 
 #[test]

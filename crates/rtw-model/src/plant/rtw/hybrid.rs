@@ -3,7 +3,9 @@
 
 use super::model::{AtState, Rtw, Transition};
 use crate::plant::contact::RodMode;
+use crate::plant::geometry::{SPOKES, next_spoke};
 use crate::plant::slots::{self, N, THETA};
+use crate::plant::strings::STRING_COUNT;
 use hybrid_ode::system::{MAX_GUARDS, fd_delta};
 use hybrid_ode::{Guards, HybridSystem};
 
@@ -108,11 +110,23 @@ impl HybridSystem<N> for Rtw {
         self.guards_of(y, &at.frames, &at.lambda, out);
     }
 
-    /// The strings' kinks: a slack string's stretch and pull changing sign,
-    /// from the frames the right-hand side made at the step's end.
+    /// The strings' kinks that move a contact force: a slack string's
+    /// stretch and pull changing sign, for each string that pulls on a rod on
+    /// the ground (a rod's contact force depends on its own loads alone),
+    /// from the frames the right-hand side made at the step's end. A free
+    /// rod's tip height is C² across a kink (its acceleration kinks, its
+    /// velocity does not), and every miss a kink caused was of a contact
+    /// force (`tests/crossings_inside_a_step.rs`).
     #[inline]
     fn kink_sides(&self, _t: f64, _y: &[f64; N], at: &AtState) -> u32 {
-        self.strings.kink_sides(&at.frames)
+        let grounded = |rod: usize| self.modes[rod] != RodMode::Free;
+        let mask = (0..STRING_COUNT)
+            .filter(|&j| grounded(SPOKES[j].0) || grounded(SPOKES[next_spoke(j)].0))
+            .fold(0u32, |m, j| m | (0b11 << (2 * j)));
+        if mask == 0 {
+            return 0;
+        }
+        self.strings.kink_sides(&at.frames) & mask
     }
 
     fn kink(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
