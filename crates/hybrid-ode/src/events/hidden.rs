@@ -182,7 +182,10 @@ pub(super) fn check_at_event<const N: usize, S: HybridSystem<N>>(
 ) -> Option<(usize, f64)> {
     let mut at_best = Guards::default();
     let mut dy = [0.0; N];
-    while let Some((ib, t_best)) = best {
+    // Each pass moves the event strictly earlier, to another guard's root;
+    // one pass per guard bounds the search.
+    for _ in 0..len {
+        let Some((ib, t_best)) = best else { break };
         sys.guards(t_best, &sc.ybest, &mut at_best);
         let mut earlier: Option<(usize, f64)> = None;
         let mut y_earlier = sc.ybest;

@@ -117,14 +117,25 @@ impl StringSet {
         }
         let mut out = [0.0; 2 * STRING_COUNT];
         for j in 0..STRING_COUNT {
-            let n = next_spoke(j);
-            let (p, vp) = rods[SPOKES[j].0].point(SPOKES[j].1.sign() * self.r);
-            let (q, vq) = rods[SPOKES[n].0].point(SPOKES[n].1.sign() * self.r);
-            let (_, _, k) = self.string_law(p, vp, q, vq);
-            out[2 * j] = k[0];
-            out[2 * j + 1] = k[1];
+            let (ip, iq) = Self::rods_of(j);
+            [out[2 * j], out[2 * j + 1]] = self.kinks_of(j, &rods[ip], &rods[iq]);
         }
         Some(out)
+    }
+
+    /// The rods string `j` joins: the rods of spokes `j` and `j + 1`.
+    pub fn rods_of(j: usize) -> (usize, usize) {
+        (SPOKES[j].0, SPOKES[next_spoke(j)].0)
+    }
+
+    /// String `j`'s two kinks ([`kinks`](Self::kinks)) from the frames of
+    /// the rods it joins ([`rods_of`](Self::rods_of)), `p` and `q`.
+    #[inline]
+    pub fn kinks_of(&self, j: usize, p: &RodFrame, q: &RodFrame) -> [f64; 2] {
+        let n = next_spoke(j);
+        let (p, vp) = p.point(SPOKES[j].1.sign() * self.r);
+        let (q, vq) = q.point(SPOKES[n].1.sign() * self.r);
+        self.string_law(p, vp, q, vq).2
     }
 
     /// The sides of the strings' kinks ([`kinks`](Self::kinks)), bit `i`

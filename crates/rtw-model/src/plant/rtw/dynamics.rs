@@ -5,6 +5,7 @@ use super::model::{AtState, Rtw};
 use crate::plant::contact::{Load, RodMode};
 use crate::plant::geometry::{RodFrame, Vec2, add, scale};
 use crate::plant::slots::{self, DISSIPATED, FRICTION, N, VX};
+#[cfg(test)]
 use crate::plant::strings::STRING_COUNT;
 
 impl Rtw {
@@ -62,6 +63,7 @@ impl Rtw {
         dy[FRICTION] = friction;
     }
 
+    #[cfg(test)]
     /// The strings' kinks at `y` ([`StringSet::kinks`](crate::plant::strings::StringSet::kinks)).
     pub(crate) fn string_kinks(&self, y: &[f64; N]) -> Option<[f64; 2 * STRING_COUNT]> {
         self.strings.kinks(&self.frames(y))

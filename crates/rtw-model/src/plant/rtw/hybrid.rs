@@ -3,9 +3,8 @@
 
 use super::model::{AtState, Rtw, Transition};
 use crate::plant::contact::RodMode;
-use crate::plant::geometry::{SPOKES, next_spoke};
 use crate::plant::slots::{self, N, THETA};
-use crate::plant::strings::STRING_COUNT;
+use crate::plant::strings::{STRING_COUNT, StringSet};
 use hybrid_ode::system::{MAX_GUARDS, fd_delta};
 use hybrid_ode::{Guards, HybridSystem};
 
@@ -121,7 +120,10 @@ impl HybridSystem<N> for Rtw {
     fn kink_sides(&self, _t: f64, _y: &[f64; N], at: &AtState) -> u32 {
         let grounded = |rod: usize| self.modes[rod] != RodMode::Free;
         let mask = (0..STRING_COUNT)
-            .filter(|&j| grounded(SPOKES[j].0) || grounded(SPOKES[next_spoke(j)].0))
+            .filter(|&j| {
+                let (ip, iq) = StringSet::rods_of(j);
+                grounded(ip) || grounded(iq)
+            })
             .fold(0u32, |m, j| m | (0b11 << (2 * j)));
         if mask == 0 {
             return 0;
@@ -129,8 +131,14 @@ impl HybridSystem<N> for Rtw {
         self.strings.kink_sides(&at.frames) & mask
     }
 
+    /// Kink `index` alone at `y`, from the frames of the two rods its string
+    /// joins (two `sin_cos`, not three, and one string): the root finder
+    /// calls it at every iterate.
     fn kink(&self, _t: f64, y: &[f64; N], index: usize) -> f64 {
-        self.string_kinks(y).map_or(0.0, |k| k[index])
+        let j = index / 2;
+        let (ip, iq) = StringSet::rods_of(j);
+        let frame = |rod: usize| self.body.frame(self.modes[rod], slots::rod(y, rod));
+        self.strings.kinks_of(j, &frame(ip), &frame(iq))[index % 2]
     }
 
     fn reset(&mut self, _t: f64, y: &mut [f64; N], index: usize) -> Transition {
