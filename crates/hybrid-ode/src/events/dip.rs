@@ -3,7 +3,7 @@
 //! model of its values and rates at the ends, and where, sampled on the
 //! dense output.
 
-use super::{Scratch, past_noise};
+use super::{Scratch, armed, past_noise, side};
 use crate::dense::Dense;
 use crate::system::{Crossing, HybridSystem};
 
@@ -35,14 +35,11 @@ pub(super) struct Knot {
 /// and come back within a step whose ends are `p` and `q`: both on that side
 /// strictly, and the guard fires leaving it. `None`: no dip can fire.
 #[inline]
-pub(super) fn dip_side(kind: Crossing, p: f64, q: f64) -> Option<f64> {
-    let above = p > 0.0 && q > 0.0;
-    let below = p < 0.0 && q < 0.0;
-    match kind {
-        Crossing::Falling | Crossing::Either if above => Some(1.0),
-        Crossing::Rising | Crossing::Either if below => Some(-1.0),
-        _ => None,
-    }
+fn dip_side(kind: Crossing, p: f64, q: f64) -> Option<f64> {
+    // Strictly on that side (a NaN is on neither).
+    armed(kind, p)
+        .filter(|&falling| if falling { q > 0.0 } else { q < 0.0 })
+        .map(side)
 }
 
 /// The time of the minimum of the cubic Hermite model of `s` on `[a.t, b.t]`
@@ -130,21 +127,9 @@ pub(super) fn excluded_cheaply(p0: f64, p1: f64, m0: f64, m1: f64) -> bool {
     p0.min(p1) - bound > DIP_MARGIN * bound
 }
 
-/// The knots, on side `sg`, of a guard's `(time, value, rate)` at a step's
-/// two ends.
-#[inline]
-pub(super) fn end_knots(sg: f64, p: (f64, f64, f64), q: (f64, f64, f64)) -> (Knot, Knot) {
-    let knot = |(t, g, r): (f64, f64, f64)| Knot {
-        t,
-        s: sg * g,
-        ds: sg * r,
-    };
-    (knot(p), knot(q))
-}
-
 /// The knot, on side `sg`, of a guard at `(t, g)` with rate `r`.
 #[inline]
-pub(super) fn start_knot(sg: f64, t: f64, g: f64, r: f64) -> Knot {
+pub(super) fn knot(sg: f64, t: f64, g: f64, r: f64) -> Knot {
     Knot {
         t,
         s: sg * g,
@@ -226,7 +211,7 @@ pub(super) fn may_dip(
     let Some(sg) = dip_side(kind, gp, gn) else {
         return false;
     };
-    let (a, b) = end_knots(sg, (t0, gp, rp), (t1, gn, rn));
+    let (a, b) = (knot(sg, t0, gp, rp), knot(sg, t1, gn, rn));
     let h = b.t - a.t;
     // The cheap tests here, inlined; `cubic_dip` repeats them and decides
     // the rest.

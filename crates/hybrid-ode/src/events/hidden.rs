@@ -4,8 +4,8 @@
 //! another guard's event, a first root before the one a bracket converged
 //! to.
 
-use super::dip::{Knot, find_dip, start_knot};
-use super::{Scratch, armed, illinois, is_crossed, past_noise};
+use super::dip::{Knot, find_dip, knot};
+use super::{Scratch, armed, illinois, is_crossed, past_noise, side};
 use crate::dense::Dense;
 use crate::system::{Guards, HybridSystem, MAX_GUARDS, MAX_KINKS, fd_delta};
 
@@ -156,7 +156,7 @@ pub(super) fn piece_start<const N: usize>(
         .rev()
         .find(|&k| kinks.t[k] < t && sg * kinks.g[k][i] > 0.0)
         .map_or(start, |k| {
-            start_knot(sg, kinks.t[k], kinks.g[k][i], kinks.after[k][i])
+            knot(sg, kinks.t[k], kinks.g[k][i], kinks.after[k][i])
         })
 }
 
@@ -194,14 +194,14 @@ pub(super) fn check_at_event<const N: usize, S: HybridSystem<N>>(
                 continue;
             };
             let v = at_best.value[i];
-            let sg = if falling { 1.0 } else { -1.0 };
+            let sg = side(falling);
             if i == ib
                 || !is_crossed(falling, v)
                 || !past_noise(sys, i, t_best, &sc.ybest, err, sg * v, sg, &mut dy)
             {
                 continue;
             }
-            let k0 = start_knot(sg, dense.t0, gp.value[i], rp[i]);
+            let k0 = knot(sg, dense.t0, gp.value[i], rp[i]);
             let k0 = piece_start(&sc.kinks, i, sg, t_best, k0);
             sc.yc = sc.ybest;
             let bracket = (k0.t, sg * k0.s, t_best, v);

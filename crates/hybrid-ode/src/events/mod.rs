@@ -24,7 +24,7 @@ mod hidden;
 
 use crate::dense::Dense;
 use crate::system::{Crossing, Guards, HybridSystem, MAX_GUARDS, MAX_KINKS};
-use dip::{Knot, find_dip, may_dip, start_knot};
+use dip::{Knot, find_dip, knot, may_dip};
 use hidden::{Kinks, check_at_event, locate_first, locate_kinks};
 
 /// Iteration cap of the event root finder (it normally needs 5–15).
@@ -35,21 +35,20 @@ const ROOT_MAX_ITER: u32 = 200;
 /// A start value of exactly 0 never counts as a crossing.
 #[inline]
 pub(crate) fn crossing_dir(kind: Crossing, p: f64, q: f64) -> Option<bool> {
-    let falls = p > 0.0 && q <= 0.0;
-    let rises = p < 0.0 && q >= 0.0;
-    match kind {
-        Crossing::Falling if falls => Some(true),
-        Crossing::Rising if rises => Some(false),
-        Crossing::Either if falls => Some(true),
-        Crossing::Either if rises => Some(false),
-        _ => None,
-    }
+    armed(kind, p).filter(|&falling| is_crossed(falling, q))
 }
 
 /// Whether a guard value is on the crossed side.
 #[inline]
 fn is_crossed(falling: bool, v: f64) -> bool {
     if falling { v <= 0.0 } else { v >= 0.0 }
+}
+
+/// The side σ a guard that fires `falling` starts on: +1 above zero, −1
+/// below (its signed value `s = σ g` is positive until it crosses).
+#[inline]
+fn side(falling: bool) -> f64 {
+    if falling { 1.0 } else { -1.0 }
 }
 
 /// Fixed-size scratch of event location.
@@ -186,8 +185,8 @@ fn first_bracket<const N: usize, S: HybridSystem<N>>(
     sc: &mut Scratch<N>,
 ) -> Option<(Bracket, Knot)> {
     let falling = armed(gn.crossing[i], gp.value[i])?;
-    let sg = if falling { 1.0 } else { -1.0 };
-    let mut a = start_knot(sg, dense.t0, gp.value[i], rp[i]);
+    let sg = side(falling);
+    let mut a = knot(sg, dense.t0, gp.value[i], rp[i]);
     let mut dy = [0.0; N];
     for k in 0..sc.kinks.len {
         let (t, s) = (sc.kinks.t[k], sg * sc.kinks.g[k][i]);
@@ -199,18 +198,18 @@ fn first_bracket<const N: usize, S: HybridSystem<N>>(
             }
             continue;
         }
-        let b = start_knot(sg, t, sg * s, sc.kinks.before[k][i]);
+        let b = knot(sg, t, sg * s, sc.kinks.before[k][i]);
         if let Some((ta, ga, tb, gb)) = find_dip(sys, dense, i, sg, a, b, t_limit, err, sc) {
             return Some(((falling, ta, ga, tb, gb), a));
         }
-        a = start_knot(sg, t, sg * s, sc.kinks.after[k][i]);
+        a = knot(sg, t, sg * s, sc.kinks.after[k][i]);
     }
     let q = gn.value[i];
     if is_crossed(falling, q) {
         sc.yc = dense.y1;
         return Some(((falling, a.t, sg * a.s, dense.t1, q), a));
     }
-    let b = start_knot(sg, dense.t1, q, rn[i]);
+    let b = knot(sg, dense.t1, q, rn[i]);
     let (ta, ga, tb, gb) = find_dip(sys, dense, i, sg, a, b, t_limit, err, sc)?;
     Some(((falling, ta, ga, tb, gb), a))
 }
@@ -325,7 +324,7 @@ pub(crate) fn locate_earliest<const N: usize, S: HybridSystem<N>>(
             }
             _ => (b, gb),
         };
-        let sg = if falling { 1.0 } else { -1.0 };
+        let sg = side(falling);
         let t_i = locate_first(sys, dense, i, sg, k0, (a, ga, b, gb), err, tol, hidden, sc);
         if best.is_none_or(|(_, t_best)| t_i < t_best) {
             best = Some((i, t_i));

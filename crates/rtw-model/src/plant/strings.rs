@@ -86,9 +86,8 @@ impl StringSet {
         };
         let (force, pull) = match self.damping {
             Damping::Along => {
-                let t = spring + self.c * len_rate;
-                let pull = t;
-                let t = if self.slack { t.max(0.0) } else { t };
+                let pull = spring + self.c * len_rate;
+                let t = if self.slack { pull.max(0.0) } else { pull };
                 (scale(-t, u), pull)
             }
             Damping::Relative => {
@@ -124,6 +123,7 @@ impl StringSet {
     }
 
     /// The rods string `j` joins: the rods of spokes `j` and `j + 1`.
+    #[inline]
     pub fn rods_of(j: usize) -> (usize, usize) {
         (SPOKES[j].0, SPOKES[next_spoke(j)].0)
     }
@@ -166,7 +166,7 @@ impl StringSet {
             let (p, vp, arm_p) = ends[j];
             let (q, vq, arm_q) = ends[n];
             let (f, diss, _) = self.string_law(p, vp, q, vq);
-            let (ip, iq) = (SPOKES[j].0, SPOKES[n].0);
+            let (ip, iq) = Self::rods_of(j);
             out.force[ip] = add(out.force[ip], f);
             out.force[iq] = sub(out.force[iq], f);
             out.torque[ip] += cross(arm_p, f);
