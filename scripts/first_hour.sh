@@ -10,9 +10,10 @@
 #   1. the main command:  cargo run --release -p rtw-scan -- run configs/paper.toml
 #   2. the Python package: python3 -m venv v && v/bin/pip install './crates/rtw-py[plot]'
 #   3. the test command:  ./scripts/test.sh
-# Each step's output is kept in the user's home (first-hour-N.log); a step
-# that fails stops the walk and prints its log's end. Writes a Markdown
-# table to stdout. The user and its home are removed at the end.
+# Each step's output goes to the user's home (first-hour-N.log); a step
+# that fails stops the walk and prints its log's end. Writes the Markdown of
+# results/bench/first-hour.md to stdout. The user and its home are removed
+# at the end.
 #   sudo ./scripts/first_hour.sh [REV]   # REV defaults to HEAD; about 35 min on two idle cores
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -69,13 +70,17 @@ step "Python package" "python3 -m venv v && v/bin/pip install --quiet './crates/
 step "test command" "./scripts/test.sh"
 grep -q "all checks passed" "$home/first-hour-3.log" || { echo "first_hour.sh: the test command did not say 'all checks passed'" >&2; exit 1; }
 
+echo "# A new user's first hour: README.md's three commands as a user without root"
+echo
 echo "Walked by \`sudo ./scripts/first_hour.sh\` at $rev, $started UTC, as the user $user (uid $(id -u "$user"), no root); $(nproc) cores, load average before $load, after $(cut -d' ' -f1-3 /proc/loadavg). Toolchain: $how ($(su - "$user" -c 'PATH=$HOME/.cargo/bin:$PATH rustc --version'))."
+echo
+echo "## Steps"
 echo
 echo "| step | command (README.md) | wall time |"
 echo "|---:|---|---:|"
 printf '%s\n' "${rows[@]}"
 echo
-echo "The test command ended with \"all checks passed\"; what it skipped as a user without root:"
+echo "The test command ended with \"all checks passed except the Slurm tier\"; what it skipped as a user without root:"
 echo
 echo '```'
 if [ -n "$skipped" ]; then printf '%s\n' "$skipped"; else echo "    (nothing)"; fi
