@@ -24,7 +24,7 @@ user=rtw-first-hour
 home=/home/$user
 id "$user" >/dev/null 2>&1 && userdel -r "$user" >/dev/null 2>&1 || true
 useradd --create-home --shell /bin/bash "$user"
-trap 'userdel -r "$user" >/dev/null 2>&1 || true' EXIT
+trap 'userdel -r "$user" >/dev/null 2>&1 || true; rm -f "${work_skipped:-}"' EXIT
 
 # The toolchain, as rustup installs it for one user.
 if curl -fsS --max-time 10 https://sh.rustup.rs -o "$home/rustup-init.sh" 2>/dev/null; then
@@ -62,9 +62,9 @@ step() { # NAME COMMAND: one timed step, as the user, from the clone's root
   fi
   t1=$(date +%s)
   rows+=("| $n | \`$cmd\` | $(( (t1 - t0) / 60 )) min $(( (t1 - t0) % 60 )) s |")
-  skipped+=$(grep -E 'SKIPPED' "$home/first-hour-$n.log" | sed 's/^/    /' || true)
+  grep -E 'SKIPPED' "$home/first-hour-$n.log" | sed 's/^/    /' >>"$work_skipped" || true
 }
-skipped=""
+work_skipped=$(mktemp)
 step "main command" "cargo run --release -p rtw-scan -- run configs/paper.toml"
 step "Python package" "python3 -m venv v && v/bin/pip install --quiet './crates/rtw-py[plot]'"
 step "test command" "./scripts/test.sh"
@@ -83,5 +83,5 @@ echo
 echo "The test command ended with \"all checks passed except the Slurm tier\"; what it skipped as a user without root:"
 echo
 echo '```'
-if [ -n "$skipped" ]; then printf '%s\n' "$skipped"; else echo "    (nothing)"; fi
+if [ -s "$work_skipped" ]; then cat "$work_skipped"; else echo "    (nothing)"; fi
 echo '```'
