@@ -23,12 +23,12 @@ members=$(cargo metadata --no-deps --format-version 1 | python3 -c \
   'import json, sys; print(" ".join("-p " + p["name"] for p in json.load(sys.stdin)["packages"]))')
 git checkout -q "$a" && cargo build --release -p rtw-scan -q && cargo test --workspace --release --no-run -q 2>/dev/null
 git checkout -q "$b" && cargo build --release -p rtw-scan -q && cargo test --workspace --release --no-run -q 2>/dev/null
-timed() { # OUT COMMAND...: wall and CPU seconds of COMMAND, appended to OUT
-  local out=$1 t0 t1; shift
+timed() { # COMMAND...: prints its wall and CPU seconds
+  local t0 t1
   t0=$(date +%s.%N)
   /usr/bin/time -f "%U %S" -o "$work/cpu" "$@" >/dev/null 2>&1
   t1=$(date +%s.%N)
-  awk -v w="$(echo "$t1 - $t0" | bc)" '{ printf "%.1f %.1f\n", w, $1 + $2 }' "$work/cpu" >>"$out"
+  awk -v w="$(echo "$t1 - $t0" | bc)" '{ printf "%.1f %.1f\n", w, $1 + $2 }' "$work/cpu"
 }
 echo "| round | revision | main build wall (s) | main build CPU (s) | test build wall (s) | test build CPU (s) |"
 echo "|---:|---|---:|---:|---:|---:|"
@@ -37,11 +37,8 @@ for r in $(seq "$rounds"); do
     git checkout -q "$rev"
     # shellcheck disable=SC2086
     cargo clean --release $members -q
-    : >"$work/row"
-    timed "$work/row" cargo build --release -p rtw-scan
-    timed "$work/row" cargo test --workspace --release --no-run
-    read -r mw mc < <(sed -n 1p "$work/row")
-    read -r tw tc < <(sed -n 2p "$work/row")
+    read -r mw mc < <(timed cargo build --release -p rtw-scan)
+    read -r tw tc < <(timed cargo test --workspace --release --no-run)
     echo "| $r | $rev | $mw | $mc | $tw | $tc |"
     echo "$rev $mw $mc $tw $tc" >>"$work/all"
   done

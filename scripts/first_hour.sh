@@ -38,6 +38,7 @@ else
   cp -a "$stable" "$home/.rustup/toolchains/"
   cp -a "$src_rustup/settings.toml" "$home/.rustup/" 2>/dev/null || true
   cp -a "$src_cargo/bin/." "$home/.cargo/bin/"
+  # Tools installed beside rustup here that a new user would not have.
   rm -f "$home/.cargo/bin/"cargo-{nextest,hakari} 2>/dev/null || true
   chown -R "$user:$user" "$home/.rustup" "$home/.cargo"
 fi
