@@ -11,7 +11,7 @@
 rtw_install
 out=results/bifurcation
 mkdir -p "$out"
-# The default strings' natural length, for the summary's heading (crates/rtw-scan/tests/it/template.rs
+# The default strings' natural length, for the summary's heading (crates/rtw-scan-test/tests/it/template.rs
 # checks that the template sets every key to its default; scripts/check_default_model.py
 # that the data called default is at it). The figures' titles name the model read from the data.
 s=$(sed -n 's/^strings\.rest_length_ratio = //p' configs/template.toml)

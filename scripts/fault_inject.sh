@@ -38,9 +38,9 @@ seed=${FAULT_SEED:-$(( $(date +%s) % 32768 ))}
 RANDOM=$seed
 echo "fault_inject: seed $seed (FAULT_SEED=$seed ./scripts/fault_inject.sh replays it)"
 
-# The test build (fake-sim feature: RTW_SCAN_PAUSE, part 4); the same
-# binary `cargo test` builds, and the physics as in a plain build.
-rtw_build -p rtw-scan --features fake-sim --bin rtw-scan-test
+# The command's test build (RTW_SCAN_PAUSE, part 4): the binary `cargo
+# test` builds, over the same library as the plain build.
+rtw_build -p rtw-scan-test
 bin=$PWD/target/release/rtw-scan-test
 rtw_venv >/dev/null
 py=$RTW_PY

@@ -19,13 +19,13 @@
 runs="${1:-3}"
 rtw_install
 py=$PWD/$RTW_PY
-rtw_build -p rtw-scan --features fake-sim
+rtw_build -p rtw-scan -p rtw-scan-test
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 load() { cut -d' ' -f1-3 /proc/loadavg; }
 grep -q '^samples = 1000$' configs/paper.toml
 sed -e 's/^samples = 1000$/samples = 1000000/' configs/paper.toml >"$tmp/million.toml"
-"$RTW_BIN" run "$tmp/million.toml" --out "$tmp/million" --fake-sim 0 --quiet >/dev/null
+"${RTW_BIN}-test" run "$tmp/million.toml" --out "$tmp/million" --fake-sim 0 --quiet >/dev/null
 start_load=$(load)
 row() { # NAME DIR ROWS: one table row
   local name=$1 dir=$2 rows=$3 i

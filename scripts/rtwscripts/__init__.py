@@ -27,7 +27,7 @@ DPI = 130
 # rtw's default model as a variant file (configs/variants/): the one the gallery's walk is run
 # with, and the one the variant study's selection rule picks (results/variants/summary.json
 # "chosen"; scripts/variants_report.py writes this name as "default" beside it, and
-# crates/rtw-scan/tests/it/default_variant.rs fails unless the two agree and the file gives
+# crates/rtw-scan-test/tests/it/default_variant.rs fails unless the two agree and the file gives
 # rtw-model's Options::default()).
 DEFAULT_VARIANT = "prestress-0.8875-settled-mu0.8-slack-steps"
 

@@ -17,7 +17,7 @@
 //!   seeds, it is among those closest to the article's statistic (ties
 //!   within the seeds' error) the one whose strings cannot push and whose
 //!   Fig. S2 rate is nearest f_n. The natural length is fitted to those
-//!   figures, not published; `crates/rtw-scan/tests/it/default_variant.rs`
+//!   figures, not published; `crates/rtw-scan-test/tests/it/default_variant.rs`
 //!   fails when this default and the study's pick differ.
 //! * [`Options::literal`]: docs/model.md §1–§6 as first written, the supplementary's
 //!   S5–S6 taken literally (zero rest length, no slip, a rigid start, any

@@ -60,16 +60,19 @@ mod values;
 use analysis::{ClusterArgs, SummaryArgs};
 use basin::BasinArgs;
 use bifurcation::BifurcationArgs;
-use clap::{Parser, Subcommand};
+use clap::{Arg, ArgAction, ArgMatches, CommandFactory, FromArgMatches, Parser, Subcommand};
 use continuation::ContinuationArgs;
 use design::DesignArgs;
 use profile::ProfileArgs;
 use refine::RefineArgs;
+use rtw_engine::scan::one::Simulator;
+use rtw_model::{Options, Outcome, Params};
 use run::{MergeArgs, RunArgs};
 use sensitivity::SensitivityArgs;
 use signal::install_signal_handler;
 use simulate::SimulateArgs;
 use std::process::ExitCode;
+use std::time::Duration;
 
 /// The exit codes every command documents in its `--help`.
 const EXIT_CODES: &str = "Exit status:\n  \
@@ -257,22 +260,94 @@ enum Command {
 /// Parses the command line, runs it, and turns errors into a message and
 /// exit code 1.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    run_command(Cli::command())
+}
+
+/// The test build of the command, `rtw-scan-test` (its own package, so
+/// that neither a plain build nor `cargo install` makes it): `main` with the
+/// hidden flag `--fake-sim` on `run`, `refine` and `simulate` (the engine's
+/// stand-in simulator) and the engine's test pauses (`RTW_SCAN_PAUSE`)
+/// allowed. The flags are added here at run time rather than behind a
+/// feature: a feature would compile this library a second time for the
+/// tests; `rtw-scan`'s command never has them.
+#[doc(hidden)]
+pub fn test_main() -> ExitCode {
+    rtw_engine::allow_test_pauses();
+    run_command(with_test_flags(Cli::command()))
+}
+
+/// The stand-in simulator the test build's `--fake-sim` asks for, sleeping
+/// that long a sample; `None` for the model (always, in `rtw-scan`).
+type FakeSim = Option<Duration>;
+
+/// The id of the test build's `--fake-sim`.
+const FAKE_SIM: &str = "fake_sim";
+
+/// `cli` with the test build's hidden flags.
+fn with_test_flags(cli: clap::Command) -> clap::Command {
+    let sleeping = || {
+        Arg::new(FAKE_SIM)
+            .long("fake-sim")
+            .value_name("MS")
+            .value_parser(clap::value_parser!(u64))
+            .hide(true)
+            .help("Testing only: use the fake simulator, sleeping MS milliseconds per sample.")
+    };
+    cli.mut_subcommand("run", |c| c.arg(sleeping()))
+        .mut_subcommand("refine", |c| c.arg(sleeping()))
+        .mut_subcommand("simulate", |c| {
+            c.arg(
+                Arg::new(FAKE_SIM)
+                    .long("fake-sim")
+                    .action(ArgAction::SetTrue)
+                    .hide(true)
+                    .help("Testing only: use the fake simulator."),
+            )
+        })
+}
+
+/// What the subcommand's `--fake-sim` asked for, if the command has it.
+fn fake_sim(m: &ArgMatches) -> FakeSim {
+    let (_, sub) = m.subcommand()?;
+    if let Ok(Some(&ms)) = sub.try_get_one::<u64>(FAKE_SIM) {
+        return Some(Duration::from_millis(ms));
+    }
+    matches!(sub.try_get_one::<bool>(FAKE_SIM), Ok(Some(true))).then_some(Duration::ZERO)
+}
+
+/// Calls `f` with the simulator of a scan or refinement: the model's, or the
+/// engine's stand-in where `--fake-sim` asked for it.
+fn with_simulator<R>(fake: FakeSim, f: impl FnOnce(Simulator) -> R) -> R {
+    match fake {
+        Some(delay) => f(&move |p: &Params, o: &Options| -> Outcome {
+            rtw_engine::fake::simulate(p, o, delay)
+        }),
+        None => f(&rtw_model::simulate),
+    }
+}
+
+/// Parses the command line with `cli` (clap's errors and `--help` exit
+/// here, as `Parser::parse` does), runs it, and turns errors into a message
+/// and exit code 1.
+fn run_command(mut cli: clap::Command) -> ExitCode {
+    let matches = cli.get_matches_mut();
+    let fake = fake_sim(&matches);
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.format(&mut cli).exit());
     if let Err(e) = install_signal_handler() {
         eprintln!("error: {e:#}");
         return ExitCode::FAILURE;
     }
     let result = match cli.command {
-        Command::Run(a) => run::cmd_run(a),
+        Command::Run(a) => run::cmd_run(a, fake),
         Command::Merge(a) => run::cmd_merge(a),
-        Command::Simulate(a) => simulate::cmd_simulate(a),
+        Command::Simulate(a) => simulate::cmd_simulate(a, fake),
         Command::Bifurcation(a) => bifurcation::cmd_bifurcation(a),
         Command::Continuation(a) => continuation::cmd_continuation(a),
         Command::Basin(a) => basin::cmd_basin(a),
         Command::Cluster(a) => analysis::cmd_cluster(a),
         Command::Summary(a) => analysis::cmd_summary(a),
         Command::Sensitivity(a) => sensitivity::cmd_sensitivity(a),
-        Command::Refine(a) => refine::cmd_refine(a),
+        Command::Refine(a) => refine::cmd_refine(a, fake),
         Command::Profile(a) => profile::cmd_profile(a),
         Command::Design(a) => design::cmd_design(a),
     };

@@ -2,6 +2,7 @@
 
 use super::progress::StderrProgress;
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
+use super::{FakeSim, with_simulator};
 use anyhow::Result;
 use clap::Args;
 use rtw_engine::entry::scan::{DEFAULT_CHUNK_SIZE, RunSettings, RunStatus, Shard};
@@ -46,13 +47,9 @@ pub(super) struct RefineArgs {
     /// Print no progress.
     #[arg(long)]
     quiet: bool,
-    /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
-    #[cfg(feature = "fake-sim")]
-    #[arg(long, hide = true, value_name = "MS")]
-    fake_sim: Option<u64>,
 }
 
-pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
+pub(super) fn cmd_refine(a: RefineArgs, fake: FakeSim) -> Result<ExitCode> {
     let rounds = a.rounds.unwrap_or(DEFAULT_ROUNDS.min(a.budget.max(1)));
     check_budget(a.budget, rounds)?;
     check_threads(a.threads, "--threads")?;
@@ -75,22 +72,10 @@ pub(super) fn cmd_refine(a: RefineArgs) -> Result<ExitCode> {
     };
     GRACEFUL.store(true, Ordering::SeqCst);
     let progress = StderrProgress::unless(a.quiet);
-    #[cfg(feature = "fake-sim")]
-    if let Some(ms) = a.fake_sim {
-        let delay = std::time::Duration::from_millis(ms);
-        let sim = |p: &_, o: &_| rtw_engine::fake::simulate(p, o, delay);
-        return finish(
-            &a,
-            refine::refine(&r, &sim, &Run::new(&progress, &STOP).on(a.threads))?,
-        );
-    }
+    let run = Run::new(&progress, &STOP).on(a.threads);
     finish(
         &a,
-        refine::refine(
-            &r,
-            &rtw_model::simulate,
-            &Run::new(&progress, &STOP).on(a.threads),
-        )?,
+        with_simulator(fake, |sim| refine::refine(&r, sim, &run))?,
     )
 }
 

@@ -2,6 +2,7 @@
 
 use super::progress::StderrProgress;
 use super::signal::{EXIT_INTERRUPTED, GRACEFUL, STOP};
+use super::{FakeSim, with_simulator};
 use anyhow::{Result, anyhow};
 use clap::Args;
 use rtw_engine::config::ScanConfig;
@@ -51,10 +52,6 @@ pub(super) struct RunArgs {
     #[arg(long, hide = true, value_name = "N", value_parser = super::values::positive,
           default_value_t = NonZeroUsize::new(scan::DEFAULT_CHUNK_SIZE).unwrap())]
     chunk_size: NonZeroUsize,
-    /// Testing only: use the fake simulator, sleeping MS milliseconds per sample.
-    #[cfg(feature = "fake-sim")]
-    #[arg(long, hide = true, value_name = "MS")]
-    fake_sim: Option<u64>,
 }
 
 #[derive(Args, Debug)]
@@ -100,7 +97,7 @@ fn default_out_dir(cfg: &ScanConfig, config_path: &Path, sets: &[String]) -> Res
     Ok(Path::new("runs").join(if name.is_empty() { "scan" } else { name }))
 }
 
-pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
+pub(super) fn cmd_run(a: RunArgs, fake: FakeSim) -> Result<ExitCode> {
     // A flag's value is refused before the config is read, as clap refuses it.
     let threads = a
         .threads
@@ -123,14 +120,7 @@ pub(super) fn cmd_run(a: RunArgs) -> Result<ExitCode> {
     };
     let progress = StderrProgress::unless(a.quiet);
     let run = Run::new(&progress, &STOP).on(threads);
-    #[cfg(feature = "fake-sim")]
-    if let Some(ms) = a.fake_sim {
-        let delay = std::time::Duration::from_millis(ms);
-        let sim = |p: &_, o: &_| rtw_engine::fake::simulate(p, o, delay);
-        let status = scan::run_scan(&cfg, &settings, &sim, &run)?;
-        return finish_run(&a, &out, status);
-    }
-    let status = scan::run_scan(&cfg, &settings, &rtw_model::simulate, &run)?;
+    let status = with_simulator(fake, |sim| scan::run_scan(&cfg, &settings, sim, &run))?;
     finish_run(&a, &out, status)
 }
 

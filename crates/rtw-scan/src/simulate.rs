@@ -1,5 +1,6 @@
 //! `simulate`: one run, its row printed, its trace written.
 
+use super::FakeSim;
 use super::validate::simulation_options;
 use anyhow::Result;
 use clap::Args;
@@ -101,13 +102,9 @@ pub(super) struct SimulateArgs {
     /// Write the trace even over a file that is not a trace.
     #[arg(long)]
     force: bool,
-    /// Testing only: use the fake simulator.
-    #[cfg(feature = "fake-sim")]
-    #[arg(long, hide = true)]
-    fake_sim: bool,
 }
 
-pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
+pub(super) fn cmd_simulate(a: SimulateArgs, fake: FakeSim) -> Result<ExitCode> {
     let [length, rho, alpha, f_n, zeta] = a.design.values();
     let params = checked_params([length, rho, alpha, f_n, zeta, a.phi], "--")?;
     let options = a.options.resolve()?;
@@ -128,9 +125,8 @@ pub(super) fn cmd_simulate(a: SimulateArgs) -> Result<ExitCode> {
         eprintln!("{line}");
     }
     let row = run_one(0, params, &options, |p: &Params, o: &Options| -> Outcome {
-        #[cfg(feature = "fake-sim")]
-        if a.fake_sim {
-            return rtw_engine::fake::simulate(p, o, std::time::Duration::ZERO);
+        if let Some(delay) = fake {
+            return rtw_engine::fake::simulate(p, o, delay);
         }
         match trace.as_mut() {
             Some(w) => rtw_model::simulate_traced(p, o, &mut |s| {

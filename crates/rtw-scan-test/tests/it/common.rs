@@ -5,9 +5,9 @@ use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// The `rtw-scan` command under test: `rtw-scan-test`, its build with the
-/// `fake-sim` feature, which a plain `cargo build` beside the tests never
-/// overwrites.
+/// The `rtw-scan` command under test: `rtw-scan-test`, its test build (the
+/// hidden `--fake-sim`, the pauses), which a plain `cargo build` beside the
+/// tests never overwrites.
 pub fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_rtw-scan-test"))
 }

@@ -1,9 +1,10 @@
-//! rtw-scan's integration tests, as one test binary: each module is one
+//! The `rtw-scan` command's end-to-end tests, as one test binary (they run
+//! its test build, this package's `rtw-scan-test`): each module is one
 //! area (the CLI's commands, the files' reliability, shards, destinations,
 //! the config template), and `common` holds what they share. One binary
 //! links arrow and parquet once, where one binary per file linked them
 //! sixteen times (docs/testing.md, "Build times"). Run one area with
-//! `cargo test --release -p rtw-scan --test it cli_profile::`.
+//! `cargo test --release -p rtw-scan-test --test it cli_profile::`.
 
 mod common;
 

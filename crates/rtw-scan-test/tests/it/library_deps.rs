@@ -13,12 +13,6 @@ fn manifest(rel: &str) -> toml::Table {
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-fn table<'a>(t: &'a toml::Table, key: &str) -> &'a toml::Table {
-    t.get(key)
-        .and_then(toml::Value::as_table)
-        .unwrap_or_else(|| panic!("no table `{key}`"))
-}
-
 const TERMINAL: [&str; 3] = ["clap", "ctrlc", "indicatif"];
 
 /// The dependencies (normal and dev) a manifest names.
@@ -65,44 +59,40 @@ fn the_libraries_know_no_terminal_and_depend_only_downward() {
         }
     }
     // The command is the one member with the terminal crates.
-    let cli = names(&manifest("Cargo.toml"), "dependencies");
+    let cli = names(&manifest("../rtw-scan/Cargo.toml"), "dependencies");
     for name in TERMINAL {
         assert!(cli.iter().any(|d| d == name), "rtw-scan lacks {name}");
     }
 }
 
-/// The tests run `rtw-scan-test`, the command built with `fake-sim`, whose
-/// name a plain build never writes: a user's `cargo run --release -p
-/// rtw-scan` beside the test command re-links `target/release/rtw-scan`, and
-/// a test that ran that file would meet a binary without `--fake-sim`. The
-/// test binary must require the feature, and no test may name the plain one.
+/// The tests run `rtw-scan-test`, the command's test build, whose name a
+/// plain build never writes: a user's `cargo run --release -p rtw-scan`
+/// beside the test command re-links `target/release/rtw-scan`, and a test
+/// that ran that file would meet a binary without `--fake-sim`. The test
+/// build is this package's binary, not a second one of rtw-scan's (which
+/// `cargo install` would install), and rtw-scan has no feature for it (a
+/// feature would compile the command's library a second time for the
+/// tests); no test may name the plain binary.
 #[test]
 fn the_tests_run_a_binary_that_a_plain_build_never_overwrites() {
-    let m = manifest("Cargo.toml");
-    let bins = m["bin"].as_array().expect("[[bin]] targets");
-    let test_bin = bins
-        .iter()
-        .find(|b| b["name"].as_str() == Some("rtw-scan-test"))
-        .expect("a [[bin]] named rtw-scan-test");
-    let needs: Vec<&str> = test_bin["required-features"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(toml::Value::as_str)
-        .collect();
+    let bin_names = |m: &toml::Table| -> Vec<String> {
+        m.get("bin")
+            .and_then(toml::Value::as_array)
+            .map(|bins| {
+                bins.iter()
+                    .filter_map(|b| b.get("name").and_then(toml::Value::as_str))
+                    .map(str::to_owned)
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let command = manifest("../rtw-scan/Cargo.toml");
+    assert_eq!(bin_names(&command), ["rtw-scan"], "rtw-scan's binaries");
     assert!(
-        needs.contains(&"fake-sim"),
-        "rtw-scan-test must require fake-sim: {needs:?}"
+        command.get("features").is_none(),
+        "rtw-scan has features: the test build would compile its library again"
     );
-    // With two binaries, `cargo run --release -p rtw-scan` (the README's
-    // main command) must still know which one to run.
-    assert_eq!(
-        table(&m, "package")
-            .get("default-run")
-            .and_then(toml::Value::as_str),
-        Some("rtw-scan"),
-        "rtw-scan's [package] needs default-run = \"rtw-scan\""
-    );
+    assert_eq!(bin_names(&manifest("Cargo.toml")), ["rtw-scan-test"]);
     let plain = concat!("CARGO_BIN_EXE_", "rtw-scan\"");
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it");
     for entry in std::fs::read_dir(&dir).unwrap() {
