@@ -367,6 +367,61 @@ mod tests {
         Cli::command().debug_assert();
     }
 
+    /// `--fake-sim` exists only in the test build's command: `rtw-scan`
+    /// refuses it as clap refuses any unknown flag, and the test build reads
+    /// it on the three subcommands that take it, as milliseconds a sample
+    /// (`simulate`'s is a bare switch, no delay).
+    #[test]
+    fn only_the_test_build_has_the_fake_simulator() {
+        let run = ["rtw-scan", "run", "c.toml", "--out", "o", "--fake-sim", "7"];
+        let refine = [
+            "rtw-scan",
+            "refine",
+            "d",
+            "--budget",
+            "4",
+            "--fake-sim",
+            "0",
+        ];
+        let simulate = [
+            "rtw-scan",
+            "simulate",
+            "--length",
+            "0.8",
+            "--rho",
+            "2.5",
+            "--alpha",
+            "0.125",
+            "--fn",
+            "3.269",
+            "--zeta",
+            "0.0514",
+            "--phi",
+            "0.15",
+            "--fake-sim",
+        ];
+        let args: [&[&str]; 3] = [&run, &refine, &simulate];
+        for (argv, delay) in args.into_iter().zip([7, 0, 0]) {
+            let e = Cli::command().try_get_matches_from(argv).unwrap_err();
+            assert_eq!(
+                e.kind(),
+                clap::error::ErrorKind::UnknownArgument,
+                "{argv:?}"
+            );
+            let m = with_test_flags(Cli::command())
+                .try_get_matches_from(argv)
+                .unwrap_or_else(|e| panic!("{argv:?}: {e}"));
+            assert_eq!(fake_sim(&m), Some(Duration::from_millis(delay)), "{argv:?}");
+            Cli::from_arg_matches(&m).unwrap();
+            // Without the flag, the test build runs the model.
+            let cut = argv.iter().position(|a| *a == "--fake-sim").unwrap();
+            let m = with_test_flags(Cli::command())
+                .try_get_matches_from(&argv[..cut])
+                .unwrap();
+            assert_eq!(fake_sim(&m), None, "{argv:?}");
+        }
+    }
+
     /// docs/cli.md is the flag reference: each subcommand's section names
     /// every flag it takes (hidden testing flags aside).
     #[test]
