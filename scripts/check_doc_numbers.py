@@ -211,6 +211,7 @@ ROB_STUDY = "docs/robustness-study.md"
 REF = "docs/refine.md"
 README = "README.md"
 RS = "results/robustness/summary.md"
+ROUGH = "results/robustness/roughness.md"
 MCOST = "results/robustness/mfpt_cost-robustness-map.txt"
 PCOST = "results/robustness/mfpt_cost.txt"
 BASIN = "results/robustness/basin_fig7a.txt"
@@ -452,6 +453,13 @@ PINS: list[Pin] = [
     Pin(ROB_ROUGH, rf"took {N} s for the map and {N} s for the paper scan on 2 shared cores",
         [Rx(RS, rf"^- map scan \(all measures\): {N} s", "Run times"),
          Rx(RS, rf"^- paper scan \(all measures\): {N} s", "Run times")]),
+    # The MFPT's ranking across roughness (results/robustness/roughness.md).
+    Pin(ROB_STUDY, rf"Somers' D is {P} \[{P}, {P}\] over all {N} stable gaits, with the 1 cm MFPT censored where no fall "
+        rf"was seen\. Of the 20 gaits that walk longest at 5 cm, {N} saw no fall at 1 cm; of all gaits, {N} of {N} did\. "
+        rf"The second draw at 5 cm gives the same figures \({P} \[{P}, {P}\], {N} of 20\)",
+        [Rx(ROUGH, rf"^\| 5 cm → 1 cm \| [^|]* \| {P} \[{P}, {P}\] \(\d+ of {N}\) \| {N} of 20 \({N} of {N}\) \|$"),
+         Rx(ROUGH, rf"^\| 5 cm \(terrain\.seed 100\) → 1 cm \| [^|]* \| {P} \[{P}, {P}\] \(\d+ of \d+\) \| "
+            rf"{N} of 20 \(\d+ of \d+\) \|$")]),
     # The study over three draws of the ground (results/robustness/summary.md, "Paper: over terrain seeds").
     Pin(ROB_STUDY, rf"and both again at the two other seeds {N} s",
         [Rx(RS, rf"^- both scans at 2 more terrain seeds \(steps to fall and mfpt\): {N} s", "Run times")]),

@@ -13,6 +13,11 @@
 #      so that every statistic of the MFPT comes with its spread over draws
 #      (trial i of steps_to_fall walks seed terrain.seed + i, so the three
 #      draws share no trial up to 100 trials);
+#   3b. the paper scan again with the MFPT alone at σ = 5 and 3 cm
+#      (roughness/paper-0.05/, roughness/paper-0.03/), and at 5 cm on the
+#      slope of terrain.seed 100 (roughness/paper-0.05-seed100/): whether
+#      the ranking on rough ground carries to the default 1 cm
+#      (roughness.md);
 #   4. scripts/step_down_curve.py: the survival curves of the Fig. 7(a)
 #      walk and of a walk, a skip and a crawl of the paper scan
 #      (step_down_curve.md);
@@ -30,7 +35,7 @@ mkdir -p "$out"
 if [[ "${1:-}" != "--analyse-only" ]]; then
   rtw_build
   seeds=(100 200)
-  rm -rf "$out/map" "$out/paper" "$out"/seed*
+  rm -rf "$out/map" "$out/paper" "$out"/seed* "$out/roughness"
   measures=(--set limit_cycle=true --set robustness.step_down=true
     --set robustness.step_down_h50=true --set robustness.gsn=true
     --set robustness.steps_to_fall=true --set robustness.mfpt=true)
@@ -47,12 +52,18 @@ if [[ "${1:-}" != "--analyse-only" ]]; then
         --set robustness.steps_to_fall=true --set robustness.mfpt=true >/dev/null
     done
   done
+  for sigma in 0.05 0.03; do
+    "$RTW_BIN" run configs/paper.toml --out "$out/roughness/paper-$sigma" --quiet \
+      --set robustness.mfpt=true --set robustness.sigma="$sigma" >/dev/null
+  done
+  "$RTW_BIN" run configs/paper.toml --out "$out/roughness/paper-0.05-seed100" --quiet \
+    --set robustness.mfpt=true --set robustness.sigma=0.05 --set terrain.seed=100 >/dev/null
   t3=$(date +%s.%N)
   # The survival curves of four gaits at stated heights (a few seconds).
   "$RTW_PY" scripts/step_down_curve.py "$out/step_down_curve.md" >/dev/null
   threads=$(nproc)
   python3 -c "print(f'map_scan_(all_measures)={$t1 - $t0:.1f} s;paper_scan_(all_measures)={$t2 - $t1:.1f} s;'
-    f'both_scans_at_${#seeds[@]}_more_terrain_seeds_(steps_to_fall_and_mfpt)={$t3 - $t2:.1f} s;threads=$threads')" \
+    f'both_scans_at_${#seeds[@]}_more_terrain_seeds_(steps_to_fall_and_mfpt)_and_the_paper_scan_at_5_and_3_cm_and_5_cm_on_seed_100_(mfpt)={$t3 - $t2:.1f} s;threads=$threads')" \
     >"$out/times.txt"
 fi
 "$RTW_PY" scripts/robustness_stats.py >/dev/null # its self-check against SciPy and a simulated sample
